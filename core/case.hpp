@@ -1,0 +1,91 @@
+// Case: one self-contained rasterization test, as read from cases/*.json. Everything the
+// reference and a GL implementation need to draw the same triangles with the same bits.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glrc {
+
+enum class Interpolation { smooth, flat, noperspective };
+
+struct Varying {
+  std::string name;
+  int size = 4;  // 1..4 components
+  Interpolation interpolation = Interpolation::smooth;
+};
+
+struct Vertex {
+  // Clip coordinates (x_c, y_c, z_c, w_c), float32: exactly what gl_Position receives.
+  std::array<float, 4> clip{};
+  // All varyings' components, concatenated in the order of Case::varyings.
+  std::vector<float> values;
+};
+
+enum class CullFace { none, front, back, front_and_back };
+enum class FrontFace { ccw, cw };
+enum class ProvokingVertex { last, first };  // glProvokingVertex; GL's default is last
+enum class DepthFunc { always, less };
+
+struct Viewport {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+// Verdict thresholds. Varying errors are in ULPs of the attribute's scale: the ulp of the
+// largest |v_i| among the covering triangle's vertices for that component. Depth errors are in
+// ULPs of 1.0 (2^-23), the scale of the depth range.
+struct Tolerance {
+  double varying_ulps = 64;
+  double depth_ulps = 16;
+  bool allow_boundary = true;  // coverage mismatches within one subpixel step of an edge
+};
+
+// Optional fields in a case file; each set one overrides the default tolerance.
+struct ToleranceOverride {
+  std::optional<double> varying_ulps;
+  std::optional<double> depth_ulps;
+  std::optional<bool> allow_boundary;
+  Tolerance applied_to(Tolerance t) const {
+    if (varying_ulps) t.varying_ulps = *varying_ulps;
+    if (depth_ulps) t.depth_ulps = *depth_ulps;
+    if (allow_boundary) t.allow_boundary = *allow_boundary;
+    return t;
+  }
+};
+
+struct Case {
+  std::string name;         // unique; defaults to the file's stem
+  std::string description;  // one line
+  std::string source_path;  // the file it came from, for messages
+
+  int fb_width = 64, fb_height = 64;
+  Viewport viewport{0, 0, 64, 64};
+  float depth_near = 0.0f, depth_far = 1.0f;  // glDepthRangef; n > f allowed
+
+  CullFace cull = CullFace::none;
+  FrontFace front_face = FrontFace::ccw;
+  ProvokingVertex provoking = ProvokingVertex::last;
+  DepthFunc depth_func = DepthFunc::always;
+
+  std::vector<Varying> varyings;
+  std::vector<Vertex> vertices;
+  std::vector<std::array<uint32_t, 3>> triangles;  // indices into vertices; GL_TRIANGLES order
+
+  ToleranceOverride tolerance;
+
+  int component_count() const {
+    int n = 0;
+    for (const auto& v : varyings) n += v.size;
+    return n;
+  }
+};
+
+// Channel names of a case's frame, in Frame::components order: "name.x", "name.y", ...
+std::vector<std::string> component_names(const Case& c);
+// The varying each component belongs to.
+std::vector<int> component_varying(const Case& c);
+
+}  // namespace glrc

@@ -1,0 +1,27 @@
+// Model: the choices the GL specification leaves to an implementation, which the reference
+// takes as parameters instead of guessing one.
+#pragma once
+
+#include <string>
+
+namespace glrc {
+
+// Which pixel centres exactly on an edge belong to the triangle. Named in GL window
+// coordinates (y up): bottom_left takes centres on left edges and on bottom horizontal edges
+// (llvmpipe rendering into an FBO does this); top_left takes left and top horizontal edges.
+enum class TieBreak { bottom_left, top_left };
+
+// Whether attribute planes (barycentrics) come from the snapped window positions used for
+// coverage, or from the exact, unsnapped ones. Mesa's llvmpipe and softpipe use unsnapped
+// positions; an NVIDIA GPU was measured using snapped ones.
+enum class Planes { unsnapped, snapped };
+
+struct Model {
+  int subpixel_bits = 8;  // 0: no snapping, coverage from exact positions
+  Planes planes = Planes::unsnapped;
+  TieBreak tie_break = TieBreak::bottom_left;
+
+  std::string describe() const;  // e.g. "subpixel_bits=8 planes=unsnapped tie=bottom_left"
+};
+
+}  // namespace glrc

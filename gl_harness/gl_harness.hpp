@@ -1,0 +1,52 @@
+// gl_harness: the same Case rendered by a real GL implementation. The GL context is the only
+// global state in glrefcheck and it lives behind this interface.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/case.hpp"
+#include "core/frame.hpp"
+
+namespace glrc::gl {
+
+enum class Backend { osmesa, egl, egl_device };
+const char* to_string(Backend b);  // "osmesa", "egl", "egl-device"
+
+struct Target {
+  Backend backend = Backend::osmesa;
+  std::string driver = "llvmpipe";  // Mesa's gallium driver; "" = whatever the platform gives
+  int device_index = 0;             // egl-device: which EGLDevice
+};
+
+struct GlInfo {
+  std::string vendor, renderer, version;
+  int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
+};
+
+// A library, platform, driver or GL feature this machine lacks. what() is one line saying what
+// is missing and how to get it; the CLI prints it and exits 2.
+struct Unavailable : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A failure while rendering one case (GL error, incomplete FBO): that case is an error, the
+// run goes on.
+struct RenderError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual const GlInfo& info() const = 0;
+  // Renders one case into a fresh FBO of the case's framebuffer size and reads it back.
+  virtual Frame render(const Case& c) = 0;
+};
+
+// Creates a context on the target and checks that the driver asked for is the one running.
+// Throws Unavailable. One per process per backend: Mesa picks its driver once per process.
+std::unique_ptr<Renderer> create_renderer(const Target& t);
+
+}  // namespace glrc::gl

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs, from Debian 12's own archive, everything glrefcheck needs to build, test and run
+# against the system Mesa. Idempotent; quiet when nothing is missing.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libosmesa6-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libgbm1
+  libglm-dev libopenimageio-dev openimageio-tools
+  nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+echo "installing: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
