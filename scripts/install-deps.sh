@@ -8,7 +8,7 @@ packages=(
   libosmesa6-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libgbm1
   libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core
 )
 
 missing=()
