@@ -1,0 +1,21 @@
+// Clipping against the view volume, without new vertices. x and y: -w_c <= x_c, y_c <= w_c is
+// the viewport rectangle, whose edges never pass through a pixel centre, so it is the pixel
+// range itself. w_c > 0: part of the homogeneous edge test (setup.hpp). What remains is the near
+// and far planes, -w_c <= z_c <= w_c, which are lines in window space: z_n is linear there.
+#pragma once
+
+#include "ref/exact.hpp"
+#include "ref/setup.hpp"
+
+namespace glrc::ref {
+
+struct DepthClip {
+  bool crosses_near = false, crosses_far = false;
+  // >= 0 where the point of the triangle under the pixel centre has z_c >= -w_c (near) and
+  // z_c <= w_c (far). Closed: a centre exactly on the plane is inside.
+  SignEvaluator near, far;
+};
+
+DepthClip depth_clip(const TriangleSetup& t);
+
+}  // namespace glrc::ref

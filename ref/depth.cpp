@@ -1,0 +1,19 @@
+#include "ref/depth.hpp"
+
+namespace glrc::ref {
+
+RatioEvaluator depth_plane(const TriangleSetup& t, const Barycentrics& b) {
+  std::array<mpq_class, 3> alpha, beta;
+  for (int i = 0; i < 3; ++i) {
+    if (b.screen_space) {
+      alpha[i] = z_w(t.v[i]);
+      beta[i] = 1;
+    } else {
+      alpha[i] = t.v[i].wz_w;  // w_i·z_w,i
+      beta[i] = t.v[i].w_c;
+    }
+  }
+  return plane(b, alpha, beta);
+}
+
+}  // namespace glrc::ref

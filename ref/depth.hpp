@@ -1,0 +1,17 @@
+// Depth: z_w is linear in window coordinates (glDepthRange applied to z_n = z_c / w_c), and the
+// depth test compares the float32 values, as a 32F depth buffer does.
+#pragma once
+
+#include "core/case.hpp"
+#include "ref/interpolation.hpp"
+
+namespace glrc::ref {
+
+RatioEvaluator depth_plane(const TriangleSetup& t, const Barycentrics& b);
+
+// Whether a fragment at depth z passes against the stored value.
+inline bool depth_test(DepthFunc f, float z, float stored) {
+  return f == DepthFunc::always || z < stored;
+}
+
+}  // namespace glrc::ref

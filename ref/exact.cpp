@@ -1,0 +1,153 @@
+#include "ref/exact.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace glrc::ref {
+
+namespace {
+
+// Unit roundoff of double.
+constexpr double kU = 0x1p-53;
+
+uint32_t bits_of(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+}
+
+// A double approximation of q with relative error below 2^-52, or false when q is outside the
+// range where that holds (so no fast path may rely on it).
+bool to_double(const mpq_class& q, double& out) {
+  out = q.get_d();  // truncates: relative error < 2^-52 for normal results
+  if (q == 0) return out == 0.0;
+  double m = std::fabs(out);
+  return std::isfinite(out) && m > 0x1p-900 && m < 0x1p900;
+}
+
+}  // namespace
+
+float round_to_float(const mpz_class& num, const mpz_class& den) {
+  if (num == 0) return 0.0f;
+  const bool negative = num < 0;
+  mpz_class n = abs(num);
+  // n/den lies in [2^(e-1), 2^(e+1)).
+  const long e = long(mpz_sizeinbase(n.get_mpz_t(), 2)) - long(mpz_sizeinbase(den.get_mpz_t(), 2));
+  const float sign = negative ? -1.0f : 1.0f;
+  if (e > 130) return sign * std::numeric_limits<float>::infinity();
+  if (e < -160) return sign * 0.0f;  // below half the smallest subnormal: rounds to zero
+  // q = floor(n·2^s / den) with 26 or 27 bits; `sticky` says whether anything was cut off.
+  const long s = 26 - e;
+  mpz_class q, r;
+  if (s >= 0) {
+    mpz_class scaled = n << s;
+    mpz_fdiv_qr(q.get_mpz_t(), r.get_mpz_t(), scaled.get_mpz_t(), den.get_mpz_t());
+  } else {
+    mpz_class scaled_den = den << -s;
+    mpz_fdiv_qr(q.get_mpz_t(), r.get_mpz_t(), n.get_mpz_t(), scaled_den.get_mpz_t());
+  }
+  const bool sticky = r != 0;
+  const long k = long(mpz_sizeinbase(q.get_mpz_t(), 2));
+  const long exponent = k - 1 - s;  // value in [2^exponent, 2^(exponent+1))
+  // Bits of q to drop: down to 24 significant bits, or down to the 2^-149 position for
+  // subnormal results.
+  const long drop = exponent >= -126 ? k - 24 : s - 149;
+  // drop >= 2 always (k >= 26; subnormal exponent < -126 gives s > k + 125).
+  mpz_class kept = q >> drop;
+  mpz_class rest = q - (kept << drop);
+  const mpz_class half = mpz_class(1) << (drop - 1);
+  const int order = cmp(rest, half);
+  if (order > 0 || (order == 0 && (sticky || mpz_odd_p(kept.get_mpz_t())))) kept += 1;
+  // kept <= 2^24: exact in double; the power-of-two scaling is exact; the cast to float is exact
+  // unless the value is 2^128 or more, which becomes infinity as IEEE rounding requires.
+  const double magnitude = std::ldexp(kept.get_d(), int(drop - s));
+  return sign * float(magnitude);
+}
+
+mpz_class to_mpz(int128 v) {
+  const bool negative = v < 0;
+  const uint128 u = negative ? -uint128(v) : uint128(v);
+  mpz_class z(static_cast<unsigned long>(u >> 64));
+  z <<= 64;
+  z += static_cast<unsigned long>(u & ~0UL);
+  return negative ? mpz_class(-z) : z;
+}
+
+float round_to_float(const mpq_class& q) {
+  return round_to_float(q.get_num(), q.get_den());
+}
+
+SignEvaluator::SignEvaluator(const LinearForm& f) : form_(f) {
+  fast_ = to_double(f.a, a_) && to_double(f.b, b_) && to_double(f.c, c_);
+  da_ = f.a.get_d(), db_ = f.b.get_d(), dc_ = f.c.get_d();
+  const double norm = std::hypot(da_, db_);
+  inv_norm_ = norm > 0 ? 1.0 / norm : 0.0;
+}
+
+int SignEvaluator::sign(long px, long py) const {
+  if (fast_) {
+    const double x = double(px), y = double(py);
+    const double v = a_ * x + b_ * y + c_;
+    // Each coefficient carries relative error 2^-52, each product and sum at most u more, fused
+    // or not: |v - exact| <= 5u·S. 8u·S covers that and the rounding of S itself.
+    const double bound = 8 * kU * (std::fabs(a_ * x) + std::fabs(b_ * y) + std::fabs(c_));
+    if (v > bound) return 1;
+    if (v < -bound) return -1;
+  }
+  return sgn(form_.at(px, py));
+}
+
+double SignEvaluator::distance(long px, long py) const {
+  return (da_ * double(px) + db_ * double(py) + dc_) * inv_norm_;
+}
+
+RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator) {
+  fast_ = to_double(numerator.a, fan_) && to_double(numerator.b, fbn_) &&
+          to_double(numerator.c, fcn_) && to_double(denominator.a, fad_) &&
+          to_double(denominator.b, fbd_) && to_double(denominator.c, fcd_);
+  // One common denominator for all six coefficients: the ratio is unchanged and the exact path
+  // then needs integers only.
+  mpz_class common = 1;
+  for (const mpq_class* q : {&numerator.a, &numerator.b, &numerator.c, &denominator.a,
+                             &denominator.b, &denominator.c})
+    mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), q->get_den_mpz_t());
+  auto scaled = [&](const mpq_class& q) { return mpz_class(q.get_num() * (common / q.get_den())); };
+  an_ = scaled(numerator.a), bn_ = scaled(numerator.b), cn_ = scaled(numerator.c);
+  ad_ = scaled(denominator.a), bd_ = scaled(denominator.b), cd_ = scaled(denominator.c);
+}
+
+float RatioEvaluator::exact_at(long px, long py) const {
+  n_ = an_ * px + bn_ * py + cn_;
+  d_ = ad_ * px + bd_ * py + cd_;
+  if (d_ < 0) {
+    n_ = -n_;
+    d_ = -d_;
+  }
+  if (d_ == 0) return std::numeric_limits<float>::quiet_NaN();  // never inside a triangle
+  return round_to_float(n_, d_);
+}
+
+float RatioEvaluator::at(long px, long py) const {
+  if (fast_) {
+    const double x = double(px), y = double(py);
+    const double n = fan_ * x + fbn_ * y + fcn_;
+    const double d = fad_ * x + fbd_ * y + fcd_;
+    // Bounds as in SignEvaluator::sign.
+    const double en = 8 * kU * (std::fabs(fan_ * x) + std::fabs(fbn_ * y) + std::fabs(fcn_));
+    const double ed = 8 * kU * (std::fabs(fad_ * x) + std::fabs(fbd_ * y) + std::fabs(fcd_));
+    const double ad = std::fabs(d);
+    if (ad > 4 * ed) {
+      const double q = n / d;
+      // |n/d - ñ/d̃| <= (en + |q|·ed) / (|d̃| - ed); plus the rounding of the division and of
+      // q ± err themselves (4u|q|); then 1% for the rounding of this bound's own arithmetic.
+      const double err =
+          ((en + std::fabs(q) * ed) / (ad - ed) + 4 * kU * std::fabs(q)) * 1.01 + 0x1p-1000;
+      const float lo = float(q - err), hi = float(q + err);
+      if (bits_of(lo) == bits_of(hi) && std::isfinite(lo)) return lo;
+    }
+  }
+  return exact_at(px, py);
+}
+
+}  // namespace glrc::ref

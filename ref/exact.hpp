@@ -1,0 +1,71 @@
+// Exact arithmetic for the reference: rationals (GMP), rounding a rational to the nearest
+// float32, and linear forms in the integer pixel coordinates (px, py) evaluated exactly, with a
+// double-precision fast path taken only when its rigorous error bound proves the same result.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <cstdint>
+
+namespace glrc::ref {
+
+// Signed 128-bit integers for snapped fixed-point edge functions (GCC/Clang extension).
+__extension__ typedef __int128 int128;
+__extension__ typedef unsigned __int128 uint128;
+
+// GMP has no 128-bit constructor.
+mpz_class to_mpz(int128 v);
+
+// The float32 nearest to num/den (den > 0), ties to even, with float32's subnormals and
+// overflow to infinity. Exact: depends on nothing but the two integers.
+float round_to_float(const mpz_class& num, const mpz_class& den);
+float round_to_float(const mpq_class& q);
+
+// f(px, py) = a·px + b·py + c with exact rational coefficients.
+struct LinearForm {
+  mpq_class a, b, c;
+
+  mpq_class at(long px, long py) const { return a * px + b * py + c; }
+  LinearForm& operator+=(const LinearForm& o) {
+    a += o.a, b += o.b, c += o.c;
+    return *this;
+  }
+  LinearForm operator*(const mpq_class& s) const { return {a * s, b * s, c * s}; }
+};
+
+// The sign of a LinearForm at integer pixels. Fast path: the form in double, with an error
+// bound that holds whether or not the compiler fuses multiply-adds; exact otherwise.
+class SignEvaluator {
+ public:
+  SignEvaluator() = default;
+  explicit SignEvaluator(const LinearForm& f);
+  int sign(long px, long py) const;  // -1, 0, +1
+  // The form divided by the length of its gradient: the signed distance in pixels of the pixel
+  // centre from the line f = 0 (approximate, for classification only).
+  double distance(long px, long py) const;
+
+ private:
+  LinearForm form_;
+  double a_ = 0, b_ = 0, c_ = 0;          // range-checked copies for the fast sign
+  double da_ = 0, db_ = 0, dc_ = 0, inv_norm_ = 0;  // unchecked copies for distance()
+  bool fast_ = false;
+};
+
+// N(px,py) / D(px,py) rounded to float32, for two LinearForms. The exact path works on integer
+// coefficients over a common denominator; the fast path in double is used only when the
+// interval its error bound gives rounds to a single float.
+class RatioEvaluator {
+ public:
+  RatioEvaluator() = default;
+  RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator);
+  float at(long px, long py) const;
+  float exact_at(long px, long py) const;  // the exact path alone, for tests
+
+ private:
+  mpz_class an_, bn_, cn_, ad_, bd_, cd_;
+  double fan_ = 0, fbn_ = 0, fcn_ = 0, fad_ = 0, fbd_ = 0, fcd_ = 0;
+  bool fast_ = false;
+  mutable mpz_class n_, d_;  // scratch for the exact path
+};
+
+}  // namespace glrc::ref

@@ -1,0 +1,50 @@
+// Interpolation: each varying component, and depth, as the exact ratio of two forms linear in
+// window coordinates, N/D = sum L_i·alpha_i / sum L_i·beta_i, where the L_i are barycentric
+// edge functions and (alpha_i, beta_i) depend on the qualifier:
+//
+//   planes from unsnapped positions (L_i ~ b_i/w at the pixel, clip-space barycentrics):
+//     smooth         alpha = v_i            beta = 1       v = sum b_i v_i
+//     noperspective  alpha = w_i v_i        beta = w_i     v = sum lambda_i v_i
+//     depth          alpha = w_i z_w,i      beta = w_i     z_w = sum lambda_i z_w,i
+//   planes from snapped positions (L_i ~ lambda_i, screen-space barycentrics):
+//     smooth         alpha = v_i / w_i      beta = 1/w_i   (sum lambda v/w) / (sum lambda/w)
+//     noperspective  alpha = v_i            beta = 1
+//     depth          alpha = z_w,i          beta = 1
+//
+//   flat: the provoking vertex's value, copied.
+//
+// Unsnapped planes come straight from clip space, so they also hold for triangles that reach
+// behind the eye; snapped planes exist only where positions were snapped.
+#pragma once
+
+#include <vector>
+
+#include "core/case.hpp"
+#include "core/model.hpp"
+#include "ref/exact.hpp"
+#include "ref/setup.hpp"
+
+namespace glrc::ref {
+
+struct Barycentrics {
+  std::array<LinearForm, 3> l;
+  bool screen_space = false;  // snapped planes
+};
+
+Barycentrics barycentrics(const TriangleSetup& t, const Model& m);
+
+// Per component of the case: either a flat value or the exact ratio to evaluate per pixel.
+struct ComponentPlane {
+  bool flat = false;
+  float flat_value = 0;
+  RatioEvaluator ratio;
+};
+
+std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
+                                             const Barycentrics& b);
+
+// Sum L_i alpha_i over sum L_i beta_i.
+RatioEvaluator plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
+                     const std::array<mpq_class, 3>& beta);
+
+}  // namespace glrc::ref

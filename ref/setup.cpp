@@ -1,0 +1,152 @@
+#include "ref/setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+namespace glrc::ref {
+
+namespace {
+
+// (x, y, w) columns of the homogeneous window-space vertex matrix.
+struct H3 {
+  mpq_class x, y, w;
+};
+
+H3 cross(const H3& u, const H3& v) {
+  return {u.y * v.w - u.w * v.y, u.w * v.x - u.x * v.w, u.x * v.y - u.y * v.x};
+}
+
+// round_half_even(num / den) for den != 0.
+mpz_class round_half_even(const mpq_class& q) {
+  mpz_class fl, r;
+  mpz_fdiv_qr(fl.get_mpz_t(), r.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+  const int c = cmp(mpz_class(2 * r), q.get_den());
+  if (c > 0 || (c == 0 && mpz_odd_p(fl.get_mpz_t()))) fl += 1;
+  return fl;
+}
+
+constexpr long kGuardBand = 1L << 40;  // in subpixel steps
+
+// The snapped window position of a vertex with w_c > 0, or nothing outside the guard band.
+std::optional<std::array<long, 2>> snap(const WindowVertex& v, int bits) {
+  const mpq_class scale = mpq_class(mpz_class(1) << bits);
+  std::array<long, 2> s{};
+  const mpq_class* h[2] = {&v.x_h, &v.y_h};
+  for (int k = 0; k < 2; ++k) {
+    const mpz_class r = round_half_even(mpq_class(*h[k] * scale / v.w_c));
+    if (abs(r) >= kGuardBand) return std::nullopt;
+    s[k] = r.get_si();
+  }
+  return s;
+}
+
+bool culled(const Case& c, bool front_facing) {
+  switch (c.cull) {
+    case CullFace::none: return false;
+    case CullFace::front: return front_facing;
+    case CullFace::back: return !front_facing;
+    case CullFace::front_and_back: return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+PixelBox viewport_box(const Case& c) {
+  PixelBox b;
+  b.x0 = std::max(c.viewport.x, 0);
+  b.y0 = std::max(c.viewport.y, 0);
+  b.x1 = std::min(c.viewport.x + c.viewport.width, c.fb_width) - 1;
+  b.y1 = std::min(c.viewport.y + c.viewport.height, c.fb_height) - 1;
+  return b;
+}
+
+TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
+  TriangleSetup t;
+  t.primitive = primitive;
+  t.index = c.triangles[primitive];
+  for (int i = 0; i < 3; ++i) t.v[i] = to_window(c.vertices[t.index[i]], c);
+
+  // Homogeneous edge functions: E_i(p) = (col_j × col_k) · p with p = (x_w, y_w, 1) and
+  // x_w = px + 1/2; det = col_0 · (col_1 × col_2) is 2·area·w_0·w_1·w_2 when all w_c > 0, and
+  // its sign is the facing in every case (the Jacobian of the projective map has the sign of
+  // det wherever w > 0).
+  const H3 col[3] = {{t.v[0].x_h, t.v[0].y_h, t.v[0].w_c},
+                     {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
+                     {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
+  H3 g[3];
+  for (int i = 0; i < 3; ++i) g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
+  const mpq_class det = g[0].x * col[0].x + g[0].y * col[0].y + g[0].w * col[0].w;
+  const int det_sign = sgn(det);
+
+  const bool all_w_positive =
+      std::all_of(t.v.begin(), t.v.end(), [](const WindowVertex& v) { return sgn(v.w_c) > 0; });
+  std::optional<std::array<long, 2>> s[3];
+  if (m.subpixel_bits > 0 && all_w_positive) {
+    for (int i = 0; i < 3; ++i) s[i] = snap(t.v[i], m.subpixel_bits);
+    if (s[0] && s[1] && s[2]) t.path = CoveragePath::snapped;
+  }
+
+  int facing_sign = det_sign;
+  if (t.path == CoveragePath::snapped) {
+    const auto& s0 = *s[0];
+    const auto& s1 = *s[1];
+    const auto& s2 = *s[2];
+    const int128 area2 = int128(s1[0] - s0[0]) * (s2[1] - s0[1]) -
+                         int128(s2[0] - s0[0]) * (s1[1] - s0[1]);
+    facing_sign = area2 > 0 ? 1 : area2 < 0 ? -1 : 0;
+    const int bits = m.subpixel_bits;
+    for (int i = 0; i < 3; ++i) {
+      const auto& sj = *s[(i + 1) % 3];
+      const auto& sk = *s[(i + 2) % 3];
+      const int128 dy = int128(sj[1]) - sk[1], dx = int128(sk[0]) - sj[0];
+      TriangleSetup::IntEdge e;
+      e.a = dy << bits;
+      e.b = dx << bits;
+      e.c = int128(sj[0]) * sk[1] - int128(sj[1]) * sk[0] + ((dy + dx) << (bits - 1));
+      if (facing_sign < 0) e.a = -e.a, e.b = -e.b, e.c = -e.c;
+      t.snapped_edges[i] = e;
+    }
+  }
+  if (facing_sign == 0 || det_sign == 0) return t;  // zero area: nothing is drawn
+  t.front_facing = (facing_sign > 0) == (c.front_face == FrontFace::ccw);
+  if (culled(c, t.front_facing)) return t;
+  t.drawn = true;
+
+  for (int i = 0; i < 3; ++i) {
+    LinearForm e{g[i].x, g[i].y, (g[i].x + g[i].y) / 2 + g[i].w};
+    if (det_sign < 0) e = e * mpq_class(-1);
+    t.homogeneous_edges[i] = e;
+  }
+
+  // Pixels that can be covered: pixel centres inside the (snapped or exact) window-space
+  // bounding box; with a vertex at w_c <= 0 the visible part is unbounded: the whole viewport.
+  t.box = viewport_box(c);
+  if (t.path == CoveragePath::snapped) {
+    const double step = std::ldexp(1.0, -m.subpixel_bits);
+    long lo[2] = {s[0]->at(0), s[0]->at(1)}, hi[2] = {lo[0], lo[1]};
+    for (int i = 1; i < 3; ++i)
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], s[i]->at(k)), hi[k] = std::max(hi[k], s[i]->at(k));
+    // Exact in double: |s| < 2^40, and the scaling is a power of two.
+    t.box.x0 = std::max(t.box.x0, int(std::ceil(double(lo[0]) * step - 0.5)));
+    t.box.x1 = std::min(t.box.x1, int(std::floor(double(hi[0]) * step - 0.5)));
+    t.box.y0 = std::max(t.box.y0, int(std::ceil(double(lo[1]) * step - 0.5)));
+    t.box.y1 = std::min(t.box.y1, int(std::floor(double(hi[1]) * step - 0.5)));
+  } else if (all_w_positive) {
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (const auto& v : t.v) {
+      const double w[2] = {mpq_class(v.x_h / v.w_c).get_d(), mpq_class(v.y_h / v.w_c).get_d()};
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], w[k]), hi[k] = std::max(hi[k], w[k]);
+    }
+    // Only bounds the loop, coverage itself is exact: a one-pixel margin absorbs the rounding.
+    auto clamp_int = [](double d) { return int(std::clamp(d, -1e9, 1e9)); };
+    t.box.x0 = std::max(t.box.x0, clamp_int(std::floor(lo[0] - 0.5) - 1));
+    t.box.x1 = std::min(t.box.x1, clamp_int(std::ceil(hi[0] - 0.5) + 1));
+    t.box.y0 = std::max(t.box.y0, clamp_int(std::floor(lo[1] - 0.5) - 1));
+    t.box.y1 = std::min(t.box.y1, clamp_int(std::ceil(hi[1] - 0.5) + 1));
+  }
+  return t;
+}
+
+}  // namespace glrc::ref

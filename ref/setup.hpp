@@ -1,0 +1,55 @@
+// Triangle setup and snapping: edge functions, facing and culling, the pixel bounding box, and
+// the barycentric forms the attribute planes are built from.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "core/case.hpp"
+#include "core/model.hpp"
+#include "ref/exact.hpp"
+#include "ref/viewport.hpp"
+
+namespace glrc::ref {
+
+// How coverage is decided. `snapped`: window positions rounded to the subpixel grid and integer
+// edge functions, for triangles with every w_c > 0 and positions inside a 2^40-step guard band.
+// `homogeneous`: exact edge functions of the unsnapped triangle straight from clip space
+// (Olano and Greer), for no snapping or for triangles reaching behind the eye, where there is
+// no window position to snap.
+enum class CoveragePath { snapped, homogeneous };
+
+struct PixelBox {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive
+  bool empty() const { return x1 < x0 || y1 < y0; }
+};
+
+struct TriangleSetup {
+  int primitive = 0;  // gl_PrimitiveID
+  std::array<WindowVertex, 3> v;
+  std::array<uint32_t, 3> index{};  // into Case::vertices
+  bool drawn = false;               // false: zero area, or culled
+  bool front_facing = true;
+  CoveragePath path = CoveragePath::homogeneous;
+
+  // Homogeneous edge functions at pixel (px, py), i = 0..2 opposite vertex i, sign-normalized
+  // so that the visible part of the triangle is where all three are >= 0. Each is proportional
+  // to the clip-space barycentric weight of vertex i over w_c at the pixel centre.
+  std::array<LinearForm, 3> homogeneous_edges;
+  // Snapped edge functions (A·px + B·py + C, integers), sign-normalized likewise; proportional
+  // to the screen-space barycentrics of the snapped triangle.
+  struct IntEdge {
+    int128 a = 0, b = 0, c = 0;
+    int128 at(long px, long py) const { return a * px + b * py + c; }
+  };
+  std::array<IntEdge, 3> snapped_edges{};
+
+  PixelBox box;  // pixels that may be covered, inside the viewport and framebuffer
+};
+
+TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive);
+
+// The window-pixel region of the viewport inside the framebuffer.
+PixelBox viewport_box(const Case& c);
+
+}  // namespace glrc::ref

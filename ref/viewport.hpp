@@ -1,0 +1,24 @@
+// Perspective divide and viewport transform, kept homogeneous: a vertex's window position is
+// (x_h / w_c, y_h / w_c), which needs no divide until w_c > 0 is known, and stays linear in clip
+// space so that clipping needs no new vertices.
+#pragma once
+
+#include <gmpxx.h>
+
+#include "core/case.hpp"
+
+namespace glrc::ref {
+
+struct WindowVertex {
+  mpq_class x_h, y_h;  // x_c·(w_v/2) + w_c·(x_v + w_v/2), likewise y: x_w = x_h / w_c
+  mpq_class z_c, w_c;
+  // w_c·z_w = z_c·(f−n)/2 + w_c·(n+f)/2: glDepthRange applied to z_n = z_c/w_c, times w_c.
+  mpq_class wz_w;
+};
+
+WindowVertex to_window(const Vertex& v, const Case& c);
+
+// z_w of a vertex with w_c > 0: the depth-range mapping of its z_n.
+inline mpq_class z_w(const WindowVertex& v) { return v.wz_w / v.w_c; }
+
+}  // namespace glrc::ref
