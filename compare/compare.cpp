@@ -1,1 +1,203 @@
-// placeholder: being written
+// The comparator. Coverage first (which primitive covers each pixel), then, where both frames
+// agree on the primitive, every varying component and depth, in ULPs of the attribute's scale.
+#include "compare/compare.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace glrc::compare {
+namespace {
+
+constexpr size_t kWorstPerChannel = 10;
+constexpr size_t kMismatchesKept = 64;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// One channel's errors, gathered over the pixels both frames cover with the same primitive.
+struct ChannelAccumulator {
+  ChannelStats stats;
+  std::vector<double> ulps;  // every compared pixel; +inf for NaN/Inf in GL output
+  std::vector<WorstPixel> pixels;
+  double sum = 0, sum_sq = 0;
+  uint64_t finite = 0;
+
+  void add(int x, int y, float reference, float gl, double ulp) {
+    WorstPixel p{x, y, reference, gl, 0, 0};
+    if (!std::isfinite(gl) && std::isfinite(reference)) {
+      // Never a pass, however large the tolerance: the value is not a number at all.
+      ++stats.non_finite;
+      p.abs_error = p.ulps = kInf;
+    } else if (!std::isfinite(reference)) {
+      // The reference is finite for every valid case; if it were not, only identical bits
+      // could be called equal.
+      const bool same = std::bit_cast<uint32_t>(gl) == std::bit_cast<uint32_t>(reference);
+      p.abs_error = p.ulps = same ? 0 : kInf;
+    } else {
+      p.abs_error = std::fabs(double(gl) - double(reference));  // exact: both are floats
+      p.ulps = p.abs_error / ulp;
+    }
+    ++stats.compared;
+    if (!(p.ulps <= stats.tolerance_ulps)) ++stats.over_tolerance;  // NaN-safe
+    if (std::isfinite(p.ulps)) {
+      sum += p.ulps;
+      sum_sq += p.ulps * p.ulps;
+      ++finite;
+    }
+    stats.max_abs = std::max(stats.max_abs, p.abs_error);
+    stats.max_ulps = std::max(stats.max_ulps, p.ulps);
+    ulps.push_back(p.ulps);
+    if (p.ulps > 0) pixels.push_back(p);
+  }
+
+  ChannelStats finish() {
+    // Mean and RMS over the finite errors; non-finite ones are counted in non_finite and make
+    // max_ulps infinite, so they cannot hide.
+    if (finite > 0) {
+      stats.mean_ulps = sum / double(finite);
+      stats.rms_ulps = std::sqrt(sum_sq / double(finite));
+    }
+    if (!ulps.empty()) {
+      // Nearest-rank 99th percentile.
+      const size_t rank = size_t(std::ceil(0.99 * double(ulps.size()))) - 1;
+      std::nth_element(ulps.begin(), ulps.begin() + ptrdiff_t(rank), ulps.end());
+      stats.p99_ulps = ulps[rank];
+    }
+    const size_t keep = std::min(kWorstPerChannel, pixels.size());
+    std::partial_sort(pixels.begin(), pixels.begin() + ptrdiff_t(keep), pixels.end(),
+                      [](const WorstPixel& a, const WorstPixel& b) {
+                        if (a.ulps != b.ulps) return a.ulps > b.ulps;
+                        return a.y != b.y ? a.y < b.y : a.x < b.x;
+                      });
+    pixels.resize(keep);
+    stats.worst = std::move(pixels);
+    return std::move(stats);
+  }
+};
+
+std::string format_ulps(double u) {
+  if (std::isinf(u)) return "inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", u);
+  return buf;
+}
+
+// Why a case failed, in one line: the first failing channels and the coverage failures.
+std::string failure_message(const CaseResult& r) {
+  std::string msg;
+  auto append = [&](const std::string& part) { msg += (msg.empty() ? "" : "; ") + part; };
+  int listed = 0, more = 0;
+  for (const auto& ch : r.channels) {
+    if (ch.pass()) continue;
+    if (listed == 3) {
+      ++more;
+      continue;
+    }
+    ++listed;
+    std::string part = ch.name + ": ";
+    if (ch.non_finite > 0) part += std::to_string(ch.non_finite) + " px NaN/Inf, ";
+    part += std::to_string(ch.over_tolerance) + " px over " + format_ulps(ch.tolerance_ulps) +
+            " ulp (max " + format_ulps(ch.max_ulps) + " ulp";
+    if (!ch.worst.empty())
+      part += " at " + std::to_string(ch.worst[0].x) + "," + std::to_string(ch.worst[0].y);
+    append(part + ")");
+  }
+  if (more > 0) append(std::to_string(more) + " more channels");
+  if (r.coverage.failures > 0) {
+    std::string part = "coverage: " + std::to_string(r.coverage.failures) + " px differ";
+    if (r.tolerance.allow_boundary) part += " away from any edge";
+    append(part);
+  }
+  return msg;
+}
+
+}  // namespace
+
+double attribute_scale(const Case& c, int primitive, int component) {
+  if (component < 0) return 1.0;
+  double scale = 0;
+  for (uint32_t v : c.triangles.at(size_t(primitive)))
+    scale = std::max(scale, std::fabs(double(c.vertices.at(v).values.at(size_t(component)))));
+  return scale;
+}
+
+double ulp_of_scale(double scale) {
+  // The spacing of float32 values at the scale's binade; below the normal range the spacing is
+  // that of subnormals, 2^-149.
+  if (!(scale > 0) || !std::isfinite(scale)) return std::ldexp(1.0, -149);
+  return std::ldexp(1.0, std::max(std::ilogb(scale) - 23, -149));
+}
+
+CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint8_t>& edge_band,
+                   const Frame& gl, const Tolerance& tolerance) {
+  if (reference.width != gl.width || reference.height != gl.height ||
+      reference.components.size() != gl.components.size() ||
+      edge_band.size() != reference.pixel_count())
+    throw std::invalid_argument("compare: frames of different shape for case " + c.name);
+
+  CaseResult r;
+  r.name = c.name;
+  r.description = c.description;
+  r.tolerance = tolerance;
+
+  const std::vector<std::string> names = component_names(c);
+  const std::vector<int> owner = component_varying(c);
+  // Channel 0 is depth; channel k+1 is component k.
+  std::vector<ChannelAccumulator> acc(names.size() + 1);
+  acc[0].stats.name = "depth";
+  acc[0].stats.tolerance_ulps = tolerance.depth_ulps;
+  for (size_t k = 0; k < names.size(); ++k) {
+    acc[k + 1].stats.name = names[k];
+    // A flat value is copied from the provoking vertex, never computed: any change is wrong.
+    const bool flat = c.varyings[size_t(owner[k])].interpolation == Interpolation::flat;
+    acc[k + 1].stats.tolerance_ulps = flat ? 0.0 : tolerance.varying_ulps;
+  }
+
+  const auto triangle_count = int32_t(c.triangles.size());
+  const double depth_ulp = ulp_of_scale(1.0);
+  auto& cov = r.coverage;
+  for (int y = 0; y < reference.height; ++y) {
+    for (int x = 0; x < reference.width; ++x) {
+      const size_t i = reference.index(x, y);
+      const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
+      if (pr == pg && pr == Frame::kNoPrimitive) {
+        ++cov.neither;
+        continue;
+      }
+      if (pr != pg || pr < 0 || pr >= triangle_count) {
+        if (pg == Frame::kNoPrimitive)
+          ++cov.reference_only;
+        else if (pr == Frame::kNoPrimitive)
+          ++cov.gl_only;
+        else
+          ++cov.other_primitive;
+        const bool boundary = edge_band[i] != 0;
+        if (boundary) ++cov.boundary;
+        if (!(boundary && tolerance.allow_boundary)) ++cov.failures;
+        if (cov.mismatches.size() < kMismatchesKept)
+          cov.mismatches.push_back({x, y, pr, pg, boundary});
+        continue;
+      }
+      ++cov.both;
+      acc[0].add(x, y, reference.depth[i], gl.depth[i], depth_ulp);
+      for (size_t k = 0; k < names.size(); ++k) {
+        const double ulp = ulp_of_scale(attribute_scale(c, pr, int(k)));
+        acc[k + 1].add(x, y, reference.components[k][i], gl.components[k][i], ulp);
+      }
+    }
+  }
+
+  bool pass = cov.failures == 0;
+  for (auto& a : acc) {
+    r.channels.push_back(a.finish());
+    pass = pass && r.channels.back().pass();
+  }
+  r.status = pass ? Status::pass : Status::fail;
+  if (!pass) r.message = failure_message(r);
+  return r;
+}
+
+}  // namespace glrc::compare

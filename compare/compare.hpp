@@ -17,7 +17,9 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
                    const Frame& gl, const Tolerance& tolerance);
 
 // The scale of component k at a pixel covered by triangle `primitive`: the largest |v_i| of
-// that triangle's three vertices (for depth: 1.0). Errors are counted in ULPs of it.
+// that triangle's three vertices. Depth is component kDepth, of scale 1.0. Errors are counted in
+// ULPs of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
+inline constexpr int kDepth = -1;
 double attribute_scale(const Case& c, int primitive, int component);
 // ulp of a positive scale: 2^(floor(log2 scale) - 23); the smallest normal ulp for 0.
 double ulp_of_scale(double scale);

@@ -1,0 +1,197 @@
+// The comparator on hand-built frames: the reference frame is made up here, not rendered, so
+// these tests check the comparator alone.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "compare/compare.hpp"
+
+namespace glrc::compare {
+namespace {
+
+// One triangle with a smooth vec2 "uv" (scales 1.0 and 1000.0) and a flat float "id".
+Case two_varyings_case() {
+  Case c;
+  c.name = "synthetic";
+  c.fb_width = c.fb_height = 8;
+  c.viewport = {0, 0, 8, 8};
+  c.varyings = {{"uv", 2, Interpolation::smooth}, {"id", 1, Interpolation::flat}};
+  c.vertices = {{{-1, -1, 0, 1}, {0.25f, -1000.0f, 7}},
+                {{1, -1, 0, 1}, {1.0f, 10.0f, 7}},
+                {{-1, 1, 0, 1}, {0.5f, 3.0f, 7}}};
+  c.triangles = {{0, 1, 2}};
+  return c;
+}
+
+// A frame with primitive 0 over the lower-left half (x + y < 8) and smooth-looking values.
+Frame reference_frame(const Case& c) {
+  Frame f(c.fb_width, c.fb_height, c.component_count());
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      if (x + y >= 8) continue;
+      const size_t i = f.index(x, y);
+      f.primitive[i] = 0;
+      f.depth[i] = 0.5f + 0.01f * float(x);
+      f.components[0][i] = 0.25f + 0.05f * float(y);
+      f.components[1][i] = 100.0f * float(x) - 3.0f;
+      f.components[2][i] = 7;
+    }
+  return f;
+}
+
+const ChannelStats& channel(const CaseResult& r, const std::string& name) {
+  for (const auto& ch : r.channels)
+    if (ch.name == name) return ch;
+  throw std::runtime_error("no channel " + name);
+}
+
+TEST(UlpOfScale, IsTheFloatSpacingAtTheScale) {
+  EXPECT_EQ(ulp_of_scale(1.0), std::ldexp(1.0, -23));
+  EXPECT_EQ(ulp_of_scale(1.5), std::ldexp(1.0, -23));
+  EXPECT_EQ(ulp_of_scale(0.999), std::ldexp(1.0, -24));
+  EXPECT_EQ(ulp_of_scale(1000.0), std::ldexp(1.0, 9 - 23));
+  EXPECT_EQ(ulp_of_scale(1e-6), std::ldexp(1.0, -20 - 23));
+  EXPECT_EQ(ulp_of_scale(0.0), std::ldexp(1.0, -149));
+  EXPECT_EQ(ulp_of_scale(1e-44), std::ldexp(1.0, -149));  // subnormal range
+}
+
+TEST(AttributeScale, IsTheLargestMagnitudeAtTheTrianglesVertices) {
+  const Case c = two_varyings_case();
+  EXPECT_EQ(attribute_scale(c, 0, 0), 1.0);
+  EXPECT_EQ(attribute_scale(c, 0, 1), 1000.0);
+  EXPECT_EQ(attribute_scale(c, 0, kDepth), 1.0);
+}
+
+TEST(Compare, IdenticalFramesPassWithZeroError) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  const CaseResult r = compare(c, ref, band, ref, Tolerance{});
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(r.coverage.both, 36u);
+  EXPECT_EQ(r.coverage.neither, 28u);
+  ASSERT_EQ(r.channels.size(), 4u);
+  EXPECT_EQ(r.channels[0].name, "depth");
+  EXPECT_EQ(r.channels[1].name, "uv.x");
+  EXPECT_EQ(r.channels[3].name, "id.x");
+  for (const auto& ch : r.channels) {
+    EXPECT_EQ(ch.compared, 36u);
+    EXPECT_EQ(ch.max_ulps, 0.0);
+    EXPECT_TRUE(ch.worst.empty());
+  }
+  EXPECT_EQ(channel(r, "id.x").tolerance_ulps, 0.0);  // flat: exact
+  EXPECT_EQ(channel(r, "uv.y").tolerance_ulps, 64.0);
+}
+
+TEST(Compare, CatchesOneInjectedErrorInOneComponentOfOnePixel) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  Frame gl = ref;
+  const size_t i = gl.index(2, 3);
+  // 100 ULPs of uv.y's scale (1000: ulp 2^-14) added at one pixel.
+  gl.components[1][i] += float(100 * std::ldexp(1.0, -14));
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  const CaseResult r = compare(c, ref, band, gl, Tolerance{});
+  EXPECT_EQ(r.status, Status::fail);
+  const auto& uv_y = channel(r, "uv.y");
+  EXPECT_EQ(uv_y.over_tolerance, 1u);
+  EXPECT_EQ(uv_y.max_ulps, 100.0);
+  ASSERT_FALSE(uv_y.worst.empty());
+  EXPECT_EQ(uv_y.worst[0].x, 2);
+  EXPECT_EQ(uv_y.worst[0].y, 3);
+  EXPECT_EQ(uv_y.worst[0].reference, ref.components[1][i]);
+  EXPECT_EQ(uv_y.worst[0].gl, gl.components[1][i]);
+  EXPECT_EQ(channel(r, "uv.x").over_tolerance, 0u);
+  EXPECT_EQ(channel(r, "depth").over_tolerance, 0u);
+  EXPECT_NE(r.message.find("uv.y"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("2,3"), std::string::npos) << r.message;
+
+  // Under a tolerance of 100 ULPs the same error passes; at 99 it does not.
+  Tolerance loose;
+  loose.varying_ulps = 100;
+  EXPECT_EQ(compare(c, ref, band, gl, loose).status, Status::pass);
+  loose.varying_ulps = 99;
+  EXPECT_EQ(compare(c, ref, band, gl, loose).status, Status::fail);
+}
+
+TEST(Compare, NaNOrInfInGLFailsUnderAnyTolerance) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  Tolerance huge;
+  huge.varying_ulps = huge.depth_ulps = 1e300;
+  for (float bad :
+       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    Frame gl = ref;
+    gl.components[0][gl.index(1, 1)] = bad;
+    const CaseResult r = compare(c, ref, band, gl, huge);
+    EXPECT_EQ(r.status, Status::fail);
+    EXPECT_EQ(channel(r, "uv.x").non_finite, 1u);
+    EXPECT_TRUE(std::isinf(channel(r, "uv.x").max_ulps));
+    EXPECT_NE(r.message.find("NaN"), std::string::npos) << r.message;
+  }
+}
+
+TEST(Compare, FlatValuesMustBeExact) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  Frame gl = ref;
+  gl.components[2][gl.index(0, 0)] = std::nextafter(7.0f, 8.0f);
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  const CaseResult r = compare(c, ref, band, gl, Tolerance{});
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(channel(r, "id.x").max_ulps, 1.0);
+}
+
+TEST(Compare, CoverageMismatchesAreClassifiedByTheEdgeBand) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  Frame gl = ref;
+  std::vector<uint8_t> band(ref.pixel_count(), 0);
+  gl.primitive[gl.index(7, 1)] = 0;                    // GL covers a pixel the reference does not
+  band[gl.index(7, 1)] = 1;                            // ... next to an edge: boundary
+  gl.primitive[gl.index(0, 0)] = Frame::kNoPrimitive;  // GL drops a pixel deep inside
+  Tolerance t;
+  CaseResult r = compare(c, ref, band, gl, t);
+  EXPECT_EQ(r.coverage.gl_only, 1u);
+  EXPECT_EQ(r.coverage.reference_only, 1u);
+  EXPECT_EQ(r.coverage.boundary, 1u);
+  EXPECT_EQ(r.coverage.failures, 1u);
+  EXPECT_EQ(r.coverage.both, 35u);
+  ASSERT_EQ(r.coverage.mismatches.size(), 2u);
+  EXPECT_EQ(r.status, Status::fail);
+
+  gl.primitive[gl.index(0, 0)] = 0;  // only the boundary pixel left: allowed by default
+  r = compare(c, ref, band, gl, t);
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(r.coverage.boundary, 1u);
+  t.allow_boundary = false;
+  r = compare(c, ref, band, gl, t);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(r.coverage.failures, 1u);
+}
+
+TEST(Compare, StatisticsOverManyPixels) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  Frame gl = ref;
+  // Depth off by exactly 1 ULP of 1.0 (2^-23) on every covered pixel with x == 0 (8 of 36),
+  // by 4 ULPs at one pixel.
+  for (int y = 0; y < 8; ++y)
+    gl.depth[gl.index(0, y)] += float(std::ldexp(1.0, -23));
+  gl.depth[gl.index(1, 1)] += float(std::ldexp(4.0, -23));
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  const CaseResult r = compare(c, ref, band, gl, Tolerance{});
+  const auto& d = channel(r, "depth");
+  EXPECT_EQ(d.max_ulps, 4.0);
+  EXPECT_DOUBLE_EQ(d.mean_ulps, 12.0 / 36.0);
+  EXPECT_DOUBLE_EQ(d.rms_ulps, std::sqrt(24.0 / 36.0));
+  EXPECT_EQ(d.p99_ulps, 4.0);  // nearest rank 36 of 36
+  EXPECT_EQ(d.worst.size(), 9u);
+  EXPECT_EQ(d.worst[0].ulps, 4.0);
+  EXPECT_EQ(r.status, Status::pass);
+}
+
+}  // namespace
+}  // namespace glrc::compare
