@@ -1,1 +1,821 @@
-// placeholder: being written
+// Case files: JSON in, validated Case out. The format is documented in cases/README.md.
+//
+// Every error is a CaseError with one line "<file>: <field path>: expected <what>, got <what>",
+// so that a typo in a suite of dozens of files points at its place at once. Unknown keys are
+// errors everywhere: a misspelt optional field would otherwise silently take its default.
+#include "casefile/casefile.hpp"
+
+#include <locale.h>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <initializer_list>
+#include <limits>
+#include <locale>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "casefile/transform.hpp"
+
+namespace glrc::casefile {
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr int kMaxSize = 4096;      // framebuffer and viewport extent
+constexpr size_t kMaxVaryings = 7;  // 8 color attachments, one holds gl_PrimitiveID
+
+std::string json_quoted(std::string_view s) {
+  constexpr size_t kMax = 60;  // keep messages one readable line
+  std::string out = "\"";
+  for (size_t i = 0; i < s.size() && i < kMax; ++i) {
+    const char ch = s[i];
+    if (ch == '"' || ch == '\\') out += '\\';
+    if (ch == '\n') {
+      out += "\\n";
+    } else if (ch == '\r') {
+      out += "\\r";
+    } else if (static_cast<unsigned char>(ch) < 0x20) {
+      out += '?';
+    } else {
+      out += ch;
+    }
+  }
+  if (s.size() > kMax) out += "...";
+  return out + "\"";
+}
+
+// What a JSON value is, for the "got" part of a message.
+std::string describe(const json& v) {
+  switch (v.type()) {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return v.get<bool>() ? "true" : "false";
+    case json::value_t::string:
+      return json_quoted(v.get_ref<const std::string&>());
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float:
+      return v.dump();
+    case json::value_t::array:
+      return v.empty() ? "an empty array" : "an array of " + std::to_string(v.size());
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "a " + std::string(v.type_name());
+  }
+}
+
+std::string join_list(std::initializer_list<std::string_view> items) {
+  std::string out;
+  for (std::string_view s : items) {
+    if (!out.empty()) out += ", ";
+    out += s;
+  }
+  return out;
+}
+
+std::string fmt_double(double d) {
+  std::ostringstream os;
+  os.imbue(std::locale::classic());
+  os.precision(9);
+  os << d;
+  return os.str();
+}
+
+// Field paths: "vertices[3].clip".
+std::string path_key(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+std::string path_index(const std::string& parent, size_t i) {
+  return parent + "[" + std::to_string(i) + "]";
+}
+
+// Strings holding numbers are parsed in the C locale, whatever the process's locale is.
+float parse_float_c_locale(const char* s, char** end) {
+  static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", locale_t(0));
+  return strtof_l(s, end, c_locale);
+}
+
+// Half-way between FLT_MAX and 2^128: a double of this magnitude or more rounds to infinity
+// (ties to even), anything below it to a finite float. (static_cast of a double beyond FLT_MAX
+// is undefined behaviour, hence the explicit clamp to FLT_MAX below it.)
+constexpr double kFloatOverflow = 0x1.ffffffp127;
+
+class Loader {
+ public:
+  explicit Loader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& path, const std::string& expected,
+                         const std::string& got) const {
+    std::string msg = file_ + ": ";
+    if (!path.empty()) msg += path + ": ";
+    msg += "expected " + expected + ", got " + got;
+    // One line, always.
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    std::replace(msg.begin(), msg.end(), '\r', ' ');
+    throw CaseError(msg);
+  }
+
+  const json& require_object(const json& v, const std::string& path) const {
+    if (!v.is_object()) fail(path, "an object", describe(v));
+    return v;
+  }
+
+  // Unknown keys are typos until proven otherwise.
+  void check_keys(const json& obj, const std::string& path,
+                  std::initializer_list<std::string_view> allowed) const {
+    for (const auto& [key, value] : obj.items()) {
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+        fail(path_key(path, key), "one of the keys " + join_list(allowed),
+             "unknown key " + json_quoted(key));
+    }
+  }
+
+  const json* opt(const json& obj, std::string_view key) const {
+    auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+  }
+
+  const json& required(const json& obj, const std::string& path, std::string_view key,
+                       const std::string& what) const {
+    auto it = obj.find(key);
+    if (it == obj.end()) fail(path_key(path, key), what, "nothing (the field is required)");
+    return *it;
+  }
+
+  // A number, rounded to float32 once: a JSON number goes through double (as the JSON parser
+  // reads it) and is then rounded to the nearest float, ties to even; a string holding a C99
+  // hex float or a decimal is read by strtof directly, for exact bits.
+  float number(const json& v, const std::string& path) const {
+    double d = 0;
+    if (v.is_number()) {
+      d = v.get<double>();
+      if (!std::isfinite(d)) fail(path, "a finite number", describe(v));
+    } else if (v.is_string()) {
+      const std::string& s = v.get_ref<const std::string&>();
+      const char* begin = s.c_str();
+      char* end = nullptr;
+      if (s.empty() || std::isspace(static_cast<unsigned char>(s[0])))
+        fail(path, "a number or a string holding a C99 hex float or decimal", describe(v));
+      errno = 0;
+      const float f = parse_float_c_locale(begin, &end);
+      if (end != begin + s.size())
+        fail(path, "a number or a string holding a C99 hex float or decimal", describe(v));
+      // ERANGE also flags an underflow to a subnormal or zero, which is the float it should be.
+      if (!std::isfinite(f)) fail(path, "a finite float32 value", describe(v));
+      return f;
+    } else {
+      fail(path, "a number", describe(v));
+    }
+    if (std::fabs(d) >= kFloatOverflow)
+      fail(path, "a number within float32 range", describe(v) + " (overflows float32)");
+    if (std::fabs(d) > double(std::numeric_limits<float>::max()))
+      return std::signbit(d) ? -std::numeric_limits<float>::max()
+                             : std::numeric_limits<float>::max();
+    return static_cast<float>(d);
+  }
+
+  // A fixed count of numbers (counts.size() == 1), or one of several counts.
+  std::vector<float> numbers(const json& v, const std::string& path,
+                             std::initializer_list<size_t> counts) const {
+    std::string what;
+    for (size_t n : counts)
+      what += (what.empty() ? "" : " or ") + std::to_string(n);
+    what += " numbers";
+    if (!v.is_array()) fail(path, what, describe(v));
+    if (std::find(counts.begin(), counts.end(), v.size()) == counts.end())
+      fail(path, what, std::to_string(v.size()));
+    std::vector<float> out;
+    for (size_t i = 0; i < v.size(); ++i)
+      out.push_back(number(v[i], path_index(path, i)));
+    return out;
+  }
+
+  std::array<double, 3> vec3(const json& v, const std::string& path) const {
+    const auto f = numbers(v, path, {3});
+    return {f[0], f[1], f[2]};
+  }
+
+  long long integer(const json& v, const std::string& path, const std::string& what) const {
+    if (v.is_number_unsigned()) {
+      const auto u = v.get<unsigned long long>();
+      if (u > static_cast<unsigned long long>(std::numeric_limits<long long>::max()))
+        fail(path, what, describe(v));
+      return static_cast<long long>(u);
+    }
+    if (v.is_number_integer()) return v.get<long long>();
+    fail(path, what, describe(v));
+  }
+
+  int int_in(const json& v, const std::string& path, long long lo, long long hi) const {
+    const std::string what = "an integer in " + std::to_string(lo) + ".." + std::to_string(hi);
+    const long long i = integer(v, path, what);
+    if (i < lo || i > hi) fail(path, what, describe(v));
+    return static_cast<int>(i);
+  }
+
+  template <typename E>
+  E choice(const json& v, const std::string& path,
+           std::initializer_list<std::pair<std::string_view, E>> options) const {
+    std::string names;
+    for (const auto& [name, value] : options)
+      names += (names.empty() ? "" : ", ") + std::string(name);
+    if (v.is_string()) {
+      for (const auto& [name, value] : options)
+        if (v.get_ref<const std::string&>() == name) return value;
+    }
+    fail(path, "one of " + names, describe(v));
+  }
+
+  double tolerance_value(const json& v, const std::string& path) const {
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || v.get<double>() < 0)
+      fail(path, "a finite number >= 0", describe(v));
+    return v.get<double>();
+  }
+
+  Case load(const json& root);
+
+ private:
+  void load_geometry(const json& root, Case& c) const;
+  void load_state(const json& state, Case& c) const;
+  void load_varyings(const json& list, Case& c) const;
+  std::optional<Transform> load_transform(const json& t) const;
+  std::vector<TransformOp> load_ops(const json& list, const std::string& path) const;
+  Projection load_projection(const json& p, const std::string& path) const;
+  void load_vertices(const json& list, const std::optional<Transform>& transform, Case& c) const;
+  void load_triangles(const json* list, Case& c) const;
+  void check_noperspective(const Case& c) const;
+  void load_tolerance(const json& t, Case& c) const;
+
+  std::string file_;
+};
+
+void Loader::load_geometry(const json& root, Case& c) const {
+  const json* fb = opt(root, "framebuffer");
+  const json* vp = opt(root, "viewport");
+  if (fb) {
+    require_object(*fb, "framebuffer");
+    check_keys(*fb, "framebuffer", {"width", "height"});
+    c.fb_width = int_in(required(*fb, "framebuffer", "width", "an integer in 1..4096"),
+                        "framebuffer.width", 1, kMaxSize);
+    c.fb_height = int_in(required(*fb, "framebuffer", "height", "an integer in 1..4096"),
+                         "framebuffer.height", 1, kMaxSize);
+  }
+  if (vp) {
+    require_object(*vp, "viewport");
+    check_keys(*vp, "viewport", {"x", "y", "width", "height"});
+    Viewport v;
+    v.x = int_in(required(*vp, "viewport", "x", "an integer in 0..4095"), "viewport.x", 0,
+                 kMaxSize - 1);
+    v.y = int_in(required(*vp, "viewport", "y", "an integer in 0..4095"), "viewport.y", 0,
+                 kMaxSize - 1);
+    v.width = int_in(required(*vp, "viewport", "width", "an integer in 1..4096"), "viewport.width",
+                     1, kMaxSize);
+    v.height = int_in(required(*vp, "viewport", "height", "an integer in 1..4096"),
+                      "viewport.height", 1, kMaxSize);
+    if (fb) {
+      if (v.x + v.width > c.fb_width)
+        fail("viewport", "x + width <= framebuffer.width (" + std::to_string(c.fb_width) + ")",
+             std::to_string(v.x + v.width));
+      if (v.y + v.height > c.fb_height)
+        fail("viewport", "y + height <= framebuffer.height (" + std::to_string(c.fb_height) + ")",
+             std::to_string(v.y + v.height));
+    } else {
+      // The framebuffer defaults to the viewport's extent, which must itself be a legal size.
+      if (v.x + v.width > kMaxSize)
+        fail("viewport", "x + width <= 4096 (the default framebuffer width)",
+             std::to_string(v.x + v.width));
+      if (v.y + v.height > kMaxSize)
+        fail("viewport", "y + height <= 4096 (the default framebuffer height)",
+             std::to_string(v.y + v.height));
+      c.fb_width = v.x + v.width;
+      c.fb_height = v.y + v.height;
+    }
+    c.viewport = v;
+  } else {
+    c.viewport = Viewport{0, 0, c.fb_width, c.fb_height};
+  }
+
+  if (const json* dr = opt(root, "depth_range")) {
+    require_object(*dr, "depth_range");
+    check_keys(*dr, "depth_range", {"near", "far"});
+    auto read = [&](std::string_view key, float def) {
+      const json* v = opt(*dr, key);
+      if (!v) return def;
+      const std::string path = path_key("depth_range", key);
+      const float f = number(*v, path);
+      if (!(f >= 0.0f && f <= 1.0f)) fail(path, "a number in [0, 1]", describe(*v));
+      return f;
+    };
+    c.depth_near = read("near", 0.0f);
+    c.depth_far = read("far", 1.0f);
+  }
+}
+
+void Loader::load_state(const json& state, Case& c) const {
+  require_object(state, "state");
+  check_keys(state, "state", {"cull", "front_face", "provoking_vertex", "depth_func"});
+  if (const json* v = opt(state, "cull"))
+    c.cull = choice<CullFace>(*v, "state.cull",
+                              {{"none", CullFace::none},
+                               {"front", CullFace::front},
+                               {"back", CullFace::back},
+                               {"front_and_back", CullFace::front_and_back}});
+  if (const json* v = opt(state, "front_face"))
+    c.front_face =
+        choice<FrontFace>(*v, "state.front_face", {{"ccw", FrontFace::ccw}, {"cw", FrontFace::cw}});
+  if (const json* v = opt(state, "provoking_vertex"))
+    c.provoking = choice<ProvokingVertex>(
+        *v, "state.provoking_vertex",
+        {{"last", ProvokingVertex::last}, {"first", ProvokingVertex::first}});
+  if (const json* v = opt(state, "depth_func"))
+    c.depth_func = choice<DepthFunc>(*v, "state.depth_func",
+                                     {{"always", DepthFunc::always}, {"less", DepthFunc::less}});
+}
+
+// GLSL keywords and reserved words (GLSL 4.60 section 3.6, plus a few type names): a varying
+// named after one would not compile in the harness's shaders.
+bool glsl_reserved(const std::string& name) {
+  static const std::set<std::string, std::less<>> kWords = {
+      "active",     "asm",       "atomic_uint", "attribute",   "bool",       "break",
+      "buffer",     "bvec2",     "bvec3",       "bvec4",       "case",       "cast",
+      "centroid",   "class",     "coherent",    "common",      "const",      "continue",
+      "default",    "discard",   "dmat2",       "dmat2x2",     "dmat2x3",    "dmat2x4",
+      "dmat3",      "dmat3x2",   "dmat3x3",     "dmat3x4",     "dmat4",      "dmat4x2",
+      "dmat4x3",    "dmat4x4",   "do",          "double",      "dvec2",      "dvec3",
+      "dvec4",      "else",      "enum",        "extern",      "external",   "false",
+      "filter",     "fixed",     "flat",        "float",       "for",        "fvec2",
+      "fvec3",      "fvec4",     "goto",        "half",        "highp",      "hvec2",
+      "hvec3",      "hvec4",     "if",          "iimage1D",    "iimage2D",   "iimage3D",
+      "image1D",    "image2D",   "image3D",     "in",          "inline",     "inout",
+      "input",      "int",       "interface",   "invariant",   "isampler1D", "isampler2D",
+      "isampler3D", "ivec2",     "ivec3",       "ivec4",       "layout",     "long",
+      "lowp",       "main",      "mat2",        "mat2x2",      "mat2x3",     "mat2x4",
+      "mat3",       "mat3x2",    "mat3x3",      "mat3x4",      "mat4",       "mat4x2",
+      "mat4x3",     "mat4x4",    "mediump",     "namespace",   "noinline",   "noperspective",
+      "out",        "output",    "partition",   "patch",       "precise",    "precision",
+      "public",     "readonly",  "resource",    "restrict",    "return",     "sample",
+      "sampler1D",  "sampler2D", "sampler3D",   "samplerCube", "short",      "sizeof",
+      "smooth",     "static",    "struct",      "subroutine",  "superp",     "switch",
+      "template",   "this",      "true",        "typedef",     "uimage1D",   "uimage2D",
+      "uimage3D",   "uint",      "union",       "unsigned",    "usampler1D", "usampler2D",
+      "usampler3D", "using",     "uvec2",       "uvec3",       "uvec4",      "varying",
+      "vec2",       "vec3",      "vec4",        "void",        "volatile",   "while",
+      "writeonly"};
+  return kWords.count(name) > 0;
+}
+
+void Loader::load_varyings(const json& list, Case& c) const {
+  if (!list.is_array()) fail("varyings", "an array of 0 to 7 varyings", describe(list));
+  if (list.size() > kMaxVaryings)
+    fail("varyings", "at most 7 varyings", std::to_string(list.size()));
+  std::set<std::string> seen;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = path_index("varyings", i);
+    const json& v = require_object(list[i], path);
+    check_keys(v, path, {"name", "size", "interpolation"});
+    Varying var;
+    const json& name = required(v, path, "name", "a GLSL identifier");
+    if (!name.is_string()) fail(path_key(path, "name"), "a GLSL identifier", describe(name));
+    var.name = name.get<std::string>();
+    const std::string& n = var.name;
+    const bool identifier = !n.empty() &&
+                            (std::isalpha(static_cast<unsigned char>(n[0])) || n[0] == '_') &&
+                            std::all_of(n.begin(), n.end(), [](char ch) {
+                              return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_';
+                            });
+    if (!identifier || n.size() > 64)
+      fail(path_key(path, "name"), "a GLSL identifier ([A-Za-z_][A-Za-z0-9_]*, at most 64 chars)",
+           describe(name));
+    if (n.rfind("gl_", 0) == 0)
+      fail(path_key(path, "name"), "a name not starting with \"gl_\" (reserved by GLSL)",
+           describe(name));
+    if (n.find("__") != std::string::npos)
+      fail(path_key(path, "name"), "a name without \"__\" (reserved by GLSL)", describe(name));
+    if (glsl_reserved(n))
+      fail(path_key(path, "name"), "a name that is not a GLSL keyword", describe(name));
+    // A vertex object holds "clip"/"position" beside the varyings' names.
+    if (n == "clip" || n == "position")
+      fail(path_key(path, "name"), "a name other than clip and position (vertex keys)",
+           describe(name));
+    if (!seen.insert(n).second)
+      fail(path_key(path, "name"), "a name not used by another varying", describe(name));
+    if (const json* size = opt(v, "size")) var.size = int_in(*size, path_key(path, "size"), 1, 4);
+    if (const json* interp = opt(v, "interpolation"))
+      var.interpolation = choice<Interpolation>(*interp, path_key(path, "interpolation"),
+                                                {{"smooth", Interpolation::smooth},
+                                                 {"flat", Interpolation::flat},
+                                                 {"noperspective", Interpolation::noperspective}});
+    c.varyings.push_back(var);
+  }
+}
+
+std::vector<TransformOp> Loader::load_ops(const json& list, const std::string& path) const {
+  if (!list.is_array()) fail(path, "an array of operations", describe(list));
+  std::vector<TransformOp> ops;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string p = path_index(path, i);
+    const json& op = require_object(list[i], p);
+    if (op.size() != 1)
+      fail(p, "an object with exactly one of the keys translate, rotate, scale, look_at",
+           std::to_string(op.size()) + " keys");
+    check_keys(op, p, {"translate", "rotate", "scale", "look_at"});
+    const std::string& key = op.begin().key();
+    const json& value = op.begin().value();
+    const std::string vp = path_key(p, key);
+    TransformOp o;
+    if (key == "translate") {
+      o.kind = TransformOp::Kind::translate;
+      o.v = vec3(value, vp);
+    } else if (key == "scale") {
+      o.kind = TransformOp::Kind::scale;
+      o.v = vec3(value, vp);
+    } else if (key == "rotate") {
+      o.kind = TransformOp::Kind::rotate;
+      require_object(value, vp);
+      check_keys(value, vp, {"degrees", "axis"});
+      o.degrees = number(required(value, vp, "degrees", "a number"), path_key(vp, "degrees"));
+      o.v = vec3(required(value, vp, "axis", "3 numbers"), path_key(vp, "axis"));
+      if (o.v[0] == 0 && o.v[1] == 0 && o.v[2] == 0)
+        fail(path_key(vp, "axis"), "a non-zero axis", "[0, 0, 0]");
+    } else {
+      o.kind = TransformOp::Kind::look_at;
+      require_object(value, vp);
+      check_keys(value, vp, {"eye", "center", "up"});
+      o.v = vec3(required(value, vp, "eye", "3 numbers"), path_key(vp, "eye"));
+      o.center = vec3(required(value, vp, "center", "3 numbers"), path_key(vp, "center"));
+      o.up = vec3(required(value, vp, "up", "3 numbers"), path_key(vp, "up"));
+      const double f[3] = {o.center[0] - o.v[0], o.center[1] - o.v[1], o.center[2] - o.v[2]};
+      if (f[0] == 0 && f[1] == 0 && f[2] == 0)
+        fail(path_key(vp, "center"), "a point other than eye", "the eye's position");
+      const double s[3] = {f[1] * o.up[2] - f[2] * o.up[1], f[2] * o.up[0] - f[0] * o.up[2],
+                           f[0] * o.up[1] - f[1] * o.up[0]};
+      if (s[0] == 0 && s[1] == 0 && s[2] == 0)
+        fail(path_key(vp, "up"), "a direction not parallel to center - eye", "a parallel one");
+    }
+    ops.push_back(o);
+  }
+  return ops;
+}
+
+Projection Loader::load_projection(const json& p, const std::string& path) const {
+  require_object(p, path);
+  if (p.size() != 1)
+    fail(path, "an object with exactly one of the keys perspective, frustum, ortho",
+         std::to_string(p.size()) + " keys");
+  check_keys(p, path, {"perspective", "frustum", "ortho"});
+  const std::string& key = p.begin().key();
+  const json& value = p.begin().value();
+  const std::string vp = path_key(path, key);
+  require_object(value, vp);
+  Projection out;
+  auto get = [&](std::string_view k) -> double {
+    return number(required(value, vp, k, "a number"), path_key(vp, k));
+  };
+  if (key == "perspective") {
+    check_keys(value, vp, {"fovy_degrees", "aspect", "near", "far"});
+    out.kind = Projection::Kind::perspective;
+    out.p = {get("fovy_degrees"), get("aspect"), get("near"), get("far"), 0, 0};
+    if (!(out.p[0] > 0 && out.p[0] < 180))
+      fail(path_key(vp, "fovy_degrees"), "a number in (0, 180)", fmt_double(out.p[0]));
+    if (!(out.p[1] > 0)) fail(path_key(vp, "aspect"), "a number > 0", fmt_double(out.p[1]));
+  } else {
+    check_keys(value, vp, {"left", "right", "bottom", "top", "near", "far"});
+    out.kind = key == "frustum" ? Projection::Kind::frustum : Projection::Kind::ortho;
+    out.p = {get("left"), get("right"), get("bottom"), get("top"), get("near"), get("far")};
+    if (out.p[0] == out.p[1])
+      fail(path_key(vp, "right"), "a value other than left", fmt_double(out.p[1]));
+    if (out.p[2] == out.p[3])
+      fail(path_key(vp, "top"), "a value other than bottom", fmt_double(out.p[3]));
+  }
+  const double n = key == "perspective" ? out.p[2] : out.p[4];
+  const double f = key == "perspective" ? out.p[3] : out.p[5];
+  if (key != "ortho") {
+    // A perspective divide by the eye distance needs both planes in front of the eye.
+    if (!(n > 0)) fail(path_key(vp, "near"), "a number > 0", fmt_double(n));
+    if (!(f > 0)) fail(path_key(vp, "far"), "a number > 0", fmt_double(f));
+  }
+  if (n == f) fail(path_key(vp, "far"), "a value other than near", fmt_double(f));
+  return out;
+}
+
+std::optional<Transform> Loader::load_transform(const json& t) const {
+  require_object(t, "transform");
+  check_keys(t, "transform", {"model", "view", "projection"});
+  Transform out;
+  if (const json* m = opt(t, "model")) out.model = load_ops(*m, "transform.model");
+  if (const json* v = opt(t, "view")) out.view = load_ops(*v, "transform.view");
+  if (const json* p = opt(t, "projection"))
+    out.projection = load_projection(*p, "transform.projection");
+  return out;
+}
+
+void Loader::load_vertices(const json& list, const std::optional<Transform>& transform,
+                           Case& c) const {
+  if (!list.is_array() || list.empty())
+    fail("vertices", "a non-empty array of vertex objects", describe(list));
+  // Positions are transformed together once all are read, so that one matrix set serves all.
+  std::vector<size_t> from_position;
+  std::vector<std::array<double, 4>> positions;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string path = path_index("vertices", i);
+    const json& v = require_object(list[i], path);
+    // Allowed keys: clip, position, and the varyings' names.
+    for (const auto& [key, value] : v.items()) {
+      if (key == "clip" || key == "position") continue;
+      const bool varying = std::any_of(c.varyings.begin(), c.varyings.end(),
+                                       [&](const Varying& var) { return var.name == key; });
+      if (!varying) {
+        std::string keys = "clip, position";
+        for (const auto& var : c.varyings)
+          keys += ", " + var.name;
+        fail(path_key(path, key), "one of the keys " + keys + " (varyings must be declared)",
+             "unknown key " + json_quoted(key));
+      }
+    }
+    Vertex vertex;
+    const json* clip = opt(v, "clip");
+    const json* pos = opt(v, "position");
+    if (clip && pos) fail(path, "exactly one of clip, position", "both");
+    if (!clip && !pos) fail(path, "exactly one of clip, position", "neither");
+    if (clip) {
+      const auto f = numbers(*clip, path_key(path, "clip"), {4});
+      vertex.clip = {f[0], f[1], f[2], f[3]};
+    } else {
+      if (!transform)
+        fail(path_key(path, "position"),
+             "clip coordinates, or a \"transform\" in the case to use position", "no transform");
+      const auto f = numbers(*pos, path_key(path, "position"), {3, 4});
+      positions.push_back({f[0], f[1], f[2], f.size() == 4 ? double(f[3]) : 1.0});
+      from_position.push_back(i);
+    }
+    for (const auto& var : c.varyings) {
+      const std::string vp = path_key(path, var.name);
+      const std::string what =
+          var.size == 1 ? "a number (varying " + var.name + ")"
+                        : std::to_string(var.size) + " numbers (varying " + var.name + ")";
+      const json* value = opt(v, var.name);
+      if (!value) fail(vp, what, "nothing (every vertex needs every varying)");
+      if (var.size == 1 && !value->is_array()) {
+        vertex.values.push_back(number(*value, vp));
+      } else {
+        if (!value->is_array()) fail(vp, what, describe(*value));
+        if (value->size() != size_t(var.size)) fail(vp, what, std::to_string(value->size()));
+        for (size_t k = 0; k < value->size(); ++k)
+          vertex.values.push_back(number((*value)[k], path_index(vp, k)));
+      }
+    }
+    c.vertices.push_back(std::move(vertex));
+  }
+  if (!positions.empty()) {
+    const auto clips = to_clip(*transform, positions);
+    for (size_t k = 0; k < clips.size(); ++k) {
+      const std::string path = path_key(path_index("vertices", from_position[k]), "position");
+      std::array<float, 4>& out = c.vertices[from_position[k]].clip;
+      for (int j = 0; j < 4; ++j) {
+        const double d = clips[k][j];
+        if (!(std::fabs(d) < kFloatOverflow))
+          fail(path, "clip coordinates finite in float32 after the transform",
+               "clip[" + std::to_string(j) + "] = " + fmt_double(d));
+        // The one rounding from the double transform to the float32 gl_Position.
+        out[j] =
+            std::fabs(d) > double(std::numeric_limits<float>::max())
+                ? (d < 0 ? -std::numeric_limits<float>::max() : std::numeric_limits<float>::max())
+                : static_cast<float>(d);
+      }
+    }
+  }
+}
+
+void Loader::load_triangles(const json* list, Case& c) const {
+  const size_t n = c.vertices.size();
+  if (!list) {
+    if (n % 3 != 0)
+      fail("vertices", "a multiple of 3 vertices (consecutive triples, as \"triangles\" is absent)",
+           std::to_string(n));
+    for (uint32_t i = 0; i + 2 < n; i += 3)
+      c.triangles.push_back({i, i + 1, i + 2});
+    return;
+  }
+  if (!list->is_array() || list->empty())
+    fail("triangles", "a non-empty array of [i, j, k] index triples", describe(*list));
+  const std::string what = "an index in 0.." + std::to_string(n - 1);
+  for (size_t t = 0; t < list->size(); ++t) {
+    const std::string path = path_index("triangles", t);
+    const json& tri = (*list)[t];
+    if (!tri.is_array()) fail(path, "3 vertex indices", describe(tri));
+    if (tri.size() != 3) fail(path, "3 vertex indices", std::to_string(tri.size()));
+    std::array<uint32_t, 3> idx{};
+    for (size_t k = 0; k < 3; ++k) {
+      const long long i = integer(tri[k], path_index(path, k), what);
+      if (i < 0 || static_cast<unsigned long long>(i) >= n)
+        fail(path_index(path, k), what, describe(tri[k]));
+      idx[k] = static_cast<uint32_t>(i);
+    }
+    c.triangles.push_back(idx);
+  }
+}
+
+// GL specifies noperspective interpolation in window coordinates, which a triangle reaching
+// behind the eye (w_c <= 0 at a vertex) does not have: the projected triangle is not the visible
+// region, and the spec leaves the result undefined. Such a case could not have a reference.
+void Loader::check_noperspective(const Case& c) const {
+  auto np = std::find_if(c.varyings.begin(), c.varyings.end(), [](const Varying& v) {
+    return v.interpolation == Interpolation::noperspective;
+  });
+  if (np == c.varyings.end()) return;
+  for (size_t t = 0; t < c.triangles.size(); ++t) {
+    for (uint32_t i : c.triangles[t]) {
+      const float w = c.vertices[i].clip[3];
+      if (w <= 0.0f)
+        fail(path_index("triangles", t),
+             "w_c > 0 at every vertex, because varying " + json_quoted(np->name) +
+                 " is noperspective and GL leaves screen-linear interpolation undefined for "
+                 "triangles reaching behind the eye",
+             "w_c = " + fmt_double(w) + " at vertex " + std::to_string(i));
+    }
+  }
+}
+
+void Loader::load_tolerance(const json& t, Case& c) const {
+  require_object(t, "tolerance");
+  check_keys(t, "tolerance", {"varying_ulps", "depth_ulps", "allow_boundary"});
+  if (const json* v = opt(t, "varying_ulps"))
+    c.tolerance.varying_ulps = tolerance_value(*v, "tolerance.varying_ulps");
+  if (const json* v = opt(t, "depth_ulps"))
+    c.tolerance.depth_ulps = tolerance_value(*v, "tolerance.depth_ulps");
+  if (const json* v = opt(t, "allow_boundary")) {
+    if (!v->is_boolean()) fail("tolerance.allow_boundary", "true or false", describe(*v));
+    c.tolerance.allow_boundary = v->get<bool>();
+  }
+}
+
+Case Loader::load(const json& root) {
+  Case c;
+  c.source_path = file_;
+  if (!root.is_object()) fail("", "a JSON object at the top level", describe(root));
+  check_keys(root, "",
+             {"description", "framebuffer", "viewport", "depth_range", "state", "varyings",
+              "transform", "vertices", "triangles", "tolerance"});
+
+  const json& desc = required(root, "", "description", "a one-line string");
+  if (!desc.is_string() || desc.get_ref<const std::string&>().empty() ||
+      desc.get_ref<const std::string&>().find_first_of("\r\n") != std::string::npos)
+    fail("description", "a non-empty one-line string", describe(desc));
+  c.description = desc.get<std::string>();
+
+  load_geometry(root, c);
+  if (const json* s = opt(root, "state")) load_state(*s, c);
+  if (const json* v = opt(root, "varyings")) load_varyings(*v, c);
+  std::optional<Transform> transform;
+  if (const json* t = opt(root, "transform")) transform = load_transform(*t);
+  load_vertices(required(root, "", "vertices", "an array of vertices"), transform, c);
+  load_triangles(opt(root, "triangles"), c);
+  check_noperspective(c);
+  if (const json* t = opt(root, "tolerance")) load_tolerance(*t, c);
+  return c;
+}
+
+// nlohmann::json keeps the last of two equal keys in an object without a word; a case file
+// with a key written twice is a mistake, so the parser callback tracks the path and notes the
+// first duplicate.
+class DuplicateKeyFinder {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        stack_.push_back({false});
+        break;
+      case json::parse_event_t::array_start:
+        stack_.push_back({true});
+        break;
+      case json::parse_event_t::key:
+        if (!stack_.empty()) {
+          Level& top = stack_.back();
+          top.key = parsed.get<std::string>();
+          if (!top.keys.insert(top.key).second && !duplicate_) duplicate_ = path();
+        }
+        break;
+      case json::parse_event_t::value:
+        element_done();
+        break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!stack_.empty()) stack_.pop_back();
+        element_done();
+        break;
+    }
+    return true;
+  }
+  const std::optional<std::string>& duplicate() const { return duplicate_; }
+  // The path of the value being read.
+  std::string path() const {
+    std::string p;
+    for (const Level& l : stack_)
+      p = l.array ? path_index(p, l.index) : path_key(p, l.key);
+    return p;
+  }
+
+ private:
+  struct Level {
+    bool array;
+    size_t index = 0;
+    std::string key;
+    std::set<std::string> keys;
+  };
+  void element_done() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+  std::vector<Level> stack_;
+  std::optional<std::string> duplicate_;
+};
+
+}  // namespace
+
+Case load(const fs::path& file) {
+  const std::string name = file.string();
+  Loader loader(name);
+  std::ifstream in(file, std::ios::binary);
+  if (!in) loader.fail("", "a readable case file", "none at this path");
+  json root;
+  // The callback's state must outlive parse(), which takes the callback by value.
+  auto finder = std::make_shared<DuplicateKeyFinder>();
+  try {
+    root = json::parse(
+        in, [finder](int d, json::parse_event_t e, json& p) { return (*finder)(d, e, p); });
+  } catch (const json::parse_error& e) {
+    // what(): "[json.exception.parse_error.101] parse error at line 3, column 5: syntax ...".
+    std::string msg = e.what();
+    std::string where;
+    const size_t at = msg.find("at line ");
+    if (at != std::string::npos) {
+      const size_t colon = msg.find(": ", at);
+      where = msg.substr(at + 3, colon == std::string::npos ? std::string::npos : colon - at - 3);
+      msg = colon == std::string::npos ? "" : msg.substr(colon + 2);
+    } else if (const size_t close = msg.find("] "); close != std::string::npos) {
+      msg = msg.substr(close + 2);
+    }
+    loader.fail(where, "valid JSON", msg);
+  } catch (const json::exception& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": a number beyond
+    // double range. The callback's path still points at the value being read.
+    std::string msg = e.what();
+    if (const size_t close = msg.find("] "); close != std::string::npos)
+      msg = msg.substr(close + 2);
+    loader.fail(finder->path(), "a number within float32 range", msg);
+  }
+  if (finder->duplicate())
+    loader.fail(*finder->duplicate(), "each key once in its object", "it twice");
+  Case c = loader.load(root);
+  c.name = file.stem().string();
+  return c;
+}
+
+std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs) {
+  std::vector<fs::path> out;
+  for (const std::string& arg : files_or_dirs) {
+    const fs::path p(arg);
+    std::error_code ec;
+    const fs::file_status st = fs::status(p, ec);
+    if (ec || !fs::exists(st))
+      throw CaseError(arg + ": expected a case file or a directory of them, got no such path");
+    if (fs::is_directory(st)) {
+      try {
+        for (const auto& entry :
+             fs::recursive_directory_iterator(p, fs::directory_options::follow_directory_symlink)) {
+          if (entry.path().extension() == ".json" && entry.is_regular_file())
+            out.push_back(entry.path().lexically_normal());
+        }
+      } catch (const fs::filesystem_error& e) {
+        throw CaseError(arg + ": expected a readable directory, got " + e.code().message());
+      }
+    } else {
+      out.push_back(p.lexically_normal());  // a file named explicitly is taken as it is
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  // A case's name is its file's stem, and names key results and reports.
+  std::map<std::string, fs::path> names;
+  for (const fs::path& p : out) {
+    auto [it, inserted] = names.emplace(p.stem().string(), p);
+    if (!inserted)
+      throw CaseError(p.string() + ": name: expected a case name used once, got " +
+                      json_quoted(p.stem().string()) + ", also the name of " + it->second.string());
+  }
+  return out;
+}
+
+}  // namespace glrc::casefile

@@ -1,0 +1,72 @@
+// Shared by the casefile tests: case files written to a private temporary directory (never into
+// the repository), and a check that a load fails with a one-line message naming the file, the
+// field and what was expected.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "casefile/casefile.hpp"
+
+namespace glrc::casefile::test {
+
+class CaseFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           ("glrc_casefile_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
+            info->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  // Writes `text` to <tmp>/<name> (sub-directories created) and returns the path.
+  std::filesystem::path write(const std::string& name, const std::string& text) {
+    const auto path = dir_ / name;
+    std::filesystem::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
+  Case load_text(const std::string& text, const std::string& name = "case.json") {
+    return load(write(name, text));
+  }
+
+  // The message of the CaseError that loading `text` throws ("" if it loads).
+  std::string error_of(const std::string& text, const std::string& name = "case.json") {
+    const auto path = write(name, text);
+    try {
+      load(path);
+    } catch (const CaseError& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  std::filesystem::path dir_;
+};
+
+inline uint32_t bits(float f) {
+  return std::bit_cast<uint32_t>(f);
+}
+
+// Every validation message: one line, "<file>: <field path>: expected ..., got ...".
+#define EXPECT_CASE_ERROR(text, field_path)                                              \
+  do {                                                                                   \
+    const std::string msg_ = error_of(text);                                             \
+    const std::string file_ = (dir_ / "case.json").string();                             \
+    EXPECT_EQ(msg_.rfind(file_ + ": " + std::string(field_path) + ": expected ", 0), 0u) \
+        << "message: " << msg_;                                                          \
+    EXPECT_NE(msg_.find(", got "), std::string::npos) << msg_;                           \
+    EXPECT_EQ(msg_.find('\n'), std::string::npos) << msg_;                               \
+  } while (0)
+
+}  // namespace glrc::casefile::test

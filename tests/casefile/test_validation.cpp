@@ -1,0 +1,297 @@
+// Every validation rule: the error is one line naming the file, the field path and what was
+// expected, and what was found.
+#include "tests/casefile/test_helpers.hpp"
+
+namespace glrc::casefile::test {
+namespace {
+
+// A valid case with `fields` added at the top level.
+std::string with(const std::string& fields) {
+  return R"({"description": "d", )" + fields + "}";
+}
+// Three plain vertices, for cases whose error is elsewhere.
+const std::string kTri =
+    R"("vertices": [{"clip": [-1, -1, 0, 1]}, {"clip": [1, -1, 0, 1]}, {"clip": [0, 1, 0, 1]}])";
+// Three vertices with one vec4 varying "color" of the given interpolation.
+std::string color_case(const std::string& interpolation, const std::string& v1_clip,
+                       const std::string& extra = "") {
+  return with(R"("varyings": [{"name": "color", "size": 4, "interpolation": ")" + interpolation +
+              R"("}],
+    "vertices": [{"clip": [-1, -1, 0, 1], "color": [1, 2, 3, 4]},
+                 {"clip": )" +
+              v1_clip + R"(, "color": [5, 6, 7, 8]},
+                 {"clip": [0, 1, 0, 1], "color": [9, 10, 11, 12]}])" +
+              extra);
+}
+
+TEST_F(CaseFileTest, ExactMessagesForTheDocumentedExamples) {
+  const std::string file = (dir_ / "case.json").string();
+  EXPECT_EQ(
+      error_of(with(R"("state": {"cull": "frnt"}, )" + kTri)),
+      file + R"(: state.cull: expected one of none, front, back, front_and_back, got "frnt")");
+  EXPECT_EQ(error_of(color_case("smooth", "[1, -1, 0]")),
+            file + ": vertices[1].clip: expected 4 numbers, got 3");
+}
+
+TEST_F(CaseFileTest, InvalidJsonNamesLineAndColumn) {
+  const std::string msg = error_of("{\"description\": \"d\",\n  \"vertices\": [\n}\n");
+  const std::string file = (dir_ / "case.json").string();
+  EXPECT_EQ(msg.rfind(file + ": line 3, column 1: expected valid JSON, got ", 0), 0u) << msg;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  EXPECT_NE(error_of("").find("expected valid JSON"), std::string::npos);
+  // Comments are not JSON.
+  EXPECT_NE(error_of(with("// c\n" + kTri)).find("expected valid JSON"), std::string::npos);
+}
+
+TEST_F(CaseFileTest, TopLevelShapeAndRequiredFields) {
+  EXPECT_CASE_ERROR(R"({"vertices": []})", "description");
+  EXPECT_CASE_ERROR(R"({"description": "d"})", "vertices");
+  EXPECT_CASE_ERROR(R"({"description": "two\nlines", )" + kTri + "}", "description");
+  EXPECT_CASE_ERROR(R"({"description": 5, )" + kTri + "}", "description");
+  EXPECT_CASE_ERROR(with(R"("vertices": [])"), "vertices");
+}
+
+// With no field to name, the message is "<file>: expected ..., got ...".
+TEST_F(CaseFileTest, NonObjectTopLevel) {
+  const std::string msg = error_of("[1, 2]");
+  EXPECT_EQ(msg, (dir_ / "case.json").string() +
+                     ": expected a JSON object at the top level, got an array of 2");
+}
+
+TEST_F(CaseFileTest, UnknownKeysAnywhereAreErrors) {
+  EXPECT_CASE_ERROR(with(R"("descripton": "x", )" + kTri), "descripton");
+  EXPECT_CASE_ERROR(with(R"("state": {"culll": "none"}, )" + kTri), "state.culll");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 8, "height": 8, "depth": 1}, )" + kTri),
+                    "framebuffer.depth");
+  EXPECT_CASE_ERROR(with(R"("tolerance": {"varying_ulp": 1}, )" + kTri), "tolerance.varying_ulp");
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "a", "sise": 2}], )" + kTri), "varyings[0].sise");
+  EXPECT_CASE_ERROR(with(R"("transform": {"modle": []}, )" + kTri), "transform.modle");
+  EXPECT_CASE_ERROR(
+      with(R"("transform": {"model": [{"rotate": {"degrees": 5, "axis": [0,0,1], "x": 1}}]}, )" +
+           kTri),
+      "transform.model[0].rotate.x");
+  // A vertex key that is no declared varying.
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "color", "size": 1}],
+    "vertices": [{"clip": [-1, -1, 0, 1], "color": 1}, {"clip": [1, -1, 0, 1], "color": 2},
+                 {"clip": [0, 1, 0, 1], "color": 3, "colr": 3}])"),
+                    "vertices[2].colr");
+  // The same key twice in one object.
+  EXPECT_CASE_ERROR(with(R"("state": {"cull": "back", "cull": "none"}, )" + kTri), "state.cull");
+  EXPECT_CASE_ERROR(
+      with(R"("vertices": [{"clip": [-1, -1, 0, 1]}, {"clip": [1, -1, 0, 1], "clip": [1, -1, 0, 1]},
+                          {"clip": [0, 1, 0, 1]}])"),
+      "vertices[1].clip");
+}
+
+TEST_F(CaseFileTest, FramebufferAndViewport) {
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 0, "height": 8}, )" + kTri),
+                    "framebuffer.width");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 8, "height": 4097}, )" + kTri),
+                    "framebuffer.height");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": "64", "height": 8}, )" + kTri),
+                    "framebuffer.width");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 64.5, "height": 8}, )" + kTri),
+                    "framebuffer.width");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 64}, )" + kTri), "framebuffer.height");
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": 0, "y": 0, "width": 0, "height": 8}, )" + kTri),
+                    "viewport.width");
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": -1, "y": 0, "width": 8, "height": 8}, )" + kTri),
+                    "viewport.x");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 96, "height": 64},
+                            "viewport": {"x": 50, "y": 7, "width": 48, "height": 40}, )" +
+                         kTri),
+                    "viewport");
+  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 96, "height": 64},
+                            "viewport": {"x": 0, "y": 30, "width": 48, "height": 40}, )" +
+                         kTri),
+                    "viewport");
+  // Without a framebuffer, the viewport's extent is the framebuffer and must be a legal size.
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": 100, "y": 0, "width": 4000, "height": 8}, )" + kTri),
+                    "viewport");
+}
+
+TEST_F(CaseFileTest, DepthRangeAndState) {
+  EXPECT_CASE_ERROR(with(R"("depth_range": {"near": 1.5}, )" + kTri), "depth_range.near");
+  EXPECT_CASE_ERROR(with(R"("depth_range": {"far": -0.25}, )" + kTri), "depth_range.far");
+  EXPECT_CASE_ERROR(with(R"("state": {"front_face": "CCW"}, )" + kTri), "state.front_face");
+  EXPECT_CASE_ERROR(with(R"("state": {"provoking_vertex": 1}, )" + kTri), "state.provoking_vertex");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_func": "lequal"}, )" + kTri), "state.depth_func");
+  EXPECT_CASE_ERROR(with(R"("state": [], )" + kTri), "state");
+}
+
+TEST_F(CaseFileTest, Varyings) {
+  auto one = [](const std::string& varying) {
+    return with(R"("varyings": [)" + varying + "], " + kTri);
+  };
+  EXPECT_CASE_ERROR(one(R"({"name": "gl_Color"})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": "2uv"})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": "u-v"})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": ""})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": "a__b"})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": "flat"})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": "clip"})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"size": 2})"), "varyings[0].name");
+  EXPECT_CASE_ERROR(one(R"({"name": "a", "size": 5})"), "varyings[0].size");
+  EXPECT_CASE_ERROR(one(R"({"name": "a", "size": 0})"), "varyings[0].size");
+  EXPECT_CASE_ERROR(one(R"({"name": "a", "interpolation": "linear"})"),
+                    "varyings[0].interpolation");
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "a"}, {"name": "a"}], )" + kTri),
+                    "varyings[1].name");
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "a"}, {"name": "b"}, {"name": "c"},
+    {"name": "d"}, {"name": "e"}, {"name": "f"}, {"name": "g"}, {"name": "h"}], )" +
+                         kTri),
+                    "varyings");
+  EXPECT_CASE_ERROR(with(R"("varyings": {"name": "a"}, )" + kTri), "varyings");
+}
+
+TEST_F(CaseFileTest, VertexValues) {
+  // Every vertex has every varying, with the right count.
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "c", "size": 2}],
+    "vertices": [{"clip": [-1, -1, 0, 1], "c": [1, 2]}, {"clip": [1, -1, 0, 1]},
+                 {"clip": [0, 1, 0, 1], "c": [1, 2]}])"),
+                    "vertices[1].c");
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "c", "size": 2}],
+    "vertices": [{"clip": [-1, -1, 0, 1], "c": [1, 2]}, {"clip": [1, -1, 0, 1], "c": [1, 2, 3]},
+                 {"clip": [0, 1, 0, 1], "c": [1, 2]}])"),
+                    "vertices[1].c");
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "c", "size": 2}],
+    "vertices": [{"clip": [-1, -1, 0, 1], "c": [1, 2]}, {"clip": [1, -1, 0, 1], "c": 1},
+                 {"clip": [0, 1, 0, 1], "c": [1, 2]}])"),
+                    "vertices[1].c");
+  EXPECT_CASE_ERROR(color_case("smooth", R"([1, -1, 0, true])"), "vertices[1].clip[3]");
+  EXPECT_CASE_ERROR(color_case("smooth", R"([1, -1, 0, "1.5x"])"), "vertices[1].clip[3]");
+  EXPECT_CASE_ERROR(color_case("smooth", R"([1, -1, 0, " 1"])"), "vertices[1].clip[3]");
+  EXPECT_CASE_ERROR(color_case("smooth", R"({"x": 1})"), "vertices[1].clip");
+  EXPECT_CASE_ERROR(with(R"("vertices": [1, 2, 3])"), "vertices[0]");
+}
+
+TEST_F(CaseFileTest, NonFiniteValues) {
+  // A value that overflows float32 is an error, whether JSON number or string.
+  EXPECT_CASE_ERROR(color_case("smooth", "[1e39, -1, 0, 1]"), "vertices[1].clip[0]");
+  EXPECT_CASE_ERROR(color_case("smooth", "[-3.4028235677973366e38, -1, 0, 1]"),
+                    "vertices[1].clip[0]");  // exactly half-way to 2^128: rounds to infinity
+  EXPECT_CASE_ERROR(color_case("smooth", R"(["0x1p128", -1, 0, 1])"), "vertices[1].clip[0]");
+  EXPECT_CASE_ERROR(color_case("smooth", R"(["inf", -1, 0, 1])"), "vertices[1].clip[0]");
+  EXPECT_CASE_ERROR(color_case("smooth", R"(["nan", -1, 0, 1])"), "vertices[1].clip[0]");
+  EXPECT_CASE_ERROR(color_case("smooth", "[1e400, -1, 0, 1]"), "vertices[1].clip[0]");
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"name": "s", "size": 1}],
+    "vertices": [{"clip": [-1, -1, 0, 1], "s": 1}, {"clip": [1, -1, 0, 1], "s": "-1e39"},
+                 {"clip": [0, 1, 0, 1], "s": 1}])"),
+                    "vertices[1].s");
+}
+
+TEST_F(CaseFileTest, ClipOrPosition) {
+  EXPECT_CASE_ERROR(with(R"("vertices": [{"clip": [-1, -1, 0, 1], "position": [0, 0, 0]},
+                          {"clip": [1, -1, 0, 1]}, {"clip": [0, 1, 0, 1]}])"),
+                    "vertices[0]");
+  EXPECT_CASE_ERROR(with(R"("vertices": [{"clip": [-1, -1, 0, 1]}, {},
+                          {"clip": [0, 1, 0, 1]}])"),
+                    "vertices[1]");
+  // position only with a transform.
+  EXPECT_CASE_ERROR(with(R"("vertices": [{"clip": [-1, -1, 0, 1]}, {"position": [1, -1, 0]},
+                          {"clip": [0, 1, 0, 1]}])"),
+                    "vertices[1].position");
+  EXPECT_CASE_ERROR(with(R"("transform": {}, "vertices": [{"position": [-1, -1]},
+                          {"position": [1, -1, 0]}, {"position": [0, 1, 0]}])"),
+                    "vertices[0].position");
+  // The transform's result must fit float32 too.
+  EXPECT_CASE_ERROR(with(R"("transform": {"model": [{"scale": [1e30, 1e30, 1e30]}]},
+               "vertices": [{"position": [-1, -1, 0]}, {"position": [1e30, -1, 0]},
+                            {"position": [0, 1, 0]}])"),
+                    "vertices[1].position");
+}
+
+TEST_F(CaseFileTest, Triangles) {
+  EXPECT_CASE_ERROR(with(kTri + R"(, "triangles": [[0, 1, 3]])"), "triangles[0][2]");
+  EXPECT_CASE_ERROR(with(kTri + R"(, "triangles": [[0, 1, 2], [0, -1, 2]])"), "triangles[1][1]");
+  EXPECT_CASE_ERROR(with(kTri + R"(, "triangles": [[0, 1, 2], [0, 1]])"), "triangles[1]");
+  EXPECT_CASE_ERROR(with(kTri + R"(, "triangles": [[0, 1, 1.5]])"), "triangles[0][2]");
+  EXPECT_CASE_ERROR(with(kTri + R"(, "triangles": [])"), "triangles");  // at least one
+  EXPECT_CASE_ERROR(
+      with(
+          R"("vertices": [{"clip": [-1, -1, 0, 1]}, {"clip": [1, -1, 0, 1]}, {"clip": [0, 1, 0, 1]},
+                          {"clip": [0, 0, 0, 1]}])"),
+      "vertices");  // no "triangles": the count must be a multiple of 3
+}
+
+TEST_F(CaseFileTest, NoperspectiveBehindTheEyeIsRejected) {
+  for (const char* w : {"-0.5", "0", "-0.0"}) {
+    const std::string text = color_case("noperspective", std::string("[1, -1, 0, ") + w + "]");
+    EXPECT_CASE_ERROR(text, "triangles[0]");
+    const std::string msg = error_of(text);
+    EXPECT_NE(msg.find("noperspective"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("behind the eye"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("undefined"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("vertex 1"), std::string::npos) << msg;
+  }
+  // The same triangle with smooth or flat varyings is fine.
+  EXPECT_EQ(error_of(color_case("smooth", "[1, -1, 0, -0.5]")), "");
+  EXPECT_EQ(error_of(color_case("flat", "[1, -1, 0, -0.5]")), "");
+  // The triangle is named by its index in "triangles".
+  EXPECT_CASE_ERROR(
+      color_case("noperspective", "[1, -1, 0, -2]", R"(, "triangles": [[0, 2, 0], [2, 0, 1]])"),
+      "triangles[1]");
+}
+
+TEST_F(CaseFileTest, TransformOperations) {
+  auto tf = [](const std::string& transform) {
+    return with(R"("transform": )" + transform +
+                R"(, "vertices": [{"position": [-1, -1, -2]}, {"position": [1, -1, -2]},
+                                  {"position": [0, 1, -2]}])");
+  };
+  EXPECT_CASE_ERROR(tf(R"({"model": [{"rotat": {"degrees": 5, "axis": [0, 0, 1]}}]})"),
+                    "transform.model[0].rotat");
+  EXPECT_CASE_ERROR(tf(R"({"model": [{"translate": [1, 2, 3], "scale": [1, 1, 1]}]})"),
+                    "transform.model[0]");
+  EXPECT_CASE_ERROR(tf(R"({"model": [{"translate": [1, 2]}]})"), "transform.model[0].translate");
+  EXPECT_CASE_ERROR(tf(R"({"model": {"translate": [1, 2, 3]}})"), "transform.model");
+  EXPECT_CASE_ERROR(tf(R"({"view": [{"rotate": {"degrees": 5, "axis": [0, 0, 0]}}]})"),
+                    "transform.view[0].rotate.axis");
+  EXPECT_CASE_ERROR(tf(R"({"view": [{"rotate": {"axis": [0, 0, 1]}}]})"),
+                    "transform.view[0].rotate.degrees");
+  EXPECT_CASE_ERROR(
+      tf(R"({"view": [{"look_at": {"eye": [0, 0, 1], "center": [0, 0, 1], "up": [0, 1, 0]}}]})"),
+      "transform.view[0].look_at.center");
+  EXPECT_CASE_ERROR(
+      tf(R"({"view": [{"look_at": {"eye": [0, 0, 1], "center": [0, 0, 0], "up": [0, 0, 2]}}]})"),
+      "transform.view[0].look_at.up");
+  EXPECT_CASE_ERROR(
+      tf(R"({"projection": {"perspective": {"fovy_degrees": 60, "aspect": 1, "near": 0, "far": 10}}})"),
+      "transform.projection.perspective.near");
+  EXPECT_CASE_ERROR(
+      tf(R"({"projection": {"perspective": {"fovy_degrees": 180, "aspect": 1, "near": 1, "far": 10}}})"),
+      "transform.projection.perspective.fovy_degrees");
+  EXPECT_CASE_ERROR(
+      tf(R"({"projection": {"perspective": {"fovy_degrees": 60, "aspect": 1, "near": 1}}})"),
+      "transform.projection.perspective.far");
+  EXPECT_CASE_ERROR(
+      tf(R"({"projection": {"frustum": {"left": 1, "right": 1, "bottom": -1, "top": 1, "near": 1, "far": 2}}})"),
+      "transform.projection.frustum.right");
+  EXPECT_CASE_ERROR(
+      tf(R"({"projection": {"ortho": {"left": -1, "right": 1, "bottom": -1, "top": 1, "near": 2, "far": 2}}})"),
+      "transform.projection.ortho.far");
+  EXPECT_CASE_ERROR(tf(R"({"projection": {"orthographic": {}}})"),
+                    "transform.projection.orthographic");
+  EXPECT_CASE_ERROR(tf(R"({"projection": []})"), "transform.projection");
+}
+
+TEST_F(CaseFileTest, Tolerance) {
+  EXPECT_CASE_ERROR(with(R"("tolerance": {"varying_ulps": -1}, )" + kTri),
+                    "tolerance.varying_ulps");
+  EXPECT_CASE_ERROR(with(R"("tolerance": {"depth_ulps": "16"}, )" + kTri), "tolerance.depth_ulps");
+  EXPECT_CASE_ERROR(with(R"("tolerance": {"allow_boundary": 1}, )" + kTri),
+                    "tolerance.allow_boundary");
+}
+
+TEST_F(CaseFileTest, MissingFile) {
+  const auto path = dir_ / "nope.json";
+  try {
+    load(path);
+    FAIL() << "loaded a missing file";
+  } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path.string() + ": expected ", 0), 0u) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace glrc::casefile::test
