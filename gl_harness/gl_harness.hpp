@@ -3,8 +3,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "core/case.hpp"
 #include "core/frame.hpp"
@@ -12,7 +14,8 @@
 namespace glrc::gl {
 
 enum class Backend { osmesa, egl, egl_device };
-const char* to_string(Backend b);  // "osmesa", "egl", "egl-device"
+const char* to_string(Backend b);                                // "osmesa", "egl", "egl-device"
+std::optional<Backend> backend_from_string(std::string_view s);  // inverse of to_string
 
 struct Target {
   Backend backend = Backend::osmesa;
@@ -22,7 +25,13 @@ struct Target {
 
 struct GlInfo {
   std::string vendor, renderer, version;
+  // How the context was made, e.g. "EGL surfaceless platform (EGL 1.5, Mesa Project)".
+  std::string platform;
   int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
+  // A pass-through geometry shader supplies gl_PrimitiveID, because without one this driver
+  // drew nothing when the fragment shader read gl_PrimitiveID (softpipe, Mesa 22.3.6). Only
+  // then: on llvmpipe a geometry shader changes the bits of varyings and depth.
+  bool primitive_id_from_geometry_shader = false;
 };
 
 // A library, platform, driver or GL feature this machine lacks. what() is one line saying what
@@ -46,7 +55,12 @@ class Renderer {
 };
 
 // Creates a context on the target and checks that the driver asked for is the one running.
-// Throws Unavailable. One per process per backend: Mesa picks its driver once per process.
+// Throws Unavailable. Mesa picks its driver once per process: every call in one process must
+// name the same Target::driver (a different one throws Unavailable); run one process per
+// driver. Several renderers with the same driver may coexist; each makes its own context
+// current in render().
+// Environment: a non-empty driver sets GALLIUM_DRIVER=driver; for the EGL backends and
+// llvmpipe/softpipe also LIBGL_ALWAYS_SOFTWARE=1.
 std::unique_ptr<Renderer> create_renderer(const Target& t);
 
 }  // namespace glrc::gl

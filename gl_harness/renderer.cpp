@@ -1,1 +1,556 @@
-// placeholder: being written
+// The GL rendering every backend shares: a Case drawn into an FBO with float attachments and
+// read back into a Frame. Only rasterization and interpolation are under test, so the shaders
+// do nothing else: clip coordinates in, varyings and gl_PrimitiveID out.
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gl_harness/context.hpp"
+#include "gl_harness/gl_functions.hpp"
+#include "gl_harness/gl_harness.hpp"
+
+namespace glrc::gl {
+namespace {
+
+// One colour attachment per varying plus one for gl_PrimitiveID within GL 3.3's guaranteed 8
+// draw buffers.
+constexpr int kMaxVaryings = 7;
+
+const char* glsl_type(int size) {
+  static const char* const kTypes[] = {"float", "vec2", "vec3", "vec4"};
+  return kTypes[size - 1];
+}
+
+const char* glsl_qualifier(Interpolation i) {
+  switch (i) {
+    case Interpolation::smooth:
+      return "smooth";
+    case Interpolation::flat:
+      return "flat";
+    case Interpolation::noperspective:
+      return "noperspective";
+  }
+  return "smooth";
+}
+
+// Programs depend only on the varyings' sizes and qualifiers, so a run of many cases compiles
+// few programs: the key is e.g. "4smooth,1flat".
+std::string program_key(const Case& c) {
+  std::string key;
+  for (const Varying& v : c.varyings)
+    key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
+  return key;
+}
+
+// Generated names (a0/v0/o0, ...) rather than the case's: those are arbitrary strings and may
+// collide with GLSL keywords.
+std::string vertex_shader_source(const Case& c) {
+  std::string s =
+      "#version 330 core\n"
+      "layout(location = 0) in vec4 a_clip;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    const Varying& v = c.varyings[k];
+    std::string n = std::to_string(k);
+    s += "layout(location = " + std::to_string(k + 1) + ") in " + glsl_type(v.size) + " a" + n +
+         ";\n";
+    s += std::string(glsl_qualifier(v.interpolation)) + " out " + glsl_type(v.size) + " v" + n +
+         ";\n";
+  }
+  // Clip coordinates pass through untouched: the reference sees the very same bits.
+  s += "void main() {\n  gl_Position = a_clip;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k)
+    s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
+  return s + "}\n";
+}
+
+// Only where the driver needs it to supply gl_PrimitiveID (see GlRenderer::probe): copies
+// every vertex unchanged (v0 -> g0, ...) and forwards gl_PrimitiveIDIn. One triangle in, the
+// same triangle out, vertex order kept, so the provoking vertex is the same one.
+std::string geometry_shader_source(const Case& c) {
+  std::string s =
+      "#version 330 core\n"
+      "layout(triangles) in;\n"
+      "layout(triangle_strip, max_vertices = 3) out;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    const Varying& v = c.varyings[k];
+    std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
+    std::string n = std::to_string(k);
+    s += q + "in " + glsl_type(v.size) + " v" + n + "[];\n";
+    s += q + "out " + glsl_type(v.size) + " g" + n + ";\n";
+  }
+  s += "void main() {\n  for (int i = 0; i < 3; ++i) {\n";
+  s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k)
+    s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
+  return s + "    EmitVertex();\n  }\n  EndPrimitive();\n}\n";
+}
+
+// `input` is the prefix of the varyings arriving: "v" from the vertex shader, "g" from the
+// geometry shader.
+std::string fragment_shader_source(const Case& c, const char* input) {
+  static const char* const kPad[] = {", 0.0, 0.0, 0.0", ", 0.0, 0.0", ", 0.0", ""};
+  std::string s = "#version 330 core\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    const Varying& v = c.varyings[k];
+    std::string n = std::to_string(k);
+    s += std::string(glsl_qualifier(v.interpolation)) + " in " + glsl_type(v.size) + " " + input +
+         n + ";\n";
+    s += "layout(location = " + n + ") out vec4 o" + n + ";\n";
+  }
+  s += "layout(location = " + std::to_string(c.varyings.size()) + ") out int o_primitive;\n";
+  s += "void main() {\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    std::string n = std::to_string(k);
+    s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
+  }
+  // Without a geometry shader gl_PrimitiveID counts the draw's triangles from 0: the
+  // reference's primitive id. The pass-through one forwards that same count.
+  s += "  o_primitive = gl_PrimitiveID;\n}\n";
+  return s;
+}
+
+// One line: shader logs and messages go into RenderError::what().
+std::string one_line(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ' || s.back() == '\0'))
+    s.pop_back();
+  for (char& ch : s)
+    if (ch == '\n') ch = '|';
+  return s;
+}
+
+const char* framebuffer_status_name(GLenum status) {
+  switch (status) {
+    case GL_FRAMEBUFFER_COMPLETE:
+      return "GL_FRAMEBUFFER_COMPLETE";
+    case GL_FRAMEBUFFER_UNDEFINED:
+      return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT:
+      return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
+      return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER:
+      return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER:
+      return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED:
+      return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE:
+      return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
+      return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
+  }
+  return "unknown framebuffer status";
+}
+
+// The vertex objects of one case, deleted when it is done (or throws): one context renders
+// hundreds of cases.
+struct CaseObjects {
+  const GlFunctions& gl;
+  GLuint vertex_array = 0, vertex_buffer = 0, index_buffer = 0;
+
+  explicit CaseObjects(const GlFunctions& functions) : gl(functions) {}
+  CaseObjects(const CaseObjects&) = delete;
+  CaseObjects& operator=(const CaseObjects&) = delete;
+  ~CaseObjects() {
+    gl.BindVertexArray(0);
+    gl.BindBuffer(GL_ARRAY_BUFFER, 0);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, 0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.UseProgram(0);
+    if (index_buffer) gl.DeleteBuffers(1, &index_buffer);
+    if (vertex_buffer) gl.DeleteBuffers(1, &vertex_buffer);
+    if (vertex_array) gl.DeleteVertexArrays(1, &vertex_array);
+  }
+};
+
+// The FBO and its renderbuffers, kept from one case to the next while the size and the number
+// of varyings stay the same: allocating them is most of the cost of a case (llvmpipe takes
+// ~50 ms per 1024x1024 RGBA32F renderbuffer here), and every case clears all of them first.
+// At most one is alive, so memory does not pile up either.
+struct Framebuffer {
+  GLuint framebuffer = 0;
+  std::vector<GLuint> renderbuffers;  // one per varying, the primitive id, depth
+  int width = 0, height = 0, varyings = -1;
+};
+
+class GlRenderer final : public Renderer {
+ public:
+  GlRenderer(const Target& t, std::unique_ptr<Context> context)
+      : context_(std::move(context)), gl_(*context_) {
+    auto string = [this](GLenum name) {
+      const GLubyte* s = gl_.GetString(name);
+      return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
+    };
+    info_.vendor = string(GL_VENDOR);
+    info_.renderer = string(GL_RENDERER);
+    info_.version = string(GL_VERSION);
+    info_.subpixel_bits = integer(GL_SUBPIXEL_BITS);
+    info_.platform = context_->describe();
+    check_driver(t, info_.renderer, context_->describe());
+
+    int major = integer(GL_MAJOR_VERSION), minor = integer(GL_MINOR_VERSION);
+    if (major * 10 + minor < 33)
+      throw Unavailable("OpenGL " + std::to_string(major) + "." + std::to_string(minor) + " on " +
+                        context_->describe() + " ('" + info_.renderer +
+                        "'); glrefcheck needs 3.3 core");
+    max_draw_buffers_ = std::min(integer(GL_MAX_DRAW_BUFFERS), integer(GL_MAX_COLOR_ATTACHMENTS));
+    max_renderbuffer_size_ = integer(GL_MAX_RENDERBUFFER_SIZE);
+    GLint dims[2] = {0, 0};
+    gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+    max_viewport_[0] = dims[0];
+    max_viewport_[1] = dims[1];
+    if (GLenum e = gl_.GetError())
+      throw Unavailable(std::string("querying GL limits failed: ") + gl_error_name(e));
+    probe();
+  }
+
+  ~GlRenderer() override {
+    try {
+      context_->make_current();
+      for (auto& [key, program] : programs_)
+        gl_.DeleteProgram(program);
+      release_framebuffer();
+    } catch (...) {
+      // Tearing down: the context goes anyway.
+    }
+  }
+
+  const GlInfo& info() const override { return info_; }
+
+  Frame render(const Case& c) override {
+    validate(c);
+    context_->make_current();
+    while (gl_.GetError() != GL_NO_ERROR) {
+      // Errors a previous, failed case left behind are not this case's.
+    }
+    const int n = int(c.varyings.size());
+    const int w = c.fb_width, h = c.fb_height;
+    CaseObjects objects(gl_);
+
+    gl_.UseProgram(program_for(c));
+    bind_framebuffer(c);
+    set_state(c);
+    clear(n);
+    draw(c, objects);
+    check_error(c, "drawing");
+
+    Frame frame(w, h, c.component_count());
+    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (readback_.size() < size_t(w) * h * 4) readback_.resize(size_t(w) * h * 4);
+    float* rgba = readback_.data();
+    int component = 0;
+    for (int k = 0; k < n; ++k) {
+      gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + k);
+      gl_.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+      // Rows come bottom first, as Frame wants: no flip.
+      for (int i = 0; i < c.varyings[k].size; ++i, ++component) {
+        std::vector<float>& out = frame.components[size_t(component)];
+        for (size_t p = 0; p < out.size(); ++p)
+          out[p] = rgba[4 * p + size_t(i)];
+      }
+    }
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
+    gl_.ReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
+    gl_.ReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, frame.depth.data());
+    check_error(c, "reading back");
+    return frame;
+  }
+
+ private:
+  GLint integer(GLenum name) const {
+    GLint v = 0;
+    gl_.GetIntegerv(name, &v);
+    return v;
+  }
+
+  void check_error(const Case& c, const char* when) const {
+    if (GLenum e = gl_.GetError())
+      throw RenderError("case '" + c.name + "': " + gl_error_name(e) + " while " + when);
+  }
+
+  // What GL would reject or misread: reported as this case's error rather than left to GL.
+  void validate(const Case& c) const {
+    auto fail = [&c](const std::string& why) {
+      throw RenderError("case '" + c.name + "': " + why);
+    };
+    const int n = int(c.varyings.size());
+    if (n > kMaxVaryings || n + 1 > max_draw_buffers_)
+      fail(std::to_string(n) + " varyings; the GL harness takes at most " +
+           std::to_string(std::min(kMaxVaryings, max_draw_buffers_ - 1)) +
+           " (one draw buffer each, plus one for gl_PrimitiveID)");
+    for (const Varying& v : c.varyings)
+      if (v.size < 1 || v.size > 4)
+        fail("varying '" + v.name + "' has size " + std::to_string(v.size));
+    if (c.fb_width < 1 || c.fb_height < 1 || c.fb_width > max_renderbuffer_size_ ||
+        c.fb_height > max_renderbuffer_size_)
+      fail("framebuffer " + std::to_string(c.fb_width) + "x" + std::to_string(c.fb_height) +
+           " outside 1.." + std::to_string(max_renderbuffer_size_) + " (GL_MAX_RENDERBUFFER_SIZE)");
+    if (c.viewport.width < 0 || c.viewport.height < 0 || c.viewport.width > max_viewport_[0] ||
+        c.viewport.height > max_viewport_[1])
+      fail("viewport " + std::to_string(c.viewport.width) + "x" +
+           std::to_string(c.viewport.height) + " outside GL_MAX_VIEWPORT_DIMS " +
+           std::to_string(max_viewport_[0]) + "x" + std::to_string(max_viewport_[1]));
+    const size_t components = size_t(c.component_count());
+    for (size_t i = 0; i < c.vertices.size(); ++i)
+      if (c.vertices[i].values.size() != components)
+        fail("vertex " + std::to_string(i) + " has " + std::to_string(c.vertices[i].values.size()) +
+             " varying components, expected " + std::to_string(components));
+    for (const auto& t : c.triangles)
+      for (uint32_t index : t)
+        if (index >= c.vertices.size())
+          fail("triangle index " + std::to_string(index) + " past the " +
+               std::to_string(c.vertices.size()) + " vertices");
+  }
+
+  // softpipe (Mesa 22.3.6) drops every triangle when the fragment shader reads gl_PrimitiveID
+  // and no geometry shader runs. A pass-through geometry shader avoids that and, on softpipe,
+  // leaves every varying and depth bit as it is; on llvmpipe it does not (it changes bits), so
+  // it is used only where a plain draw of a triangle covering the whole framebuffer gives no
+  // pixel at all.
+  void probe() {
+    Case c;
+    c.name = "gl_harness_probe";
+    c.fb_width = c.fb_height = 4;
+    c.viewport = {0, 0, 4, 4};
+    c.varyings = {Varying{"v", 1, Interpolation::flat}};
+    for (auto [x, y] : {std::pair{-1.0f, -1.0f}, {3.0f, -1.0f}, {-1.0f, 3.0f}})
+      c.vertices.push_back(Vertex{{x, y, 0.0f, 1.0f}, {1.0f}});
+    c.triangles = {{0, 1, 2}};
+    auto covers = [&c, this] {
+      try {
+        Frame f = render(c);
+        return f.primitive[0] == 0 && f.components[0][0] == 1.0f;
+      } catch (const RenderError& e) {
+        // create_renderer promises Unavailable: a context that cannot draw this is unusable.
+        throw Unavailable("'" + info_.renderer + "' on " + context_->describe() +
+                          " fails a first draw: " + e.what());
+      }
+    };
+    if (covers()) return;
+    for (auto& [key, program] : programs_)
+      gl_.DeleteProgram(program);
+    programs_.clear();
+    info_.primitive_id_from_geometry_shader = true;
+    if (covers()) return;
+    throw Unavailable("'" + info_.renderer + "' on " + context_->describe() +
+                      " draws nothing for a triangle covering the framebuffer, with or without "
+                      "a geometry shader for gl_PrimitiveID");
+  }
+
+  GLuint compile(GLenum stage, const std::string& source, const Case& c) {
+    GLuint shader = gl_.CreateShader(stage);
+    const char* text = source.c_str();
+    gl_.ShaderSource(shader, 1, &text, nullptr);
+    gl_.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    gl_.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      std::string log(4096, '\0');
+      gl_.GetShaderInfoLog(shader, GLsizei(log.size()), nullptr, log.data());
+      gl_.DeleteShader(shader);
+      throw RenderError("case '" + c.name + "': " +
+                        (stage == GL_VERTEX_SHADER     ? "vertex"
+                         : stage == GL_GEOMETRY_SHADER ? "geometry"
+                                                       : "fragment") +
+                        " shader does not compile: " + one_line(log.c_str()));
+    }
+    return shader;
+  }
+
+  GLuint program_for(const Case& c) {
+    std::string key = program_key(c);
+    if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+    const bool gs = info_.primitive_id_from_geometry_shader;
+    std::vector<GLuint> shaders;
+    try {
+      shaders.push_back(compile(GL_VERTEX_SHADER, vertex_shader_source(c), c));
+      if (gs) shaders.push_back(compile(GL_GEOMETRY_SHADER, geometry_shader_source(c), c));
+      shaders.push_back(compile(GL_FRAGMENT_SHADER, fragment_shader_source(c, gs ? "g" : "v"), c));
+    } catch (...) {
+      for (GLuint shader : shaders)
+        gl_.DeleteShader(shader);
+      throw;
+    }
+    GLuint program = gl_.CreateProgram();
+    for (GLuint shader : shaders)
+      gl_.AttachShader(program, shader);
+    gl_.LinkProgram(program);
+    // Flagged for deletion; they go with the program.
+    for (GLuint shader : shaders)
+      gl_.DeleteShader(shader);
+    GLint ok = GL_FALSE;
+    gl_.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      std::string log(4096, '\0');
+      gl_.GetProgramInfoLog(program, GLsizei(log.size()), nullptr, log.data());
+      gl_.DeleteProgram(program);
+      throw RenderError("case '" + c.name + "': program does not link: " + one_line(log.c_str()));
+    }
+    programs_.emplace(std::move(key), program);
+    return program;
+  }
+
+  // RGBA32F per varying, R32I for gl_PrimitiveID, 32F depth: every value read back exactly as
+  // the fragment shader and the depth stage produced it.
+  void bind_framebuffer(const Case& c) {
+    const int n = int(c.varyings.size());
+    Framebuffer& fb = framebuffer_;
+    if (fb.framebuffer && fb.width == c.fb_width && fb.height == c.fb_height && fb.varyings == n) {
+      gl_.BindFramebuffer(GL_FRAMEBUFFER, fb.framebuffer);  // draw buffers are FBO state
+      return;
+    }
+    release_framebuffer();
+    gl_.GenFramebuffers(1, &fb.framebuffer);
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, fb.framebuffer);
+    fb.renderbuffers.assign(size_t(n) + 2, 0);
+    gl_.GenRenderbuffers(GLsizei(fb.renderbuffers.size()), fb.renderbuffers.data());
+    auto attach = [&](GLuint rb, GLenum format, GLenum attachment) {
+      gl_.BindRenderbuffer(GL_RENDERBUFFER, rb);
+      gl_.RenderbufferStorage(GL_RENDERBUFFER, format, c.fb_width, c.fb_height);
+      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
+    };
+    std::vector<GLenum> draw_buffers;
+    for (int k = 0; k <= n; ++k) {
+      attach(fb.renderbuffers[size_t(k)], k < n ? GL_RGBA32F : GL_R32I, GL_COLOR_ATTACHMENT0 + k);
+      draw_buffers.push_back(GL_COLOR_ATTACHMENT0 + k);
+    }
+    attach(fb.renderbuffers[size_t(n) + 1], GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
+    gl_.DrawBuffers(GLsizei(draw_buffers.size()), draw_buffers.data());
+    GLenum error = gl_.GetError();
+    GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (error != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
+      release_framebuffer();
+      throw RenderError(
+          "case '" + c.name + "': " +
+          (error != GL_NO_ERROR
+               ? std::string(gl_error_name(error)) + " while creating the framebuffer"
+               : std::string("framebuffer incomplete: ") + framebuffer_status_name(status)));
+    }
+    fb.width = c.fb_width;
+    fb.height = c.fb_height;
+    fb.varyings = n;
+  }
+
+  void release_framebuffer() {
+    Framebuffer& fb = framebuffer_;
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (fb.framebuffer) gl_.DeleteFramebuffers(1, &fb.framebuffer);
+    if (!fb.renderbuffers.empty())
+      gl_.DeleteRenderbuffers(GLsizei(fb.renderbuffers.size()), fb.renderbuffers.data());
+    fb = Framebuffer{};
+  }
+
+  // All state the case controls, set every time: the previous case may have changed it.
+  void set_state(const Case& c) {
+    gl_.Viewport(c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height);
+    gl_.DepthRange(double(c.depth_near), double(c.depth_far));  // exact: float ⊂ double
+    gl_.Enable(GL_DEPTH_TEST);
+    gl_.DepthFunc(c.depth_func == DepthFunc::less ? GL_LESS : GL_ALWAYS);
+    gl_.DepthMask(GL_TRUE);
+    if (c.cull == CullFace::none) {
+      gl_.Disable(GL_CULL_FACE);
+    } else {
+      gl_.Enable(GL_CULL_FACE);
+      gl_.CullFace(c.cull == CullFace::front  ? GL_FRONT
+                   : c.cull == CullFace::back ? GL_BACK
+                                              : GL_FRONT_AND_BACK);
+    }
+    gl_.FrontFace(c.front_face == FrontFace::ccw ? GL_CCW : GL_CW);
+    gl_.ProvokingVertex(c.provoking == ProvokingVertex::last ? GL_LAST_VERTEX_CONVENTION
+                                                             : GL_FIRST_VERTEX_CONVENTION);
+    // Nothing may touch the values between the fragment shader and the readback, and the
+    // reference knows no clamping of depth: GL_DEPTH_CLAMP stays off.
+    for (GLenum cap : {GL_DITHER, GL_BLEND, GL_MULTISAMPLE, GL_SCISSOR_TEST, GL_STENCIL_TEST,
+                       GL_DEPTH_CLAMP, GL_POLYGON_OFFSET_FILL, GL_SAMPLE_ALPHA_TO_COVERAGE,
+                       GL_RASTERIZER_DISCARD, GL_PRIMITIVE_RESTART})
+      gl_.Disable(cap);
+    gl_.ClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
+  }
+
+  void clear(int n) {
+    const GLfloat zero[4] = {0, 0, 0, 0};
+    for (int k = 0; k < n; ++k)
+      gl_.ClearBufferfv(GL_COLOR, k, zero);
+    const GLint none[4] = {Frame::kNoPrimitive, 0, 0, 0};
+    gl_.ClearBufferiv(GL_COLOR, n, none);
+    const GLfloat far = 1.0f;
+    gl_.ClearBufferfv(GL_DEPTH, 0, &far);
+  }
+
+  void draw(const Case& c, CaseObjects& objects) {
+    // Interleaved: clip (4 floats), then every varying's components in Case order.
+    const size_t components = size_t(c.component_count());
+    const size_t stride = 4 + components;
+    std::vector<float> data(c.vertices.size() * stride);
+    for (size_t i = 0; i < c.vertices.size(); ++i) {
+      std::memcpy(&data[i * stride], c.vertices[i].clip.data(), 4 * sizeof(float));
+      if (components)
+        std::memcpy(&data[i * stride + 4], c.vertices[i].values.data(), components * sizeof(float));
+    }
+    std::vector<GLuint> indices;
+    indices.reserve(c.triangles.size() * 3);
+    for (const auto& t : c.triangles)
+      indices.insert(indices.end(), t.begin(), t.end());
+
+    gl_.GenVertexArrays(1, &objects.vertex_array);
+    gl_.BindVertexArray(objects.vertex_array);
+    gl_.GenBuffers(1, &objects.vertex_buffer);
+    gl_.BindBuffer(GL_ARRAY_BUFFER, objects.vertex_buffer);
+    gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(data.size() * sizeof(float)), data.data(),
+                   GL_STATIC_DRAW);
+    gl_.GenBuffers(1, &objects.index_buffer);
+    gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, objects.index_buffer);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)),
+                   indices.data(), GL_STATIC_DRAW);
+
+    const GLsizei stride_bytes = GLsizei(stride * sizeof(float));
+    auto attribute = [&](GLuint location, int size, size_t first_float) {
+      gl_.EnableVertexAttribArray(location);
+      gl_.VertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, stride_bytes,
+                              reinterpret_cast<const void*>(first_float * sizeof(float)));
+    };
+    attribute(0, 4, 0);
+    size_t offset = 4;
+    for (size_t k = 0; k < c.varyings.size(); ++k) {
+      attribute(GLuint(k + 1), c.varyings[k].size, offset);
+      offset += size_t(c.varyings[k].size);
+    }
+    if (!indices.empty())
+      gl_.DrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+  }
+
+  std::unique_ptr<Context> context_;  // first: destroyed last, after the programs
+  GlFunctions gl_;
+  GlInfo info_;
+  std::map<std::string, GLuint> programs_;
+  Framebuffer framebuffer_;
+  std::vector<float> readback_;  // one colour attachment as RGBA, kept to spare reallocations
+  int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
+  int max_viewport_[2] = {0, 0};
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> create_renderer(const Target& t) {
+  // Before the library creates its screen: that is when Mesa reads GALLIUM_DRIVER.
+  select_driver(t);
+  std::unique_ptr<Context> context;
+  switch (t.backend) {
+    case Backend::osmesa:
+      context = create_osmesa_context(t);
+      break;
+    case Backend::egl:
+      context = create_egl_surfaceless_context(t);
+      break;
+    case Backend::egl_device:
+      context = create_egl_device_context(t);
+      break;
+  }
+  if (!context) throw Unavailable("unknown GL backend");
+  return std::make_unique<GlRenderer>(t, std::move(context));
+}
+
+}  // namespace glrc::gl
