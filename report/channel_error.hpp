@@ -1,0 +1,31 @@
+// ChannelError: the per-pixel error of one channel (depth or one varying component) between
+// the GL frame and the reference, measured as the comparator measures it, for the diff images.
+// compare computes only statistics; the images need every pixel.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/case.hpp"
+#include "core/frame.hpp"
+
+namespace glrc::report {
+
+struct ChannelError {
+  std::string name;  // "depth" or "color.x"
+  int width = 0, height = 0;
+  std::vector<float> reference, gl;  // the channel's values in each frame, every pixel
+  // Per pixel, where both frames cover it with the same primitive: gl - reference in value
+  // units (NaN if either is NaN), and |gl - reference| in ULPs of the attribute scale (+inf when
+  // the values differ and either is not finite). NaN in both where the pixel is not compared.
+  std::vector<float> signed_error;
+  std::vector<double> ulps;
+  std::vector<bool> compared;
+  double max_finite_ulps = 0;  // over compared pixels with a finite error
+  size_t non_finite = 0;       // compared pixels whose error is not finite
+};
+
+// channel -1 is depth, whose scale is 1.0 (depth range [0, 1]); k >= 0 is Frame::components[k].
+ChannelError channel_error(const Case& c, const Frame& reference, const Frame& gl, int channel);
+
+}  // namespace glrc::report

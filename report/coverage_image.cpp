@@ -1,0 +1,101 @@
+#include "report/coverage_image.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace glrc::report {
+namespace {
+
+constexpr int kMargin = 12;
+constexpr int kTitleHeight = 50;
+constexpr int kMinWidth = 512;
+constexpr int kLegendHeight = 96;
+constexpr Rgb kBackground{0.1f, 0.1f, 0.1f};
+constexpr Rgb kText{0.92f, 0.92f, 0.92f};
+
+constexpr Rgb kNeither{0.03f, 0.03f, 0.03f};
+constexpr Rgb kReferenceOnly{0.9f, 0.1f, 0.1f};
+constexpr Rgb kGlOnly{0.15f, 0.35f, 1.0f};
+constexpr Rgb kOtherPrimitive{1.0f, 0.55f, 0.0f};
+constexpr Rgb kWhite{1, 1, 1};
+// The edge band only hints where boundary mismatches would be allowed, so it is a faint tint.
+constexpr Rgb kEdgeTint{0.85f, 0.8f, 0.25f};
+constexpr float kEdgeTintAmount = 0.22f;
+// Boundary mismatches are the forgivable kind: the same hue, lighter.
+constexpr float kBoundaryLightening = 0.55f;
+
+// Agreeing pixels: dim grey, a shade per primitive so that triangle edges remain visible.
+Rgb same_primitive(int32_t primitive) {
+  const float grey = 0.24f + 0.07f * float(primitive % 4);
+  return {grey, grey, grey};
+}
+
+Rgb pixel_colour(int32_t ref, int32_t gl, bool in_edge_band) {
+  const bool mismatch = ref != gl;
+  if (!mismatch) {
+    const Rgb base = ref == Frame::kNoPrimitive ? kNeither : same_primitive(ref);
+    return in_edge_band ? mix(base, kEdgeTint, kEdgeTintAmount) : base;
+  }
+  const Rgb hue = gl == Frame::kNoPrimitive    ? kReferenceOnly
+                  : ref == Frame::kNoPrimitive ? kGlOnly
+                                               : kOtherPrimitive;
+  return in_edge_band ? mix(hue, kWhite, kBoundaryLightening) : hue;
+}
+
+void swatch(Canvas& canvas, const std::optional<std::string>& font, int x, int y, Rgb colour,
+            const std::string& label) {
+  canvas.fill(x, y, 14, 14, colour);
+  draw_text(canvas, font, x + 20, y + 12, label, 13, kText);
+}
+
+void draw_legend(Canvas& canvas, const std::optional<std::string>& font, int top) {
+  const int x0 = kMargin + 8, column = (canvas.width - 2 * x0) / 2;
+  const int row1 = top + 14, row2 = row1 + 24, row3 = row2 + 24;
+  swatch(canvas, font, x0, row1, same_primitive(0), "same primitive (shade per id)");
+  swatch(canvas, font, x0 + column, row1, kReferenceOnly, "reference only");
+  swatch(canvas, font, x0, row2, kGlOnly, "GL only");
+  swatch(canvas, font, x0 + column, row2, kOtherPrimitive, "other primitive");
+  // The three lighter tints side by side stand for "boundary" of each kind.
+  int x = x0;
+  for (Rgb hue : {kReferenceOnly, kGlOnly, kOtherPrimitive}) {
+    canvas.fill(x, row3, 8, 14, mix(hue, kWhite, kBoundaryLightening));
+    x += 8;
+  }
+  draw_text(canvas, font, x + 6, row3 + 12, "lighter: boundary mismatch", 13, kText);
+  swatch(canvas, font, x0 + column, row3, mix(same_primitive(0), kEdgeTint, kEdgeTintAmount),
+         "edge band (reference)");
+}
+
+}  // namespace
+
+Canvas render_coverage(const Frame& reference, const Frame& gl,
+                       const std::vector<uint8_t>& edge_band, const CoverageStats& stats,
+                       const std::optional<std::string>& font) {
+  const int factor = upscale_factor(reference.width, reference.height);
+  const int image_w = reference.width * factor, image_h = reference.height * factor;
+  Canvas canvas(std::max(image_w, kMinWidth) + 2 * kMargin, kTitleHeight + image_h + kLegendHeight,
+                kBackground);
+
+  const bool has_band = edge_band.size() == reference.pixel_count();
+  const int text_width = canvas.width - 2 * kMargin;
+  draw_text(canvas, font, kMargin, 22,
+            fmt::format("coverage   {} failures   {} boundary mismatches", stats.failures,
+                        stats.boundary),
+            16, kText, Align::left, text_width);
+  draw_text(canvas, font, kMargin, 42,
+            fmt::format("both {}   reference only {}   GL only {}   other primitive {}", stats.both,
+                        stats.reference_only, stats.gl_only, stats.other_primitive),
+            12, kText, Align::left, text_width);
+
+  paint_frame(canvas, (canvas.width - image_w) / 2, kTitleHeight, factor, reference.width,
+              reference.height, [&](int x, int y) {
+                const size_t i = reference.index(x, y);
+                return pixel_colour(reference.primitive[i], gl.primitive[i],
+                                    has_band && edge_band[i] != 0);
+              });
+  draw_legend(canvas, font, kTitleHeight + image_h);
+  return canvas;
+}
+
+}  // namespace glrc::report

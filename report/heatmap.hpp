@@ -1,0 +1,16 @@
+// The error heatmap of one channel: the frame upright and upscaled, coloured by error on the
+// ErrorScale, with a title and a legend that make the picture readable on its own.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "report/canvas.hpp"
+#include "report/channel_error.hpp"
+
+namespace glrc::report {
+
+Canvas render_heatmap(const ChannelError& error, double tolerance_ulps,
+                      const std::optional<std::string>& font);
+
+}  // namespace glrc::report

@@ -1,0 +1,127 @@
+// junit.xml: one testcase per case, for CI systems that chart test results.
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "report/format.hpp"
+#include "report/report.hpp"
+
+namespace glrc::report {
+namespace {
+
+// Escapes text for XML 1.0 content and attribute values. Control characters other than tab,
+// newline and carriage return are not allowed in XML 1.0 at all, even as references, so they
+// become '?'. Newlines are written as references so that attribute values keep them.
+std::string xml_escaped(std::string_view s) {
+  std::string out;
+  out.reserve(s.size());
+  for (char ch : s) {
+    switch (ch) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      case '\n':
+        out += "&#10;";
+        break;
+      case '\r':
+        out += "&#13;";
+        break;
+      case '\t':
+        out += "&#9;";
+        break;
+      default:
+        out += (static_cast<unsigned char>(ch) < 0x20) ? '?' : ch;
+    }
+  }
+  return out;
+}
+
+bool is_failure(Status s) {
+  return s == Status::fail || s == Status::unexpected_pass;
+}
+
+// A few lines under the failure message, enough to triage without opening results.json.
+std::string stats_text(const CaseResult& r) {
+  std::string text;
+  for (const auto& ch : r.channels)
+    text += fmt::format("{}: max {} ulp (tolerance {}), {} of {} over tolerance, {} non-finite\n",
+                        ch.name, ulps_text(ch.max_ulps), ulps_text(ch.tolerance_ulps),
+                        ch.over_tolerance, ch.compared, ch.non_finite);
+  const auto& cov = r.coverage;
+  text += fmt::format(
+      "coverage: {} failures; reference only {}, GL only {}, other primitive {}, boundary {}\n",
+      cov.failures, cov.reference_only, cov.gl_only, cov.other_primitive, cov.boundary);
+  return text;
+}
+
+std::string testcase_xml(const CaseResult& r) {
+  std::string xml = fmt::format(R"(    <testcase classname="glrefcheck" name="{}" time="{:.3f}")",
+                                xml_escaped(r.name), r.seconds);
+  std::string body;
+  const std::string message = xml_escaped(r.message.empty() ? to_string(r.status) : r.message);
+  if (is_failure(r.status)) {
+    body = fmt::format("      <failure message=\"{}\" type=\"{}\">{}</failure>\n", message,
+                       to_string(r.status), xml_escaped(stats_text(r)));
+  } else if (r.status == Status::error) {
+    // The harness could not judge the case at all; JUnit tells that apart from a failed check.
+    body = fmt::format("      <error message=\"{}\" type=\"Error\"/>\n", message);
+  } else if (r.status == Status::skip) {
+    body = fmt::format("      <skipped message=\"{}\"/>\n", message);
+  } else if (r.status == Status::expected_fail) {
+    // Passing for CI, but say so: a known difference is still a difference.
+    body = fmt::format("      <system-out>ExpectedFail: {}&#10;{}</system-out>\n",
+                       xml_escaped(r.message), xml_escaped(stats_text(r)));
+  }
+  if (body.empty()) return xml + "/>\n";
+  return xml + ">\n" + body + "    </testcase>\n";
+}
+
+}  // namespace
+
+void write_junit(const std::filesystem::path& file, const RunInfo& run,
+                 const std::vector<CaseResult>& results) {
+  size_t failures = 0, errors = 0, skipped = 0;
+  for (const auto& r : results) {
+    failures += is_failure(r.status);
+    errors += r.status == Status::error;
+    skipped += r.status == Status::skip;
+  }
+  const std::string counts =
+      fmt::format(R"(tests="{}" failures="{}" errors="{}" skipped="{}" time="{:.3f}")",
+                  results.size(), failures, errors, skipped, run.seconds);
+  const std::string suite = xml_escaped("glrefcheck." + run.backend + "." + run.driver);
+
+  std::string xml = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  xml += fmt::format("<testsuites name=\"{}\" {}>\n", suite, counts);
+  xml += fmt::format("  <testsuite name=\"{}\" {}>\n", suite, counts);
+  xml += "    <properties>\n";
+  for (const auto& [name, value] : {std::pair{"model", &run.model},
+                                    {"gl_vendor", &run.gl_vendor},
+                                    {"gl_renderer", &run.gl_renderer},
+                                    {"gl_version", &run.gl_version}})
+    xml += fmt::format("      <property name=\"{}\" value=\"{}\"/>\n", name, xml_escaped(*value));
+  xml += "    </properties>\n";
+  for (const auto& r : results)
+    xml += testcase_xml(r);
+  xml += "  </testsuite>\n</testsuites>\n";
+
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  std::ofstream out(file);
+  out << xml;
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace glrc::report

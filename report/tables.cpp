@@ -1,0 +1,116 @@
+// The terminal reports: one line per case for `run`, the statistics and worst-pixel tables for
+// `diff`. Fixed-width so that runs line up and can be diffed.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "report/format.hpp"
+#include "report/report.hpp"
+
+namespace glrc::report {
+namespace {
+
+// Wide enough for "UnexpectedPass", the longest status.
+constexpr int kStatusWidth = 14;
+constexpr int kNameWidth = 25;
+// The listing shows the start of a longer message; all of it is in results.json.
+constexpr size_t kShortMessage = 100;
+
+// The largest error of any channel, or NaN when GL gave a non-finite value somewhere: that
+// is worse than any finite error and must not hide behind one.
+std::string max_ulps_text(const CaseResult& r) {
+  if (r.channels.empty()) return "-";
+  double worst = 0;
+  for (const auto& ch : r.channels) {
+    if (ch.non_finite > 0) return "NaN";
+    worst = std::max(worst, ch.max_ulps);
+  }
+  return ulps_text(worst);
+}
+
+std::string first_line(const std::string& s) {
+  return s.substr(0, s.find('\n'));
+}
+
+}  // namespace
+
+std::string case_line(const CaseResult& r) {
+  std::string line =
+      fmt::format("{:<{}} {:<{}} max {} ulp  cov {} (+{} boundary)  {}", to_string(r.status),
+                  kStatusWidth, r.name, kNameWidth, max_ulps_text(r), r.coverage.failures,
+                  r.coverage.boundary, seconds_text(r.seconds));
+  std::string message = first_line(r.message);
+  if (message.size() > kShortMessage) message = message.substr(0, kShortMessage - 3) + "...";
+  if (r.status != Status::pass && !message.empty()) line += "  " + message;
+  return line;
+}
+
+std::string stats_table(const CaseResult& r) {
+  size_t name_width = 7;
+  for (const auto& ch : r.channels)
+    name_width = std::max(name_width, ch.name.size());
+
+  const auto row = [&](auto&& channel, auto&& compared, auto&& max_abs, auto&& max_ulp, auto&& mean,
+                       auto&& rms, auto&& p99, auto&& over, auto&& tolerance, auto&& verdict) {
+    return fmt::format("{:<{}}  {:>9}  {:>11}  {:>9}  {:>8}  {:>8}  {:>8}  {:>8}  {:>9}  {}\n",
+                       channel, name_width, compared, max_abs, max_ulp, mean, rms, p99, over,
+                       tolerance, verdict);
+  };
+  std::string table = row("channel", "compared", "max abs", "max ulp", "mean", "rms", "p99",
+                          "over tol", "tolerance", "verdict");
+  for (const auto& ch : r.channels) {
+    std::string verdict = ch.pass() ? "ok" : "FAIL";
+    if (ch.non_finite > 0) verdict += fmt::format(" ({} non-finite)", ch.non_finite);
+    table += row(ch.name, ch.compared, fmt::format("{:.3g}", ch.max_abs), ulps_text(ch.max_ulps),
+                 ulps_text(ch.mean_ulps), ulps_text(ch.rms_ulps), ulps_text(ch.p99_ulps),
+                 ch.over_tolerance, ulps_text(ch.tolerance_ulps), verdict);
+  }
+  const auto& cov = r.coverage;
+  table += fmt::format(
+      "coverage: both {}, reference only {}, GL only {}, other primitive {}, boundary {}, "
+      "failures {}{}\n",
+      cov.both, cov.reference_only, cov.gl_only, cov.other_primitive, cov.boundary, cov.failures,
+      r.tolerance.allow_boundary ? " (boundary mismatches allowed)" : "");
+  return table;
+}
+
+std::string worst_pixels_table(const CaseResult& r, size_t n) {
+  struct Entry {
+    const std::string* channel;
+    const WorstPixel* pixel;
+  };
+  std::vector<Entry> entries;
+  for (const auto& ch : r.channels)
+    for (const auto& w : ch.worst)
+      entries.push_back({&ch.name, &w});
+
+  // Non-finite errors first (NaN before inf), then the largest finite ones; stable so that
+  // ties keep the channel order (depth first).
+  const auto rank = [](double ulps) { return std::isnan(ulps) ? 0 : std::isinf(ulps) ? 1 : 2; };
+  std::stable_sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
+    const double ua = a.pixel->ulps, ub = b.pixel->ulps;
+    if (rank(ua) != rank(ub)) return rank(ua) < rank(ub);
+    return rank(ua) == 2 && ua > ub;
+  });
+  if (entries.size() > n) entries.resize(n);
+
+  size_t name_width = 7;
+  for (const auto& e : entries)
+    name_width = std::max(name_width, e.channel->size());
+  const auto row = [&](auto&& x, auto&& y, auto&& channel, auto&& ref, auto&& gl, auto&& abs,
+                       auto&& ulps) {
+    return fmt::format("{:>5} {:>5}  {:<{}}  {:>16}  {:>16}  {:>16}  {:>10}\n", x, y, channel,
+                       name_width, ref, gl, abs, ulps);
+  };
+  // x, y are GL window coordinates (row 0 at the bottom), as everywhere in the results.
+  std::string table = row("x", "y", "channel", "reference", "GL", "abs error", "ulps");
+  for (const auto& e : entries)
+    table += row(e.pixel->x, e.pixel->y, *e.channel, float_text(e.pixel->reference),
+                 float_text(e.pixel->gl), float_text(e.pixel->abs_error),
+                 std::isfinite(e.pixel->ulps) ? fmt::format("{:.6g}", e.pixel->ulps)
+                                              : ulps_text(e.pixel->ulps));
+  return table;
+}
+
+}  // namespace glrc::report

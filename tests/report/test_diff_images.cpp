@@ -1,0 +1,153 @@
+// write_diff_images on a hand-made 8x6 case: the files it writes, and the EXRs read back with
+// one injected error at the right (vertically flipped) pixel.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "report/report.hpp"
+#include "tests/report/test_helpers.hpp"
+
+namespace glrc::report::test {
+namespace {
+
+constexpr int kW = 8, kH = 6;
+// The triangle's v values are 0.5, 1 and 2: scale 2, so one ulp is 2^-22.
+constexpr float kUlp = 0x1p-22f;
+constexpr int kErrX = 2, kErrY = 1;  // frame coordinates, row 0 at the bottom
+
+Case one_triangle_case() {
+  Case c;
+  c.name = "synthetic";
+  c.fb_width = kW;
+  c.fb_height = kH;
+  c.viewport = {0, 0, kW, kH};
+  c.varyings = {{"v", 1, Interpolation::smooth}};
+  c.vertices = {{{-1, -1, 0, 1}, {0.5f}}, {{1, -1, 0, 1}, {1.0f}}, {{0, 1, 0, 1}, {2.0f}}};
+  c.triangles = {{0, 1, 2}};
+  return c;
+}
+
+// The reference covers x < 6, y < 5 with primitive 0; v = x/4 + y/8, depth 0.5.
+Frame reference_frame() {
+  Frame f(kW, kH, 1);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 6; ++x) {
+      f.primitive[f.index(x, y)] = 0;
+      f.components[0][f.index(x, y)] = 0.25f * x + 0.125f * y;
+      f.depth[f.index(x, y)] = 0.5f;
+    }
+  return f;
+}
+
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;
+  float at(int x, int y, int ch = 0) const {
+    return pixels[(size_t(y) * width + x) * channels + ch];
+  }
+};
+
+Image read_image(const std::filesystem::path& file) {
+  auto in = OIIO::ImageInput::open(file.string());
+  EXPECT_TRUE(in) << OIIO::geterror();
+  Image image;
+  if (!in) return image;
+  image.width = in->spec().width;
+  image.height = in->spec().height;
+  image.channels = in->spec().nchannels;
+  image.pixels.resize(size_t(image.width) * image.height * image.channels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT, image.pixels.data()));
+  return image;
+}
+
+// How many pixels of an 8-bit image have this colour (0..255 per channel, off by one at most).
+size_t count_colour(const Image& png, int r, int g, int b) {
+  size_t n = 0;
+  for (size_t i = 0; i + 2 < png.pixels.size(); i += size_t(png.channels)) {
+    const auto near = [](float v, int want) { return std::abs(std::lround(v * 255) - want) <= 1; };
+    n += near(png.pixels[i], r) && near(png.pixels[i + 1], g) && near(png.pixels[i + 2], b);
+  }
+  return n;
+}
+
+// The legend has small swatches of these colours too; a frame pixel upscaled to >= 512 px width
+// is a block of at least 64 x 64 here, far more than any swatch.
+constexpr size_t kFramePixelArea = 64 * 64;
+bool shows_frame_pixel_of(const Image& png, int r, int g, int b) {
+  return count_colour(png, r, g, b) >= kFramePixelArea;
+}
+
+TEST_F(ReportTest, DiffImagesWritesEveryChannelAndCoverage) {
+  const Case c = one_triangle_case();
+  const Frame ref = reference_frame();
+  Frame gl = ref;
+  gl.components[0][gl.index(kErrX, kErrY)] += 3 * kUlp;
+  gl.primitive[gl.index(6, 0)] = 0;  // a GL-only pixel
+  CaseResult r;
+  r.name = c.name;
+
+  const auto files =
+      write_diff_images(dir_ / "diff", c, ref, std::vector<uint8_t>(kW * kH, 0), gl, r);
+  std::vector<std::string> names;
+  for (const auto& f : files) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(f)) << f;
+    EXPECT_EQ(f.parent_path(), dir_ / "diff");
+    names.push_back(f.filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"coverage.png", "depth_error.exr", "depth_error.png",
+                                             "depth_gl.exr", "depth_ref.exr", "v.x_error.exr",
+                                             "v.x_error.png", "v.x_gl.exr", "v.x_ref.exr"}));
+
+  const Image error = read_image(dir_ / "diff" / "v.x_error.exr");
+  ASSERT_EQ(error.width, kW);
+  ASSERT_EQ(error.height, kH);
+  ASSERT_EQ(error.channels, 1);
+  // Frame row y is image row kH - 1 - y.
+  EXPECT_EQ(error.at(kErrX, kH - 1 - kErrY), 3 * kUlp);
+  EXPECT_EQ(error.at(kErrX, kErrY), 0.0f);       // frame row 4: compared, no error
+  EXPECT_TRUE(std::isnan(error.at(7, kH - 1)));  // frame (7, 0): covered by neither
+  EXPECT_TRUE(std::isnan(error.at(6, kH - 1)));  // frame (6, 0): GL only, not compared
+
+  const Image reference = read_image(dir_ / "diff" / "v.x_ref.exr");
+  const Image got = read_image(dir_ / "diff" / "v.x_gl.exr");
+  EXPECT_EQ(reference.at(kErrX, kH - 1 - kErrY), 0.625f);
+  EXPECT_EQ(got.at(kErrX, kH - 1 - kErrY), 0.625f + 3 * kUlp);
+  const Image depth = read_image(dir_ / "diff" / "depth_ref.exr");
+  EXPECT_EQ(depth.at(0, kH - 1), 0.5f);
+  EXPECT_EQ(depth.at(7, 0), 1.0f);
+
+  const Image heatmap = read_image(dir_ / "diff" / "v.x_error.png");
+  EXPECT_GE(heatmap.width, 512);
+  EXPECT_GT(heatmap.height, 512 * kH / kW);  // the frame upscaled, plus title and legend
+  EXPECT_TRUE(
+      shows_frame_pixel_of(heatmap, 0xfd, 0xe7, 0x25));  // the largest error: viridis' bright end
+  EXPECT_TRUE(shows_frame_pixel_of(heatmap, 0x44, 0x01, 0x54));  // zero error: viridis' dark end
+  EXPECT_TRUE(shows_frame_pixel_of(heatmap, 128, 128, 128));     // not compared
+  EXPECT_FALSE(shows_frame_pixel_of(heatmap, 255, 0, 255));      // no NaN
+
+  const Image coverage = read_image(dir_ / "diff" / "coverage.png");
+  EXPECT_GE(coverage.width, 512);
+}
+
+TEST_F(ReportTest, DiffImagesShowNonFiniteValuesInMagenta) {
+  const Case c = one_triangle_case();
+  const Frame ref = reference_frame();
+  Frame gl = ref;
+  gl.components[0][gl.index(1, 1)] = std::numeric_limits<float>::quiet_NaN();
+  write_diff_images(dir_, c, ref, {}, gl, CaseResult{});
+
+  EXPECT_TRUE(shows_frame_pixel_of(read_image(dir_ / "v.x_error.png"), 255, 0, 255));
+  EXPECT_FALSE(shows_frame_pixel_of(read_image(dir_ / "depth_error.png"), 255, 0, 255));
+  EXPECT_TRUE(std::isnan(read_image(dir_ / "v.x_gl.exr").at(1, kH - 2)));
+}
+
+TEST_F(ReportTest, DiffImagesRejectFramesOfAnotherSize) {
+  const Case c = one_triangle_case();
+  EXPECT_THROW(write_diff_images(dir_, c, reference_frame(), {}, Frame(4, 4, 1), CaseResult{}),
+               std::runtime_error);
+}
+
+}  // namespace
+}  // namespace glrc::report::test

@@ -1,0 +1,99 @@
+// results.json: the fields a script reads, counts per status, and non-finite numbers written as
+// strings so that the file stays valid JSON.
+#include <nlohmann/json.hpp>
+
+#include "report/report.hpp"
+#include "tests/report/test_helpers.hpp"
+
+namespace glrc::report::test {
+namespace {
+
+using nlohmann::json;
+
+json written(const std::filesystem::path& file) {
+  return json::parse(read_text(file));
+}
+
+TEST_F(ReportTest, ResultsJsonHoldsRunSummaryAndCases) {
+  const auto file = dir_ / "nested" / "out" / "results.json";  // parents are created
+  write_results_json(file, run_info(),
+                     {passing_case(), nan_case(), with_status(Status::skip, "skipped", "no GL"),
+                      with_status(Status::expected_fail, "known", "snapping differs")});
+  const json doc = written(file);
+
+  EXPECT_EQ(doc["run"]["backend"], "osmesa");
+  EXPECT_EQ(doc["run"]["driver"], "llvmpipe");
+  EXPECT_EQ(doc["run"]["gl_renderer"], "llvmpipe (LLVM 15.0.6, 256 bits)");
+  EXPECT_EQ(doc["run"]["seconds"], 1.75);
+
+  const json& summary = doc["summary"];
+  EXPECT_EQ(summary["total"], 4);
+  EXPECT_EQ(summary["pass"], 1);
+  EXPECT_EQ(summary["fail"], 1);
+  EXPECT_EQ(summary["skip"], 1);
+  EXPECT_EQ(summary["expected_fail"], 1);
+  EXPECT_EQ(summary["unexpected_pass"], 0);
+  EXPECT_EQ(summary["error"], 0);
+
+  ASSERT_EQ(doc["cases"].size(), 4u);
+  const json& pass = doc["cases"][0];
+  EXPECT_EQ(pass["name"], "face_on");
+  EXPECT_EQ(pass["description"], "a triangle facing the viewer");
+  EXPECT_EQ(pass["status"], "Pass");
+  EXPECT_EQ(pass["seconds"], 0.012);
+  EXPECT_EQ(pass["tolerance"]["varying_ulps"], 64.0);
+  EXPECT_EQ(pass["tolerance"]["depth_ulps"], 16.0);
+  EXPECT_EQ(pass["tolerance"]["allow_boundary"], true);
+  EXPECT_EQ(pass["coverage"]["both"], 900);
+  EXPECT_EQ(pass["coverage"]["reference_only"], 2);
+  EXPECT_EQ(pass["coverage"]["boundary"], 2);
+  ASSERT_EQ(pass["coverage"]["mismatches"].size(), 2u);
+  EXPECT_EQ(pass["coverage"]["mismatches"][1]["x"], 11);
+  EXPECT_EQ(pass["coverage"]["mismatches"][1]["gl"], -1);
+  EXPECT_EQ(pass["coverage"]["mismatches"][1]["boundary"], true);
+
+  ASSERT_EQ(pass["channels"].size(), 2u);
+  const json& color = pass["channels"][1];
+  EXPECT_EQ(color["name"], "color.x");
+  EXPECT_EQ(color["max_ulps"], 3.1);
+  EXPECT_EQ(color["tolerance_ulps"], 64.0);
+  EXPECT_EQ(color["pass"], true);
+  // Floats come back bit for bit.
+  EXPECT_EQ(color["worst"][0]["reference"].get<float>(), 0.1f);
+  EXPECT_EQ(color["worst"][0]["gl"].get<float>(), 0.100000024f);
+  EXPECT_EQ(color["worst"][0]["x"], 5);
+
+  EXPECT_EQ(doc["cases"][2]["status"], "Skip");
+  EXPECT_EQ(doc["cases"][2]["message"], "no GL");
+  EXPECT_EQ(doc["cases"][3]["status"], "ExpectedFail");
+}
+
+TEST_F(ReportTest, ResultsJsonWritesNonFiniteNumbersAsStrings) {
+  const auto file = dir_ / "results.json";
+  write_results_json(file, run_info(), {nan_case()});
+  const json doc = written(file);  // parses: no bare NaN/Infinity in the text
+
+  const json& bad = doc["cases"][0]["channels"][1];
+  EXPECT_EQ(bad["name"], "color.y");
+  EXPECT_EQ(bad["non_finite"], 1);
+  EXPECT_EQ(bad["pass"], false);
+  EXPECT_EQ(bad["max_ulps"], "inf");
+  EXPECT_EQ(bad["mean_ulps"], "nan");
+  EXPECT_EQ(bad["worst"][0]["gl"], "nan");
+  EXPECT_EQ(bad["worst"][0]["reference"], 0.5);
+  EXPECT_EQ(bad["worst"][0]["ulps"], "inf");
+  EXPECT_EQ(doc["cases"][0]["status"], "Fail");
+  EXPECT_EQ(read_text(file).find("null"), std::string::npos);
+}
+
+TEST_F(ReportTest, ResultsJsonOfNoCasesIsAnEmptyList) {
+  const auto file = dir_ / "results.json";
+  write_results_json(file, run_info(), {});
+  const json doc = written(file);
+  EXPECT_EQ(doc["summary"]["total"], 0);
+  EXPECT_TRUE(doc["cases"].is_array());
+  EXPECT_TRUE(doc["cases"].empty());
+}
+
+}  // namespace
+}  // namespace glrc::report::test
