@@ -1,2 +1,319 @@
-// glrefcheck command line: placeholder until the subcommands land.
-int main() { return 0; }
+// glrefcheck: run the suite against a GL implementation, diff one case, print reference
+// digests, list cases. Exit codes: 0 all as expected, 1 a case failed, 2 usage or input error.
+#include <unistd.h>
+
+#include <fmt/core.h>
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <regex>
+
+#include "casefile/casefile.hpp"
+#include "cli/expectations.hpp"
+#include "compare/compare.hpp"
+#include "gl_harness/gl_harness.hpp"
+#include "ref/reference.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+namespace {
+
+// Bad input: one line on stderr, exit 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+struct Options {
+  std::vector<std::string> paths;
+  std::string filter;
+  // Model
+  int subpixel_bits = 8;
+  std::string planes = "unsnapped", tie_break = "bottom-left";
+  // GL
+  std::string backend = "osmesa", driver = "llvmpipe";
+  int device = 0;
+  // Verdict
+  std::optional<double> varying_ulps, depth_ulps;
+  bool strict_coverage = false;
+  std::string baseline, out = "out";
+};
+
+Model model_of(const Options& o) {
+  Model m;
+  m.subpixel_bits = o.subpixel_bits;
+  m.planes = o.planes == "snapped" ? Planes::snapped : Planes::unsnapped;
+  m.tie_break = o.tie_break == "top-left" ? TieBreak::top_left : TieBreak::bottom_left;
+  return m;
+}
+
+// Defaults, then the case file's tolerance, then the command line's.
+Tolerance tolerance_for(const Case& c, const Options& o) {
+  Tolerance t = c.tolerance.applied_to(Tolerance{});
+  if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
+  if (o.depth_ulps) t.depth_ulps = *o.depth_ulps;
+  if (o.strict_coverage) t.allow_boundary = false;
+  return t;
+}
+
+std::vector<Case> load_cases(const Options& o) {
+  std::vector<std::string> paths = o.paths;
+  if (paths.empty()) {
+    if (!std::filesystem::is_directory("cases"))
+      throw InputError("no cases/ folder here: name case files or folders on the command line");
+    paths = {"cases"};
+  }
+  std::optional<std::regex> filter;
+  if (!o.filter.empty()) {
+    try {
+      filter.emplace(o.filter, std::regex::ECMAScript);
+    } catch (const std::regex_error& e) {
+      throw InputError("--filter: expected a regular expression, got \"" + o.filter + "\" (" +
+                       e.what() + ")");
+    }
+  }
+  std::vector<Case> cases;
+  try {
+    for (const auto& file : casefile::collect(paths)) {
+      Case c = casefile::load(file);
+      if (!filter || std::regex_search(c.name, *filter)) cases.push_back(std::move(c));
+    }
+  } catch (const casefile::CaseError& e) {
+    throw InputError(e.what());
+  }
+  if (cases.empty()) throw InputError("no case matches: nothing to run");
+  return cases;
+}
+
+gl::Target target_of(const Options& o) {
+  gl::Target t;
+  const auto b = gl::backend_from_string(o.backend);
+  if (!b)
+    throw InputError("--backend: expected osmesa, egl or egl-device, got \"" + o.backend + "\"");
+  t.backend = *b;
+  t.driver = o.driver;
+  t.device_index = o.device;
+  return t;
+}
+
+std::unique_ptr<gl::Renderer> open_renderer(const Options& o) {
+  try {
+    return gl::create_renderer(target_of(o));
+  } catch (const gl::Unavailable& e) {
+    throw InputError(e.what());
+  }
+}
+
+RunInfo run_info(const Options& o, const gl::Renderer& r) {
+  RunInfo info;
+  info.backend = o.backend;
+  info.driver = o.driver;
+  info.model = model_of(o).describe();
+  info.gl_vendor = r.info().vendor;
+  info.gl_renderer = r.info().renderer;
+  info.gl_version = r.info().version;
+  return info;
+}
+
+// One case, end to end: reference, GL, comparison.
+struct Checked {
+  CaseResult result;
+  ref::Reference reference;
+  Frame gl;
+};
+
+Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
+  const auto start = Clock::now();
+  Checked out;
+  out.reference = ref::render(c, model_of(o));
+  try {
+    out.gl = renderer.render(c);
+    out.result = compare::compare(c, out.reference.frame, out.reference.edge_band, out.gl,
+                                  tolerance_for(c, o));
+  } catch (const gl::RenderError& e) {
+    out.result.name = c.name;
+    out.result.description = c.description;
+    out.result.status = Status::error;
+    out.result.message = e.what();
+  }
+  out.result.seconds = seconds_since(start);
+  return out;
+}
+
+// Progress on a terminal only: CI logs get the per-case lines and nothing else.
+class Progress {
+ public:
+  Progress() : on_(isatty(STDERR_FILENO) && !std::getenv("CI")) {}
+  void show(size_t k, size_t n, const std::string& name) const {
+    if (on_) fmt::print(stderr, "\r\033[K[{}/{}] {}", k + 1, n, name), std::fflush(stderr);
+  }
+  void clear() const {
+    if (on_) fmt::print(stderr, "\r\033[K"), std::fflush(stderr);
+  }
+
+ private:
+  bool on_;
+};
+
+int cmd_run(const Options& o) {
+  const auto start = Clock::now();
+  const std::vector<Case> cases = load_cases(o);
+  Baseline baseline;
+  if (!o.baseline.empty()) {
+    try {
+      baseline = read_baseline(o.baseline);
+    } catch (const std::runtime_error& e) {
+      throw InputError(e.what());
+    }
+  }
+  auto renderer = open_renderer(o);
+  RunInfo info = run_info(o, *renderer);
+  fmt::print("glrefcheck run: {} cases on {} ({}), GL {} | model {}\n", cases.size(),
+             info.gl_renderer, o.backend, info.gl_version, info.model);
+  std::fflush(stdout);
+
+  const Progress progress;
+  std::vector<CaseResult> results;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    progress.show(k, cases.size(), cases[k].name);
+    CaseResult r = check(cases[k], o, *renderer).result;
+    apply(baseline, r);
+    progress.clear();
+    fmt::print("{}\n", report::case_line(r));
+    std::fflush(stdout);
+    results.push_back(std::move(r));
+  }
+  info.seconds = seconds_since(start);
+
+  std::map<Status, int> count;
+  for (const auto& r : results)
+    ++count[r.status];
+  fmt::print(
+      "\n{} cases: {} pass, {} fail, {} expected fail, {} unexpected pass, {} error, {} skip"
+      " in {:.2f} s\n",
+      results.size(), count[Status::pass], count[Status::fail], count[Status::expected_fail],
+      count[Status::unexpected_pass], count[Status::error], count[Status::skip], info.seconds);
+  std::filesystem::create_directories(o.out);
+  report::write_results_json(std::filesystem::path(o.out) / "results.json", info, results);
+  report::write_junit(std::filesystem::path(o.out) / "junit.xml", info, results);
+  fmt::print("wrote {}/results.json and {}/junit.xml\n", o.out, o.out);
+  for (const auto& r : results)
+    if (fails_run(r.status)) return 1;
+  return 0;
+}
+
+int cmd_diff(const Options& o) {
+  const std::vector<Case> cases = load_cases(o);
+  if (cases.size() != 1)
+    throw InputError("diff: expected exactly one case, got " + std::to_string(cases.size()) +
+                     " (use --filter or name one file)");
+  const Case& c = cases[0];
+  auto renderer = open_renderer(o);
+  const RunInfo info = run_info(o, *renderer);
+  const Checked checked = check(c, o, *renderer);
+  const CaseResult& r = checked.result;
+  fmt::print("{}: {}\nGL: {} | {} | model {}\n\n", c.name, c.description, info.gl_renderer,
+             info.gl_version, info.model);
+  fmt::print("{}\n", report::case_line(r));
+  if (r.status == Status::error) return 1;
+  fmt::print("\n{}\n{}\n", report::stats_table(r), report::worst_pixels_table(r, 10));
+  const auto files = report::write_diff_images(o.out, c, checked.reference.frame,
+                                               checked.reference.edge_band, checked.gl, r);
+  fmt::print("wrote {} images to {}/\n", files.size(), o.out);
+  return fails_run(r.status) ? 1 : 0;
+}
+
+int cmd_digest(const Options& o) {
+  for (const Case& c : load_cases(o))
+    fmt::print("{}  {}\n", ref::digest(ref::render(c, model_of(o)).frame), c.name);
+  return 0;
+}
+
+int cmd_list(const Options& o) {
+  const std::vector<Case> cases = load_cases(o);
+  size_t width = 0;
+  for (const Case& c : cases)
+    width = std::max(width, c.name.size());
+  for (const Case& c : cases)
+    fmt::print("{:<{}}  {}\n", c.name, width, c.description);
+  return 0;
+}
+
+void add_case_options(CLI::App& app, Options& o) {
+  app.add_option("cases", o.paths, "case files or folders (default: cases/)");
+  app.add_option("--filter", o.filter, "only cases whose name matches this regular expression");
+}
+
+void add_model_options(CLI::App& app, Options& o) {
+  app.add_option("--subpixel-bits", o.subpixel_bits, "reference snapping: 0 (none) to 16")
+      ->check(CLI::Range(0, 16));
+  app.add_option("--planes", o.planes, "attribute planes from snapped or unsnapped positions")
+      ->check(CLI::IsMember({"snapped", "unsnapped"}));
+  app.add_option("--tie-break", o.tie_break, "pixel centres on an edge")
+      ->check(CLI::IsMember({"bottom-left", "top-left"}));
+}
+
+void add_gl_options(CLI::App& app, Options& o) {
+  app.add_option("--backend", o.backend, "osmesa, egl (Mesa surfaceless) or egl-device")
+      ->check(CLI::IsMember({"osmesa", "egl", "egl-device"}));
+  app.add_option("--driver", o.driver, "Mesa gallium driver: llvmpipe, softpipe; \"\" for a GPU");
+  app.add_option("--device", o.device, "egl-device: which EGL device");
+  app.add_option("--tolerance-ulps", o.varying_ulps,
+                 "varying tolerance in ULPs of the attribute's scale (overrides case files)");
+  app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0");
+  app.add_flag("--strict-coverage", o.strict_coverage,
+               "count coverage mismatches at edges (within a subpixel step) as failures");
+  app.add_option("--out", o.out, "output folder");
+}
+
+int main_impl(int argc, char** argv) {
+  CLI::App app{"glrefcheck: checks GL rasterization and interpolation against an exact reference"};
+  app.require_subcommand(1);
+  Options o;
+
+  auto* run = app.add_subcommand("run", "run cases against a GL implementation");
+  add_case_options(*run, o), add_model_options(*run, o), add_gl_options(*run, o);
+  run->add_option("--baseline", o.baseline, "known failures, `case,Status` lines (Mesa CI format)");
+
+  auto* diff = app.add_subcommand("diff", "check one case and write error heatmaps");
+  add_case_options(*diff, o), add_model_options(*diff, o), add_gl_options(*diff, o);
+
+  auto* digest = app.add_subcommand("digest", "SHA-256 of each case's reference frame (no GL)");
+  add_case_options(*digest, o), add_model_options(*digest, o);
+
+  auto* list = app.add_subcommand("list", "list cases with their descriptions");
+  add_case_options(*list, o);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line, like every other input error.
+    fmt::print(stderr, "glrefcheck: {} (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    if (*run) return cmd_run(o);
+    if (*diff) return cmd_diff(o);
+    if (*digest) return cmd_digest(o);
+    return cmd_list(o);
+  } catch (const InputError& e) {
+    fmt::print(stderr, "glrefcheck: {}\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace
+}  // namespace glrc::cli
+
+int main(int argc, char** argv) {
+  return glrc::cli::main_impl(argc, argv);
+}

@@ -8,31 +8,39 @@ std::vector<std::string> component_names(const Case& c) {
   static const char* kSuffix[] = {"x", "y", "z", "w"};
   std::vector<std::string> names;
   for (const auto& v : c.varyings)
-    for (int i = 0; i < v.size; ++i) names.push_back(v.name + "." + kSuffix[i]);
+    for (int i = 0; i < v.size; ++i)
+      names.push_back(v.name + "." + kSuffix[i]);
   return names;
 }
 
 std::vector<int> component_varying(const Case& c) {
   std::vector<int> owner;
   for (size_t k = 0; k < c.varyings.size(); ++k)
-    for (int i = 0; i < c.varyings[k].size; ++i) owner.push_back(int(k));
+    for (int i = 0; i < c.varyings[k].size; ++i)
+      owner.push_back(int(k));
   return owner;
 }
 
 std::string Model::describe() const {
   return "subpixel_bits=" + std::to_string(subpixel_bits) +
          " planes=" + (planes == Planes::snapped ? "snapped" : "unsnapped") +
-         " tie=" + (tie_break == TieBreak::bottom_left ? "bottom_left" : "top_left");
+         " tie=" + (tie_break == TieBreak::bottom_left ? "bottom-left" : "top-left");
 }
 
 const char* to_string(Status s) {
   switch (s) {
-    case Status::pass: return "Pass";
-    case Status::fail: return "Fail";
-    case Status::expected_fail: return "ExpectedFail";
-    case Status::unexpected_pass: return "UnexpectedPass";
-    case Status::skip: return "Skip";
-    case Status::error: return "Error";
+    case Status::pass:
+      return "Pass";
+    case Status::fail:
+      return "Fail";
+    case Status::expected_fail:
+      return "ExpectedFail";
+    case Status::unexpected_pass:
+      return "UnexpectedPass";
+    case Status::skip:
+      return "Skip";
+    case Status::error:
+      return "Error";
   }
   return "Error";
 }

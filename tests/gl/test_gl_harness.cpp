@@ -15,11 +15,15 @@
 #include <optional>
 #include <string>
 
+#include "casefile/casefile.hpp"
+#include "compare/compare.hpp"
 #include "core/case.hpp"
 #include "core/frame.hpp"
+#include "core/result.hpp"
 #include "gl_harness/context.hpp"
 #include "gl_harness/egl_context.hpp"
 #include "gl_harness/gl_harness.hpp"
+#include "ref/reference.hpp"
 
 namespace glrc::gl {
 namespace {
@@ -554,6 +558,31 @@ class GlEgl : public Gl {
     Gl::SetUp();
   }
 };
+
+// End to end on cases of the suite: the real driver against the exact reference, judged by
+// the comparator with the default tolerance (and the case file's own, where it sets one).
+TEST_F(Gl, SuiteCasesAgreeWithTheReference) {
+  const char* names[] = {"face_on",
+                         "checkerboard_quad",
+                         "fan",
+                         "grid_mesh",
+                         "clip_near",
+                         "behind_eye_partial",
+                         "flat_provoking_first",
+                         "noperspective_smooth",
+                         "depth_range_reversed",
+                         "viewport_offset"};
+  for (const char* name : names) {
+    const Case c =
+        casefile::load(std::string(GLRC_SOURCE_DIR) + "/cases/" + std::string(name) + ".json");
+    const ref::Reference reference = ref::render(c, Model{});
+    const CaseResult r = compare::compare(c, reference.frame, reference.edge_band, gl().render(c),
+                                          c.tolerance.applied_to(Tolerance{}));
+    EXPECT_EQ(r.status, Status::pass) << name << ": " << r.message;
+    EXPECT_GT(r.coverage.both, 100u) << name;  // the case does draw something
+    EXPECT_LE(r.coverage.boundary, r.coverage.both / 10) << name;
+  }
+}
 
 TEST_F(GlEgl, MissingClientExtensionIsNamed) {
   try {
