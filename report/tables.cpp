@@ -13,7 +13,7 @@ namespace {
 
 // Wide enough for "UnexpectedPass", the longest status.
 constexpr int kStatusWidth = 14;
-constexpr int kNameWidth = 25;
+constexpr int kNameWidth = 28;
 // The listing shows the start of a longer message; all of it is in results.json.
 constexpr size_t kShortMessage = 100;
 
@@ -37,9 +37,9 @@ std::string first_line(const std::string& s) {
 
 std::string case_line(const CaseResult& r) {
   std::string line =
-      fmt::format("{:<{}} {:<{}} max {} ulp  cov {} (+{} boundary)  {}", to_string(r.status),
-                  kStatusWidth, r.name, kNameWidth, max_ulps_text(r), r.coverage.failures,
-                  r.coverage.boundary, seconds_text(r.seconds));
+      fmt::format("{:<{}} {:<{}} max {:>5} ulp  coverage {} bad, {} at edges  {}",
+                  to_string(r.status), kStatusWidth, r.name, kNameWidth, max_ulps_text(r),
+                  r.coverage.failures, r.coverage.boundary, seconds_text(r.seconds));
   std::string message = first_line(r.message);
   if (message.size() > kShortMessage) message = message.substr(0, kShortMessage - 3) + "...";
   if (r.status != Status::pass && !message.empty()) line += "  " + message;

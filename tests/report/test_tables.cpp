@@ -9,8 +9,8 @@ TEST(CaseLine, ShowsStatusNameMaxUlpsCoverageAndTime) {
   const std::string line = case_line(passing_case());
   EXPECT_EQ(line.rfind("Pass ", 0), 0u) << line;
   EXPECT_NE(line.find(" face_on "), std::string::npos) << line;
-  EXPECT_NE(line.find("max 3.1 ulp"), std::string::npos) << line;
-  EXPECT_NE(line.find("cov 0 (+2 boundary)"), std::string::npos) << line;
+  EXPECT_NE(line.find("max   3.1 ulp"), std::string::npos) << line;
+  EXPECT_NE(line.find("coverage 0 bad, 2 at edges"), std::string::npos) << line;
   EXPECT_NE(line.find("0.012 s"), std::string::npos) << line;
   EXPECT_EQ(line.find('\n'), std::string::npos);
 }
@@ -25,7 +25,7 @@ TEST(CaseLine, LinesUpAcrossStatuses) {
 TEST(CaseLine, NonFiniteChannelShowsNaNAndTheMessage) {
   const std::string line = case_line(nan_case());
   EXPECT_EQ(line.rfind("Fail ", 0), 0u) << line;
-  EXPECT_NE(line.find("max NaN ulp"), std::string::npos) << line;
+  EXPECT_NE(line.find("max   NaN ulp"), std::string::npos) << line;
   EXPECT_NE(line.find("color.y: 1 non-finite value"), std::string::npos) << line;
 }
 
