@@ -16,6 +16,11 @@ std::string trim(const std::string& s) {
 }  // namespace
 
 Baseline read_baseline(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw std::runtime_error(
+        file.string() + ": expected a baseline file of `case,Status` lines, " + "got " +
+        (std::filesystem::exists(file, ec) ? "something else" : "no such file"));
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   Baseline b;
@@ -36,8 +41,11 @@ Baseline read_baseline(const std::filesystem::path& file) {
       throw std::runtime_error(file.string() + ":" + std::to_string(n) +
                                ": expected a status of Fail, Crash, Timeout or Error, got \"" +
                                status + "\"");
-    b.expected[name] = status;
+    if (!b.expected.emplace(name, status).second)
+      throw std::runtime_error(file.string() + ":" + std::to_string(n) +
+                               ": expected each case once, got " + name + " again");
   }
+  if (in.bad()) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   return b;
 }
 

@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <regex>
@@ -92,10 +93,7 @@ std::vector<Case> load_cases(const Options& o) {
 
 gl::Target target_of(const Options& o) {
   gl::Target t;
-  const auto b = gl::backend_from_string(o.backend);
-  if (!b)
-    throw InputError("--backend: expected osmesa, egl or egl-device, got \"" + o.backend + "\"");
-  t.backend = *b;
+  t.backend = *gl::backend_from_string(o.backend);  // CLI11 has checked the name
   t.driver = o.driver;
   t.device_index = o.device;
   return t;
@@ -160,9 +158,24 @@ class Progress {
   bool on_;
 };
 
+// Creates the output folder before any case runs, so that a folder that cannot be written is
+// one line and exit 2 at once, not a lost run.
+std::filesystem::path output_folder(const std::string& out) {
+  const std::filesystem::path dir(out);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError("--out: expected a folder that can be created, got \"" + out + "\"" +
+                     (ec ? " (" + ec.message() + ")" : " (not a folder)"));
+  if (access(dir.c_str(), W_OK) != 0)
+    throw InputError("--out: expected a writable folder, got \"" + out + "\"");
+  return dir;
+}
+
 int cmd_run(const Options& o) {
   const auto start = Clock::now();
   const std::vector<Case> cases = load_cases(o);
+  const std::filesystem::path out = output_folder(o.out);
   Baseline baseline;
   if (!o.baseline.empty()) {
     try {
@@ -198,9 +211,8 @@ int cmd_run(const Options& o) {
       " in {:.2f} s\n",
       results.size(), count[Status::pass], count[Status::fail], count[Status::expected_fail],
       count[Status::unexpected_pass], count[Status::error], count[Status::skip], info.seconds);
-  std::filesystem::create_directories(o.out);
-  report::write_results_json(std::filesystem::path(o.out) / "results.json", info, results);
-  report::write_junit(std::filesystem::path(o.out) / "junit.xml", info, results);
+  report::write_results_json(out / "results.json", info, results);
+  report::write_junit(out / "junit.xml", info, results);
   fmt::print("wrote {}/results.json and {}/junit.xml\n", o.out, o.out);
   for (const auto& r : results)
     if (fails_run(r.status)) return 1;
@@ -213,6 +225,7 @@ int cmd_diff(const Options& o) {
     throw InputError("diff: expected exactly one case, got " + std::to_string(cases.size()) +
                      " (use --filter or name one file)");
   const Case& c = cases[0];
+  const std::filesystem::path out = output_folder(o.out);
   auto renderer = open_renderer(o);
   const RunInfo info = run_info(o, *renderer);
   const Checked checked = check(c, o, *renderer);
@@ -222,7 +235,7 @@ int cmd_diff(const Options& o) {
   fmt::print("{}\n", report::case_line(r));
   if (r.status == Status::error) return 1;
   fmt::print("\n{}\n{}\n", report::stats_table(r), report::worst_pixels_table(r, 10));
-  const auto files = report::write_diff_images(o.out, c, checked.reference.frame,
+  const auto files = report::write_diff_images(out, c, checked.reference.frame,
                                                checked.reference.edge_band, checked.gl, r);
   fmt::print("wrote {} images to {}/\n", files.size(), o.out);
   return fails_run(r.status) ? 1 : 0;
@@ -263,9 +276,26 @@ void add_gl_options(CLI::App& app, Options& o) {
       ->check(CLI::IsMember({"osmesa", "egl", "egl-device"}));
   app.add_option("--driver", o.driver, "Mesa gallium driver: llvmpipe, softpipe; \"\" for a GPU");
   app.add_option("--device", o.device, "egl-device: which EGL device");
+  // A tolerance is a finite number of ULPs: NaN would compare false everywhere, and an
+  // infinite one would say nothing.
+  const CLI::Validator finite_ulps(
+      [](std::string& s) -> std::string {
+        double v = 0;
+        try {
+          size_t used = 0;
+          v = std::stod(s, &used);
+          if (used != s.size()) return "expected a number of ULPs, got \"" + s + "\"";
+        } catch (const std::exception&) {
+          return "expected a number of ULPs, got \"" + s + "\"";
+        }
+        return std::isfinite(v) && v >= 0 ? "" : "expected a finite number >= 0, got " + s;
+      },
+      "ULPS");
   app.add_option("--tolerance-ulps", o.varying_ulps,
-                 "varying tolerance in ULPs of the attribute's scale (overrides case files)");
-  app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0");
+                 "varying tolerance in ULPs of the attribute's scale (overrides case files)")
+      ->check(finite_ulps);
+  app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0")
+      ->check(finite_ulps);
   app.add_flag("--strict-coverage", o.strict_coverage,
                "count coverage mismatches at edges (within a subpixel step) as failures");
   app.add_option("--out", o.out, "output folder");
@@ -306,6 +336,11 @@ int main_impl(int argc, char** argv) {
     if (*digest) return cmd_digest(o);
     return cmd_list(o);
   } catch (const InputError& e) {
+    fmt::print(stderr, "glrefcheck: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    // Whatever else went wrong (a report that could not be written, say): one line, not an
+    // abort with a core dump.
     fmt::print(stderr, "glrefcheck: {}\n", e.what());
     return 2;
   }

@@ -20,37 +20,43 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // One channel's errors, gathered over the pixels both frames cover with the same primitive.
 struct ChannelAccumulator {
   ChannelStats stats;
-  std::vector<double> ulps;  // every compared pixel; +inf for NaN/Inf in GL output
-  std::vector<WorstPixel> pixels;
+  // Every compared pixel's error, for the percentile; float is ample for a statistic and halves
+  // the memory of a large frame with many channels.
+  std::vector<float> ulps;
+  // The kWorstPerChannel largest errors as a min-heap: memory does not grow with the frame.
+  std::vector<WorstPixel> worst;
   double sum = 0, sum_sq = 0;
   uint64_t finite = 0;
 
+  static bool larger(const WorstPixel& a, const WorstPixel& b) {
+    if (a.ulps != b.ulps) return a.ulps > b.ulps;
+    return a.y != b.y ? a.y < b.y : a.x < b.x;
+  }
+
   void add(int x, int y, float reference, float gl, double ulp) {
-    WorstPixel p{x, y, reference, gl, 0, 0};
-    if (!std::isfinite(gl) && std::isfinite(reference)) {
-      // Never a pass, however large the tolerance: the value is not a number at all.
-      ++stats.non_finite;
-      p.abs_error = p.ulps = kInf;
-    } else if (!std::isfinite(reference)) {
-      // The reference is finite for every valid case; if it were not, only identical bits
-      // could be called equal.
-      const bool same = std::bit_cast<uint32_t>(gl) == std::bit_cast<uint32_t>(reference);
-      p.abs_error = p.ulps = same ? 0 : kInf;
-    } else {
-      p.abs_error = std::fabs(double(gl) - double(reference));  // exact: both are floats
-      p.ulps = p.abs_error / ulp;
-    }
+    const PixelError e = pixel_error(reference, gl, ulp);
     ++stats.compared;
-    if (!(p.ulps <= stats.tolerance_ulps)) ++stats.over_tolerance;  // NaN-safe
-    if (std::isfinite(p.ulps)) {
-      sum += p.ulps;
-      sum_sq += p.ulps * p.ulps;
+    // NaN and Inf are over any tolerance, an infinite one included.
+    if (e.non_finite || !(e.ulps <= stats.tolerance_ulps)) ++stats.over_tolerance;
+    if (e.non_finite) ++stats.non_finite;
+    if (std::isfinite(e.ulps)) {
+      sum += e.ulps;
+      sum_sq += e.ulps * e.ulps;
       ++finite;
     }
-    stats.max_abs = std::max(stats.max_abs, p.abs_error);
-    stats.max_ulps = std::max(stats.max_ulps, p.ulps);
-    ulps.push_back(p.ulps);
-    if (p.ulps > 0) pixels.push_back(p);
+    stats.max_abs = std::max(stats.max_abs, e.abs_error);
+    stats.max_ulps = std::max(stats.max_ulps, e.ulps);
+    ulps.push_back(float(e.ulps));
+    if (e.ulps == 0) return;
+    const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps};
+    if (worst.size() < kWorstPerChannel) {
+      worst.push_back(p);
+      std::push_heap(worst.begin(), worst.end(), larger);
+    } else if (larger(p, worst.front())) {
+      std::pop_heap(worst.begin(), worst.end(), larger);
+      worst.back() = p;
+      std::push_heap(worst.begin(), worst.end(), larger);
+    }
   }
 
   ChannelStats finish() {
@@ -66,14 +72,8 @@ struct ChannelAccumulator {
       std::nth_element(ulps.begin(), ulps.begin() + ptrdiff_t(rank), ulps.end());
       stats.p99_ulps = ulps[rank];
     }
-    const size_t keep = std::min(kWorstPerChannel, pixels.size());
-    std::partial_sort(pixels.begin(), pixels.begin() + ptrdiff_t(keep), pixels.end(),
-                      [](const WorstPixel& a, const WorstPixel& b) {
-                        if (a.ulps != b.ulps) return a.ulps > b.ulps;
-                        return a.y != b.y ? a.y < b.y : a.x < b.x;
-                      });
-    pixels.resize(keep);
-    stats.worst = std::move(pixels);
+    std::sort_heap(worst.begin(), worst.end(), larger);
+    stats.worst = std::move(worst);
     return std::move(stats);
   }
 };
@@ -131,6 +131,32 @@ double ulp_of_scale(double scale) {
   return std::ldexp(1.0, std::max(std::ilogb(scale) - 23, -149));
 }
 
+UlpTable::UlpTable(const Case& c)
+    : components_(c.component_count()), depth_ulp_(ulp_of_scale(1.0)) {
+  ulps_.reserve(c.triangles.size() * size_t(components_));
+  for (size_t t = 0; t < c.triangles.size(); ++t)
+    for (int k = 0; k < components_; ++k)
+      ulps_.push_back(ulp_of_scale(attribute_scale(c, int(t), k)));
+}
+
+PixelError pixel_error(float reference, float gl, double ulp) {
+  PixelError e;
+  if (!std::isfinite(gl) && std::isfinite(reference)) {
+    // Never a pass, however large the tolerance: the value is not a number at all.
+    e.non_finite = true;
+    e.abs_error = e.ulps = kInf;
+  } else if (!std::isfinite(reference)) {
+    // The reference is finite for every valid case; if it were not, only identical bits
+    // could be called equal.
+    const bool same = std::bit_cast<uint32_t>(gl) == std::bit_cast<uint32_t>(reference);
+    e.abs_error = e.ulps = same ? 0 : kInf;
+  } else {
+    e.abs_error = std::fabs(double(gl) - double(reference));  // exact: both are floats
+    e.ulps = e.abs_error / ulp;
+  }
+  return e;
+}
+
 CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint8_t>& edge_band,
                    const Frame& gl, const Tolerance& tolerance) {
   if (reference.width != gl.width || reference.height != gl.height ||
@@ -143,21 +169,8 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
   r.description = c.description;
   r.tolerance = tolerance;
 
-  const std::vector<std::string> names = component_names(c);
-  const std::vector<int> owner = component_varying(c);
-  // Channel 0 is depth; channel k+1 is component k.
-  std::vector<ChannelAccumulator> acc(names.size() + 1);
-  acc[0].stats.name = "depth";
-  acc[0].stats.tolerance_ulps = tolerance.depth_ulps;
-  for (size_t k = 0; k < names.size(); ++k) {
-    acc[k + 1].stats.name = names[k];
-    // A flat value is copied from the provoking vertex, never computed: any change is wrong.
-    const bool flat = c.varyings[size_t(owner[k])].interpolation == Interpolation::flat;
-    acc[k + 1].stats.tolerance_ulps = flat ? 0.0 : tolerance.varying_ulps;
-  }
-
-  const auto triangle_count = int32_t(c.triangles.size());
-  const double depth_ulp = ulp_of_scale(1.0);
+  // Coverage first; the pixels where values are compared are kept for the channel passes.
+  std::vector<size_t> compared;
   auto& cov = r.coverage;
   for (int y = 0; y < reference.height; ++y) {
     for (int x = 0; x < reference.width; ++x) {
@@ -165,9 +178,10 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
       const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
       if (pr == pg && pr == Frame::kNoPrimitive) {
         ++cov.neither;
-        continue;
-      }
-      if (pr != pg || pr < 0 || pr >= triangle_count) {
+      } else if (same_primitive(c, pr, pg)) {
+        ++cov.both;
+        compared.push_back(i);
+      } else {
         if (pg == Frame::kNoPrimitive)
           ++cov.reference_only;
         else if (pr == Frame::kNoPrimitive)
@@ -179,22 +193,36 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
         if (!(boundary && tolerance.allow_boundary)) ++cov.failures;
         if (cov.mismatches.size() < kMismatchesKept)
           cov.mismatches.push_back({x, y, pr, pg, boundary});
-        continue;
-      }
-      ++cov.both;
-      acc[0].add(x, y, reference.depth[i], gl.depth[i], depth_ulp);
-      for (size_t k = 0; k < names.size(); ++k) {
-        const double ulp = ulp_of_scale(attribute_scale(c, pr, int(k)));
-        acc[k + 1].add(x, y, reference.components[k][i], gl.components[k][i], ulp);
       }
     }
   }
 
-  bool pass = cov.failures == 0;
-  for (auto& a : acc) {
-    r.channels.push_back(a.finish());
-    pass = pass && r.channels.back().pass();
+  // Then one channel at a time (depth, then each component), so that only one channel's
+  // per-pixel errors are held at once, however many varyings a large frame has.
+  const std::vector<std::string> names = component_names(c);
+  const std::vector<int> owner = component_varying(c);
+  const UlpTable ulps(c);
+  for (int k = kDepth; k < int(names.size()); ++k) {
+    ChannelAccumulator acc;
+    const bool depth = k == kDepth;
+    acc.stats.name = depth ? "depth" : names[size_t(k)];
+    // A flat value is copied from the provoking vertex, never computed: any change is wrong.
+    const bool flat =
+        !depth && c.varyings[size_t(owner[size_t(k)])].interpolation == Interpolation::flat;
+    acc.stats.tolerance_ulps = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
+    const std::vector<float>& ref_values =
+        depth ? reference.depth : reference.components[size_t(k)];
+    const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
+    acc.ulps.reserve(compared.size());
+    for (size_t i : compared)
+      acc.add(int(i % size_t(reference.width)), int(i / size_t(reference.width)), ref_values[i],
+              gl_values[i], ulps.ulp(reference.primitive[i], k));
+    r.channels.push_back(acc.finish());
   }
+
+  bool pass = cov.failures == 0;
+  for (const auto& ch : r.channels)
+    pass = pass && ch.pass();
   r.status = pass ? Status::pass : Status::fail;
   if (!pass) r.message = failure_message(r);
   return r;

@@ -21,7 +21,36 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
 // ULPs of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
 inline constexpr int kDepth = -1;
 double attribute_scale(const Case& c, int primitive, int component);
-// ulp of a positive scale: 2^(floor(log2 scale) - 23); the smallest normal ulp for 0.
+// ulp of a positive scale: 2^(floor(log2 scale) - 23); 2^-149 (the subnormal spacing) for 0.
 double ulp_of_scale(double scale);
+
+// ulp_of_scale(attribute_scale(...)) for every triangle and component of a case, computed once
+// instead of per pixel.
+class UlpTable {
+ public:
+  explicit UlpTable(const Case& c);
+  double ulp(int primitive, int component) const {  // component kDepth: 2^-23
+    return component == kDepth ? depth_ulp_
+                               : ulps_[size_t(primitive) * size_t(components_) + size_t(component)];
+  }
+
+ private:
+  int components_;
+  double depth_ulp_;
+  std::vector<double> ulps_;
+};
+
+// Whether values are compared at a pixel: both frames name the same drawn triangle.
+inline bool same_primitive(const Case& c, int32_t reference, int32_t gl) {
+  return reference == gl && reference >= 0 && size_t(reference) < c.triangles.size();
+}
+
+// The error at one compared pixel of one channel, as every report counts it.
+struct PixelError {
+  double abs_error = 0;     // |gl - reference| (exact: both are floats); +inf when not finite
+  double ulps = 0;          // abs_error / ulp
+  bool non_finite = false;  // GL gave NaN or Inf where the reference is finite
+};
+PixelError pixel_error(float reference, float gl, double ulp);
 
 }  // namespace glrc::compare

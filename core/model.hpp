@@ -21,7 +21,7 @@ struct Model {
   Planes planes = Planes::unsnapped;
   TieBreak tie_break = TieBreak::bottom_left;
 
-  std::string describe() const;  // e.g. "subpixel_bits=8 planes=unsnapped tie=bottom_left"
+  std::string describe() const;  // e.g. "subpixel_bits=8 planes=unsnapped tie=bottom-left"
 };
 
 }  // namespace glrc

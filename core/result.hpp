@@ -21,24 +21,25 @@ struct WorstPixel {
 };
 
 struct ChannelStats {
-  std::string name;  // "depth" or "color.x"
+  std::string name;             // "depth" or "color.x"
   uint64_t compared = 0;        // pixels covered by the same primitive in both frames
   uint64_t over_tolerance = 0;  // of which over the tolerance (NaN/Inf included)
   uint64_t non_finite = 0;      // GL gave NaN or Inf where the reference is finite
   double max_abs = 0, max_ulps = 0, mean_ulps = 0, rms_ulps = 0, p99_ulps = 0;
   double tolerance_ulps = 0;
   std::vector<WorstPixel> worst;  // largest errors first
-  bool pass() const { return over_tolerance == 0; }
+  // NaN or Inf never passes, whatever the tolerance (even an infinite one).
+  bool pass() const { return over_tolerance == 0 && non_finite == 0; }
 };
 
 struct CoverageStats {
-  uint64_t both = 0;            // covered by the same primitive in both
-  uint64_t neither = 0;         // covered by none in both
-  uint64_t reference_only = 0;  // reference covers, GL does not
-  uint64_t gl_only = 0;         // GL covers, reference does not
-  uint64_t other_primitive = 0; // both cover, with different primitives
-  uint64_t boundary = 0;        // mismatches whose centre is within a subpixel step of an edge
-  uint64_t failures = 0;        // mismatches that count against the verdict
+  uint64_t both = 0;             // covered by the same primitive in both
+  uint64_t neither = 0;          // covered by none in both
+  uint64_t reference_only = 0;   // reference covers, GL does not
+  uint64_t gl_only = 0;          // GL covers, reference does not
+  uint64_t other_primitive = 0;  // both cover, with different primitives
+  uint64_t boundary = 0;         // mismatches whose centre is within a subpixel step of an edge
+  uint64_t failures = 0;         // mismatches that count against the verdict
   struct Pixel {
     int x = 0, y = 0;
     int32_t reference = -1, gl = -1;

@@ -102,7 +102,14 @@ class OsmesaContext final : public Context {
 
 }  // namespace
 
-std::unique_ptr<Context> create_osmesa_context(const Target&) {
+std::unique_ptr<Context> create_osmesa_context(const Target& t) {
+  // OSMesa renders with Mesa's software drivers only; asked for any other, Mesa 22.3 crashes
+  // inside OSMesaCreateContextAttribs instead of failing.
+  if (!t.driver.empty() && !is_mesa_software_driver(t.driver))
+    throw Unavailable(
+        "OSMesa runs Mesa's software drivers only: expected --driver llvmpipe or "
+        "softpipe, got \"" +
+        t.driver + "\" (use --backend egl-device for a GPU)");
   return std::make_unique<OsmesaContext>(osmesa_library());
 }
 

@@ -9,7 +9,7 @@
 namespace glrc::report {
 
 ChannelError channel_error(const Case& c, const Frame& reference, const Frame& gl, int channel) {
-  const bool depth = channel < 0;
+  const bool depth = channel == compare::kDepth;
   ChannelError e;
   e.name = depth ? "depth" : component_names(c).at(size_t(channel));
   e.width = reference.width;
@@ -22,23 +22,19 @@ ChannelError channel_error(const Case& c, const Frame& reference, const Frame& g
   e.signed_error.assign(n, kNaN);
   e.ulps.assign(n, std::numeric_limits<double>::quiet_NaN());
   e.compared.assign(n, false);
-  const double depth_ulp = compare::ulp_of_scale(1.0);
+  const compare::UlpTable ulp_table(c);
 
   for (size_t i = 0; i < n; ++i) {
     const int32_t prim = reference.primitive[i];
-    if (prim == Frame::kNoPrimitive || gl.primitive[i] != prim) continue;
+    if (!compare::same_primitive(c, prim, gl.primitive[i])) continue;
     e.compared[i] = true;
-    const double ref = e.reference[i], got = e.gl[i];
     // Both values are float32, so the difference is exact in double.
-    const double diff = got - ref;
-    e.signed_error[i] = float(diff);
-    const double ulp =
-        depth ? depth_ulp : compare::ulp_of_scale(compare::attribute_scale(c, prim, channel));
-    // The same infinity in both frames is no error; any other non-finite value is one.
-    const double ulps = (got == ref) ? 0.0 : std::fabs(diff) / ulp;
-    e.ulps[i] = std::isnan(ulps) ? std::numeric_limits<double>::infinity() : ulps;
-    if (std::isfinite(ulps))
-      e.max_finite_ulps = std::max(e.max_finite_ulps, ulps);
+    e.signed_error[i] = float(double(e.gl[i]) - double(e.reference[i]));
+    const compare::PixelError pe = compare::pixel_error(
+        e.reference[i], e.gl[i], ulp_table.ulp(prim, depth ? compare::kDepth : channel));
+    e.ulps[i] = pe.ulps;
+    if (std::isfinite(pe.ulps))
+      e.max_finite_ulps = std::max(e.max_finite_ulps, pe.ulps);
     else
       ++e.non_finite;
   }

@@ -25,7 +25,8 @@ struct ChannelError {
   size_t non_finite = 0;       // compared pixels whose error is not finite
 };
 
-// channel -1 is depth, whose scale is 1.0 (depth range [0, 1]); k >= 0 is Frame::components[k].
+// channel compare::kDepth is depth, of scale 1.0 (depth range [0, 1]); k >= 0 is
+// Frame::components[k]. Errors are compare::pixel_error at the pixels compare compares.
 ChannelError channel_error(const Case& c, const Frame& reference, const Frame& gl, int channel);
 
 }  // namespace glrc::report

@@ -2,6 +2,7 @@
 // reference. PNGs to look at, EXRs to read exact values from.
 #include <stdexcept>
 
+#include "compare/compare.hpp"
 #include "report/channel_error.hpp"
 #include "report/coverage_image.hpp"
 #include "report/exr.hpp"
@@ -53,14 +54,15 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
   const auto font = find_font();
 
   std::vector<std::filesystem::path> written;
-  for (int channel = -1; channel < c.component_count(); ++channel) {
+  for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
     const ChannelError e = channel_error(c, reference, gl, channel);
     const std::string stem = file_stem(e.name);
     const auto out = [&](const std::string& suffix) {
       written.push_back(dir / (stem + suffix));
       return written.back();
     };
-    write_png(render_heatmap(e, tolerance_of(r, e.name, channel < 0), font), out("_error.png"));
+    write_png(render_heatmap(e, tolerance_of(r, e.name, channel == compare::kDepth), font),
+              out("_error.png"));
     write_exr(out("_error.exr"), e.width, e.height, e.signed_error,
               e.name + ": GL - reference, NaN where not covered by the same primitive in both");
     write_exr(out("_gl.exr"), e.width, e.height, e.gl, e.name + ": GL");

@@ -87,7 +87,8 @@ Canvas render_heatmap(const ChannelError& error, double tolerance_ulps,
   for (size_t i = 0; i < error.ulps.size(); ++i) {
     if (!error.compared[i]) continue;
     ++compared;
-    over += !(error.ulps[i] <= tolerance_ulps);  // NaN and inf are over
+    // Inf (NaN or Inf from GL) is over any tolerance, an infinite one included.
+    over += std::isinf(error.ulps[i]) || !(error.ulps[i] <= tolerance_ulps);
   }
   const int text_width = canvas.width - 2 * kMargin;
   std::string title = fmt::format("{}   max {} ulp   tolerance {} ulp", error.name,

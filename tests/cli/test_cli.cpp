@@ -80,6 +80,16 @@ TEST(Cli, BadInputsExitTwo) {
   EXPECT_EQ(glrefcheck("run --filter '('").exit_code, 2);
   EXPECT_EQ(glrefcheck("digest --subpixel-bits 40").exit_code, 2);
   EXPECT_EQ(glrefcheck("list --filter '^no_case_has_this_name$'").exit_code, 2);
+  // Each of these is one line on stderr and exit 2, before any case runs.
+  for (const char* args :
+       {"run --out /proc/no/such/folder", "run --tolerance-ulps inf", "run --tolerance-ulps nan",
+        "run --depth-tolerance-ulps -1", "run --driver no_such_driver", "run --baseline cases",
+        "diff cases --out /proc/no/such/folder"}) {
+    const Outcome bad = glrefcheck(args);
+    EXPECT_EQ(bad.exit_code, 2) << args << ": " << bad.err;
+    EXPECT_EQ(lines(bad.err), 1u) << args << ": " << bad.err;
+    EXPECT_EQ(bad.out, "") << args;
+  }
   const fs::path d = temp_dir("baseline");
   std::ofstream(d / "fails.txt") << "# a comment\njust_a_name_without_status\n";
   const Outcome o =

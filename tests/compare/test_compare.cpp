@@ -119,17 +119,22 @@ TEST(Compare, NaNOrInfInGLFailsUnderAnyTolerance) {
   const Case c = two_varyings_case();
   const Frame ref = reference_frame(c);
   const std::vector<uint8_t> band(ref.pixel_count(), 0);
-  Tolerance huge;
-  huge.varying_ulps = huge.depth_ulps = 1e300;
-  for (float bad :
-       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
-    Frame gl = ref;
-    gl.components[0][gl.index(1, 1)] = bad;
-    const CaseResult r = compare(c, ref, band, gl, huge);
-    EXPECT_EQ(r.status, Status::fail);
-    EXPECT_EQ(channel(r, "uv.x").non_finite, 1u);
-    EXPECT_TRUE(std::isinf(channel(r, "uv.x").max_ulps));
-    EXPECT_NE(r.message.find("NaN"), std::string::npos) << r.message;
+  for (double tolerance : {1e300, std::numeric_limits<double>::infinity()}) {
+    Tolerance huge;
+    huge.varying_ulps = huge.depth_ulps = tolerance;
+    for (float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+      Frame gl = ref;
+      gl.components[0][gl.index(1, 1)] = bad;
+      gl.depth[gl.index(2, 2)] = bad;
+      const CaseResult r = compare(c, ref, band, gl, huge);
+      EXPECT_EQ(r.status, Status::fail);
+      EXPECT_EQ(channel(r, "uv.x").non_finite, 1u);
+      EXPECT_EQ(channel(r, "uv.x").over_tolerance, 1u);
+      EXPECT_FALSE(channel(r, "depth").pass());
+      EXPECT_TRUE(std::isinf(channel(r, "uv.x").max_ulps));
+      EXPECT_NE(r.message.find("NaN"), std::string::npos) << r.message;
+    }
   }
 }
 
