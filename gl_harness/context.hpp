@@ -50,6 +50,13 @@ std::string missing_library_message(std::initializer_list<const char*> tried,
 // dlsym() that throws Unavailable naming the symbol and library when it is missing.
 void* library_symbol(void* library, const char* library_name, const char* symbol);
 
+// Sets the function pointer `fn` to library_symbol(...), cast to its type: one place for the
+// cast every backend's library table needs.
+template <class Function>
+void load_symbol(Function*& fn, void* library, const char* library_name, const char* symbol) {
+  fn = reinterpret_cast<Function*>(library_symbol(library, library_name, symbol));
+}
+
 // Mesa's software drivers, the only ones picked through GALLIUM_DRIVER here.
 bool is_mesa_software_driver(std::string_view driver);
 

@@ -13,21 +13,17 @@ EglLibrary::EglLibrary() {
   void* h = open_library({kEglLibrary},
                          "install Debian's libegl1 and libegl-mesa0 (apt-get install libegl1 "
                          "libegl-mesa0)");
-  auto sym = [h](auto& fn, const char* name) {
-    fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(
-        library_symbol(h, kEglLibrary, name));
-  };
-  sym(GetProcAddress, "eglGetProcAddress");
-  sym(GetError, "eglGetError");
-  sym(QueryString, "eglQueryString");
-  sym(Initialize, "eglInitialize");
-  sym(Terminate, "eglTerminate");
-  sym(BindAPI, "eglBindAPI");
-  sym(ChooseConfig, "eglChooseConfig");
-  sym(CreateContext, "eglCreateContext");
-  sym(DestroyContext, "eglDestroyContext");
-  sym(MakeCurrent, "eglMakeCurrent");
-  sym(GetCurrentContext, "eglGetCurrentContext");
+  load_symbol(GetProcAddress, h, kEglLibrary, "eglGetProcAddress");
+  load_symbol(GetError, h, kEglLibrary, "eglGetError");
+  load_symbol(QueryString, h, kEglLibrary, "eglQueryString");
+  load_symbol(Initialize, h, kEglLibrary, "eglInitialize");
+  load_symbol(Terminate, h, kEglLibrary, "eglTerminate");
+  load_symbol(BindAPI, h, kEglLibrary, "eglBindAPI");
+  load_symbol(ChooseConfig, h, kEglLibrary, "eglChooseConfig");
+  load_symbol(CreateContext, h, kEglLibrary, "eglCreateContext");
+  load_symbol(DestroyContext, h, kEglLibrary, "eglDestroyContext");
+  load_symbol(MakeCurrent, h, kEglLibrary, "eglMakeCurrent");
+  load_symbol(GetCurrentContext, h, kEglLibrary, "eglGetCurrentContext");
   // NULL (with EGL_BAD_DISPLAY) when the library has no client extensions at all.
   if (const char* e = QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS)) client_extensions = e;
   GetError();

@@ -25,15 +25,11 @@ struct OsmesaLibrary {
     void* h = open_library({kLibrary, "libOSMesa.so.6"},
                            "install Debian's libosmesa6 (apt-get install libosmesa6), or use "
                            "the egl backend (Mesa removed OSMesa in 25.1)");
-    auto sym = [h](auto& fn, const char* name) {
-      fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(
-          library_symbol(h, kLibrary, name));
-    };
-    sym(CreateContextAttribs, "OSMesaCreateContextAttribs");
-    sym(DestroyContext, "OSMesaDestroyContext");
-    sym(MakeCurrent, "OSMesaMakeCurrent");
-    sym(GetCurrentContext, "OSMesaGetCurrentContext");
-    sym(GetProcAddress, "OSMesaGetProcAddress");
+    load_symbol(CreateContextAttribs, h, kLibrary, "OSMesaCreateContextAttribs");
+    load_symbol(DestroyContext, h, kLibrary, "OSMesaDestroyContext");
+    load_symbol(MakeCurrent, h, kLibrary, "OSMesaMakeCurrent");
+    load_symbol(GetCurrentContext, h, kLibrary, "OSMesaGetCurrentContext");
+    load_symbol(GetProcAddress, h, kLibrary, "OSMesaGetProcAddress");
   }
 };
 

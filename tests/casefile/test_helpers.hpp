@@ -4,7 +4,6 @@
 #pragma once
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <bit>
 #include <cstdint>
@@ -13,21 +12,12 @@
 #include <string>
 
 #include "casefile/casefile.hpp"
+#include "tests/support/temp_dir_test.hpp"
 
 namespace glrc::casefile::test {
 
-class CaseFileTest : public ::testing::Test {
+class CaseFileTest : public glrc::test::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() /
-           ("glrc_casefile_" + std::to_string(::getpid()) + "_" + info->test_suite_name() + "_" +
-            info->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
   // Writes `text` to <tmp>/<name> (sub-directories created) and returns the path.
   std::filesystem::path write(const std::string& name, const std::string& text) {
     const auto path = dir_ / name;
@@ -50,8 +40,6 @@ class CaseFileTest : public ::testing::Test {
     }
     return "";
   }
-
-  std::filesystem::path dir_;
 };
 
 inline uint32_t bits(float f) {
