@@ -40,6 +40,8 @@ struct Options {
   std::string backend = "osmesa", driver = "llvmpipe";
   int device = 0;
   // Verdict
+  std::string tolerance = "spec";
+  std::optional<int> spec_subpixel_bits;  // overrides GL_SUBPIXEL_BITS as reported
   std::optional<double> varying_ulps, depth_ulps;
   bool strict_coverage = false;
   std::string baseline, out = "out";
@@ -53,11 +55,21 @@ Model model_of(const Options& o) {
   return m;
 }
 
-// Defaults, then the case file's tolerance, then the command line's.
-Tolerance tolerance_for(const Case& c, const Options& o) {
+// The position freedom of the specification's tolerance: the subpixel bits the implementation
+// reports (GL requires at least 4), unless the command line names others.
+int freedom_bits(const Options& o, int reported) {
+  return std::max(o.spec_subpixel_bits.value_or(reported), 4);
+}
+
+// Defaults, then the case file's tolerance, then the command line's: --tolerance exact wins,
+// a number of ULPs turns to fixed thresholds.
+Tolerance tolerance_for(const Case& c, const Options& o, int reported_bits) {
   Tolerance t = c.tolerance.applied_to(Tolerance{});
+  t.subpixel_bits = freedom_bits(o, reported_bits);
   if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
   if (o.depth_ulps) t.depth_ulps = *o.depth_ulps;
+  if (o.varying_ulps || o.depth_ulps) t.mode = ToleranceMode::ulps;
+  if (o.tolerance == "exact") t.mode = ToleranceMode::exact;
   if (o.strict_coverage) t.allow_boundary = false;
   return t;
 }
@@ -112,6 +124,12 @@ RunInfo run_info(const Options& o, const gl::Renderer& r) {
   info.backend = o.backend;
   info.driver = o.driver;
   info.model = model_of(o).describe();
+  info.subpixel_bits = r.info().subpixel_bits;
+  info.tolerance =
+      o.tolerance == "exact" ? "exact"
+      : o.varying_ulps || o.depth_ulps
+          ? "ulps"
+          : "spec (subpixel bits " + std::to_string(freedom_bits(o, r.info().subpixel_bits)) + ")";
   info.gl_vendor = r.info().vendor;
   info.gl_renderer = r.info().renderer;
   info.gl_version = r.info().version;
@@ -128,11 +146,11 @@ struct Checked {
 Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
   const auto start = Clock::now();
   Checked out;
-  out.reference = ref::render(c, model_of(o));
+  const int reported = renderer.info().subpixel_bits;
+  out.reference = ref::render(c, model_of(o), freedom_bits(o, reported));
   try {
     out.gl = renderer.render(c);
-    out.result = compare::compare(c, out.reference.frame, out.reference.edge_band, out.gl,
-                                  tolerance_for(c, o));
+    out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported));
   } catch (const gl::RenderError& e) {
     out.result.name = c.name;
     out.result.description = c.description;
@@ -186,8 +204,8 @@ int cmd_run(const Options& o) {
   }
   auto renderer = open_renderer(o);
   RunInfo info = run_info(o, *renderer);
-  fmt::print("glrefcheck run: {} cases on {} ({}), GL {} | model {}\n", cases.size(),
-             info.gl_renderer, o.backend, info.gl_version, info.model);
+  fmt::print("glrefcheck run: {} cases on {} ({}), GL {} | model {} | tolerance {}\n", cases.size(),
+             info.gl_renderer, o.backend, info.gl_version, info.model, info.tolerance);
   std::fflush(stdout);
 
   const Progress progress;
@@ -230,13 +248,13 @@ int cmd_diff(const Options& o) {
   const RunInfo info = run_info(o, *renderer);
   const Checked checked = check(c, o, *renderer);
   const CaseResult& r = checked.result;
-  fmt::print("{}: {}\nGL: {} | {} | model {}\n\n", c.name, c.description, info.gl_renderer,
-             info.gl_version, info.model);
+  fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} | tolerance {}\n\n", c.name,
+             c.description, info.gl_renderer, info.gl_version, info.subpixel_bits, info.model,
+             info.tolerance);
   fmt::print("{}\n", report::case_line(r));
   if (r.status == Status::error) return 1;
   fmt::print("\n{}\n{}\n", report::stats_table(r), report::worst_pixels_table(r, 10));
-  const auto files = report::write_diff_images(out, c, checked.reference.frame,
-                                               checked.reference.edge_band, checked.gl, r);
+  const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r);
   fmt::print("wrote {} images to {}/\n", files.size(), o.out);
   return fails_run(r.status) ? 1 : 0;
 }
@@ -296,6 +314,12 @@ void add_gl_options(CLI::App& app, Options& o) {
       ->check(finite_ulps);
   app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0")
       ->check(finite_ulps);
+  app.add_option("--tolerance", o.tolerance,
+                 "spec: what the GL specification allows (default); exact: zero differing bits")
+      ->check(CLI::IsMember({"spec", "exact"}));
+  app.add_option("--spec-subpixel-bits", o.spec_subpixel_bits,
+                 "position freedom of the spec tolerance (default: GL_SUBPIXEL_BITS as reported)")
+      ->check(CLI::Range(4, 16));
   app.add_flag("--strict-coverage", o.strict_coverage,
                "count coverage mismatches at edges (within a subpixel step) as failures");
   app.add_option("--out", o.out, "output folder");

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -17,28 +18,40 @@ constexpr size_t kWorstPerChannel = 10;
 constexpr size_t kMismatchesKept = 64;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+double p99(std::vector<float>& values);
+
 // One channel's errors, gathered over the pixels both frames cover with the same primitive.
 struct ChannelAccumulator {
   ChannelStats stats;
-  // Every compared pixel's error, for the percentile; float is ample for a statistic and halves
-  // the memory of a large frame with many channels.
-  std::vector<float> ulps;
+  // Every compared pixel's error and share of its allowance, for the percentiles; float is
+  // ample for a statistic and halves the memory of a large frame with many channels.
+  std::vector<float> ulps, ratios;
+  bool exact = false;  // exact mode: any differing bit is over
   // The kWorstPerChannel largest errors as a min-heap: memory does not grow with the frame.
   std::vector<WorstPixel> worst;
   double sum = 0, sum_sq = 0;
   uint64_t finite = 0;
 
   static bool larger(const WorstPixel& a, const WorstPixel& b) {
+    if (a.ratio != b.ratio) return a.ratio > b.ratio;
     if (a.ulps != b.ulps) return a.ulps > b.ulps;
     return a.y != b.y ? a.y < b.y : a.x < b.x;
   }
 
-  void add(int x, int y, float reference, float gl, double ulp) {
+  void add(int x, int y, float reference, float gl, double ulp, double allowed) {
     const PixelError e = pixel_error(reference, gl, ulp);
     ++stats.compared;
-    // NaN and Inf are over any tolerance, an infinite one included.
-    if (e.non_finite || !(e.ulps <= stats.tolerance_ulps)) ++stats.over_tolerance;
-    if (e.non_finite) ++stats.non_finite;
+    const bool differs = std::bit_cast<uint32_t>(reference) != std::bit_cast<uint32_t>(gl);
+    stats.differing += differs;
+    // NaN and Inf are over any tolerance, an infinite one included; in exact mode every bit
+    // counts (-0 against +0 too).
+    const bool over = exact ? differs : e.non_finite || !(e.abs_error <= allowed);
+    if (over) ++stats.over_tolerance;
+    // GL's NaN never passes, even where the reference (a driver model) has the same NaN.
+    if (!std::isfinite(gl)) ++stats.non_finite;
+    const double ratio = e.abs_error == 0 ? 0.0 : allowed > 0 ? e.abs_error / allowed : kInf;
+    stats.max_ratio = std::max(stats.max_ratio, ratio);
+    ratios.push_back(float(ratio));
     if (std::isfinite(e.ulps)) {
       sum += e.ulps;
       sum_sq += e.ulps * e.ulps;
@@ -48,7 +61,7 @@ struct ChannelAccumulator {
     stats.max_ulps = std::max(stats.max_ulps, e.ulps);
     ulps.push_back(float(e.ulps));
     if (e.ulps == 0) return;
-    const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps};
+    const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps, allowed, ratio};
     if (worst.size() < kWorstPerChannel) {
       worst.push_back(p);
       std::push_heap(worst.begin(), worst.end(), larger);
@@ -66,17 +79,21 @@ struct ChannelAccumulator {
       stats.mean_ulps = sum / double(finite);
       stats.rms_ulps = std::sqrt(sum_sq / double(finite));
     }
-    if (!ulps.empty()) {
-      // Nearest-rank 99th percentile.
-      const size_t rank = size_t(std::ceil(0.99 * double(ulps.size()))) - 1;
-      std::nth_element(ulps.begin(), ulps.begin() + ptrdiff_t(rank), ulps.end());
-      stats.p99_ulps = ulps[rank];
-    }
+    stats.p99_ulps = p99(ulps);
+    stats.p99_ratio = p99(ratios);
     std::sort_heap(worst.begin(), worst.end(), larger);
     stats.worst = std::move(worst);
     return std::move(stats);
   }
 };
+
+// Nearest-rank 99th percentile; 0 for no values.
+double p99(std::vector<float>& values) {
+  if (values.empty()) return 0;
+  const size_t rank = size_t(std::ceil(0.99 * double(values.size()))) - 1;
+  std::nth_element(values.begin(), values.begin() + ptrdiff_t(rank), values.end());
+  return values[rank];
+}
 
 std::string format_ulps(double u) {
   if (std::isinf(u)) return "inf";
@@ -99,17 +116,34 @@ std::string failure_message(const CaseResult& r) {
     ++listed;
     std::string part = ch.name + ": ";
     if (ch.non_finite > 0) part += std::to_string(ch.non_finite) + " px NaN/Inf, ";
-    part += std::to_string(ch.over_tolerance) + " px over " + format_ulps(ch.tolerance_ulps) +
-            " ulp (max " + format_ulps(ch.max_ulps) + " ulp";
+    if (r.tolerance.mode == ToleranceMode::exact)
+      part += std::to_string(ch.differing) + " px differ (max " + format_ulps(ch.max_ulps) + " ulp";
+    else if (r.tolerance.mode == ToleranceMode::spec)
+      part += std::to_string(ch.over_tolerance) + " px over the allowance (max " +
+              format_ulps(ch.max_ratio) + "x allowed, " + format_ulps(ch.max_ulps) + " ulp";
+    else
+      part += std::to_string(ch.over_tolerance) + " px over " + format_ulps(ch.tolerance_ulps) +
+              " ulp (max " + format_ulps(ch.max_ulps) + " ulp";
     if (!ch.worst.empty())
       part += " at " + std::to_string(ch.worst[0].x) + "," + std::to_string(ch.worst[0].y);
     append(part + ")");
   }
   if (more > 0) append(std::to_string(more) + " more channels");
-  if (r.coverage.failures > 0) {
-    std::string part = "coverage: " + std::to_string(r.coverage.failures) + " px differ";
-    if (r.tolerance.allow_boundary) part += " away from any edge";
-    append(part);
+  const CoverageStats& cov = r.coverage;
+  if (cov.failures > 0) {
+    std::string part = "coverage: " + std::to_string(cov.failures) + " px fail (";
+    std::string kinds;
+    auto kind = [&](uint64_t n, const char* what) {
+      if (n) kinds += (kinds.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    };
+    kind(cov.fill_rule, "fill-rule errors");
+    kind(cov.gaps, "gaps on shared edges");
+    kind(cov.double_hits, "double hits on shared edges");
+    if (!r.tolerance.allow_boundary || r.tolerance.mode == ToleranceMode::exact) {
+      kind(cov.exact_tie, "exact ties");
+      kind(cov.within_snapping, "within snapping");
+    }
+    append(part + kinds + ")");
   }
   return msg;
 }
@@ -157,11 +191,35 @@ PixelError pixel_error(float reference, float gl, double ulp) {
   return e;
 }
 
-CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint8_t>& edge_band,
-                   const Frame& gl, const Tolerance& tolerance) {
+std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
+                                                   size_t i) {
+  using Label = CoverageStats::Label;
+  const Frame& reference = expected.frame;
+  const uint8_t edges = expected.edges[i];
+  // Watertightness: away from outer edges, GL must write as many fragments as the reference;
+  // near a shared edge that is one, never zero or two.
+  const bool counts = reference.fragments.size() == reference.pixel_count() &&
+                      gl.fragments.size() == gl.pixel_count();
+  if (counts && !(edges & edge::snapping) && gl.fragments[i] != reference.fragments[i]) {
+    if (!(edges & edge::shared)) return Label::fill_rule;
+    return gl.fragments[i] < reference.fragments[i] ? Label::gap : Label::double_hit;
+  }
+  if (reference.primitive[i] == gl.primitive[i]) return std::nullopt;
+  if (edges & edge::tie) return Label::exact_tie;
+  if (edges & (edge::snapping | edge::shared)) return Label::within_snapping;
+  return Label::fill_rule;
+}
+
+CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
+                   const Tolerance& tolerance) {
+  const Frame& reference = expected.frame;
+  const bool spec = tolerance.mode == ToleranceMode::spec;
+  const bool exact = tolerance.mode == ToleranceMode::exact;
   if (reference.width != gl.width || reference.height != gl.height ||
       reference.components.size() != gl.components.size() ||
-      edge_band.size() != reference.pixel_count())
+      expected.edges.size() != reference.pixel_count() ||
+      (spec && (expected.allowed.components.size() != reference.components.size() ||
+                expected.allowed.depth.size() != reference.pixel_count())))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
 
   CaseResult r;
@@ -172,6 +230,9 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
   // Coverage first; the pixels where values are compared are kept for the channel passes.
   std::vector<size_t> compared;
   auto& cov = r.coverage;
+  cov.fragments_checked = reference.fragments.size() == reference.pixel_count() &&
+                          gl.fragments.size() == gl.pixel_count();
+  using Label = CoverageStats::Label;
   for (int y = 0; y < reference.height; ++y) {
     for (int x = 0; x < reference.width; ++x) {
       const size_t i = reference.index(x, y);
@@ -181,19 +242,25 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
       } else if (same_primitive(c, pr, pg)) {
         ++cov.both;
         compared.push_back(i);
+      } else if (pg == Frame::kNoPrimitive) {
+        ++cov.reference_only;
+      } else if (pr == Frame::kNoPrimitive) {
+        ++cov.gl_only;
       } else {
-        if (pg == Frame::kNoPrimitive)
-          ++cov.reference_only;
-        else if (pr == Frame::kNoPrimitive)
-          ++cov.gl_only;
-        else
-          ++cov.other_primitive;
-        const bool boundary = edge_band[i] != 0;
-        if (boundary) ++cov.boundary;
-        if (!(boundary && tolerance.allow_boundary)) ++cov.failures;
-        if (cov.mismatches.size() < kMismatchesKept)
-          cov.mismatches.push_back({x, y, pr, pg, boundary});
+        ++cov.other_primitive;
       }
+      const std::optional<Label> label = coverage_label(expected, gl, i);
+      if (!label) continue;
+      ++(*label == Label::exact_tie         ? cov.exact_tie
+         : *label == Label::within_snapping ? cov.within_snapping
+         : *label == Label::gap             ? cov.gaps
+         : *label == Label::double_hit      ? cov.double_hits
+                                            : cov.fill_rule);
+      const bool free = explained(*label);
+      if (free) ++cov.boundary;
+      if (!free || !tolerance.allow_boundary || exact) ++cov.failures;
+      if (cov.mismatches.size() < kMismatchesKept)
+        cov.mismatches.push_back({x, y, pr, pg, free, *label});
     }
   }
 
@@ -204,19 +271,35 @@ CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint
   const UlpTable ulps(c);
   for (int k = kDepth; k < int(names.size()); ++k) {
     ChannelAccumulator acc;
+    acc.exact = exact;
     const bool depth = k == kDepth;
     acc.stats.name = depth ? "depth" : names[size_t(k)];
     // A flat value is copied from the provoking vertex, never computed: any change is wrong.
     const bool flat =
         !depth && c.varyings[size_t(owner[size_t(k)])].interpolation == Interpolation::flat;
-    acc.stats.tolerance_ulps = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
+    const double fixed_ulps = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
     const std::vector<float>& ref_values =
         depth ? reference.depth : reference.components[size_t(k)];
     const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
+    const std::vector<float>* allowed_values = !spec   ? nullptr
+                                               : depth ? &expected.allowed.depth
+                                                       : &expected.allowed.components[size_t(k)];
     acc.ulps.reserve(compared.size());
-    for (size_t i : compared)
+    acc.ratios.reserve(compared.size());
+    double largest_allowance_ulps = 0;
+    for (size_t i : compared) {
+      const double ulp = ulps.ulp(reference.primitive[i], k);
+      double allowed = 0;
+      if (allowed_values) {
+        allowed = double((*allowed_values)[i]);
+        largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
+      } else if (!exact) {
+        allowed = fixed_ulps * ulp;
+      }
       acc.add(int(i % size_t(reference.width)), int(i / size_t(reference.width)), ref_values[i],
-              gl_values[i], ulps.ulp(reference.primitive[i], k));
+              gl_values[i], ulp, allowed);
+    }
+    acc.stats.tolerance_ulps = spec ? largest_allowance_ulps : exact ? 0.0 : fixed_ulps;
     r.channels.push_back(acc.finish());
   }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/case.hpp"
@@ -11,10 +12,12 @@
 
 namespace glrc::compare {
 
-// edge_band: the reference's per-pixel "centre within one subpixel step of an edge" mask.
-// Sets status to pass or fail (never anything else) and fills the statistics.
-CaseResult compare(const Case& c, const Frame& reference, const std::vector<uint8_t>& edge_band,
-                   const Frame& gl, const Tolerance& tolerance);
+// Judges a GL frame against what a correct implementation may produce. Spec tolerance needs
+// expected.allowed; coverage mismatches are labelled from expected.edges; fragment counts are
+// checked for watertightness where both frames have them. Sets status to pass or fail (never
+// anything else) and fills the statistics.
+CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
+                   const Tolerance& tolerance);
 
 // The scale of component k at a pixel covered by triangle `primitive`: the largest |v_i| of
 // that triangle's three vertices. Depth is component kDepth, of scale 1.0. Errors are counted in
@@ -43,6 +46,17 @@ class UlpTable {
 // Whether values are compared at a pixel: both frames name the same drawn triangle.
 inline bool same_primitive(const Case& c, int32_t reference, int32_t gl) {
   return reference == gl && reference >= 0 && size_t(reference) < c.triangles.size();
+}
+
+// How pixel i's coverage disagrees with what is expected, or nothing where it does not: a
+// different primitive is an exact tie, within snapping or a fill-rule error by the expected
+// edge bits; a different fragment count (when both frames have counts) away from outer edges is
+// a gap or double hit near a shared edge, else a fill-rule error.
+std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
+                                                   size_t i);
+// Labels that the specification's freedom explains (exact tie, within snapping).
+inline bool explained(CoverageStats::Label l) {
+  return l == CoverageStats::Label::exact_tie || l == CoverageStats::Label::within_snapping;
 }
 
 // The error at one compared pixel of one channel, as every report counts it.

@@ -34,16 +34,28 @@ struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;
 };
 
-// Verdict thresholds. Varying errors are in ULPs of the attribute's scale: the ulp of the
-// largest |v_i| among the covering triangle's vertices for that component. Depth errors are in
-// ULPs of 1.0 (2^-23), the scale of the depth range.
+// How the verdict judges values and coverage.
+//   spec:  the default. Per pixel, the error the GL specification allows an implementation that
+//          reports GL_SUBPIXEL_BITS = subpixel_bits (see ref/allowance.hpp and the README).
+//   ulps:  fixed thresholds: varying errors in ULPs of the attribute's scale (the ulp of the
+//          largest |v_i| among the covering triangle's vertices for that component), depth in
+//          ULPs of 1.0 (2^-23). Chosen when a case file or the command line names a number.
+//   exact: zero differing bits and identical coverage, for a bit-exact model of one driver.
+enum class ToleranceMode { spec, ulps, exact };
+
 struct Tolerance {
+  ToleranceMode mode = ToleranceMode::spec;
+  int subpixel_bits = 4;  // spec: the position freedom (at least the 4 GL requires)
   double varying_ulps = 64;
   double depth_ulps = 16;
-  bool allow_boundary = true;  // coverage mismatches within one subpixel step of an edge
+  // Coverage mismatches explained by the specification's freedom (a centre exactly on an
+  // edge, or within the snapping band of an edge) do not fail; gaps and double hits on shared
+  // edges always do.
+  bool allow_boundary = true;
 };
 
-// Optional fields in a case file; each set one overrides the default tolerance.
+// Optional fields in a case file; each set one overrides the default tolerance. A number of
+// ULPs turns the case to fixed thresholds.
 struct ToleranceOverride {
   std::optional<double> varying_ulps;
   std::optional<double> depth_ulps;
@@ -51,6 +63,7 @@ struct ToleranceOverride {
   Tolerance applied_to(Tolerance t) const {
     if (varying_ulps) t.varying_ulps = *varying_ulps;
     if (depth_ulps) t.depth_ulps = *depth_ulps;
+    if ((varying_ulps || depth_ulps) && t.mode == ToleranceMode::spec) t.mode = ToleranceMode::ulps;
     if (allow_boundary) t.allow_boundary = *allow_boundary;
     return t;
   }
@@ -78,7 +91,8 @@ struct Case {
 
   int component_count() const {
     int n = 0;
-    for (const auto& v : varyings) n += v.size;
+    for (const auto& v : varyings)
+      n += v.size;
     return n;
   }
 };

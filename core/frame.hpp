@@ -3,6 +3,7 @@
 // (GL window coordinates, y up).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct Frame {
   std::vector<float> depth;        // z_w; 1.0 (the clear value) where not covered
   // components[k][pixel]: varying component k (Case component order); 0 where not covered.
   std::vector<std::vector<float>> components;
+  // How many fragments were written at each pixel (passing the depth test): 1 inside a
+  // watertight mesh, 0 in a gap, 2 where a shared edge was drawn twice. Empty when unknown.
+  std::vector<uint16_t> fragments;
 
   Frame() = default;
   Frame(int w, int h, int component_count)
@@ -27,6 +31,24 @@ struct Frame {
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
   size_t pixel_count() const { return size_t(width) * height; }
+};
+
+// What is known about the reference's edges near a pixel centre: bits of one byte per pixel,
+// for judging coverage mismatches.
+namespace edge {
+inline constexpr uint8_t tie = 1;       // the centre lies exactly on an edge
+inline constexpr uint8_t snapping = 2;  // within the snapping band of an outer edge or clip plane
+inline constexpr uint8_t shared = 4;    // within the snapping band of an edge two triangles share
+}  // namespace edge
+
+// What a correct implementation may produce: the exact reference frame, and around it the
+// freedom the specification leaves.
+struct Expectation {
+  Frame frame;                 // the exact reference
+  std::vector<uint8_t> edges;  // edge:: bits per pixel
+  // Per pixel and channel (depth, components), the largest |gl - reference| a conforming
+  // implementation can produce there; no components when not computed.
+  Frame allowed;
 };
 
 }  // namespace glrc

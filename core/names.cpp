@@ -27,6 +27,18 @@ std::string Model::describe() const {
          " tie=" + (tie_break == TieBreak::bottom_left ? "bottom-left" : "top-left");
 }
 
+const char* to_string(ToleranceMode m) {
+  switch (m) {
+    case ToleranceMode::spec:
+      return "spec";
+    case ToleranceMode::ulps:
+      return "ulps";
+    case ToleranceMode::exact:
+      return "exact";
+  }
+  return "spec";
+}
+
 const char* to_string(Status s) {
   switch (s) {
     case Status::pass:

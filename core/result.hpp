@@ -12,12 +12,15 @@ namespace glrc {
 
 enum class Status { pass, fail, expected_fail, unexpected_pass, skip, error };
 const char* to_string(Status s);
+const char* to_string(ToleranceMode m);  // "spec", "ulps", "exact"
 
 struct WorstPixel {
   int x = 0, y = 0;
   float reference = 0, gl = 0;
   double abs_error = 0;  // |gl - reference|; +inf for NaN/Inf in GL output
   double ulps = 0;       // abs_error in ULPs of the attribute's scale
+  double allowed = 0;    // the largest legal abs_error at this pixel
+  double ratio = 0;      // abs_error / allowed: over 1 fails (0/0 is 0, x/0 is inf)
 };
 
 struct ChannelStats {
@@ -25,8 +28,11 @@ struct ChannelStats {
   uint64_t compared = 0;        // pixels covered by the same primitive in both frames
   uint64_t over_tolerance = 0;  // of which over the tolerance (NaN/Inf included)
   uint64_t non_finite = 0;      // GL gave NaN or Inf where the reference is finite
+  uint64_t differing = 0;       // pixels whose bits differ from the reference at all
   double max_abs = 0, max_ulps = 0, mean_ulps = 0, rms_ulps = 0, p99_ulps = 0;
-  double tolerance_ulps = 0;
+  // How much of the allowance was used: abs_error / allowed, over the compared pixels.
+  double max_ratio = 0, p99_ratio = 0;
+  double tolerance_ulps = 0;  // ulps mode: the threshold; spec mode: the largest allowance in ULPs
   std::vector<WorstPixel> worst;  // largest errors first
   // NaN or Inf never passes, whatever the tolerance (even an infinite one).
   bool pass() const { return over_tolerance == 0 && non_finite == 0; }
@@ -38,12 +44,21 @@ struct CoverageStats {
   uint64_t reference_only = 0;   // reference covers, GL does not
   uint64_t gl_only = 0;          // GL covers, reference does not
   uint64_t other_primitive = 0;  // both cover, with different primitives
-  uint64_t boundary = 0;         // mismatches whose centre is within a subpixel step of an edge
-  uint64_t failures = 0;         // mismatches that count against the verdict
+  // Every mismatch gets one label: exact tie (the centre lies on an edge), within snapping
+  // (within the band the position freedom allows), or fill-rule error (everything else).
+  uint64_t exact_tie = 0, within_snapping = 0, fill_rule = 0;
+  uint64_t boundary = 0;  // exact_tie + within_snapping
+  // Watertightness where triangles share an edge: pixels no fragment reached although one had
+  // to (gaps) and pixels reached twice (double hits). Always failures.
+  uint64_t gaps = 0, double_hits = 0;
+  bool fragments_checked = false;  // whether GL reported fragment counts
+  uint64_t failures = 0;           // mismatches that count against the verdict
+  enum class Label { exact_tie, within_snapping, fill_rule, gap, double_hit };
   struct Pixel {
     int x = 0, y = 0;
     int32_t reference = -1, gl = -1;
     bool boundary = false;
+    Label label = Label::fill_rule;
   };
   std::vector<Pixel> mismatches;  // first few, for the report
 };
@@ -62,6 +77,8 @@ struct CaseResult {
 // Run-wide facts for the reports.
 struct RunInfo {
   std::string backend, driver, model;
+  std::string tolerance;  // "spec (subpixel bits 8)", "ulps" or "exact"
+  int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
   std::string gl_vendor, gl_renderer, gl_version;
   double seconds = 0;
 };

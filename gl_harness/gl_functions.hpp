@@ -51,6 +51,8 @@ class Context;
   X(PFNGLDISABLEPROC, Disable)                                 \
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                             \
   X(PFNGLDEPTHMASKPROC, DepthMask)                             \
+  X(PFNGLBLENDFUNCPROC, BlendFunc)                             \
+  X(PFNGLBLENDEQUATIONPROC, BlendEquation)                     \
   X(PFNGLCULLFACEPROC, CullFace)                               \
   X(PFNGLFRONTFACEPROC, FrontFace)                             \
   X(PFNGLPROVOKINGVERTEXPROC, ProvokingVertex)                 \

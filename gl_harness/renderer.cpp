@@ -112,6 +112,16 @@ std::string fragment_shader_source(const Case& c, const char* input) {
   return s;
 }
 
+// The fragment-count pass: positions only, and every fragment adds 1 to a float attachment.
+const char* const kCountVertexShader =
+    "#version 330 core\n"
+    "layout(location = 0) in vec4 a_clip;\n"
+    "void main() { gl_Position = a_clip; }\n";
+const char* const kCountFragmentShader =
+    "#version 330 core\n"
+    "layout(location = 0) out float o_count;\n"
+    "void main() { o_count = 1.0; }\n";
+
 // One line: shader logs and messages go into RenderError::what().
 std::string one_line(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ' || s.back() == '\0'))
@@ -172,8 +182,9 @@ struct CaseObjects {
 // At most one is alive, so memory does not pile up either.
 struct Framebuffer {
   GLuint framebuffer = 0;
-  std::vector<GLuint> renderbuffers;  // one per varying, the primitive id, depth
-  int width = 0, height = 0, varyings = -1;
+  std::vector<GLuint> renderbuffers;  // one per colour attachment, then depth
+  int width = 0, height = 0;
+  std::vector<GLenum> colour_formats;
 };
 
 class GlRenderer final : public Renderer {
@@ -212,7 +223,9 @@ class GlRenderer final : public Renderer {
       context_->make_current();
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
-      release_framebuffer();
+      if (count_program_) gl_.DeleteProgram(count_program_);
+      release_framebuffer(framebuffer_);
+      release_framebuffer(count_framebuffer_);
     } catch (...) {
       // Tearing down: the context goes anyway.
     }
@@ -230,8 +243,10 @@ class GlRenderer final : public Renderer {
     const int w = c.fb_width, h = c.fb_height;
     CaseObjects objects(gl_);
 
+    std::vector<GLenum> formats(size_t(n), GL_RGBA32F);
+    formats.push_back(GL_R32I);
     gl_.UseProgram(program_for(c));
-    bind_framebuffer(c);
+    bind_framebuffer(c, framebuffer_, formats);
     set_state(c);
     clear(n);
     draw(c, objects);
@@ -256,10 +271,40 @@ class GlRenderer final : public Renderer {
     gl_.ReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
     gl_.ReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, frame.depth.data());
     check_error(c, "reading back");
+    count_fragments(c, frame);
     return frame;
   }
 
  private:
+  // Draws the case again with positions only, into its own framebuffer, adding 1 per fragment
+  // that passes the same depth test: how many fragments each pixel received, which the final
+  // primitive id cannot tell (a shared edge drawn twice shows only its last triangle).
+  void count_fragments(const Case& c, Frame& frame) {
+    if (!count_program_) {
+      const GLuint vs = compile(GL_VERTEX_SHADER, kCountVertexShader, c);
+      const GLuint fs = compile(GL_FRAGMENT_SHADER, kCountFragmentShader, c);
+      count_program_ = link({vs, fs}, c);
+    }
+    gl_.UseProgram(count_program_);
+    bind_framebuffer(c, count_framebuffer_, {GL_R32F});
+    const GLfloat zero[4] = {0, 0, 0, 0}, far = 1.0f;
+    gl_.ClearBufferfv(GL_COLOR, 0, zero);
+    gl_.ClearBufferfv(GL_DEPTH, 0, &far);
+    gl_.Enable(GL_BLEND);
+    gl_.BlendEquation(GL_FUNC_ADD);
+    gl_.BlendFunc(GL_ONE, GL_ONE);
+    gl_.DrawElements(GL_TRIANGLES, GLsizei(c.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
+    gl_.Disable(GL_BLEND);
+    check_error(c, "counting fragments");
+    std::vector<float> counts(frame.pixel_count());
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl_.ReadPixels(0, 0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
+    check_error(c, "reading fragment counts");
+    frame.fragments.resize(counts.size());
+    for (size_t i = 0; i < counts.size(); ++i)
+      frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
+  }
+
   GLint integer(GLenum name) const {
     GLint v = 0;
     gl_.GetIntegerv(name, &v);
@@ -374,6 +419,12 @@ class GlRenderer final : public Renderer {
         gl_.DeleteShader(shader);
       throw;
     }
+    const GLuint program = link(shaders, c);
+    programs_.emplace(std::move(key), program);
+    return program;
+  }
+
+  GLuint link(const std::vector<GLuint>& shaders, const Case& c) {
     GLuint program = gl_.CreateProgram();
     for (GLuint shader : shaders)
       gl_.AttachShader(program, shader);
@@ -389,23 +440,22 @@ class GlRenderer final : public Renderer {
       gl_.DeleteProgram(program);
       throw RenderError("case '" + c.name + "': program does not link: " + one_line(log.c_str()));
     }
-    programs_.emplace(std::move(key), program);
     return program;
   }
 
-  // RGBA32F per varying, R32I for gl_PrimitiveID, 32F depth: every value read back exactly as
-  // the fragment shader and the depth stage produced it.
-  void bind_framebuffer(const Case& c) {
-    const int n = int(c.varyings.size());
-    Framebuffer& fb = framebuffer_;
-    if (fb.framebuffer && fb.width == c.fb_width && fb.height == c.fb_height && fb.varyings == n) {
+  // The main framebuffer: RGBA32F per varying, R32I for gl_PrimitiveID, 32F depth, so every
+  // value is read back exactly as the fragment shader and the depth stage produced it. The
+  // count framebuffer: R32F and 32F depth. Each is kept while size and formats stay the same.
+  void bind_framebuffer(const Case& c, Framebuffer& fb, const std::vector<GLenum>& formats) {
+    if (fb.framebuffer && fb.width == c.fb_width && fb.height == c.fb_height &&
+        fb.colour_formats == formats) {
       gl_.BindFramebuffer(GL_FRAMEBUFFER, fb.framebuffer);  // draw buffers are FBO state
       return;
     }
-    release_framebuffer();
+    release_framebuffer(fb);
     gl_.GenFramebuffers(1, &fb.framebuffer);
     gl_.BindFramebuffer(GL_FRAMEBUFFER, fb.framebuffer);
-    fb.renderbuffers.assign(size_t(n) + 2, 0);
+    fb.renderbuffers.assign(formats.size() + 1, 0);
     gl_.GenRenderbuffers(GLsizei(fb.renderbuffers.size()), fb.renderbuffers.data());
     auto attach = [&](GLuint rb, GLenum format, GLenum attachment) {
       gl_.BindRenderbuffer(GL_RENDERBUFFER, rb);
@@ -413,16 +463,16 @@ class GlRenderer final : public Renderer {
       gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
     };
     std::vector<GLenum> draw_buffers;
-    for (int k = 0; k <= n; ++k) {
-      attach(fb.renderbuffers[size_t(k)], k < n ? GL_RGBA32F : GL_R32I, GL_COLOR_ATTACHMENT0 + k);
-      draw_buffers.push_back(GL_COLOR_ATTACHMENT0 + k);
+    for (size_t k = 0; k < formats.size(); ++k) {
+      attach(fb.renderbuffers[k], formats[k], GLenum(GL_COLOR_ATTACHMENT0 + k));
+      draw_buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + k));
     }
-    attach(fb.renderbuffers[size_t(n) + 1], GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
+    attach(fb.renderbuffers.back(), GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
     gl_.DrawBuffers(GLsizei(draw_buffers.size()), draw_buffers.data());
     GLenum error = gl_.GetError();
     GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
     if (error != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
-      release_framebuffer();
+      release_framebuffer(fb);
       throw RenderError(
           "case '" + c.name + "': " +
           (error != GL_NO_ERROR
@@ -431,11 +481,10 @@ class GlRenderer final : public Renderer {
     }
     fb.width = c.fb_width;
     fb.height = c.fb_height;
-    fb.varyings = n;
+    fb.colour_formats = formats;
   }
 
-  void release_framebuffer() {
-    Framebuffer& fb = framebuffer_;
+  void release_framebuffer(Framebuffer& fb) {
     gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
     if (fb.framebuffer) gl_.DeleteFramebuffers(1, &fb.framebuffer);
     if (!fb.renderbuffers.empty())
@@ -526,7 +575,8 @@ class GlRenderer final : public Renderer {
   GlFunctions gl_;
   GlInfo info_;
   std::map<std::string, GLuint> programs_;
-  Framebuffer framebuffer_;
+  Framebuffer framebuffer_, count_framebuffer_;
+  GLuint count_program_ = 0;
   std::vector<float> readback_;  // one colour attachment as RGBA, kept to spare reallocations
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};

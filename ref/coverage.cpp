@@ -14,19 +14,23 @@ bool tie_inside(int sign_a, int sign_b, TieBreak rule) {
   return rule == TieBreak::bottom_left ? sign_b > 0 : sign_b < 0;
 }
 
-int sign128(int128 v) { return v > 0 ? 1 : v < 0 ? -1 : 0; }
+int sign128(int128 v) {
+  return v > 0 ? 1 : v < 0 ? -1 : 0;
+}
 
 }  // namespace
 
 CoverageTest::CoverageTest(const TriangleSetup& t, const Model& m) : t_(t), clip_(depth_clip(t)) {
   for (int i = 0; i < 3; ++i) {
+    const auto& e = t.homogeneous_edges[i];
+    edges_[i] = SignEvaluator(e);
+    const double a = std::fabs(e.a.get_d()), b = std::fabs(e.b.get_d());
+    const double norm = std::hypot(a, b);
+    band_scale_[i] = norm > 0 ? (a + b) / norm : 1.0;
     if (t.path == CoveragePath::snapped) {
-      const auto& e = t.snapped_edges[i];
-      tie_inside_[i] = tie_inside(sign128(e.a), sign128(e.b), m.tie_break);
-      inv_norm_[i] = 1.0 / std::hypot(double(e.a), double(e.b));
+      const auto& s = t.snapped_edges[i];
+      tie_inside_[i] = tie_inside(sign128(s.a), sign128(s.b), m.tie_break);
     } else {
-      const auto& e = t.homogeneous_edges[i];
-      edges_[i] = SignEvaluator(e);
       tie_inside_[i] = tie_inside(sgn(e.a), sgn(e.b), m.tie_break);
     }
   }
@@ -43,21 +47,40 @@ bool CoverageTest::covers(int px, int py) const {
   return true;
 }
 
-bool CoverageTest::near_boundary(int px, int py, double step) const {
-  double nearest = INFINITY;
-  auto consider = [&](double d) {
-    nearest = std::min(nearest, d);
-    return d >= -step;
-  };
+uint8_t CoverageTest::classify(int px, int py, double freedom,
+                               const std::array<bool, 3>& shared) const {
+  uint8_t bits = 0;
+  // Distances first: a centre far outside any band needs no exact sign.
+  std::array<double, 3> d{}, band{};
   for (int i = 0; i < 3; ++i) {
-    const double d = t_.path == CoveragePath::snapped
-                         ? double(t_.snapped_edges[i].at(px, py)) * inv_norm_[i]
-                         : edges_[i].distance(px, py);
-    if (!consider(d)) return false;
+    d[i] = edges_[i].distance(px, py);
+    band[i] = freedom * band_scale_[i];
+    if (d[i] < -band[i]) return 0;
   }
-  if (clip_.crosses_near && !consider(clip_.near.distance(px, py))) return false;
-  if (clip_.crosses_far && !consider(clip_.far.distance(px, py))) return false;
-  return nearest <= step;
+  double near_d = INFINITY, far_d = INFINITY;
+  if (clip_.crosses_near && (near_d = clip_.near.distance(px, py)) < -freedom) return 0;
+  if (clip_.crosses_far && (far_d = clip_.far.distance(px, py)) < -freedom) return 0;
+  for (int i = 0; i < 3; ++i)
+    if (d[i] <= band[i]) bits |= shared[i] ? edge::shared : edge::snapping;
+  if (near_d <= freedom || far_d <= freedom) bits |= edge::snapping;
+  if (bits == 0) return 0;
+
+  // Exactly on an edge of the coverage test (snapped or exact) or of the exact triangle, and
+  // not outside the other edges of that same test.
+  auto on_edge = [&](auto sign_of) {
+    bool zero = false;
+    for (int i = 0; i < 3; ++i) {
+      const int s = sign_of(i);
+      if (s < 0) return false;
+      zero = zero || s == 0;
+    }
+    return zero;
+  };
+  const bool tie = on_edge([&](int i) { return edges_[i].sign(px, py); }) ||
+                   (t_.path == CoveragePath::snapped &&
+                    on_edge([&](int i) { return sign128(t_.snapped_edges[i].at(px, py)); }));
+  if (tie) bits |= edge::tie;
+  return bits;
 }
 
 }  // namespace glrc::ref

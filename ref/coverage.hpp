@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "core/frame.hpp"
 #include "core/model.hpp"
 #include "ref/clipping.hpp"
 #include "ref/setup.hpp"
@@ -14,17 +15,22 @@ class CoverageTest {
  public:
   CoverageTest(const TriangleSetup& t, const Model& m);
   bool covers(int px, int py) const;
-  // Whether the centre lies within `step` pixels of the triangle's boundary (its edges, or the
-  // near/far lines where the triangle crosses them): inside the triangle grown by `step`, and
-  // not inside the triangle shrunk by it.
-  bool near_boundary(int px, int py, double step) const;
+  // What this triangle's boundary means for the centre of pixel (px, py), as edge:: bits.
+  // `freedom`: how far (in pixels, along x and along y) an implementation may move each vertex;
+  // an edge then moves by at most freedom·(|n_x| + |n_y|) for its unit normal n, which is the
+  // band around the exact (unsnapped) edge. snapping or shared: the centre is inside the
+  // triangle grown by the bands, and within the band of an edge (shared: of an edge another
+  // triangle shares; snapping: of an outer edge, or of a near/far line, whose band is
+  // `freedom`). tie: the centre is exactly on an edge of this coverage test or of the exact
+  // triangle, and not outside the others.
+  uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared) const;
 
  private:
   const TriangleSetup& t_;
   DepthClip clip_;
-  std::array<SignEvaluator, 3> edges_;  // homogeneous path
+  std::array<SignEvaluator, 3> edges_;  // the exact (homogeneous) edges, on either path
   std::array<bool, 3> tie_inside_{};    // a centre exactly on edge i is covered
-  std::array<double, 3> inv_norm_{};    // snapped path: 1 / |gradient| per pixel
+  std::array<double, 3> band_scale_{};  // (|n_x| + |n_y|) of each exact edge's unit normal
 };
 
 }  // namespace glrc::ref

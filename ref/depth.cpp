@@ -2,7 +2,7 @@
 
 namespace glrc::ref {
 
-RatioEvaluator depth_plane(const TriangleSetup& t, const Barycentrics& b) {
+Plane depth_plane(const TriangleSetup& t, const Barycentrics& b) {
   std::array<mpq_class, 3> alpha, beta;
   for (int i = 0; i < 3; ++i) {
     if (b.screen_space) {

@@ -7,7 +7,7 @@
 
 namespace glrc::ref {
 
-RatioEvaluator depth_plane(const TriangleSetup& t, const Barycentrics& b);
+Plane depth_plane(const TriangleSetup& t, const Barycentrics& b);
 
 // Whether a fragment at depth z passes against the stored value.
 inline bool depth_test(DepthFunc f, float z, float stored) {

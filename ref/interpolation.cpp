@@ -1,5 +1,8 @@
 #include "ref/interpolation.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace glrc::ref {
 
 Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
@@ -16,14 +19,14 @@ Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
   return b;
 }
 
-RatioEvaluator plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
-                     const std::array<mpq_class, 3>& beta) {
-  LinearForm n, d;
+Plane plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
+            const std::array<mpq_class, 3>& beta) {
+  Plane p;
   for (int i = 0; i < 3; ++i) {
-    n += b.l[i] * alpha[i];
-    d += b.l[i] * beta[i];
+    p.numerator += b.l[i] * alpha[i];
+    p.denominator += b.l[i] * beta[i];
   }
-  return RatioEvaluator(n, d);
+  return p;
 }
 
 std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
@@ -41,8 +44,12 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
       continue;
     }
     std::array<mpq_class, 3> alpha, beta;
+    double lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < 3; ++i) {
-      const mpq_class v(double(c.vertices[t.index[i]].values[k]));
+      const double value = double(c.vertices[t.index[i]].values[k]);
+      lo = std::min(lo, value), hi = std::max(hi, value);
+      p.scale = std::max(p.scale, std::fabs(value));
+      const mpq_class v(value);
       const mpq_class& w = t.v[i].w_c;
       const bool perspective = q == Interpolation::smooth;
       if (b.screen_space) {
@@ -53,7 +60,9 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
         beta[i] = perspective ? mpq_class(1) : w;
       }
     }
-    p.ratio = plane(b, alpha, beta);
+    p.spread = hi - lo;
+    p.plane = plane(b, alpha, beta);
+    p.ratio = p.plane.evaluator();
     planes.push_back(std::move(p));
   }
   return planes;

@@ -33,18 +33,26 @@ struct Barycentrics {
 
 Barycentrics barycentrics(const TriangleSetup& t, const Model& m);
 
+// A channel's value as N / D, two exact linear forms in pixel coordinates.
+struct Plane {
+  LinearForm numerator, denominator;
+  RatioEvaluator evaluator() const { return RatioEvaluator(numerator, denominator); }
+};
+
 // Per component of the case: either a flat value or the exact ratio to evaluate per pixel.
 struct ComponentPlane {
   bool flat = false;
   float flat_value = 0;
+  Plane plane;
   RatioEvaluator ratio;
+  double spread = 0, scale = 0;  // max v_i - min v_i and max |v_i| over the three vertices
 };
 
 std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
                                              const Barycentrics& b);
 
 // Sum L_i alpha_i over sum L_i beta_i.
-RatioEvaluator plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
-                     const std::array<mpq_class, 3>& beta);
+Plane plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
+            const std::array<mpq_class, 3>& beta);
 
 }  // namespace glrc::ref

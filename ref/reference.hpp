@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/case.hpp"
@@ -13,15 +14,14 @@
 
 namespace glrc::ref {
 
-struct Reference {
-  Frame frame;
-  // 1 where the pixel centre lies within one subpixel step (Euclidean, window pixels) of an
-  // edge of some drawn triangle, of a near/far clip boundary, or of a vertex: there, legal
-  // implementations may disagree about coverage. Not part of the digest.
-  std::vector<uint8_t> edge_band;
-};
+// The frame, its edge bits (core/frame.hpp edge::) and, when asked for, the allowance.
+using Reference = Expectation;
 
-Reference render(const Case& c, const Model& m);
+// Renders the case under model m. With `freedom_bits` (the GL_SUBPIXEL_BITS an implementation
+// reports, at least 4 taken), also the specification's allowance per pixel and channel
+// (allowance.hpp), and edge bands as wide as that position freedom; without, no allowance and
+// bands one model subpixel step wide. Neither is part of the digest.
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt);
 
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.

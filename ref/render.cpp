@@ -1,38 +1,65 @@
+#include <algorithm>
 #include <cmath>
 
+#include "ref/allowance.hpp"
 #include "ref/coverage.hpp"
 #include "ref/depth.hpp"
 #include "ref/interpolation.hpp"
+#include "ref/mesh.hpp"
 #include "ref/reference.hpp"
 #include "ref/setup.hpp"
 
 namespace glrc::ref {
 
-Reference render(const Case& c, const Model& m) {
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits) {
   Reference r{Frame(c.fb_width, c.fb_height, c.component_count()),
-              std::vector<uint8_t>(size_t(c.fb_width) * c.fb_height, 0)};
+              std::vector<uint8_t>(size_t(c.fb_width) * c.fb_height, 0), Frame()};
   Frame& f = r.frame;
-  // Coverage may legally differ within one subpixel step of an edge: the model's step, or
-  // 1/256 pixel when the model does not snap.
-  const double step = std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8));
+  f.fragments.assign(f.pixel_count(), 0);
+  const bool allowance = freedom_bits.has_value();
+  const int bits = allowance ? std::max(*freedom_bits, 4) : 0;
+  if (allowance) r.allowed = Frame(c.fb_width, c.fb_height, c.component_count());
   const PixelBox viewport = viewport_box(c);
+  // Without an allowance, coverage may legally differ within one model subpixel step of an
+  // edge (1/256 pixel when the model does not snap).
+  const double model_step = std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8));
+
+  std::vector<TriangleSetup> setups;
+  setups.reserve(c.triangles.size());
+  for (int p = 0; p < int(c.triangles.size()); ++p)
+    setups.push_back(setup_triangle(c, m, p));
+  const std::vector<std::array<bool, 3>> shared = shared_edges(setups);
 
   for (int p = 0; p < int(c.triangles.size()); ++p) {
-    const TriangleSetup t = setup_triangle(c, m, p);
+    const TriangleSetup& t = setups[size_t(p)];
     if (!t.drawn) continue;
     const CoverageTest coverage(t, m);
+    const double delta = allowance ? position_freedom(c, t, bits) : model_step;
 
-    // The band reaches up to one step outside the covered pixels: look one pixel further.
-    const int bx0 = std::max(viewport.x0, t.box.x0 - 1), bx1 = std::min(viewport.x1, t.box.x1 + 1);
-    const int by0 = std::max(viewport.y0, t.box.y0 - 1), by1 = std::min(viewport.y1, t.box.y1 + 1);
+    // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further.
+    const int margin = 1 + int(std::ceil(delta * 1.5));
+    const int bx0 = std::max(viewport.x0, t.box.x0 - margin),
+              bx1 = std::min(viewport.x1, t.box.x1 + margin);
+    const int by0 = std::max(viewport.y0, t.box.y0 - margin),
+              by1 = std::min(viewport.y1, t.box.y1 + margin);
     for (int py = by0; py <= by1; ++py)
       for (int px = bx0; px <= bx1; ++px)
-        if (coverage.near_boundary(px, py, step)) r.edge_band[f.index(px, py)] = 1;
+        r.edges[f.index(px, py)] |= coverage.classify(px, py, delta, shared[size_t(p)]);
 
     if (t.box.empty()) continue;
     const Barycentrics b = barycentrics(t, m);
-    const RatioEvaluator depth = depth_plane(t, b);
+    const Plane depth_forms = depth_plane(t, b);
+    const RatioEvaluator depth = depth_forms.evaluator();
     const std::vector<ComponentPlane> planes = component_planes(c, t, b);
+    std::vector<Allowance> allowed;
+    Allowance depth_allowed;
+    if (allowance) {
+      for (const ComponentPlane& cp : planes)
+        allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, delta, cp.spread, cp.scale);
+      const double n = c.depth_near, fa = c.depth_far;
+      depth_allowed = Allowance(depth_forms.numerator, depth_forms.denominator, delta, INFINITY,
+                                std::max(std::fabs(n), std::fabs(fa)));
+    }
     for (int py = t.box.y0; py <= t.box.y1; ++py) {
       for (int px = t.box.x0; px <= t.box.x1; ++px) {
         if (!coverage.covers(px, py)) continue;
@@ -41,8 +68,15 @@ Reference render(const Case& c, const Model& m) {
         if (!depth_test(c.depth_func, z, f.depth[i])) continue;
         f.primitive[i] = p;
         f.depth[i] = z;
+        ++f.fragments[i];
         for (size_t k = 0; k < planes.size(); ++k)
           f.components[k][i] = planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
+        if (!allowance) continue;
+        r.allowed.primitive[i] = p;
+        r.allowed.depth[i] = round_up(depth_allowed.at(px, py, z));
+        for (size_t k = 0; k < planes.size(); ++k)
+          r.allowed.components[k][i] =
+              planes[k].flat ? 0.0f : round_up(allowed[k].at(px, py, f.components[k][i]));
       }
     }
   }

@@ -8,8 +8,19 @@
 
 namespace glrc::report {
 
-ChannelError channel_error(const Case& c, const Frame& reference, const Frame& gl, int channel) {
+ChannelError channel_error(const Case& c, const Expectation& expected, const Frame& gl, int channel,
+                           const Tolerance& tolerance) {
+  const Frame& reference = expected.frame;
   const bool depth = channel == compare::kDepth;
+  const bool flat =
+      !depth && c.varyings.at(size_t(component_varying(c).at(size_t(channel)))).interpolation ==
+                    Interpolation::flat;
+  const std::vector<float>* allowed = nullptr;
+  if (tolerance.mode == ToleranceMode::spec && !expected.allowed.components.empty())
+    allowed = depth ? &expected.allowed.depth : &expected.allowed.components.at(size_t(channel));
+  const double fixed = tolerance.mode == ToleranceMode::exact || flat ? 0.0
+                       : depth                                        ? tolerance.depth_ulps
+                                                                      : tolerance.varying_ulps;
   ChannelError e;
   e.name = depth ? "depth" : component_names(c).at(size_t(channel));
   e.width = reference.width;
@@ -22,6 +33,7 @@ ChannelError channel_error(const Case& c, const Frame& reference, const Frame& g
   e.signed_error.assign(n, kNaN);
   e.ulps.assign(n, std::numeric_limits<double>::quiet_NaN());
   e.compared.assign(n, false);
+  e.allowed_ulps.assign(n, std::numeric_limits<double>::quiet_NaN());
   const compare::UlpTable ulp_table(c);
 
   for (size_t i = 0; i < n; ++i) {
@@ -30,15 +42,60 @@ ChannelError channel_error(const Case& c, const Frame& reference, const Frame& g
     e.compared[i] = true;
     // Both values are float32, so the difference is exact in double.
     e.signed_error[i] = float(double(e.gl[i]) - double(e.reference[i]));
-    const compare::PixelError pe = compare::pixel_error(
-        e.reference[i], e.gl[i], ulp_table.ulp(prim, depth ? compare::kDepth : channel));
+    const double ulp = ulp_table.ulp(prim, depth ? compare::kDepth : channel);
+    const compare::PixelError pe = compare::pixel_error(e.reference[i], e.gl[i], ulp);
     e.ulps[i] = pe.ulps;
+    e.allowed_ulps[i] = allowed ? double((*allowed)[i]) / ulp : fixed;
     if (std::isfinite(pe.ulps))
       e.max_finite_ulps = std::max(e.max_finite_ulps, pe.ulps);
     else
       ++e.non_finite;
   }
   return e;
+}
+
+namespace {
+
+// A map of another per-pixel quantity over the same compared pixels.
+ChannelError with_values(const ChannelError& e, std::vector<double> values, std::string quantity,
+                         std::string unit) {
+  ChannelError m = e;
+  m.ulps = std::move(values);
+  m.quantity = std::move(quantity);
+  m.unit = std::move(unit);
+  m.max_finite_ulps = 0;
+  m.non_finite = 0;
+  for (size_t i = 0; i < m.ulps.size(); ++i) {
+    if (!m.compared[i]) continue;
+    if (std::isfinite(m.ulps[i]))
+      m.max_finite_ulps = std::max(m.max_finite_ulps, m.ulps[i]);
+    else
+      ++m.non_finite;
+  }
+  return m;
+}
+
+}  // namespace
+
+ChannelError as_allowance_map(const ChannelError& e) {
+  ChannelError m = with_values(e, e.allowed_ulps,
+                               "allowed |GL - reference| in ulp of the attribute scale", "ulp");
+  m.name = e.name + " allowed";
+  return m;
+}
+
+ChannelError as_ratio_map(const ChannelError& e) {
+  std::vector<double> ratio(e.ulps.size(), std::numeric_limits<double>::quiet_NaN());
+  for (size_t i = 0; i < ratio.size(); ++i)
+    if (e.compared[i])
+      ratio[i] = e.ulps[i] == 0                                      ? 0.0
+                 : e.allowed_ulps[i] > 0 && std::isfinite(e.ulps[i]) ? e.ulps[i] / e.allowed_ulps[i]
+                                                                     : INFINITY;
+  ChannelError m = with_values(
+      e, std::move(ratio), "|GL - reference| / allowed: share of the allowance used", "x allowed");
+  m.name = e.name + " actual/allowed";
+  m.allowed_ulps.assign(m.ulps.size(), 1.0);  // over 1 fails
+  return m;
 }
 
 }  // namespace glrc::report

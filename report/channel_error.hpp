@@ -21,12 +21,25 @@ struct ChannelError {
   std::vector<float> signed_error;
   std::vector<double> ulps;
   std::vector<bool> compared;
+  // Per pixel, the allowance in the same ULPs (where compared; the tolerance the comparator
+  // applied: the specification's per-pixel one, a fixed number, or 0 in exact mode).
+  std::vector<double> allowed_ulps;
   double max_finite_ulps = 0;  // over compared pixels with a finite error
   size_t non_finite = 0;       // compared pixels whose error is not finite
+  // What `ulps` holds, for titles and legends: the error itself by default; as_allowance_map
+  // and as_ratio_map put other per-pixel quantities in its place.
+  std::string quantity = "|GL - reference| in ulp of the attribute scale";
+  std::string unit = "ulp";
 };
 
 // channel compare::kDepth is depth, of scale 1.0 (depth range [0, 1]); k >= 0 is
 // Frame::components[k]. Errors are compare::pixel_error at the pixels compare compares.
-ChannelError channel_error(const Case& c, const Frame& reference, const Frame& gl, int channel);
+ChannelError channel_error(const Case& c, const Expectation& expected, const Frame& gl, int channel,
+                           const Tolerance& tolerance);
+
+// The allowance itself, in ULPs, as a map of its own.
+ChannelError as_allowance_map(const ChannelError& e);
+// How much of the allowance each pixel used: error / allowance (over 1 fails).
+ChannelError as_ratio_map(const ChannelError& e);
 
 }  // namespace glrc::report

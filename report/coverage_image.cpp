@@ -4,13 +4,15 @@
 
 #include <fmt/format.h>
 
+#include "compare/compare.hpp"
+
 namespace glrc::report {
 namespace {
 
 constexpr int kMargin = 12;
 constexpr int kTitleHeight = 50;
 constexpr int kMinWidth = 512;
-constexpr int kLegendHeight = 96;
+constexpr int kLegendHeight = 120;
 constexpr Rgb kBackground{0.1f, 0.1f, 0.1f};
 constexpr Rgb kText{0.92f, 0.92f, 0.92f};
 
@@ -19,6 +21,8 @@ constexpr Rgb kReferenceOnly{0.9f, 0.1f, 0.1f};
 constexpr Rgb kGlOnly{0.15f, 0.35f, 1.0f};
 constexpr Rgb kOtherPrimitive{1.0f, 0.55f, 0.0f};
 constexpr Rgb kWhite{1, 1, 1};
+constexpr Rgb kGap{0.0f, 0.9f, 0.9f};          // cyan: no fragment where a mesh needs one
+constexpr Rgb kDoubleHit{0.95f, 0.0f, 0.95f};  // magenta: two fragments on a shared edge
 // The edge band only hints where boundary mismatches would be allowed, so it is a faint tint.
 constexpr Rgb kEdgeTint{0.85f, 0.8f, 0.25f};
 constexpr float kEdgeTintAmount = 0.22f;
@@ -31,16 +35,19 @@ Rgb same_primitive(int32_t primitive) {
   return {grey, grey, grey};
 }
 
-Rgb pixel_colour(int32_t ref, int32_t gl, bool in_edge_band) {
-  const bool mismatch = ref != gl;
-  if (!mismatch) {
+Rgb pixel_colour(int32_t ref, int32_t gl, bool in_edge_band,
+                 std::optional<CoverageStats::Label> label) {
+  using Label = CoverageStats::Label;
+  if (label == Label::gap) return kGap;
+  if (label == Label::double_hit) return kDoubleHit;
+  if (!label) {
     const Rgb base = ref == Frame::kNoPrimitive ? kNeither : same_primitive(ref);
     return in_edge_band ? mix(base, kEdgeTint, kEdgeTintAmount) : base;
   }
   const Rgb hue = gl == Frame::kNoPrimitive    ? kReferenceOnly
                   : ref == Frame::kNoPrimitive ? kGlOnly
                                                : kOtherPrimitive;
-  return in_edge_band ? mix(hue, kWhite, kBoundaryLightening) : hue;
+  return compare::explained(*label) ? mix(hue, kWhite, kBoundaryLightening) : hue;
 }
 
 void swatch(Canvas& canvas, const std::optional<std::string>& font, int x, int y, Rgb colour,
@@ -62,16 +69,20 @@ void draw_legend(Canvas& canvas, const std::optional<std::string>& font, int top
     canvas.fill(x, row3, 8, 14, mix(hue, kWhite, kBoundaryLightening));
     x += 8;
   }
-  draw_text(canvas, font, x + 6, row3 + 12, "lighter: boundary mismatch", 13, kText);
+  draw_text(canvas, font, x + 6, row3 + 12, "lighter: tie or within snapping", 13, kText);
   swatch(canvas, font, x0 + column, row3, mix(same_primitive(0), kEdgeTint, kEdgeTintAmount),
          "edge band (reference)");
+  const int row4 = row3 + 24;
+  swatch(canvas, font, x0, row4, kGap, "gap on a shared edge");
+  swatch(canvas, font, x0 + column, row4, kDoubleHit, "double hit on a shared edge");
 }
 
 }  // namespace
 
-Canvas render_coverage(const Frame& reference, const Frame& gl,
-                       const std::vector<uint8_t>& edge_band, const CoverageStats& stats,
+Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
                        const std::optional<std::string>& font) {
+  const Frame& reference = expected.frame;
+  const std::vector<uint8_t>& edge_band = expected.edges;
   const int factor = upscale_factor(reference.width, reference.height);
   const int image_w = reference.width * factor, image_h = reference.height * factor;
   Canvas canvas(std::max(image_w, kMinWidth) + 2 * kMargin, kTitleHeight + image_h + kLegendHeight,
@@ -80,8 +91,10 @@ Canvas render_coverage(const Frame& reference, const Frame& gl,
   const bool has_band = edge_band.size() == reference.pixel_count();
   const int text_width = canvas.width - 2 * kMargin;
   draw_text(canvas, font, kMargin, 22,
-            fmt::format("coverage   {} failures   {} boundary mismatches", stats.failures,
-                        stats.boundary),
+            fmt::format("coverage   {} failures   ties {}   within snapping {}   fill-rule {}"
+                        "   gaps {}   double hits {}",
+                        stats.failures, stats.exact_tie, stats.within_snapping, stats.fill_rule,
+                        stats.gaps, stats.double_hits),
             16, kText, Align::left, text_width);
   draw_text(canvas, font, kMargin, 42,
             fmt::format("both {}   reference only {}   GL only {}   other primitive {}", stats.both,
@@ -91,8 +104,9 @@ Canvas render_coverage(const Frame& reference, const Frame& gl,
   paint_frame(canvas, (canvas.width - image_w) / 2, kTitleHeight, factor, reference.width,
               reference.height, [&](int x, int y) {
                 const size_t i = reference.index(x, y);
-                return pixel_colour(reference.primitive[i], gl.primitive[i],
-                                    has_band && edge_band[i] != 0);
+                return pixel_colour(
+                    reference.primitive[i], gl.primitive[i], has_band && edge_band[i] != 0,
+                    has_band ? compare::coverage_label(expected, gl, i) : std::nullopt);
               });
   draw_legend(canvas, font, kTitleHeight + image_h);
   return canvas;

@@ -14,10 +14,10 @@
 
 namespace glrc::report {
 
-// edge_band: the reference's "centre within a subpixel step of an edge" mask, one byte per
-// pixel; a mismatch there is a boundary mismatch. An empty mask marks nothing.
-Canvas render_coverage(const Frame& reference, const Frame& gl,
-                       const std::vector<uint8_t>& edge_band, const CoverageStats& stats,
+// Mismatches the specification's freedom explains (exact ties, within snapping) are drawn
+// lighter; gaps and double hits on shared edges in white and black-outlined colours of their
+// own; the edge bands are a faint tint.
+Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
                        const std::optional<std::string>& font);
 
 }  // namespace glrc::report

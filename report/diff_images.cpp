@@ -1,5 +1,6 @@
 // write_diff_images: the files a person opens to see where and how GL differs from the
 // reference. PNGs to look at, EXRs to read exact values from.
+#include <cmath>
 #include <stdexcept>
 
 #include "compare/compare.hpp"
@@ -35,41 +36,52 @@ void check_frame(const Case& c, const Frame& f, const Frame& reference, const ch
                              " frame does not match the case's layout");
 }
 
-// The channel's tolerance as the comparator applied it, or the case's when it has no stats.
-double tolerance_of(const CaseResult& r, const std::string& channel, bool depth) {
-  for (const auto& ch : r.channels)
-    if (ch.name == channel) return ch.tolerance_ulps;
-  return depth ? r.tolerance.depth_ulps : r.tolerance.varying_ulps;
-}
-
 }  // namespace
 
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
-                                                     const Case& c, const Frame& reference,
-                                                     const std::vector<uint8_t>& edge_band,
+                                                     const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r) {
+  const Frame& reference = expected.frame;
   check_frame(c, reference, reference, "reference");
   check_frame(c, gl, reference, "GL");
   std::filesystem::create_directories(dir);
   const auto font = find_font();
+  // A fixed threshold is marked on the legend; the specification's varies per pixel.
+  const bool fixed = r.tolerance.mode != ToleranceMode::spec;
 
   std::vector<std::filesystem::path> written;
   for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
-    const ChannelError e = channel_error(c, reference, gl, channel);
+    const ChannelError e = channel_error(c, expected, gl, channel, r.tolerance);
     const std::string stem = file_stem(e.name);
     const auto out = [&](const std::string& suffix) {
       written.push_back(dir / (stem + suffix));
       return written.back();
     };
-    write_png(render_heatmap(e, tolerance_of(r, e.name, channel == compare::kDepth), font),
-              out("_error.png"));
+    double tolerance = NAN;
+    if (fixed)
+      for (const auto& ch : r.channels)
+        if (ch.name == e.name) tolerance = ch.tolerance_ulps;
+    write_png(render_heatmap(e, tolerance, font), out("_error.png"));
+    const ChannelError allowed = as_allowance_map(e);
+    write_png(render_heatmap(allowed, NAN, font), out("_allowed.png"));
+    write_png(render_heatmap(as_ratio_map(e), 1.0, font), out("_ratio.png"));
     write_exr(out("_error.exr"), e.width, e.height, e.signed_error,
               e.name + ": GL - reference, NaN where not covered by the same primitive in both");
+    std::vector<float> allowed_values(e.signed_error.size(), NAN);
+    const std::vector<float>* source =
+        expected.allowed.components.empty() || r.tolerance.mode != ToleranceMode::spec ? nullptr
+        : channel == compare::kDepth ? &expected.allowed.depth
+                                     : &expected.allowed.components[size_t(channel)];
+    for (size_t i = 0; i < allowed_values.size(); ++i)
+      if (e.compared[i]) allowed_values[i] = source ? (*source)[i] : float(e.allowed_ulps[i]);
+    write_exr(out("_allowed.exr"), e.width, e.height, allowed_values,
+              e.name + (source ? ": allowed |GL - reference| (value units)"
+                               : ": allowed |GL - reference| (ulp of the attribute scale)"));
     write_exr(out("_gl.exr"), e.width, e.height, e.gl, e.name + ": GL");
     write_exr(out("_ref.exr"), e.width, e.height, e.reference, e.name + ": reference");
   }
   written.push_back(dir / "coverage.png");
-  write_png(render_coverage(reference, gl, edge_band, r.coverage, font), written.back());
+  write_png(render_coverage(expected, gl, r.coverage, font), written.back());
   return written;
 }
 

@@ -18,6 +18,13 @@ std::string ulps_text(double ulps) {
   return fmt::format("{:.1f}", ulps);
 }
 
+std::string ratio_text(double ratio) {
+  if (std::isnan(ratio)) return "NaN";
+  if (std::isinf(ratio)) return "inf";
+  if (ratio == 0) return "0";
+  return fmt::format("{:.2g}", ratio);
+}
+
 std::string float_text(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";

@@ -51,7 +51,7 @@ void draw_legend(Canvas& canvas, const ErrorScale& scale, const ChannelError& er
     tick(x, tick_text(p), Align::centre);
     last_x = x;
   }
-  tick(x1, ulps_text(scale.upper) + " ulp", Align::right);
+  tick(x1, ulps_text(scale.upper) + " " + error.unit, Align::right);
 
   if (tolerance_ulps <= scale.upper) {
     const int x = x_of(tolerance_ulps);
@@ -88,18 +88,19 @@ Canvas render_heatmap(const ChannelError& error, double tolerance_ulps,
     if (!error.compared[i]) continue;
     ++compared;
     // Inf (NaN or Inf from GL) is over any tolerance, an infinite one included.
-    over += std::isinf(error.ulps[i]) || !(error.ulps[i] <= tolerance_ulps);
+    const double limit = std::isnan(tolerance_ulps) ? error.allowed_ulps[i] : tolerance_ulps;
+    over += std::isinf(error.ulps[i]) || !(error.ulps[i] <= limit);
   }
   const int text_width = canvas.width - 2 * kMargin;
-  std::string title = fmt::format("{}   max {} ulp   tolerance {} ulp", error.name,
-                                  ulps_text(error.max_finite_ulps), ulps_text(tolerance_ulps));
+  std::string title = fmt::format(
+      "{}   max {} {}   tolerance {}", error.name, ulps_text(error.max_finite_ulps), error.unit,
+      std::isnan(tolerance_ulps) ? std::string("per pixel (specification)")
+                                 : ulps_text(tolerance_ulps) + " " + error.unit);
   if (error.non_finite > 0) title += fmt::format("   {} NaN/Inf", error.non_finite);
   draw_text(canvas, font, kMargin, 22, title, 16, kText, Align::left, text_width);
   draw_text(canvas, font, kMargin, 41,
-            fmt::format("|GL - reference| in ulp of the attribute scale, log colour scale, "
-                        "{}x upscaled",
-                        factor),
-            12, kText, Align::left, text_width);
+            fmt::format("{}, log colour scale, {}x upscaled", error.quantity, factor), 12, kText,
+            Align::left, text_width);
   draw_text(canvas, font, kMargin, 57,
             fmt::format("{} of {} compared pixels over tolerance", over, compared), 12, kText,
             Align::left, text_width);

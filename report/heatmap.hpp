@@ -10,6 +10,8 @@
 
 namespace glrc::report {
 
+// tolerance_ulps: a single tolerance to mark on the legend, or NaN when it varies per pixel
+// (error.allowed_ulps then says which pixels are over).
 Canvas render_heatmap(const ChannelError& error, double tolerance_ulps,
                       const std::optional<std::string>& font);
 

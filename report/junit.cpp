@@ -57,13 +57,16 @@ bool is_failure(Status s) {
 std::string stats_text(const CaseResult& r) {
   std::string text;
   for (const auto& ch : r.channels)
-    text += fmt::format("{}: max {} ulp (tolerance {}), {} of {} over tolerance, {} non-finite\n",
-                        ch.name, ulps_text(ch.max_ulps), ulps_text(ch.tolerance_ulps),
-                        ch.over_tolerance, ch.compared, ch.non_finite);
+    text += fmt::format(
+        "{}: max {} ulp, {}x allowed (p99 {}x), {} of {} over tolerance, {} non-finite\n", ch.name,
+        ulps_text(ch.max_ulps), ratio_text(ch.max_ratio), ratio_text(ch.p99_ratio),
+        ch.over_tolerance, ch.compared, ch.non_finite);
   const auto& cov = r.coverage;
   text += fmt::format(
-      "coverage: {} failures; reference only {}, GL only {}, other primitive {}, boundary {}\n",
-      cov.failures, cov.reference_only, cov.gl_only, cov.other_primitive, cov.boundary);
+      "coverage: {} failures; reference only {}, GL only {}, other primitive {}; exact tie {}, "
+      "within snapping {}, fill-rule error {}, gaps {}, double hits {}\n",
+      cov.failures, cov.reference_only, cov.gl_only, cov.other_primitive, cov.exact_tie,
+      cov.within_snapping, cov.fill_rule, cov.gaps, cov.double_hits);
   return text;
 }
 

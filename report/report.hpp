@@ -23,11 +23,12 @@ std::string stats_table(const CaseResult& r);
 // The n worst pixels over all channels: x, y, channel, reference, GL, error.
 std::string worst_pixels_table(const CaseResult& r, size_t n);
 
-// Writes, for depth, coverage and each component, a colour-mapped PNG heatmap of the error with
-// a legend, an EXR of the signed error, and the GL and reference images. Returns the files.
+// Writes, for depth and each component, colour-mapped PNG heatmaps with legends of the error
+// (_error.png), of the allowance (_allowed.png) and of their ratio (_ratio.png); EXRs of the
+// signed error, the allowance, and the GL and reference values; and coverage.png. Returns the
+// files.
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
-                                                     const Case& c, const Frame& reference,
-                                                     const std::vector<uint8_t>& edge_band,
+                                                     const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r);
 
 }  // namespace glrc::report

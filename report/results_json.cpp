@@ -32,6 +32,8 @@ json run_json(const RunInfo& run) {
   return {{"backend", run.backend},
           {"driver", run.driver},
           {"model", run.model},
+          {"tolerance", run.tolerance},
+          {"gl_subpixel_bits", run.subpixel_bits},
           {"gl_vendor", run.gl_vendor},
           {"gl_renderer", run.gl_renderer},
           {"gl_version", run.gl_version},
@@ -59,6 +61,22 @@ json summary_json(const std::vector<CaseResult>& results) {
   return summary;
 }
 
+const char* label_name(CoverageStats::Label l) {
+  switch (l) {
+    case CoverageStats::Label::exact_tie:
+      return "exact_tie";
+    case CoverageStats::Label::within_snapping:
+      return "within_snapping";
+    case CoverageStats::Label::fill_rule:
+      return "fill_rule";
+    case CoverageStats::Label::gap:
+      return "gap";
+    case CoverageStats::Label::double_hit:
+      return "double_hit";
+  }
+  return "fill_rule";
+}
+
 json coverage_json(const CoverageStats& cov) {
   json mismatches = json::array();
   for (const auto& p : cov.mismatches)
@@ -66,13 +84,20 @@ json coverage_json(const CoverageStats& cov) {
                           {"y", p.y},
                           {"reference", p.reference},
                           {"gl", p.gl},
-                          {"boundary", p.boundary}});
+                          {"boundary", p.boundary},
+                          {"label", label_name(p.label)}});
   return {{"both", cov.both},
           {"neither", cov.neither},
           {"reference_only", cov.reference_only},
           {"gl_only", cov.gl_only},
           {"other_primitive", cov.other_primitive},
           {"boundary", cov.boundary},
+          {"exact_tie", cov.exact_tie},
+          {"within_snapping", cov.within_snapping},
+          {"fill_rule", cov.fill_rule},
+          {"gaps", cov.gaps},
+          {"double_hits", cov.double_hits},
+          {"fragments_checked", cov.fragments_checked},
           {"failures", cov.failures},
           {"mismatches", std::move(mismatches)}};
 }
@@ -85,17 +110,22 @@ json channel_json(const ChannelStats& ch) {
                      {"reference", number(w.reference)},
                      {"gl", number(w.gl)},
                      {"abs_error", number(w.abs_error)},
-                     {"ulps", number(w.ulps)}});
+                     {"ulps", number(w.ulps)},
+                     {"allowed", number(w.allowed)},
+                     {"ratio", number(w.ratio)}});
   return {{"name", ch.name},
           {"compared", ch.compared},
           {"over_tolerance", ch.over_tolerance},
           {"non_finite", ch.non_finite},
+          {"differing", ch.differing},
           {"max_abs", number(ch.max_abs)},
           {"max_ulps", number(ch.max_ulps)},
           {"mean_ulps", number(ch.mean_ulps)},
           {"rms_ulps", number(ch.rms_ulps)},
           {"p99_ulps", number(ch.p99_ulps)},
           {"tolerance_ulps", number(ch.tolerance_ulps)},
+          {"max_ratio", number(ch.max_ratio)},
+          {"p99_ratio", number(ch.p99_ratio)},
           {"pass", ch.pass()},
           {"worst", std::move(worst)}};
 }
@@ -110,7 +140,9 @@ json case_json(const CaseResult& r) {
           {"message", r.message},
           {"seconds", number(r.seconds)},
           {"tolerance",
-           {{"varying_ulps", number(r.tolerance.varying_ulps)},
+           {{"mode", to_string(r.tolerance.mode)},
+            {"subpixel_bits", r.tolerance.subpixel_bits},
+            {"varying_ulps", number(r.tolerance.varying_ulps)},
             {"depth_ulps", number(r.tolerance.depth_ulps)},
             {"allow_boundary", r.tolerance.allow_boundary}}},
           {"coverage", coverage_json(r.coverage)},

@@ -29,6 +29,17 @@ std::string max_ulps_text(const CaseResult& r) {
   return ulps_text(worst);
 }
 
+// The largest share of the allowance any channel used; "NaN" as above.
+std::string max_ratio_text(const CaseResult& r) {
+  if (r.channels.empty()) return "-";
+  double worst = 0;
+  for (const auto& ch : r.channels) {
+    if (ch.non_finite > 0) return "NaN";
+    worst = std::max(worst, ch.max_ratio);
+  }
+  return ratio_text(worst);
+}
+
 std::string first_line(const std::string& s) {
   return s.substr(0, s.find('\n'));
 }
@@ -36,10 +47,10 @@ std::string first_line(const std::string& s) {
 }  // namespace
 
 std::string case_line(const CaseResult& r) {
-  std::string line =
-      fmt::format("{:<{}} {:<{}} max {:>5} ulp  coverage {} bad, {} at edges  {}",
-                  to_string(r.status), kStatusWidth, r.name, kNameWidth, max_ulps_text(r),
-                  r.coverage.failures, r.coverage.boundary, seconds_text(r.seconds));
+  std::string line = fmt::format(
+      "{:<{}} {:<{}} max {:>5} ulp {:>6}x allowed  coverage {} bad, {} at edges  {}",
+      to_string(r.status), kStatusWidth, r.name, kNameWidth, max_ulps_text(r), max_ratio_text(r),
+      r.coverage.failures, r.coverage.boundary, seconds_text(r.seconds));
   std::string message = first_line(r.message);
   if (message.size() > kShortMessage) message = message.substr(0, kShortMessage - 3) + "...";
   if (r.status != Status::pass && !message.empty()) line += "  " + message;
@@ -52,26 +63,36 @@ std::string stats_table(const CaseResult& r) {
     name_width = std::max(name_width, ch.name.size());
 
   const auto row = [&](auto&& channel, auto&& compared, auto&& max_abs, auto&& max_ulp, auto&& mean,
-                       auto&& rms, auto&& p99, auto&& over, auto&& tolerance, auto&& verdict) {
-    return fmt::format("{:<{}}  {:>9}  {:>11}  {:>9}  {:>8}  {:>8}  {:>8}  {:>8}  {:>9}  {}\n",
-                       channel, name_width, compared, max_abs, max_ulp, mean, rms, p99, over,
-                       tolerance, verdict);
+                       auto&& p99, auto&& max_ratio, auto&& p99_ratio, auto&& over,
+                       auto&& tolerance, auto&& verdict) {
+    return fmt::format(
+        "{:<{}}  {:>9}  {:>11}  {:>9}  {:>8}  {:>8}  {:>9}  {:>9}  {:>8}  {:>11}  {}\n", channel,
+        name_width, compared, max_abs, max_ulp, mean, p99, max_ratio, p99_ratio, over, tolerance,
+        verdict);
   };
-  std::string table = row("channel", "compared", "max abs", "max ulp", "mean", "rms", "p99",
-                          "over tol", "tolerance", "verdict");
+  // spec: the allowance varies per pixel; its largest value is shown, in ulp.
+  const bool spec = r.tolerance.mode == ToleranceMode::spec;
+  std::string table = row("channel", "compared", "max abs", "max ulp", "mean", "p99", "max/allow",
+                          "p99/allow", "over", spec ? "allow<=ulp" : "tolerance", "verdict");
   for (const auto& ch : r.channels) {
     std::string verdict = ch.pass() ? "ok" : "FAIL";
     if (ch.non_finite > 0) verdict += fmt::format(" ({} non-finite)", ch.non_finite);
-    table += row(ch.name, ch.compared, fmt::format("{:.3g}", ch.max_abs), ulps_text(ch.max_ulps),
-                 ulps_text(ch.mean_ulps), ulps_text(ch.rms_ulps), ulps_text(ch.p99_ulps),
-                 ch.over_tolerance, ulps_text(ch.tolerance_ulps), verdict);
+    if (r.tolerance.mode == ToleranceMode::exact)
+      verdict += fmt::format(" ({} px differ)", ch.differing);
+    table +=
+        row(ch.name, ch.compared, fmt::format("{:.3g}", ch.max_abs), ulps_text(ch.max_ulps),
+            ulps_text(ch.mean_ulps), ulps_text(ch.p99_ulps), ratio_text(ch.max_ratio),
+            ratio_text(ch.p99_ratio), ch.over_tolerance, ulps_text(ch.tolerance_ulps), verdict);
   }
   const auto& cov = r.coverage;
   table += fmt::format(
-      "coverage: both {}, reference only {}, GL only {}, other primitive {}, boundary {}, "
-      "failures {}{}\n",
-      cov.both, cov.reference_only, cov.gl_only, cov.other_primitive, cov.boundary, cov.failures,
-      r.tolerance.allow_boundary ? " (boundary mismatches allowed)" : "");
+      "coverage: both {}, reference only {}, GL only {}, other primitive {}; mismatches: "
+      "exact tie {}, within snapping {}, fill-rule error {}; shared edges: gaps {}, double hits "
+      "{}{}; failures {}{}\n",
+      cov.both, cov.reference_only, cov.gl_only, cov.other_primitive, cov.exact_tie,
+      cov.within_snapping, cov.fill_rule, cov.gaps, cov.double_hits,
+      cov.fragments_checked ? "" : " (no fragment counts)", cov.failures,
+      r.tolerance.allow_boundary ? " (ties and snapping allowed)" : "");
   return table;
 }
 
@@ -88,10 +109,13 @@ std::string worst_pixels_table(const CaseResult& r, size_t n) {
   // Non-finite errors first (NaN before inf), then the largest finite ones; stable so that
   // ties keep the channel order (depth first).
   const auto rank = [](double ulps) { return std::isnan(ulps) ? 0 : std::isinf(ulps) ? 1 : 2; };
+  // Ranked by the share of the allowance used: that is what decides the verdict.
   std::stable_sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) {
     const double ua = a.pixel->ulps, ub = b.pixel->ulps;
     if (rank(ua) != rank(ub)) return rank(ua) < rank(ub);
-    return rank(ua) == 2 && ua > ub;
+    if (rank(ua) != 2) return false;
+    if (a.pixel->ratio != b.pixel->ratio) return a.pixel->ratio > b.pixel->ratio;
+    return ua > ub;
   });
   if (entries.size() > n) entries.resize(n);
 
@@ -99,17 +123,19 @@ std::string worst_pixels_table(const CaseResult& r, size_t n) {
   for (const auto& e : entries)
     name_width = std::max(name_width, e.channel->size());
   const auto row = [&](auto&& x, auto&& y, auto&& channel, auto&& ref, auto&& gl, auto&& abs,
-                       auto&& ulps) {
-    return fmt::format("{:>5} {:>5}  {:<{}}  {:>16}  {:>16}  {:>16}  {:>10}\n", x, y, channel,
-                       name_width, ref, gl, abs, ulps);
+                       auto&& ulps, auto&& allowed, auto&& ratio) {
+    return fmt::format("{:>5} {:>5}  {:<{}}  {:>16}  {:>16}  {:>16}  {:>10}  {:>16}  {:>9}\n", x, y,
+                       channel, name_width, ref, gl, abs, ulps, allowed, ratio);
   };
   // x, y are GL window coordinates (row 0 at the bottom), as everywhere in the results.
-  std::string table = row("x", "y", "channel", "reference", "GL", "abs error", "ulps");
+  std::string table =
+      row("x", "y", "channel", "reference", "GL", "abs error", "ulps", "allowed", "error/allow");
   for (const auto& e : entries)
     table += row(e.pixel->x, e.pixel->y, *e.channel, float_text(e.pixel->reference),
                  float_text(e.pixel->gl), float_text(e.pixel->abs_error),
                  std::isfinite(e.pixel->ulps) ? fmt::format("{:.6g}", e.pixel->ulps)
-                                              : ulps_text(e.pixel->ulps));
+                                              : ulps_text(e.pixel->ulps),
+                 float_text(float(e.pixel->allowed)), ratio_text(e.pixel->ratio));
   return table;
 }
 

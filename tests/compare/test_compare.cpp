@@ -40,6 +40,17 @@ Frame reference_frame(const Case& c) {
   return f;
 }
 
+// Fixed thresholds of 64 and 16 ULPs: the tolerance most tests here reason in.
+Tolerance ulps_tolerance() {
+  Tolerance t;
+  t.mode = ToleranceMode::ulps;
+  return t;
+}
+
+Expectation expect(const Frame& reference, std::vector<uint8_t> edges, Frame allowed = Frame()) {
+  return Expectation{reference, std::move(edges), std::move(allowed)};
+}
+
 const ChannelStats& channel(const CaseResult& r, const std::string& name) {
   for (const auto& ch : r.channels)
     if (ch.name == name) return ch;
@@ -67,7 +78,7 @@ TEST(Compare, IdenticalFramesPassWithZeroError) {
   const Case c = two_varyings_case();
   const Frame ref = reference_frame(c);
   const std::vector<uint8_t> band(ref.pixel_count(), 0);
-  const CaseResult r = compare(c, ref, band, ref, Tolerance{});
+  const CaseResult r = compare(c, expect(ref, band), ref, ulps_tolerance());
   EXPECT_EQ(r.status, Status::pass);
   EXPECT_EQ(r.coverage.both, 36u);
   EXPECT_EQ(r.coverage.neither, 28u);
@@ -92,7 +103,7 @@ TEST(Compare, CatchesOneInjectedErrorInOneComponentOfOnePixel) {
   // 100 ULPs of uv.y's scale (1000: ulp 2^-14) added at one pixel.
   gl.components[1][i] += float(100 * std::ldexp(1.0, -14));
   const std::vector<uint8_t> band(ref.pixel_count(), 0);
-  const CaseResult r = compare(c, ref, band, gl, Tolerance{});
+  const CaseResult r = compare(c, expect(ref, band), gl, ulps_tolerance());
   EXPECT_EQ(r.status, Status::fail);
   const auto& uv_y = channel(r, "uv.y");
   EXPECT_EQ(uv_y.over_tolerance, 1u);
@@ -108,11 +119,11 @@ TEST(Compare, CatchesOneInjectedErrorInOneComponentOfOnePixel) {
   EXPECT_NE(r.message.find("2,3"), std::string::npos) << r.message;
 
   // Under a tolerance of 100 ULPs the same error passes; at 99 it does not.
-  Tolerance loose;
+  Tolerance loose = ulps_tolerance();
   loose.varying_ulps = 100;
-  EXPECT_EQ(compare(c, ref, band, gl, loose).status, Status::pass);
+  EXPECT_EQ(compare(c, expect(ref, band), gl, loose).status, Status::pass);
   loose.varying_ulps = 99;
-  EXPECT_EQ(compare(c, ref, band, gl, loose).status, Status::fail);
+  EXPECT_EQ(compare(c, expect(ref, band), gl, loose).status, Status::fail);
 }
 
 TEST(Compare, NaNOrInfInGLFailsUnderAnyTolerance) {
@@ -120,14 +131,14 @@ TEST(Compare, NaNOrInfInGLFailsUnderAnyTolerance) {
   const Frame ref = reference_frame(c);
   const std::vector<uint8_t> band(ref.pixel_count(), 0);
   for (double tolerance : {1e300, std::numeric_limits<double>::infinity()}) {
-    Tolerance huge;
+    Tolerance huge = ulps_tolerance();
     huge.varying_ulps = huge.depth_ulps = tolerance;
     for (float bad :
          {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
       Frame gl = ref;
       gl.components[0][gl.index(1, 1)] = bad;
       gl.depth[gl.index(2, 2)] = bad;
-      const CaseResult r = compare(c, ref, band, gl, huge);
+      const CaseResult r = compare(c, expect(ref, band), gl, huge);
       EXPECT_EQ(r.status, Status::fail);
       EXPECT_EQ(channel(r, "uv.x").non_finite, 1u);
       EXPECT_EQ(channel(r, "uv.x").over_tolerance, 1u);
@@ -144,7 +155,7 @@ TEST(Compare, FlatValuesMustBeExact) {
   Frame gl = ref;
   gl.components[2][gl.index(0, 0)] = std::nextafter(7.0f, 8.0f);
   const std::vector<uint8_t> band(ref.pixel_count(), 0);
-  const CaseResult r = compare(c, ref, band, gl, Tolerance{});
+  const CaseResult r = compare(c, expect(ref, band), gl, ulps_tolerance());
   EXPECT_EQ(r.status, Status::fail);
   EXPECT_EQ(channel(r, "id.x").max_ulps, 1.0);
 }
@@ -155,10 +166,10 @@ TEST(Compare, CoverageMismatchesAreClassifiedByTheEdgeBand) {
   Frame gl = ref;
   std::vector<uint8_t> band(ref.pixel_count(), 0);
   gl.primitive[gl.index(7, 1)] = 0;                    // GL covers a pixel the reference does not
-  band[gl.index(7, 1)] = 1;                            // ... next to an edge: boundary
+  band[gl.index(7, 1)] = edge::snapping;               // ... next to an edge: boundary
   gl.primitive[gl.index(0, 0)] = Frame::kNoPrimitive;  // GL drops a pixel deep inside
-  Tolerance t;
-  CaseResult r = compare(c, ref, band, gl, t);
+  Tolerance t = ulps_tolerance();
+  CaseResult r = compare(c, expect(ref, band), gl, t);
   EXPECT_EQ(r.coverage.gl_only, 1u);
   EXPECT_EQ(r.coverage.reference_only, 1u);
   EXPECT_EQ(r.coverage.boundary, 1u);
@@ -168,11 +179,11 @@ TEST(Compare, CoverageMismatchesAreClassifiedByTheEdgeBand) {
   EXPECT_EQ(r.status, Status::fail);
 
   gl.primitive[gl.index(0, 0)] = 0;  // only the boundary pixel left: allowed by default
-  r = compare(c, ref, band, gl, t);
+  r = compare(c, expect(ref, band), gl, t);
   EXPECT_EQ(r.status, Status::pass);
   EXPECT_EQ(r.coverage.boundary, 1u);
   t.allow_boundary = false;
-  r = compare(c, ref, band, gl, t);
+  r = compare(c, expect(ref, band), gl, t);
   EXPECT_EQ(r.status, Status::fail);
   EXPECT_EQ(r.coverage.failures, 1u);
 }
@@ -187,7 +198,7 @@ TEST(Compare, StatisticsOverManyPixels) {
     gl.depth[gl.index(0, y)] += float(std::ldexp(1.0, -23));
   gl.depth[gl.index(1, 1)] += float(std::ldexp(4.0, -23));
   const std::vector<uint8_t> band(ref.pixel_count(), 0);
-  const CaseResult r = compare(c, ref, band, gl, Tolerance{});
+  const CaseResult r = compare(c, expect(ref, band), gl, ulps_tolerance());
   const auto& d = channel(r, "depth");
   EXPECT_EQ(d.max_ulps, 4.0);
   EXPECT_DOUBLE_EQ(d.mean_ulps, 12.0 / 36.0);
@@ -196,6 +207,97 @@ TEST(Compare, StatisticsOverManyPixels) {
   EXPECT_EQ(d.worst.size(), 9u);
   EXPECT_EQ(d.worst[0].ulps, 4.0);
   EXPECT_EQ(r.status, Status::pass);
+}
+
+TEST(Compare, SpecToleranceIsThePerPixelAllowance) {
+  const Case c = two_varyings_case();
+  const Frame ref = reference_frame(c);
+  Frame allowed(ref.width, ref.height, int(ref.components.size()));
+  allowed.primitive = ref.primitive;
+  // uv.x may be off by 1e-3 everywhere but at (1, 2), where by 1e-5; flat id by nothing.
+  for (auto& v : allowed.components[0])
+    v = 1e-3f;
+  allowed.components[0][allowed.index(1, 2)] = 1e-5f;
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  Frame gl = ref;
+  gl.components[0][gl.index(4, 1)] += 5e-4f;  // half of its allowance
+  Tolerance spec;                             // the default
+  CaseResult r = compare(c, expect(ref, band, allowed), gl, spec);
+  EXPECT_EQ(r.status, Status::pass) << r.message;
+  const auto& uv_x = channel(r, "uv.x");
+  EXPECT_NEAR(uv_x.max_ratio, 0.5, 1e-3);
+  EXPECT_NEAR(uv_x.p99_ratio, uv_x.max_ratio, 1e-6);  // nearest rank 36 of 36
+  EXPECT_NEAR(uv_x.worst[0].allowed, 1e-3, 1e-9);
+
+  gl.components[0][gl.index(1, 2)] += 2e-5f;  // twice its (small) allowance
+  r = compare(c, expect(ref, band, allowed), gl, spec);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(channel(r, "uv.x").over_tolerance, 1u);
+  EXPECT_NEAR(channel(r, "uv.x").max_ratio, 2.0, 0.1);
+  EXPECT_EQ(channel(r, "uv.x").worst[0].x, 1);
+  EXPECT_NE(r.message.find("allowance"), std::string::npos) << r.message;
+
+  // Spec mode without an allowance is a programming error, not a pass.
+  EXPECT_THROW(compare(c, expect(ref, band), gl, spec), std::invalid_argument);
+}
+
+TEST(Compare, ExactToleranceCountsDifferingBitsAndNaNNeverPasses) {
+  const Case c = two_varyings_case();
+  Frame ref = reference_frame(c);
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  Tolerance exact;
+  exact.mode = ToleranceMode::exact;
+  Frame gl = ref;
+  EXPECT_EQ(compare(c, expect(ref, band), gl, exact).status, Status::pass);
+  gl.components[1][gl.index(3, 3)] = std::nextafter(gl.components[1][gl.index(3, 3)], 1e9f);
+  CaseResult r = compare(c, expect(ref, band), gl, exact);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(channel(r, "uv.y").differing, 1u);
+  // The same NaN in both (a driver model reproducing a driver bug): no differing bit, and
+  // still a failure.
+  ref.components[0][ref.index(1, 1)] = std::numeric_limits<float>::quiet_NaN();
+  gl = ref;
+  r = compare(c, expect(ref, band), gl, exact);
+  EXPECT_EQ(channel(r, "uv.x").differing, 0u);
+  EXPECT_EQ(channel(r, "uv.x").non_finite, 1u);
+  EXPECT_EQ(r.status, Status::fail);
+}
+
+TEST(Compare, CoverageLabelsAndWatertightness) {
+  const Case c = two_varyings_case();
+  Frame ref = reference_frame(c);
+  ref.fragments.assign(ref.pixel_count(), 0);
+  for (size_t i = 0; i < ref.pixel_count(); ++i)
+    ref.fragments[i] = ref.primitive[i] >= 0;
+  std::vector<uint8_t> band(ref.pixel_count(), 0);
+  band[ref.index(7, 1)] = edge::snapping | edge::tie;  // on an outer edge
+  band[ref.index(6, 1)] = edge::snapping;              // near an outer edge
+  band[ref.index(3, 3)] = edge::shared;                // near a shared edge
+  band[ref.index(2, 3)] = edge::shared | edge::tie;    // on a shared edge
+  Frame gl = ref;
+  auto set = [&gl](int x, int y, int32_t primitive, uint16_t fragments) {
+    gl.primitive[gl.index(x, y)] = primitive;
+    gl.fragments[gl.index(x, y)] = fragments;
+  };
+  set(7, 1, 0, 1);                    // GL covers the tie centre: exact tie
+  set(6, 1, Frame::kNoPrimitive, 0);  // GL leaves the near-edge centre out: within snapping
+  set(3, 3, Frame::kNoPrimitive, 0);  // a hole next to a shared edge: gap
+  set(2, 3, 0, 2);                    // the shared-edge centre drawn twice: double hit
+  set(0, 5, Frame::kNoPrimitive, 0);  // far from every edge: fill-rule error
+  const Tolerance t = ulps_tolerance();
+  const CaseResult r = compare(c, expect(ref, band), gl, t);
+  EXPECT_TRUE(r.coverage.fragments_checked);
+  EXPECT_EQ(r.coverage.exact_tie, 1u);
+  EXPECT_EQ(r.coverage.within_snapping, 1u);
+  EXPECT_EQ(r.coverage.gaps, 1u);
+  EXPECT_EQ(r.coverage.double_hits, 1u);
+  EXPECT_EQ(r.coverage.fill_rule, 1u);
+  EXPECT_EQ(r.coverage.failures, 3u);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_NE(r.message.find("gaps on shared edges"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("double hits"), std::string::npos) << r.message;
+  EXPECT_EQ(coverage_label(expect(ref, band), gl, ref.index(3, 3)), CoverageStats::Label::gap);
+  EXPECT_EQ(coverage_label(expect(ref, band), gl, ref.index(1, 1)), std::nullopt);
 }
 
 }  // namespace

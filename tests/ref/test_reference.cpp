@@ -77,7 +77,8 @@ TEST(Reference, TiltedQuadHasNoSeam) {
     }
     if (prims.size() < 2) continue;
     ++rows_checked;
-    for (size_t k = 1; k < u.size(); ++k) EXPECT_GT(u[k], u[k - 1]) << "row " << y;
+    for (size_t k = 1; k < u.size(); ++k)
+      EXPECT_GT(u[k], u[k - 1]) << "row " << y;
   }
   EXPECT_GT(rows_checked, 10);
 }
@@ -90,7 +91,8 @@ std::vector<int> coverage_counts(const Case& c, const Model& m) {
     if (!t.drawn) continue;
     const CoverageTest cov(t, m);
     for (int y = 0; y < c.fb_height; ++y)
-      for (int x = 0; x < c.fb_width; ++x) count[size_t(y) * c.fb_width + x] += cov.covers(x, y);
+      for (int x = 0; x < c.fb_width; ++x)
+        count[size_t(y) * c.fb_width + x] += cov.covers(x, y);
   }
   return count;
 }
@@ -104,8 +106,10 @@ TEST(Reference, FanCoversEachPixelOnce) {
   c.vertices.push_back(at(16.5f, 16.5f));
   const float ring[][2] = {{28.5f, 16.5f}, {28.5f, 28.5f}, {16.5f, 28.5f}, {4.5f, 28.5f},
                            {4.5f, 16.5f},  {4.5f, 4.5f},   {16.5f, 4.5f},  {28.5f, 4.5f}};
-  for (auto& p : ring) c.vertices.push_back(at(p[0], p[1]));
-  for (uint32_t k = 0; k < 8; ++k) c.triangles.push_back({0, 1 + k, 1 + (k + 1) % 8});
+  for (auto& p : ring)
+    c.vertices.push_back(at(p[0], p[1]));
+  for (uint32_t k = 0; k < 8; ++k)
+    c.triangles.push_back({0, 1 + k, 1 + (k + 1) % 8});
   for (int bits : {0, 4, 8}) {
     for (TieBreak tie : {TieBreak::bottom_left, TieBreak::top_left}) {
       Model m;
@@ -188,7 +192,8 @@ bool solve_barycentrics(const Case& c, const std::array<uint32_t, 3>& tri, int p
   for (int i = 0; i < 3; ++i) {
     mpq_class mi[3][3];
     for (int r = 0; r < 3; ++r)
-      for (int k = 0; k < 3; ++k) mi[r][k] = k == i ? rhs[r] : m[r][k];
+      for (int k = 0; k < 3; ++k)
+        mi[r][k] = k == i ? rhs[r] : m[r][k];
     e[i] = det3(mi) / d;
     sum += e[i];
   }
@@ -237,7 +242,8 @@ TEST(Reference, BehindTheEyeAndFarPlaneAgainstSolver) {
       ++covered;
       for (int k = 0; k < 2; ++k) {
         mpq_class v = 0;
-        for (int j = 0; j < 3; ++j) v += b[j] * double(c.vertices[j].values[k]);
+        for (int j = 0; j < 3; ++j)
+          v += b[j] * double(c.vertices[j].values[k]);
         EXPECT_EQ(r.frame.components[k][i], nearest_float(v)) << px << "," << py;
       }
       EXPECT_EQ(r.frame.components[2][i], 9.0f);  // flat: last vertex
@@ -288,9 +294,9 @@ TEST(Reference, ViewportOffsetAndEdgeBand) {
                 vtx(-1.0f / 32, 0.5f, 0, 1, {})};
   e.triangles = {{0, 1, 2}};
   const Reference re = render(e, Model{});
-  EXPECT_EQ(re.edge_band[re.frame.index(15, 16)], 1);
-  EXPECT_EQ(re.edge_band[re.frame.index(17, 16)], 0);
-  EXPECT_EQ(re.edge_band[re.frame.index(13, 16)], 0);
+  EXPECT_EQ(re.edges[re.frame.index(15, 16)], edge::snapping | edge::tie);
+  EXPECT_EQ(re.edges[re.frame.index(17, 16)], 0);
+  EXPECT_EQ(re.edges[re.frame.index(13, 16)], 0);
 }
 
 }  // namespace

@@ -86,9 +86,16 @@ TEST_F(ReportTest, DiffImagesWritesEveryChannelAndCoverage) {
   gl.primitive[gl.index(6, 0)] = 0;  // a GL-only pixel
   CaseResult r;
   r.name = c.name;
+  // The specification's allowance: 2 ulp for v.x everywhere, 1 ulp of 1.0 for depth.
+  Frame allowed(kW, kH, 1);
+  allowed.primitive = ref.primitive;
+  for (auto& v : allowed.components[0])
+    v = 2 * kUlp;
+  for (auto& v : allowed.depth)
+    v = 0x1p-23f;
 
-  const auto files =
-      write_diff_images(dir_ / "diff", c, ref, std::vector<uint8_t>(kW * kH, 0), gl, r);
+  const auto files = write_diff_images(
+      dir_ / "diff", c, Expectation{ref, std::vector<uint8_t>(kW * kH, 0), allowed}, gl, r);
   std::vector<std::string> names;
   for (const auto& f : files) {
     EXPECT_TRUE(std::filesystem::is_regular_file(f)) << f;
@@ -96,9 +103,17 @@ TEST_F(ReportTest, DiffImagesWritesEveryChannelAndCoverage) {
     names.push_back(f.filename().string());
   }
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"coverage.png", "depth_error.exr", "depth_error.png",
-                                             "depth_gl.exr", "depth_ref.exr", "v.x_error.exr",
-                                             "v.x_error.png", "v.x_gl.exr", "v.x_ref.exr"}));
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "coverage.png", "depth_allowed.exr", "depth_allowed.png", "depth_error.exr",
+                       "depth_error.png", "depth_gl.exr", "depth_ratio.png", "depth_ref.exr",
+                       "v.x_allowed.exr", "v.x_allowed.png", "v.x_error.exr", "v.x_error.png",
+                       "v.x_gl.exr", "v.x_ratio.png", "v.x_ref.exr"}));
+  // The allowance as the comparator used it, in value units, where values are compared.
+  const Image allowance = read_image(dir_ / "diff" / "v.x_allowed.exr");
+  EXPECT_EQ(allowance.at(kErrX, kH - 1 - kErrY), 2 * kUlp);
+  EXPECT_TRUE(std::isnan(allowance.at(7, kH - 1)));
+  // 3 ulp of error against 2 allowed: the ratio map's bright end, over 1.
+  EXPECT_TRUE(shows_frame_pixel_of(read_image(dir_ / "diff" / "v.x_ratio.png"), 0xfd, 0xe7, 0x25));
 
   const Image error = read_image(dir_ / "diff" / "v.x_error.exr");
   ASSERT_EQ(error.width, kW);
@@ -136,7 +151,7 @@ TEST_F(ReportTest, DiffImagesShowNonFiniteValuesInMagenta) {
   const Frame ref = reference_frame();
   Frame gl = ref;
   gl.components[0][gl.index(1, 1)] = std::numeric_limits<float>::quiet_NaN();
-  write_diff_images(dir_, c, ref, {}, gl, CaseResult{});
+  write_diff_images(dir_, c, Expectation{ref, {}, Frame()}, gl, CaseResult{});
 
   EXPECT_TRUE(shows_frame_pixel_of(read_image(dir_ / "v.x_error.png"), 255, 0, 255));
   EXPECT_FALSE(shows_frame_pixel_of(read_image(dir_ / "depth_error.png"), 255, 0, 255));
@@ -145,7 +160,8 @@ TEST_F(ReportTest, DiffImagesShowNonFiniteValuesInMagenta) {
 
 TEST_F(ReportTest, DiffImagesRejectFramesOfAnotherSize) {
   const Case c = one_triangle_case();
-  EXPECT_THROW(write_diff_images(dir_, c, reference_frame(), {}, Frame(4, 4, 1), CaseResult{}),
+  EXPECT_THROW(write_diff_images(dir_, c, Expectation{reference_frame(), {}, Frame()},
+                                 Frame(4, 4, 1), CaseResult{}),
                std::runtime_error);
 }
 

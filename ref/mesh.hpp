@@ -1,0 +1,19 @@
+// Meshes: which edges two drawn triangles share. GL requires a pixel centre on a shared edge
+// to be covered by exactly one of the two, so near such an edge coverage may move from one
+// triangle to the other but never leave a gap or be drawn twice (watertightness).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/case.hpp"
+#include "ref/setup.hpp"
+
+namespace glrc::ref {
+
+// shared[t][i]: edge i of triangle t (the edge opposite vertex i) is also an edge of another
+// drawn triangle lying on its other side. Both ends must have identical clip coordinates and
+// w_c > 0; a culled or zero-area neighbour leaves the edge outer.
+std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles);
+
+}  // namespace glrc::ref

@@ -1,0 +1,140 @@
+// The specification-derived allowance, checked the way its derivation says it holds: render the
+// same triangles with every vertex moved to the extremes of the position freedom, exactly, and
+// every value that moves must stay within the allowance of the unmoved reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ref/allowance.hpp"
+#include "ref/mesh.hpp"
+#include "ref/reference.hpp"
+#include "ref/setup.hpp"
+
+namespace glrc::ref {
+namespace {
+
+Case base_case(int size) {
+  Case c;
+  c.name = "allowance";
+  c.fb_width = c.fb_height = size;
+  c.viewport = {0, 0, size, size};
+  c.varyings = {{"s", 2, Interpolation::smooth}, {"n", 1, Interpolation::noperspective}};
+  return c;
+}
+
+// Moves vertex `v` of the case by (dx, dy) window pixels: x_c += dx·w_c·2/width, rounded to
+// float (an error of ~1e-6 pixel, far below the moves).
+void move(Case& c, size_t v, double dx, double dy) {
+  auto& clip = c.vertices[v].clip;
+  clip[0] = float(double(clip[0]) + dx * double(clip[3]) * 2.0 / c.viewport.width);
+  clip[1] = float(double(clip[1]) + dy * double(clip[3]) * 2.0 / c.viewport.height);
+}
+
+// For all 4^3 corner moves of +-0.9·2^-bits, the largest |moved - reference| / allowed over
+// pixels both cover with the same triangle, over every channel.
+double worst_share_of_allowance(const Case& c, int bits) {
+  const Reference r = render(c, Model{}, bits);
+  const double d = 0.9 * std::ldexp(1.0, -bits);
+  double worst = 0;
+  for (int corners = 0; corners < 64; ++corners) {
+    Case moved = c;
+    for (size_t v = 0; v < 3; ++v) {
+      const int k = (corners >> (2 * v)) & 3;
+      move(moved, v, k & 1 ? d : -d, k & 2 ? d : -d);
+    }
+    const Reference m = render(moved, Model{});
+    for (size_t i = 0; i < r.frame.pixel_count(); ++i) {
+      if (r.frame.primitive[i] < 0 || m.frame.primitive[i] != r.frame.primitive[i]) continue;
+      auto share = [&](float ref, float got, float allowed) {
+        worst = std::max(worst, std::fabs(double(got) - double(ref)) / double(allowed));
+      };
+      share(r.frame.depth[i], m.frame.depth[i], r.allowed.depth[i]);
+      for (size_t k = 0; k < r.frame.components.size(); ++k)
+        share(r.frame.components[k][i], m.frame.components[k][i], r.allowed.components[k][i]);
+    }
+  }
+  return worst;
+}
+
+TEST(Allowance, BoundsEveryExtremeVertexMoveOfAPerspectiveTriangle) {
+  Case c = base_case(32);
+  // w from 1 to 6: strongly perspective, values of several magnitudes.
+  c.vertices = {{{-0.9f, -0.8f, 0.1f, 1.0f}, {0.0f, 10.0f, -3.0f}},
+                {{5.1f, -4.5f, 2.0f, 6.0f}, {1.0f, -10.0f, 5.0f}},
+                {{-1.2f, 2.7f, -0.7f, 3.0f}, {0.5f, 1000.0f, 0.25f}}};
+  c.triangles = {{0, 1, 2}};
+  for (int bits : {4, 6, 8}) {
+    const double worst = worst_share_of_allowance(c, bits);
+    EXPECT_LE(worst, 1.0) << bits << " bits";
+    // Not vacuous: the moves use a good part of the allowance.
+    EXPECT_GE(worst, 0.3) << bits << " bits";
+  }
+}
+
+TEST(Allowance, BoundsEveryExtremeVertexMoveOfASliver) {
+  Case c = base_case(48);
+  // 40 pixels long, about 1.5 pixels wide: the first-order bound is under the most strain.
+  c.vertices = {{{-0.9f, -0.9f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f}},
+                {{1.6f, 1.5f, 0.5f, 2.0f}, {1.0f, 1.0f, 1.0f}},
+                {{-0.9f, -0.84f, 0.0f, 1.0f}, {0.0f, 1.0f, 2.0f}}};
+  c.triangles = {{0, 1, 2}};
+  for (int bits : {4, 8})
+    EXPECT_LE(worst_share_of_allowance(c, bits), 1.0) << bits << " bits";
+}
+
+TEST(Allowance, FlatIsExactAndDepthIsPositive) {
+  Case c = base_case(16);
+  c.varyings = {{"f", 1, Interpolation::flat}};
+  c.vertices = {{{-1, -1, 0, 1}, {1}}, {{1, -1, 0.5f, 1}, {2}}, {{-1, 1, -0.5f, 1}, {3}}};
+  c.triangles = {{0, 1, 2}};
+  const Reference r = render(c, Model{}, 8);
+  const size_t i = r.frame.index(2, 2);
+  ASSERT_EQ(r.frame.primitive[i], 0);
+  EXPECT_EQ(r.allowed.components[0][i], 0.0f);
+  // z_w changes by 1/64 per pixel along x and along y: 1.5·2^-8·(1/64 + 1/64) from position,
+  // plus a little arithmetic.
+  EXPECT_GT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64));
+  EXPECT_LT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64) * 1.01);
+}
+
+TEST(Allowance, GrowsWithDistanceFromTheOrigin) {
+  Case near = base_case(16);
+  near.vertices = {
+      {{-1, -1, 0, 1}, {0, 0, 0}}, {{1, -1, 0, 1}, {1, 1, 1}}, {{-1, 1, 0, 1}, {0, 0, 0}}};
+  near.triangles = {{0, 1, 2}};
+  Case far = near;
+  far.fb_width = 4096;
+  far.viewport = {4080, 0, 16, 16};
+  const Reference a = render(near, Model{}, 16), b = render(far, Model{}, 16);
+  // The same triangle, 4080 pixels further: float positions and planes lose precision there.
+  EXPECT_GT(b.allowed.components[0][b.frame.index(4082, 2)],
+            4 * a.allowed.components[0][a.frame.index(2, 2)]);
+}
+
+TEST(SharedEdges, AQuadsDiagonalIsSharedAnOverlapIsNot) {
+  Case c = base_case(16);
+  c.varyings = {};
+  for (auto [x, y] : {std::pair{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}})
+    c.vertices.push_back({{x, y, 0, 1}, {}});
+  c.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 1, 2}};  // the third overlaps the first
+  std::vector<TriangleSetup> setups;
+  for (int p = 0; p < 3; ++p)
+    setups.push_back(setup_triangle(c, Model{}, p));
+  const auto shared = shared_edges(setups);
+  // Edge i is opposite the triangle's i-th vertex: the diagonal 0-2 is edge 1 of (0, 1, 2) and
+  // edge 2 of (0, 2, 3).
+  EXPECT_EQ(shared[0], (std::array<bool, 3>{false, true, false}));
+  EXPECT_EQ(shared[1], (std::array<bool, 3>{false, false, true}));
+  EXPECT_EQ(shared[2], (std::array<bool, 3>{false, true, false}));  // shares with triangle 1
+
+  // Pixels along the diagonal are marked shared, not snapping; the outer edges snapping.
+  c.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const Reference r = render(c, Model{}, 8);
+  EXPECT_EQ(r.edges[r.frame.index(7, 7)], edge::shared | edge::tie);  // centre on the diagonal
+  EXPECT_EQ(r.edges[r.frame.index(8, 8)], edge::shared | edge::tie);
+  EXPECT_EQ(r.edges[r.frame.index(5, 9)], 0);
+  EXPECT_EQ(r.frame.fragments[r.frame.index(7, 7)], 1);
+}
+
+}  // namespace
+}  // namespace glrc::ref
