@@ -1,0 +1,54 @@
+// llvmpipe's coverage (edge setup in lp_setup_tri.c, tests in lp_rast_tri_tmp.h) and the
+// TriangleSink that puts setup, coverage and fragment evaluation together.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/case.hpp"
+#include "driver_models/draw_vertex.hpp"
+#include "driver_models/frame_writer.hpp"
+#include "driver_models/llvmpipe_setup.hpp"
+
+namespace glrc::driver_models {
+
+// Three half-edge functions in fixed point and the pixel rectangle worth testing (the
+// triangle's bounding box clipped to the framebuffer: draw_regions without scissor).
+struct LlvmpipeEdges {
+  std::array<int64_t, 3> c{};
+  std::array<int64_t, 3> dcdx{}, dcdy{};  // already scaled by FIXED_ONE
+  int x0 = 0, x1 = -1, y0 = 0, y1 = -1;   // inclusive
+};
+
+LlvmpipeEdges llvmpipe_edges(const LlvmpipeTriangle& t, int fb_width, int fb_height);
+
+// c + dcdy * py - dcdx * px - 1 >= 0 for all three edges (the "- 1" and the +1 bias on
+// left/bottom edges in llvmpipe_edges make the fill convention).
+inline bool llvmpipe_covers(const LlvmpipeEdges& e, int px, int py) {
+  for (int i = 0; i < 3; ++i)
+    if (e.c[i] + e.dcdy[i] * py - e.dcdx[i] * px - 1 < 0) return false;
+  return true;
+}
+
+// The fragment shader's inputs and depth at pixel (px, py) (lp_bld_interp.c,
+// attribs_update_simple; lp_state_fs.c, lp_build_depth_clamp): `values` gets one float per
+// component; returns the depth as tested and written.
+float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpolation>& interp,
+                        int px, int py, bool fma, float* values);
+
+class LlvmpipeRasterizer final : public TriangleSink {
+ public:
+  LlvmpipeRasterizer(const Case& c, bool fma, FrameWriter& writer);
+  void triangle(const DrawVertex& v0, const DrawVertex& v1, const DrawVertex& v2,
+                int32_t primitive) override;
+
+ private:
+  const Case& case_;
+  bool fma_;
+  FrameWriter& writer_;
+  std::vector<Interpolation> interpolation_;
+  std::vector<float> values_;
+};
+
+}  // namespace glrc::driver_models

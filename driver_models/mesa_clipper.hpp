@@ -1,0 +1,33 @@
+// The draw module's pipeline stages that our state enables: draw_pipe_clip.c (the clipper)
+// and draw_pipe_cull.c (face culling on float window positions). Both drivers share them.
+#pragma once
+
+#include <array>
+#include <deque>
+#include <vector>
+
+#include "core/case.hpp"
+#include "driver_models/draw_vertex.hpp"
+#include "driver_models/viewport.hpp"
+
+namespace glrc::driver_models {
+
+struct ClipContext {
+  ViewportXform viewport;
+  bool flatshade_first = false;              // glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)
+  std::vector<Interpolation> interpolation;  // per component
+};
+
+using TriangleRefs = std::array<const DrawVertex*, 3>;
+
+// do_clip_tri: clips the triangle against the planes in `clipmask` (lowest bit first) and
+// emits the polygon as a fan in emit_poly's vertex order into `out`. New vertices live in
+// `storage`. Nothing is emitted when the polygon vanishes or a plane distance is Inf/NaN.
+void clip_triangle(const ClipContext& ctx, const TriangleRefs& tri, uint32_t clipmask,
+                   std::deque<DrawVertex>& storage, std::vector<TriangleRefs>& out);
+
+// cull_tri: whether draw's cull stage passes the triangle. det = cross(v0 - v2, v1 - v2) from
+// float window positions; det == 0 counts as back facing.
+bool cull_stage_passes(const Case& c, const TriangleRefs& tri);
+
+}  // namespace glrc::driver_models

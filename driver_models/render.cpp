@@ -1,0 +1,78 @@
+// render(): a case through the draw module into one driver's setup, rasterizer and fragment
+// evaluation; names; llvmpipe's FMA choice.
+#include <cpuid.h>
+
+#include <cstdlib>
+#include <cstring>
+
+#include <strings.h>
+
+#include "driver_models/draw.hpp"
+#include "driver_models/driver_models.hpp"
+#include "driver_models/frame_writer.hpp"
+#include "driver_models/llvmpipe_raster.hpp"
+#include "driver_models/softpipe_quad.hpp"
+
+namespace glrc::driver_models {
+
+const char* to_string(Driver d) {
+  return d == Driver::llvmpipe ? "llvmpipe" : "softpipe";
+}
+
+std::optional<Driver> driver_from_string(std::string_view s) {
+  if (s == "llvmpipe") return Driver::llvmpipe;
+  if (s == "softpipe") return Driver::softpipe;
+  return std::nullopt;
+}
+
+// util_cpu_detect (src/util/u_cpu_detect.c): has_fma = CPUID.1:ECX.FMA && has_avx, has_avx =
+// AVX && OSXSAVE && XCR0 saves XMM and YMM, and AVX is off without SSE4.1 (and the chain of
+// SSE levels below it) or when GALLIUM_OVERRIDE_CPU_CAPS names a level up to sse4.1, or
+// GALLIUM_NOSSE is set. gallivm then targets "+fma" exactly when has_fma.
+bool llvmpipe_uses_fma() {
+  static const bool fma = [] {
+#if defined(__x86_64__) || defined(__i386__)
+    unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
+    const bool sse = edx >> 25 & 1, sse2 = edx >> 26 & 1, sse3 = ecx & 1, ssse3 = ecx >> 9 & 1;
+    const bool sse41 = ecx >> 19 & 1, fma_bit = ecx >> 12 & 1;
+    bool avx = (ecx >> 28 & 1) && (ecx >> 27 & 1);
+    if (avx) {
+      unsigned xcr0_lo = 0, xcr0_hi = 0;
+      __asm__("xgetbv" : "=a"(xcr0_lo), "=d"(xcr0_hi) : "c"(0));
+      avx = (xcr0_lo & 6) == 6;
+    }
+    if (!(sse && sse2 && sse3 && ssse3 && sse41)) avx = false;
+    // debug_get_bool_option: anything but 0, n, no, f, false (any case) is true.
+    if (const char* nosse = std::getenv("GALLIUM_NOSSE")) {
+      bool off = false;
+      for (const char* no : {"0", "n", "no", "f", "false"})
+        off = off || strcasecmp(nosse, no) == 0;
+      if (!off) avx = false;
+    }
+    if (const char* o = std::getenv("GALLIUM_OVERRIDE_CPU_CAPS"))
+      for (const char* level : {"nosse", "sse", "sse2", "sse3", "ssse3", "sse4.1"})
+        if (std::strcmp(o, level) == 0) avx = false;
+    return fma_bit && avx;
+#else
+    return false;
+#endif
+  }();
+  return fma;
+}
+
+Frame render(const Case& c, Driver d, const Options& o) {
+  Frame frame(c.fb_width, c.fb_height, c.component_count());
+  frame.fragments.assign(frame.pixel_count(), 0);
+  FrameWriter writer(frame, c.depth_func);
+  if (d == Driver::llvmpipe) {
+    LlvmpipeRasterizer raster(c, o.fma, writer);
+    run_draw(c, DrawConfig{VertexPath::llvm, o.fma}, raster);
+  } else {
+    SoftpipeRasterizer raster(c, writer);
+    run_draw(c, DrawConfig{VertexPath::c, false}, raster);
+  }
+  return frame;
+}
+
+}  // namespace glrc::driver_models

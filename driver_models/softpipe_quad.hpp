@@ -1,0 +1,33 @@
+// softpipe's per-quad evaluation (tgsi_exec.c eval_*_coef, sp_fs_exec.c setup_pos_vector,
+// sp_quad_depth_test.c) and the TriangleSink that runs setup, spans and quads.
+#pragma once
+
+#include <vector>
+
+#include "core/case.hpp"
+#include "driver_models/draw_vertex.hpp"
+#include "driver_models/frame_writer.hpp"
+#include "driver_models/softpipe_setup.hpp"
+
+namespace glrc::driver_models {
+
+// Values of pixel (px, py): evaluated at its 2x2 quad's top-left (even) pixel as
+// a0 + dadx * x + dady * y, then dadx and dady added for the other three pixels; perspective
+// inputs divided by the W plane evaluated the same way. Returns the (unclamped) depth.
+float softpipe_fragment(const SoftpipeTriangle& t, const std::vector<Interpolation>& interp, int px,
+                        int py, float* values);
+
+class SoftpipeRasterizer final : public TriangleSink {
+ public:
+  SoftpipeRasterizer(const Case& c, FrameWriter& writer);
+  void triangle(const DrawVertex& v0, const DrawVertex& v1, const DrawVertex& v2,
+                int32_t primitive) override;
+
+ private:
+  const Case& case_;
+  FrameWriter& writer_;
+  std::vector<Interpolation> interpolation_;
+  std::vector<float> values_;
+};
+
+}  // namespace glrc::driver_models
