@@ -12,6 +12,7 @@
 
 #include "casefile/casefile.hpp"
 #include "cli/expectations.hpp"
+#include "cli/session.hpp"
 #include "compare/compare.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
@@ -19,189 +20,11 @@
 
 namespace glrc::cli {
 namespace {
-
-// Bad input: one line on stderr, exit 2.
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-struct Options {
-  std::vector<std::string> paths;
-  std::string filter;
-  // Model
-  int subpixel_bits = 8;
-  std::string planes = "unsnapped", tie_break = "bottom-left";
-  // GL
-  std::string backend = "osmesa", driver = "llvmpipe";
-  int device = 0;
-  // Verdict
-  std::string tolerance = "spec";
-  std::optional<int> spec_subpixel_bits;  // overrides GL_SUBPIXEL_BITS as reported
-  std::optional<double> varying_ulps, depth_ulps;
-  bool strict_coverage = false;
-  std::string baseline, out = "out";
-};
-
-Model model_of(const Options& o) {
-  Model m;
-  m.subpixel_bits = o.subpixel_bits;
-  m.planes = o.planes == "snapped" ? Planes::snapped : Planes::unsnapped;
-  m.tie_break = o.tie_break == "top-left" ? TieBreak::top_left : TieBreak::bottom_left;
-  return m;
-}
-
-// The position freedom of the specification's tolerance: the subpixel bits the implementation
-// reports (GL requires at least 4), unless the command line names others.
-int freedom_bits(const Options& o, int reported) {
-  return std::max(o.spec_subpixel_bits.value_or(reported), 4);
-}
-
-// Defaults, then the case file's tolerance, then the command line's: --tolerance exact wins,
-// a number of ULPs turns to fixed thresholds.
-Tolerance tolerance_for(const Case& c, const Options& o, int reported_bits) {
-  Tolerance t = c.tolerance.applied_to(Tolerance{});
-  t.subpixel_bits = freedom_bits(o, reported_bits);
-  if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
-  if (o.depth_ulps) t.depth_ulps = *o.depth_ulps;
-  if (o.varying_ulps || o.depth_ulps) t.mode = ToleranceMode::ulps;
-  if (o.tolerance == "exact") t.mode = ToleranceMode::exact;
-  if (o.strict_coverage) t.allow_boundary = false;
-  return t;
-}
-
-std::vector<Case> load_cases(const Options& o) {
-  std::vector<std::string> paths = o.paths;
-  if (paths.empty()) {
-    if (!std::filesystem::is_directory("cases"))
-      throw InputError("no cases/ folder here: name case files or folders on the command line");
-    paths = {"cases"};
-  }
-  std::optional<std::regex> filter;
-  if (!o.filter.empty()) {
-    try {
-      filter.emplace(o.filter, std::regex::ECMAScript);
-    } catch (const std::regex_error& e) {
-      throw InputError("--filter: expected a regular expression, got \"" + o.filter + "\" (" +
-                       e.what() + ")");
-    }
-  }
-  std::vector<Case> cases;
-  try {
-    for (const auto& file : casefile::collect(paths)) {
-      Case c = casefile::load(file);
-      if (!filter || std::regex_search(c.name, *filter)) cases.push_back(std::move(c));
-    }
-  } catch (const casefile::CaseError& e) {
-    throw InputError(e.what());
-  }
-  if (cases.empty()) throw InputError("no case matches: nothing to run");
-  return cases;
-}
-
-gl::Target target_of(const Options& o) {
-  gl::Target t;
-  t.backend = *gl::backend_from_string(o.backend);  // CLI11 has checked the name
-  t.driver = o.driver;
-  t.device_index = o.device;
-  return t;
-}
-
-std::unique_ptr<gl::Renderer> open_renderer(const Options& o) {
-  try {
-    return gl::create_renderer(target_of(o));
-  } catch (const gl::Unavailable& e) {
-    throw InputError(e.what());
-  }
-}
-
-RunInfo run_info(const Options& o, const gl::Renderer& r) {
-  RunInfo info;
-  info.backend = o.backend;
-  info.driver = o.driver;
-  info.model = model_of(o).describe();
-  info.subpixel_bits = r.info().subpixel_bits;
-  info.tolerance =
-      o.tolerance == "exact" ? "exact"
-      : o.varying_ulps || o.depth_ulps
-          ? "ulps"
-          : "spec (subpixel bits " + std::to_string(freedom_bits(o, r.info().subpixel_bits)) + ")";
-  info.gl_vendor = r.info().vendor;
-  info.gl_renderer = r.info().renderer;
-  info.gl_version = r.info().version;
-  return info;
-}
-
-// One case, end to end: reference, GL, comparison.
-struct Checked {
-  CaseResult result;
-  ref::Reference reference;
-  Frame gl;
-};
-
-Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
-  const auto start = Clock::now();
-  Checked out;
-  const int reported = renderer.info().subpixel_bits;
-  out.reference = ref::render(c, model_of(o), freedom_bits(o, reported));
-  try {
-    out.gl = renderer.render(c);
-    out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported));
-  } catch (const gl::RenderError& e) {
-    out.result.name = c.name;
-    out.result.description = c.description;
-    out.result.status = Status::error;
-    out.result.message = e.what();
-  }
-  out.result.seconds = seconds_since(start);
-  return out;
-}
-
-// Progress on a terminal only: CI logs get the per-case lines and nothing else.
-class Progress {
- public:
-  Progress() : on_(isatty(STDERR_FILENO) && !std::getenv("CI")) {}
-  void show(size_t k, size_t n, const std::string& name) const {
-    if (on_) fmt::print(stderr, "\r\033[K[{}/{}] {}", k + 1, n, name), std::fflush(stderr);
-  }
-  void clear() const {
-    if (on_) fmt::print(stderr, "\r\033[K"), std::fflush(stderr);
-  }
-
- private:
-  bool on_;
-};
-
-// Creates the output folder before any case runs, so that a folder that cannot be written is
-// one line and exit 2 at once, not a lost run.
-std::filesystem::path output_folder(const std::string& out) {
-  const std::filesystem::path dir(out);
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw InputError("--out: expected a folder that can be created, got \"" + out + "\"" +
-                     (ec ? " (" + ec.message() + ")" : " (not a folder)"));
-  if (access(dir.c_str(), W_OK) != 0)
-    throw InputError("--out: expected a writable folder, got \"" + out + "\"");
-  return dir;
-}
-
 int cmd_run(const Options& o) {
   const auto start = Clock::now();
   const std::vector<Case> cases = load_cases(o);
   const std::filesystem::path out = output_folder(o.out);
-  Baseline baseline;
-  if (!o.baseline.empty()) {
-    try {
-      baseline = read_baseline(o.baseline);
-    } catch (const std::runtime_error& e) {
-      throw InputError(e.what());
-    }
-  }
+  const Baseline baseline = load_baseline(o);
   auto renderer = open_renderer(o);
   RunInfo info = run_info(o, *renderer);
   fmt::print("glrefcheck run: {} cases on {} ({}), GL {} | model {} | tolerance {}\n", cases.size(),

@@ -1,0 +1,95 @@
+// What the subcommands share: options, loading cases and baselines, opening the GL side, and
+// checking one case end to end.
+#pragma once
+
+#include <unistd.h>
+
+#include <fmt/core.h>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli/expectations.hpp"
+#include "core/case.hpp"
+#include "core/model.hpp"
+#include "core/result.hpp"
+#include "gl_harness/gl_harness.hpp"
+#include "ref/reference.hpp"
+
+namespace glrc::cli {
+
+// Bad input: one line on stderr, exit 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Clock = std::chrono::steady_clock;
+inline double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+struct Options {
+  std::vector<std::string> paths;
+  std::string filter;
+  // Model
+  int subpixel_bits = 8;
+  std::string planes = "unsnapped", tie_break = "bottom-left";
+  // GL
+  std::string backend = "osmesa", driver = "llvmpipe";
+  int device = 0;
+  // Verdict
+  std::string tolerance = "spec";
+  std::optional<int> spec_subpixel_bits;  // overrides GL_SUBPIXEL_BITS as reported
+  std::optional<double> varying_ulps, depth_ulps;
+  bool strict_coverage = false;
+  std::string baseline, out = "out";
+};
+
+Model model_of(const Options& o);
+// The position freedom of the specification's tolerance: the subpixel bits the implementation
+// reports (GL requires at least 4), unless the command line names others.
+int freedom_bits(const Options& o, int reported);
+// Defaults, then the case file's tolerance, then the command line's.
+Tolerance tolerance_for(const Case& c, const Options& o, int reported_bits);
+// The cases named on the command line (default cases/), filtered; InputError when none.
+std::vector<Case> load_cases(const Options& o);
+// --baseline, or an empty one; InputError for a bad file.
+Baseline load_baseline(const Options& o);
+std::unique_ptr<gl::Renderer> open_renderer(const Options& o);
+RunInfo run_info(const Options& o, const gl::Renderer& r);
+
+// One case, end to end: reference, GL, comparison.
+struct Checked {
+  CaseResult result;
+  ref::Reference reference;
+  Frame gl;
+};
+
+Checked check(const Case& c, const Options& o, gl::Renderer& renderer);
+
+// Progress on a terminal only: CI logs get the per-case lines and nothing else.
+class Progress {
+ public:
+  Progress() : on_(isatty(STDERR_FILENO) && !std::getenv("CI")) {}
+  void show(size_t k, size_t n, const std::string& name) const {
+    if (on_) fmt::print(stderr, "\r\033[K[{}/{}] {}", k + 1, n, name), std::fflush(stderr);
+  }
+  void clear() const {
+    if (on_) fmt::print(stderr, "\r\033[K"), std::fflush(stderr);
+  }
+
+ private:
+  bool on_;
+};
+
+// Creates the output folder before any case runs, so that a folder that cannot be written is
+// one line and exit 2 at once, not a lost run.
+std::filesystem::path output_folder(const std::string& out);
+
+}  // namespace glrc::cli
