@@ -12,8 +12,10 @@
 
 #include "casefile/casefile.hpp"
 #include "cli/expectations.hpp"
+#include "cli/selftest.hpp"
 #include "cli/session.hpp"
 #include "compare/compare.hpp"
+#include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
 #include "report/report.hpp"
@@ -83,8 +85,12 @@ int cmd_diff(const Options& o) {
 }
 
 int cmd_digest(const Options& o) {
+  const auto driver = driver_models::driver_from_string(o.model);
   for (const Case& c : load_cases(o))
-    fmt::print("{}  {}\n", ref::digest(ref::render(c, model_of(o)).frame), c.name);
+    fmt::print(
+        "{}  {}\n",
+        ref::digest(driver ? driver_models::render(c, *driver) : ref::render(c, model_of(o)).frame),
+        c.name);
   return 0;
 }
 
@@ -104,6 +110,10 @@ void add_case_options(CLI::App& app, Options& o) {
 }
 
 void add_model_options(CLI::App& app, Options& o) {
+  app.add_option("--model", o.model,
+                 "ideal: the exact reference (default); llvmpipe, softpipe: bit-exact models of "
+                 "those drivers, for --tolerance exact")
+      ->check(CLI::IsMember({"ideal", "llvmpipe", "softpipe"}));
   app.add_option("--subpixel-bits", o.subpixel_bits, "reference snapping: 0 (none) to 16")
       ->check(CLI::Range(0, 16));
   app.add_option("--planes", o.planes, "attribute planes from snapped or unsnapped positions")
@@ -166,6 +176,12 @@ int main_impl(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "list cases with their descriptions");
   add_case_options(*list, o);
 
+  auto* selftest = app.add_subcommand(
+      "selftest", "plant faults on the GL side and show that the suite catches each one");
+  add_case_options(*selftest, o), add_model_options(*selftest, o), add_gl_options(*selftest, o);
+  selftest->add_option("--baseline", o.baseline,
+                       "known failures, `case,Status` lines: they cannot catch a fault");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -181,6 +197,7 @@ int main_impl(int argc, char** argv) {
     if (*run) return cmd_run(o);
     if (*diff) return cmd_diff(o);
     if (*digest) return cmd_digest(o);
+    if (*selftest) return cmd_selftest(o);
     return cmd_list(o);
   } catch (const InputError& e) {
     fmt::print(stderr, "glrefcheck: {}\n", e.what());

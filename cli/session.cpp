@@ -5,6 +5,7 @@
 
 #include "casefile/casefile.hpp"
 #include "compare/compare.hpp"
+#include "driver_models/driver_models.hpp"
 
 namespace glrc::cli {
 
@@ -34,6 +35,16 @@ Tolerance tolerance_for(const Case& c, const Options& o, int reported_bits) {
 }
 
 std::vector<Case> load_cases(const Options& o) {
+  // Every command loads its cases first: options that cannot go together stop it here, before
+  // any work.
+  const bool fixed = o.varying_ulps || o.depth_ulps;
+  if (o.model != "ideal" && o.tolerance == "spec" && !fixed)
+    throw InputError("--model " + o.model +
+                     ": a driver model is judged bit for bit (--tolerance exact) or by fixed "
+                     "ULPs (--tolerance-ulps), not by the specification's allowance");
+  if (o.tolerance == "exact" && fixed)
+    throw InputError(
+        "--tolerance exact: expected no --tolerance-ulps/--depth-tolerance-ulps with it");
   std::vector<std::string> paths = o.paths;
   if (paths.empty()) {
     if (!std::filesystem::is_directory("cases"))
@@ -82,7 +93,8 @@ RunInfo run_info(const Options& o, const gl::Renderer& r) {
   RunInfo info;
   info.backend = o.backend;
   info.driver = o.driver;
-  info.model = model_of(o).describe();
+  info.model = o.model == "ideal" ? model_of(o).describe()
+                                  : o.model + " (bit-exact model of Mesa 22.3.6's driver)";
   info.subpixel_bits = r.info().subpixel_bits;
   info.tolerance =
       o.tolerance == "exact" ? "exact"
@@ -99,7 +111,7 @@ Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
   const auto start = Clock::now();
   Checked out;
   const int reported = renderer.info().subpixel_bits;
-  out.reference = ref::render(c, model_of(o), freedom_bits(o, reported));
+  out.reference = expectation_for(c, o, reported);
   try {
     out.gl = renderer.render(c);
     out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported));
@@ -123,6 +135,14 @@ std::filesystem::path output_folder(const std::string& out) {
   if (access(dir.c_str(), W_OK) != 0)
     throw InputError("--out: expected a writable folder, got \"" + out + "\"");
   return dir;
+}
+
+Expectation expectation_for(const Case& c, const Options& o, int reported_bits) {
+  ref::Reference r = ref::render(c, model_of(o), freedom_bits(o, reported_bits));
+  // The driver model replaces the frame only: the edge bits still name ties and bands.
+  if (const auto driver = driver_models::driver_from_string(o.model))
+    r.frame = driver_models::render(c, *driver);
+  return r;
 }
 
 Baseline load_baseline(const Options& o) {

@@ -37,7 +37,8 @@ inline double seconds_since(Clock::time_point t) {
 struct Options {
   std::vector<std::string> paths;
   std::string filter;
-  // Model
+  // Model: the exact reference's choices, or a bit-exact model of one driver
+  std::string model = "ideal";
   int subpixel_bits = 8;
   std::string planes = "unsnapped", tie_break = "bottom-left";
   // GL
@@ -72,6 +73,9 @@ struct Checked {
 };
 
 Checked check(const Case& c, const Options& o, gl::Renderer& renderer);
+// What the case is compared against: the exact reference with the specification's allowance
+// (for an implementation reporting `reported_bits`), or with --model a driver model's frame.
+Expectation expectation_for(const Case& c, const Options& o, int reported_bits);
 
 // Progress on a terminal only: CI logs get the per-case lines and nothing else.
 class Progress {

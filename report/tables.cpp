@@ -17,27 +17,17 @@ constexpr int kNameWidth = 28;
 // The listing shows the start of a longer message; all of it is in results.json.
 constexpr size_t kShortMessage = 100;
 
-// The largest error of any channel, or NaN when GL gave a non-finite value somewhere: that
-// is worse than any finite error and must not hide behind one.
-std::string max_ulps_text(const CaseResult& r) {
+// The largest value of a channel statistic over all channels, as text, or "NaN" when GL gave a
+// non-finite value somewhere: that is worse than any finite error and must not hide behind one.
+template <typename Field, typename Format>
+std::string worst_text(const CaseResult& r, Field field, Format format) {
   if (r.channels.empty()) return "-";
   double worst = 0;
   for (const auto& ch : r.channels) {
     if (ch.non_finite > 0) return "NaN";
-    worst = std::max(worst, ch.max_ulps);
+    worst = std::max(worst, ch.*field);
   }
-  return ulps_text(worst);
-}
-
-// The largest share of the allowance any channel used; "NaN" as above.
-std::string max_ratio_text(const CaseResult& r) {
-  if (r.channels.empty()) return "-";
-  double worst = 0;
-  for (const auto& ch : r.channels) {
-    if (ch.non_finite > 0) return "NaN";
-    worst = std::max(worst, ch.max_ratio);
-  }
-  return ratio_text(worst);
+  return format(worst);
 }
 
 std::string first_line(const std::string& s) {
@@ -47,10 +37,12 @@ std::string first_line(const std::string& s) {
 }  // namespace
 
 std::string case_line(const CaseResult& r) {
-  std::string line = fmt::format(
-      "{:<{}} {:<{}} max {:>5} ulp {:>6}x allowed  coverage {} bad, {} at edges  {}",
-      to_string(r.status), kStatusWidth, r.name, kNameWidth, max_ulps_text(r), max_ratio_text(r),
-      r.coverage.failures, r.coverage.boundary, seconds_text(r.seconds));
+  std::string line =
+      fmt::format("{:<{}} {:<{}} max {:>5} ulp {:>6}x allowed  coverage {} bad, {} at edges  {}",
+                  to_string(r.status), kStatusWidth, r.name, kNameWidth,
+                  worst_text(r, &ChannelStats::max_ulps, ulps_text),
+                  worst_text(r, &ChannelStats::max_ratio, ratio_text), r.coverage.failures,
+                  r.coverage.boundary, seconds_text(r.seconds));
   std::string message = first_line(r.message);
   if (message.size() > kShortMessage) message = message.substr(0, kShortMessage - 3) + "...";
   if (r.status != Status::pass && !message.empty()) line += "  " + message;

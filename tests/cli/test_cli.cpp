@@ -10,33 +10,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/support/glrefcheck_process.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-// Runs glrefcheck with the given arguments in the source folder; stdout and stderr apart.
-Outcome glrefcheck(const std::string& args) {
-  const fs::path err_file =
-      fs::temp_directory_path() / ("glrc_cli_stderr_" + std::to_string(getpid()) + ".txt");
-  const std::string cmd = std::string("cd '") + GLRC_SOURCE_DIR + "' && '" + GLRC_BINARY_DIR +
-                          "/glrefcheck' " + args + " 2>'" + err_file.string() + "'";
-  Outcome o;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0)
-    o.out.append(buf, n);
-  const int status = pclose(p);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  o.err.assign(std::istreambuf_iterator<char>(e), {});
-  return o;
-}
+using glrc::test::glrefcheck;
+using glrc::test::Outcome;
 
 fs::path temp_dir(const std::string& name) {
   const fs::path d =

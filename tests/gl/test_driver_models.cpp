@@ -128,21 +128,32 @@ Difference difference(const Case& c, const Frame& gl_frame, const Frame& model) 
   return d;
 }
 
-TEST_F(DriverModel, EverySuiteCaseIsBitExact) {
+// Pixels compared bit for bit over several cases.
+struct Tally {
   uint64_t pixels = 0, covered = 0, nan = 0;
+};
+
+// Renders c on GL and with the model; every bit must agree.
+void expect_bit_exact(const Case& c, gl::Renderer& renderer, driver_models::Driver driver,
+                      Tally& tally) {
+  const Frame g = renderer.render(c);
+  const Frame m = driver_models::render(c, driver);
+  const Difference d = difference(c, g, m);
+  EXPECT_EQ(d.pixels, 0u) << c.name << ": " << d.summary();
+  tally.pixels += g.pixel_count();
+  for (int32_t p : g.primitive)
+    tally.covered += p != Frame::kNoPrimitive;
+  tally.nan += d.nan_pixels;
+}
+
+TEST_F(DriverModel, EverySuiteCaseIsBitExact) {
+  Tally tally;
   int cases = 0;
   for (const auto& path : casefile::collect({std::string(GLRC_SOURCE_DIR) + "/cases"})) {
-    const Case c = casefile::load(path);
-    const Frame g = gl().render(c);
-    const Frame m = driver_models::render(c, driver());
-    const Difference d = difference(c, g, m);
-    EXPECT_EQ(d.pixels, 0u) << c.name << ": " << d.summary();
-    pixels += g.pixel_count();
-    for (int32_t p : g.primitive)
-      covered += p != Frame::kNoPrimitive;
-    nan += d.nan_pixels;
+    expect_bit_exact(casefile::load(path), gl(), driver(), tally);
     ++cases;
   }
+  const uint64_t pixels = tally.pixels, covered = tally.covered, nan = tally.nan;
   std::cout << "[ driver_models ] " << driver_models::to_string(driver()) << ": " << cases
             << " suite cases, " << pixels << " pixels (" << covered << " covered, " << nan
             << " with NaN) compared bit for bit\n";
@@ -234,21 +245,16 @@ Case random_case(std::mt19937& rng, int index, int triangles) {
 
 TEST_F(DriverModel, RandomClipAndTieHeavyTrianglesAreBitExact) {
   std::mt19937 rng(20240613u);
-  uint64_t pixels = 0, covered = 0, nan = 0, triangles = 0;
+  Tally tally;
+  uint64_t triangles = 0;
   for (int i = 0; i < 48; ++i) {
     // The last few are long draws: Mesa's draw module cuts them into segments of 341
     // triangles, and only a segment with a clipped vertex runs the clip and cull stages.
     const Case c = random_case(rng, i, i < 44 ? 8 : 400);
-    const Frame g = gl().render(c);
-    const Frame m = driver_models::render(c, driver());
-    const Difference d = difference(c, g, m);
-    EXPECT_EQ(d.pixels, 0u) << c.name << ": " << d.summary();
-    pixels += g.pixel_count();
-    for (int32_t p : g.primitive)
-      covered += p != Frame::kNoPrimitive;
-    nan += d.nan_pixels;
+    expect_bit_exact(c, gl(), driver(), tally);
     triangles += c.triangles.size();
   }
+  const uint64_t pixels = tally.pixels, covered = tally.covered, nan = tally.nan;
   std::cout << "[ driver_models ] " << driver_models::to_string(driver()) << ": " << triangles
             << " random triangles, " << pixels << " pixels (" << covered << " covered, " << nan
             << " with NaN) compared bit for bit\n";

@@ -1,0 +1,34 @@
+// Planted faults: deliberate errors put into what a GL implementation draws, to prove that the
+// comparator catches them. Each fault changes the case GL is given (before rendering), the
+// frame GL returns (after), or both; the reference always renders the unchanged case. Knows
+// nothing of GL: Case and Frame in, Case and Frame out.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/case.hpp"
+#include "core/frame.hpp"
+
+namespace glrc::selftest {
+
+struct Fault {
+  std::string name;         // e.g. "provoking-vertex-flipped"
+  std::string description;  // one line: what a broken driver would be doing
+  // Either may be empty. `after` sees what a correct implementation may produce (to find, say,
+  // a pixel on a shared edge) and returns whether it changed anything.
+  std::function<void(Case&)> before;
+  std::function<bool(const Case&, const Expectation&, Frame&)> after;
+};
+
+// The faults, in a fixed order: smooth computed as noperspective; provoking vertex flipped;
+// positions shifted by half a pixel; depth range nudged by 1e-4; one value in one pixel changed
+// by 1e-3 relative; varyings kept to 11 mantissa bits; two varying components swapped; one pixel
+// dropped on a shared edge.
+const std::vector<Fault>& faults();
+
+// x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).
+float keep_mantissa_bits(float x, int bits);
+
+}  // namespace glrc::selftest

@@ -1,0 +1,80 @@
+// The planted faults on a hand-made case and frame: each changes what it says it changes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "selftest/faults.hpp"
+
+namespace glrc::selftest {
+namespace {
+
+const Fault& fault(const std::string& name) {
+  for (const Fault& f : faults())
+    if (f.name == name) return f;
+  throw std::runtime_error("no fault " + name);
+}
+
+TEST(Faults, EightInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 8u);
+  EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
+  EXPECT_EQ(faults().back().name, "shared-edge-pixel-dropped");
+}
+
+TEST(Faults, KeepMantissaBitsRoundsToNearestEven) {
+  EXPECT_EQ(keep_mantissa_bits(1.0f, 11), 1.0f);
+  EXPECT_EQ(keep_mantissa_bits(1.0f + 0x1p-12f, 11), 1.0f);                        // a tie: to even
+  EXPECT_EQ(keep_mantissa_bits(1.0f + 0x1p-11f + 0x1p-12f, 11), 1.0f + 0x1p-10f);  // tie, up
+  EXPECT_EQ(keep_mantissa_bits(1.0f + 0x1p-12f + 0x1p-20f, 11), 1.0f + 0x1p-11f);
+  EXPECT_EQ(keep_mantissa_bits(-3.0f, 11), -3.0f);
+  EXPECT_TRUE(std::isnan(keep_mantissa_bits(NAN, 11)));
+}
+
+TEST(Faults, CaseFaultsChangeTheCase) {
+  Case c;
+  c.viewport = {0, 0, 64, 64};
+  c.varyings = {{"s", 1, Interpolation::smooth}, {"f", 1, Interpolation::flat}};
+  c.vertices = {{{0.5f, 0, 0, 2}, {0, 1}}};
+  Case g = c;
+  fault("smooth-as-noperspective").before(g);
+  EXPECT_EQ(g.varyings[0].interpolation, Interpolation::noperspective);
+  EXPECT_EQ(g.varyings[1].interpolation, Interpolation::flat);
+  g = c;
+  fault("positions-shifted-half-pixel").before(g);
+  EXPECT_EQ(g.vertices[0].clip[0], 0.5f + 2.0f / 64);  // w_c / width: half a pixel
+  g = c;
+  fault("depth-range-nudged").before(g);
+  EXPECT_EQ(g.depth_near, 1e-4f);
+  EXPECT_EQ(g.depth_far, 1.0f - 1e-4f);
+  g = c;
+  fault("provoking-vertex-flipped").before(g);
+  EXPECT_EQ(g.provoking, ProvokingVertex::first);
+}
+
+TEST(Faults, FrameFaultsChangeTheFrame) {
+  Case c;
+  c.varyings = {{"v", 2, Interpolation::smooth}};
+  Frame f(2, 1, 2);
+  f.primitive = {0, 1};
+  f.fragments = {1, 1};
+  f.components = {{0.5f, 2.0f}, {1.0f / 3, 7.0f}};
+  Expectation e{f, {0, edge::shared}, Frame()};
+
+  Frame g = f;
+  EXPECT_TRUE(fault("one-value-off-1e-3").after(c, e, g));
+  EXPECT_FLOAT_EQ(g.components[0][1], 2.002f);  // the largest |value| of the first component
+  EXPECT_EQ(g.components[0][0], 0.5f);
+  g = f;
+  EXPECT_TRUE(fault("components-swapped").after(c, e, g));
+  EXPECT_EQ(g.components[0], f.components[1]);
+  g = f;
+  EXPECT_TRUE(fault("varyings-11-mantissa-bits").after(c, e, g));
+  EXPECT_NE(g.components[1][0], f.components[1][0]);
+  g = f;
+  EXPECT_TRUE(fault("shared-edge-pixel-dropped").after(c, e, g));
+  EXPECT_EQ(g.primitive[1], Frame::kNoPrimitive);
+  EXPECT_EQ(g.fragments[1], 0);
+  EXPECT_EQ(g.primitive[0], 0);
+}
+
+}  // namespace
+}  // namespace glrc::selftest

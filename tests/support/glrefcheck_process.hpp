@@ -1,0 +1,38 @@
+// Runs the built glrefcheck as a user would, for the command-line tests.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace glrc::test {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+// Runs glrefcheck with the given arguments in the source folder; stdout and stderr apart.
+inline Outcome glrefcheck(const std::string& args) {
+  const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
+                                         ("glrc_cli_stderr_" + std::to_string(getpid()) + ".txt");
+  const std::string cmd = std::string("cd '") + GLRC_SOURCE_DIR + "' && '" + GLRC_BINARY_DIR +
+                          "/glrefcheck' " + args + " 2>'" + err_file.string() + "'";
+  Outcome o;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0)
+    o.out.append(buf, n);
+  const int status = pclose(p);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  o.err.assign(std::istreambuf_iterator<char>(e), {});
+  return o;
+}
+
+}  // namespace glrc::test
