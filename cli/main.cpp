@@ -12,6 +12,7 @@
 
 #include "casefile/casefile.hpp"
 #include "cli/expectations.hpp"
+#include "cli/identify.hpp"
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
 #include "compare/compare.hpp"
@@ -119,7 +120,7 @@ void add_model_options(CLI::App& app, Options& o) {
   app.add_option("--planes", o.planes, "attribute planes from snapped or unsnapped positions")
       ->check(CLI::IsMember({"snapped", "unsnapped"}));
   app.add_option("--tie-break", o.tie_break, "pixel centres on an edge")
-      ->check(CLI::IsMember({"bottom-left", "top-left"}));
+      ->check(CLI::IsMember({"bottom-left", "top-left", "bottom-right", "top-right"}));
 }
 
 void add_gl_options(CLI::App& app, Options& o) {
@@ -176,6 +177,12 @@ int main_impl(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "list cases with their descriptions");
   add_case_options(*list, o);
 
+  auto* identify = app.add_subcommand(
+      "identify",
+      "find which model (subpixel bits, planes, tie rule, default provoking vertex, 24-bit depth "
+      "rounding) explains a GL implementation, with the evidence");
+  add_gl_options(*identify, o);
+
   auto* selftest = app.add_subcommand(
       "selftest", "plant faults on the GL side and show that the suite catches each one");
   add_case_options(*selftest, o), add_model_options(*selftest, o), add_gl_options(*selftest, o);
@@ -198,6 +205,7 @@ int main_impl(int argc, char** argv) {
     if (*diff) return cmd_diff(o);
     if (*digest) return cmd_digest(o);
     if (*selftest) return cmd_selftest(o);
+    if (*identify) return cmd_identify(o);
     return cmd_list(o);
   } catch (const InputError& e) {
     fmt::print(stderr, "glrefcheck: {}\n", e.what());

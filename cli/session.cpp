@@ -13,7 +13,10 @@ Model model_of(const Options& o) {
   Model m;
   m.subpixel_bits = o.subpixel_bits;
   m.planes = o.planes == "snapped" ? Planes::snapped : Planes::unsnapped;
-  m.tie_break = o.tie_break == "top-left" ? TieBreak::top_left : TieBreak::bottom_left;
+  m.tie_break = o.tie_break == "top-left"       ? TieBreak::top_left
+                : o.tie_break == "bottom-right" ? TieBreak::bottom_right
+                : o.tie_break == "top-right"    ? TieBreak::top_right
+                                                : TieBreak::bottom_left;
   return m;
 }
 

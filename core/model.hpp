@@ -7,9 +7,11 @@
 namespace glrc {
 
 // Which pixel centres exactly on an edge belong to the triangle. Named in GL window
-// coordinates (y up): bottom_left takes centres on left edges and on bottom horizontal edges
-// (llvmpipe rendering into an FBO does this); top_left takes left and top horizontal edges.
-enum class TieBreak { bottom_left, top_left };
+// coordinates (y up): bottom_left takes centres on left edges (inward normal towards +x) and on
+// bottom horizontal edges (llvmpipe rendering into an FBO does this); top_left takes left and
+// top horizontal edges. The right rules take right edges (inward normal towards -x) instead of
+// left ones, with bottom or top horizontal edges (softpipe takes right edges).
+enum class TieBreak { bottom_left, top_left, bottom_right, top_right };
 
 // Whether attribute planes (barycentrics) come from the snapped window positions used for
 // coverage, or from the exact, unsnapped ones. Mesa's llvmpipe and softpipe use unsnapped

@@ -21,10 +21,26 @@ std::vector<int> component_varying(const Case& c) {
   return owner;
 }
 
+namespace {
+const char* tie_break_name(TieBreak t) {
+  switch (t) {
+    case TieBreak::bottom_left:
+      return "bottom-left";
+    case TieBreak::top_left:
+      return "top-left";
+    case TieBreak::bottom_right:
+      return "bottom-right";
+    case TieBreak::top_right:
+      return "top-right";
+  }
+  return "bottom-left";
+}
+}  // namespace
+
 std::string Model::describe() const {
   return "subpixel_bits=" + std::to_string(subpixel_bits) +
          " planes=" + (planes == Planes::snapped ? "snapped" : "unsnapped") +
-         " tie=" + (tie_break == TieBreak::bottom_left ? "bottom-left" : "top-left");
+         " tie=" + tie_break_name(tie_break);
 }
 
 const char* to_string(ToleranceMode m) {

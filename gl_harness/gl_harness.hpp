@@ -17,10 +17,24 @@ enum class Backend { osmesa, egl, egl_device };
 const char* to_string(Backend b);                                // "osmesa", "egl", "egl-device"
 std::optional<Backend> backend_from_string(std::string_view s);  // inverse of to_string
 
+// The depth attachment every render draws into.
+//   float32: GL_DEPTH_COMPONENT32F; Frame::depth holds z_w as the depth stage produced it.
+//   unorm24: GL_DEPTH_COMPONENT24; Frame::depth holds the stored integer (0 .. 2^24 - 1, exact
+//            in a float), read back as GL_UNSIGNED_INT >> 8, and 2^24 - 1 (the clear value)
+//            where nothing was drawn. For finding how a driver rounds to 24 bits; the
+//            comparator does not understand such frames.
+enum class DepthFormat { float32, unorm24 };
+
 struct Target {
   Backend backend = Backend::osmesa;
   std::string driver = "llvmpipe";  // Mesa's gallium driver; "" = whatever the platform gives
   int device_index = 0;             // egl-device: which EGLDevice
+  // What glrefcheck identify changes; the defaults are what every other command uses.
+  // false: glProvokingVertex is never called on this renderer's context, so flat varyings come
+  // from the context's default provoking vertex (GL's default is the last) and
+  // Case::provoking is ignored.
+  bool set_provoking_vertex = true;
+  DepthFormat depth_format = DepthFormat::float32;
 };
 
 struct GlInfo {
@@ -28,6 +42,8 @@ struct GlInfo {
   // How the context was made, e.g. "EGL surfaceless platform (EGL 1.5, Mesa Project)".
   std::string platform;
   int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
+  // GL_PROVOKING_VERTEX as reported by the fresh context, before anything set it (GL: last).
+  ProvokingVertex initial_provoking_vertex = ProvokingVertex::last;
   // A pass-through geometry shader supplies gl_PrimitiveID, because without one this driver
   // drew nothing when the fragment shader read gl_PrimitiveID (softpipe, Mesa 22.3.6). Only
   // then: on llvmpipe a geometry shader changes the bits of varyings and depth.

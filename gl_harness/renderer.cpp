@@ -190,7 +190,10 @@ struct Framebuffer {
 class GlRenderer final : public Renderer {
  public:
   GlRenderer(const Target& t, std::unique_ptr<Context> context)
-      : context_(std::move(context)), gl_(*context_) {
+      : context_(std::move(context)),
+        gl_(*context_),
+        set_provoking_vertex_(t.set_provoking_vertex),
+        depth_format_(t.depth_format) {
     auto string = [this](GLenum name) {
       const GLubyte* s = gl_.GetString(name);
       return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
@@ -199,6 +202,9 @@ class GlRenderer final : public Renderer {
     info_.renderer = string(GL_RENDERER);
     info_.version = string(GL_VERSION);
     info_.subpixel_bits = integer(GL_SUBPIXEL_BITS);
+    info_.initial_provoking_vertex = integer(GL_PROVOKING_VERTEX) == GL_FIRST_VERTEX_CONVENTION
+                                         ? ProvokingVertex::first
+                                         : ProvokingVertex::last;
     info_.platform = context_->describe();
     check_driver(t, info_.renderer, context_->describe());
 
@@ -269,7 +275,7 @@ class GlRenderer final : public Renderer {
     }
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
     gl_.ReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
-    gl_.ReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, frame.depth.data());
+    read_depth(frame);
     check_error(c, "reading back");
     count_fragments(c, frame);
     return frame;
@@ -303,6 +309,20 @@ class GlRenderer final : public Renderer {
     frame.fragments.resize(counts.size());
     for (size_t i = 0; i < counts.size(); ++i)
       frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
+  }
+
+  // The depth attachment into Frame::depth: float z_w, or each 24-bit integer as stored (Mesa
+  // replicates the top bits below when widening to 32, so >> 8 gives the integer back).
+  void read_depth(Frame& frame) {
+    if (depth_format_ == DepthFormat::float32) {
+      gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_FLOAT,
+                     frame.depth.data());
+      return;
+    }
+    std::vector<GLuint> z(frame.pixel_count());
+    gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
+    for (size_t i = 0; i < z.size(); ++i)
+      frame.depth[i] = float(z[i] >> 8);
   }
 
   GLint integer(GLenum name) const {
@@ -443,9 +463,10 @@ class GlRenderer final : public Renderer {
     return program;
   }
 
-  // The main framebuffer: RGBA32F per varying, R32I for gl_PrimitiveID, 32F depth, so every
-  // value is read back exactly as the fragment shader and the depth stage produced it. The
-  // count framebuffer: R32F and 32F depth. Each is kept while size and formats stay the same.
+  // The main framebuffer: RGBA32F per varying, R32I for gl_PrimitiveID, 32F depth (24-bit
+  // unorm with Target::depth_format), so every value is read back exactly as the fragment
+  // shader and the depth stage produced it. The count framebuffer: R32F and the same depth.
+  // Each is kept while size and formats stay the same.
   void bind_framebuffer(const Case& c, Framebuffer& fb, const std::vector<GLenum>& formats) {
     if (fb.framebuffer && fb.width == c.fb_width && fb.height == c.fb_height &&
         fb.colour_formats == formats) {
@@ -467,7 +488,9 @@ class GlRenderer final : public Renderer {
       attach(fb.renderbuffers[k], formats[k], GLenum(GL_COLOR_ATTACHMENT0 + k));
       draw_buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + k));
     }
-    attach(fb.renderbuffers.back(), GL_DEPTH_COMPONENT32F, GL_DEPTH_ATTACHMENT);
+    attach(fb.renderbuffers.back(),
+           depth_format_ == DepthFormat::unorm24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F,
+           GL_DEPTH_ATTACHMENT);
     gl_.DrawBuffers(GLsizei(draw_buffers.size()), draw_buffers.data());
     GLenum error = gl_.GetError();
     GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
@@ -508,8 +531,9 @@ class GlRenderer final : public Renderer {
                                               : GL_FRONT_AND_BACK);
     }
     gl_.FrontFace(c.front_face == FrontFace::ccw ? GL_CCW : GL_CW);
-    gl_.ProvokingVertex(c.provoking == ProvokingVertex::last ? GL_LAST_VERTEX_CONVENTION
-                                                             : GL_FIRST_VERTEX_CONVENTION);
+    if (set_provoking_vertex_)
+      gl_.ProvokingVertex(c.provoking == ProvokingVertex::last ? GL_LAST_VERTEX_CONVENTION
+                                                               : GL_FIRST_VERTEX_CONVENTION);
     // Nothing may touch the values between the fragment shader and the readback, and the
     // reference knows no clamping of depth: GL_DEPTH_CLAMP stays off.
     for (GLenum cap : {GL_DITHER, GL_BLEND, GL_MULTISAMPLE, GL_SCISSOR_TEST, GL_STENCIL_TEST,
@@ -580,6 +604,8 @@ class GlRenderer final : public Renderer {
   std::vector<float> readback_;  // one colour attachment as RGBA, kept to spare reallocations
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
+  bool set_provoking_vertex_ = true;  // Target::set_provoking_vertex
+  DepthFormat depth_format_ = DepthFormat::float32;
 };
 
 }  // namespace

@@ -8,10 +8,13 @@ namespace glrc::ref {
 namespace {
 
 // The tie-break rule, from the inward normal (a, b) of the edge in window coordinates (y up):
-// a > 0 is a left edge, a == 0 with b > 0 a bottom edge, with b < 0 a top edge.
+// a > 0 is a left edge, a < 0 a right edge, a == 0 with b > 0 a bottom edge, with b < 0 a top
+// edge.
 bool tie_inside(int sign_a, int sign_b, TieBreak rule) {
-  if (sign_a != 0) return sign_a > 0;
-  return rule == TieBreak::bottom_left ? sign_b > 0 : sign_b < 0;
+  const bool left = rule == TieBreak::bottom_left || rule == TieBreak::top_left;
+  const bool bottom = rule == TieBreak::bottom_left || rule == TieBreak::bottom_right;
+  if (sign_a != 0) return left ? sign_a > 0 : sign_a < 0;
+  return bottom ? sign_b > 0 : sign_b < 0;
 }
 
 int sign128(int128 v) {
