@@ -118,20 +118,6 @@ const char* planes_name(Planes p) {
   return p == Planes::snapped ? "snapped" : "unsnapped";
 }
 
-const char* tie_name(TieBreak t) {
-  switch (t) {
-    case TieBreak::bottom_left:
-      return "bottom-left";
-    case TieBreak::top_left:
-      return "top-left";
-    case TieBreak::bottom_right:
-      return "bottom-right";
-    case TieBreak::top_right:
-      return "top-right";
-  }
-  return "bottom-left";
-}
-
 const char* provoking_name(ProvokingVertex p) {
   return p == ProvokingVertex::first ? "first" : "last";
 }
@@ -590,18 +576,18 @@ void print_ties(const TieFinding& f, int bits, size_t triangles) {
   const std::vector<int> w{14, 22};
   print_header("candidate", {"centres wrong", "coverage mismatches"}, w);
   for (const TieCandidate& c : f.candidates)
-    print_row(c.rule == f.identified, tie_name(c.rule),
+    print_row(c.rule == f.identified, to_string(c.rule),
               {std::to_string(c.wrong_centres), std::to_string(c.mismatches)}, w);
   const TieCandidate& best =
       *std::find_if(f.candidates.begin(), f.candidates.end(),
                     [&](const TieCandidate& c) { return c.rule == f.identified; });
   if (f.explains_all)
-    fmt::print("   identified: {}, which explains every tie\n\n", tie_name(f.identified));
+    fmt::print("   identified: {}, which explains every tie\n\n", to_string(f.identified));
   else
     fmt::print(
         "   identified: {} fits best, but no rule explains every tie: {} of {} centres and {} "
         "pixels in all disagree with it\n\n",
-        tie_name(f.identified), best.wrong_centres, f.centres, best.mismatches);
+        to_string(f.identified), best.wrong_centres, f.centres, best.mismatches);
 }
 
 // --- 4. default provoking vertex -----------------------------------------------------------
@@ -861,7 +847,7 @@ int cmd_identify(const Options& o) {
 
   const std::string summary =
       fmt::format("identify: subpixel_bits={} planes={} tie={} provoking_default={} depth24={}",
-                  bits.identified, planes_name(planes.identified), tie_name(ties.identified),
+                  bits.identified, planes_name(planes.identified), to_string(ties.identified),
                   provoking_name(provoking.identified), depth.identified);
   fmt::print("{}\n", summary);
 
@@ -895,14 +881,14 @@ int cmd_identify(const Options& o) {
                  {"candidates", plane_rows}};
   json tie_rows = json::array(), kinds = json::array();
   for (const TieCandidate& c : ties.candidates)
-    tie_rows.push_back({{"rule", tie_name(c.rule)},
+    tie_rows.push_back({{"rule", to_string(c.rule)},
                         {"centres_wrong", c.wrong_centres},
                         {"coverage_mismatches", c.mismatches}});
   for (int k = 0; k < kKinds; ++k)
     kinds.push_back({{"edge", kKindNames[k]},
                      {"centres", ties.per_kind[size_t(k)]},
                      {"taken", ties.taken[size_t(k)]}});
-  j["tie_break"] = {{"identified", tie_name(ties.identified)},
+  j["tie_break"] = {{"identified", to_string(ties.identified)},
                     {"explains_all", ties.explains_all},
                     {"centres", ties.centres},
                     {"edges", kinds},

@@ -18,6 +18,9 @@ enum class TieBreak { bottom_left, top_left, bottom_right, top_right };
 // positions; an NVIDIA GPU was measured using snapped ones.
 enum class Planes { unsnapped, snapped };
 
+// "bottom-left", "top-left", "bottom-right", "top-right": the names the command line takes.
+const char* to_string(TieBreak t);
+
 struct Model {
   int subpixel_bits = 8;  // 0: no snapping, coverage from exact positions
   Planes planes = Planes::unsnapped;

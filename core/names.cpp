@@ -21,8 +21,7 @@ std::vector<int> component_varying(const Case& c) {
   return owner;
 }
 
-namespace {
-const char* tie_break_name(TieBreak t) {
+const char* to_string(TieBreak t) {
   switch (t) {
     case TieBreak::bottom_left:
       return "bottom-left";
@@ -35,12 +34,11 @@ const char* tie_break_name(TieBreak t) {
   }
   return "bottom-left";
 }
-}  // namespace
 
 std::string Model::describe() const {
   return "subpixel_bits=" + std::to_string(subpixel_bits) +
          " planes=" + (planes == Planes::snapped ? "snapped" : "unsnapped") +
-         " tie=" + tie_break_name(tie_break);
+         " tie=" + to_string(tie_break);
 }
 
 const char* to_string(ToleranceMode m) {
