@@ -18,7 +18,13 @@ constexpr size_t kWorstPerChannel = 10;
 constexpr size_t kMismatchesKept = 64;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double p99(std::vector<float>& values);
+// Nearest-rank 99th percentile; 0 for no values.
+double p99(std::vector<float>& values) {
+  if (values.empty()) return 0;
+  const size_t rank = size_t(std::ceil(0.99 * double(values.size()))) - 1;
+  std::nth_element(values.begin(), values.begin() + ptrdiff_t(rank), values.end());
+  return values[rank];
+}
 
 // One channel's errors, gathered over the pixels both frames cover with the same primitive.
 struct ChannelAccumulator {
@@ -86,14 +92,6 @@ struct ChannelAccumulator {
     return std::move(stats);
   }
 };
-
-// Nearest-rank 99th percentile; 0 for no values.
-double p99(std::vector<float>& values) {
-  if (values.empty()) return 0;
-  const size_t rank = size_t(std::ceil(0.99 * double(values.size()))) - 1;
-  std::nth_element(values.begin(), values.begin() + ptrdiff_t(rank), values.end());
-  return values[rank];
-}
 
 std::string format_ulps(double u) {
   if (std::isinf(u)) return "inf";
@@ -171,6 +169,20 @@ UlpTable::UlpTable(const Case& c)
   for (size_t t = 0; t < c.triangles.size(); ++t)
     for (int k = 0; k < components_; ++k)
       ulps_.push_back(ulp_of_scale(attribute_scale(c, int(t), k)));
+}
+
+ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
+                                   const Tolerance& tolerance, int channel) {
+  const bool depth = channel == kDepth;
+  if (tolerance.mode == ToleranceMode::exact) return;
+  if (tolerance.mode == ToleranceMode::spec && !expected.allowed.components.empty()) {
+    per_pixel_ = depth ? &expected.allowed.depth : &expected.allowed.components.at(size_t(channel));
+    return;
+  }
+  const bool flat =
+      !depth && c.varyings.at(size_t(component_varying(c).at(size_t(channel)))).interpolation ==
+                    Interpolation::flat;
+  fixed_ulps_ = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
 }
 
 PixelError pixel_error(float reference, float gl, double ulp) {
@@ -267,39 +279,28 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
   // Then one channel at a time (depth, then each component), so that only one channel's
   // per-pixel errors are held at once, however many varyings a large frame has.
   const std::vector<std::string> names = component_names(c);
-  const std::vector<int> owner = component_varying(c);
   const UlpTable ulps(c);
   for (int k = kDepth; k < int(names.size()); ++k) {
     ChannelAccumulator acc;
     acc.exact = exact;
     const bool depth = k == kDepth;
     acc.stats.name = depth ? "depth" : names[size_t(k)];
-    // A flat value is copied from the provoking vertex, never computed: any change is wrong.
-    const bool flat =
-        !depth && c.varyings[size_t(owner[size_t(k)])].interpolation == Interpolation::flat;
-    const double fixed_ulps = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
     const std::vector<float>& ref_values =
         depth ? reference.depth : reference.components[size_t(k)];
     const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
-    const std::vector<float>* allowed_values = !spec   ? nullptr
-                                               : depth ? &expected.allowed.depth
-                                                       : &expected.allowed.components[size_t(k)];
+    const ChannelAllowance allowance(c, expected, tolerance, k);
     acc.ulps.reserve(compared.size());
     acc.ratios.reserve(compared.size());
     double largest_allowance_ulps = 0;
     for (size_t i : compared) {
       const double ulp = ulps.ulp(reference.primitive[i], k);
-      double allowed = 0;
-      if (allowed_values) {
-        allowed = double((*allowed_values)[i]);
-        largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
-      } else if (!exact) {
-        allowed = fixed_ulps * ulp;
-      }
+      const double allowed = allowance.at(i, ulp);
+      largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
       acc.add(int(i % size_t(reference.width)), int(i / size_t(reference.width)), ref_values[i],
               gl_values[i], ulp, allowed);
     }
-    acc.stats.tolerance_ulps = spec ? largest_allowance_ulps : exact ? 0.0 : fixed_ulps;
+    acc.stats.tolerance_ulps =
+        allowance.per_pixel() ? largest_allowance_ulps : allowance.fixed_ulps();
     r.channels.push_back(acc.finish());
   }
 

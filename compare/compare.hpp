@@ -43,6 +43,25 @@ class UlpTable {
   std::vector<double> ulps_;
 };
 
+// What the verdict accepts in one channel (compare::kDepth or a component): per pixel, the
+// largest |gl - reference| in value units. The specification's allowance where the expectation
+// carries one and the tolerance is spec; a fixed number of ULPs of the attribute's scale in
+// ulps mode (0 for flat values: they are copied, never computed); 0 in exact mode.
+class ChannelAllowance {
+ public:
+  ChannelAllowance(const Case& c, const Expectation& expected, const Tolerance& tolerance,
+                   int channel);
+  double at(size_t pixel, double ulp) const {
+    return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
+  }
+  bool per_pixel() const { return per_pixel_ != nullptr; }
+  double fixed_ulps() const { return fixed_ulps_; }
+
+ private:
+  const std::vector<float>* per_pixel_ = nullptr;
+  double fixed_ulps_ = 0;
+};
+
 // Whether values are compared at a pixel: both frames name the same drawn triangle.
 inline bool same_primitive(const Case& c, int32_t reference, int32_t gl) {
   return reference == gl && reference >= 0 && size_t(reference) < c.triangles.size();

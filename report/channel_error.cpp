@@ -12,15 +12,7 @@ ChannelError channel_error(const Case& c, const Expectation& expected, const Fra
                            const Tolerance& tolerance) {
   const Frame& reference = expected.frame;
   const bool depth = channel == compare::kDepth;
-  const bool flat =
-      !depth && c.varyings.at(size_t(component_varying(c).at(size_t(channel)))).interpolation ==
-                    Interpolation::flat;
-  const std::vector<float>* allowed = nullptr;
-  if (tolerance.mode == ToleranceMode::spec && !expected.allowed.components.empty())
-    allowed = depth ? &expected.allowed.depth : &expected.allowed.components.at(size_t(channel));
-  const double fixed = tolerance.mode == ToleranceMode::exact || flat ? 0.0
-                       : depth                                        ? tolerance.depth_ulps
-                                                                      : tolerance.varying_ulps;
+  const compare::ChannelAllowance allowance(c, expected, tolerance, channel);
   ChannelError e;
   e.name = depth ? "depth" : component_names(c).at(size_t(channel));
   e.width = reference.width;
@@ -34,6 +26,7 @@ ChannelError channel_error(const Case& c, const Expectation& expected, const Fra
   e.ulps.assign(n, std::numeric_limits<double>::quiet_NaN());
   e.compared.assign(n, false);
   e.allowed_ulps.assign(n, std::numeric_limits<double>::quiet_NaN());
+  e.allowed.assign(n, kNaN);
   const compare::UlpTable ulp_table(c);
 
   for (size_t i = 0; i < n; ++i) {
@@ -45,7 +38,9 @@ ChannelError channel_error(const Case& c, const Expectation& expected, const Fra
     const double ulp = ulp_table.ulp(prim, depth ? compare::kDepth : channel);
     const compare::PixelError pe = compare::pixel_error(e.reference[i], e.gl[i], ulp);
     e.ulps[i] = pe.ulps;
-    e.allowed_ulps[i] = allowed ? double((*allowed)[i]) / ulp : fixed;
+    const double allowed = allowance.at(i, ulp);
+    e.allowed[i] = float(allowed);
+    e.allowed_ulps[i] = allowed / ulp;
     if (std::isfinite(pe.ulps))
       e.max_finite_ulps = std::max(e.max_finite_ulps, pe.ulps);
     else
@@ -81,6 +76,7 @@ ChannelError as_allowance_map(const ChannelError& e) {
   ChannelError m = with_values(e, e.allowed_ulps,
                                "allowed |GL - reference| in ulp of the attribute scale", "ulp");
   m.name = e.name + " allowed";
+  m.judged = false;
   return m;
 }
 

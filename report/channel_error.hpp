@@ -24,12 +24,14 @@ struct ChannelError {
   // Per pixel, the allowance in the same ULPs (where compared; the tolerance the comparator
   // applied: the specification's per-pixel one, a fixed number, or 0 in exact mode).
   std::vector<double> allowed_ulps;
+  std::vector<float> allowed;  // the same in value units; NaN where not compared
   double max_finite_ulps = 0;  // over compared pixels with a finite error
   size_t non_finite = 0;       // compared pixels whose error is not finite
   // What `ulps` holds, for titles and legends: the error itself by default; as_allowance_map
   // and as_ratio_map put other per-pixel quantities in its place.
   std::string quantity = "|GL - reference| in ulp of the attribute scale";
   std::string unit = "ulp";
+  bool judged = true;  // false for the allowance map: nothing in it is over or under a limit
 };
 
 // channel compare::kDepth is depth, of scale 1.0 (depth range [0, 1]); k >= 0 is

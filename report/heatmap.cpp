@@ -102,8 +102,9 @@ Canvas render_heatmap(const ChannelError& error, double tolerance_ulps,
             fmt::format("{}, log colour scale, {}x upscaled", error.quantity, factor), 12, kText,
             Align::left, text_width);
   draw_text(canvas, font, kMargin, 57,
-            fmt::format("{} of {} compared pixels over tolerance", over, compared), 12, kText,
-            Align::left, text_width);
+            error.judged ? fmt::format("{} of {} compared pixels over tolerance", over, compared)
+                         : fmt::format("{} compared pixels", compared),
+            12, kText, Align::left, text_width);
 
   const int image_x = (canvas.width - image_w) / 2;
   paint_frame(canvas, image_x, kTitleHeight, factor, error.width, error.height, [&](int x, int y) {

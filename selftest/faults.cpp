@@ -9,11 +9,6 @@ namespace glrc::selftest {
 
 namespace {
 
-bool changed(bool& any, bool now) {
-  any = any || now;
-  return now;
-}
-
 // The covered pixel with the largest |value| in component k (depth for k < 0), so that a
 // relative change is visible; -1 when nothing is covered.
 long largest_covered(const Frame& f, int k) {
@@ -90,7 +85,7 @@ std::vector<Fault> make_faults() {
                       for (size_t i = 0; i < component.size(); ++i) {
                         if (f.primitive[i] < 0) continue;
                         const float kept = keep_mantissa_bits(component[i], 11);
-                        changed(any, kept != component[i]);
+                        any = any || kept != component[i];
                         component[i] = kept;
                       }
                     return any;

@@ -20,6 +20,7 @@
 #include "core/frame.hpp"
 #include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
+#include "tests/support/gl_test_target.hpp"
 
 namespace glrc {
 namespace {
@@ -36,12 +37,7 @@ ModelShared& model_shared() {
   static ModelShared s;
   if (s.tried) return s;
   s.tried = true;
-  const char* backend = std::getenv("GLRC_TEST_BACKEND");
-  if (auto b = gl::backend_from_string(backend ? backend : "osmesa"))
-    s.target.backend = *b;
-  else
-    s.unavailable = "GLRC_TEST_BACKEND='" + std::string(backend) + "' is not a backend";
-  if (const char* driver = std::getenv("GLRC_TEST_DRIVER")) s.target.driver = driver;
+  s.target = test::gl_test_target(s.unavailable);
   s.driver = driver_models::driver_from_string(s.target.driver);
   if (!s.driver || !s.unavailable.empty()) return s;
   try {

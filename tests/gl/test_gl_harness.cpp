@@ -24,6 +24,7 @@
 #include "gl_harness/egl_context.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
+#include "tests/support/gl_test_target.hpp"
 
 namespace glrc::gl {
 namespace {
@@ -34,24 +35,11 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// The target from the environment; a misspelt backend fails every renderer test with this
-// message rather than quietly testing osmesa.
-Target test_target(std::string& error) {
-  Target t;
-  const char* backend = std::getenv("GLRC_TEST_BACKEND");
-  if (std::optional<Backend> b = backend_from_string(backend ? backend : "osmesa"))
-    t.backend = *b;
-  else
-    error = "GLRC_TEST_BACKEND='" + std::string(backend) + "' is not osmesa, egl or egl-device";
-  if (const char* driver = std::getenv("GLRC_TEST_DRIVER")) t.driver = driver;
-  return t;
-}
-
 // The one renderer of this process, created on first use and destroyed by the environment
 // below before main() returns (while Mesa and LLVM are still alive).
 struct Shared {
   std::string unavailable;  // Unavailable::what() when creation failed
-  Target target = test_target(unavailable);
+  Target target = test::gl_test_target(unavailable);
   std::unique_ptr<Renderer> renderer;
   double create_ms = 0;
   bool tried = false;
