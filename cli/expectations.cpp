@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 
@@ -28,22 +29,42 @@ Baseline read_baseline(const std::filesystem::path& file) {
   for (int n = 1; std::getline(in, line); ++n) {
     line = trim(line);
     if (line.empty() || line[0] == '#') continue;
-    const auto comma = line.find(',');
-    const std::string name = comma == std::string::npos ? "" : trim(line.substr(0, comma));
-    const std::string status = comma == std::string::npos ? "" : trim(line.substr(comma + 1));
-    if (name.empty() || status.empty() || status.find(',') != std::string::npos)
-      throw std::runtime_error(file.string() + ":" + std::to_string(n) +
-                               ": expected `case,Status`, got \"" + line + "\"");
-    // The failing statuses of Mesa CI's fails files; Crash and Timeout come from runs with
-    // worker processes, Error from a case the GL side could not render.
-    constexpr std::array<const char*, 4> kStatuses = {"Fail", "Crash", "Timeout", "Error"};
-    if (std::find(kStatuses.begin(), kStatuses.end(), status) == kStatuses.end())
-      throw std::runtime_error(file.string() + ":" + std::to_string(n) +
-                               ": expected a status of Fail, Crash, Timeout or Error, got \"" +
-                               status + "\"");
+    // `case,Status` or `case,Status,seconds`
+    std::vector<std::string> fields;
+    for (size_t at = 0;;) {
+      const auto comma = line.find(',', at);
+      fields.push_back(trim(line.substr(at, comma == std::string::npos ? comma : comma - at)));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    const auto where = file.string() + ":" + std::to_string(n) + ": ";
+    if (fields.size() < 2 || fields.size() > 3 || fields[0].empty() || fields[1].empty())
+      throw std::runtime_error(where + "expected `case,Status` (or `case,Status,seconds`), got \"" +
+                               line + "\"");
+    const std::string& name = fields[0];
+    const std::string& status = fields[1];
+    if (fields.size() == 3) {
+      char* end = nullptr;
+      std::strtod(fields[2].c_str(), &end);
+      if (fields[2].empty() || *end != '\0')
+        throw std::runtime_error(where + "expected seconds as the third field, got \"" + fields[2] +
+                                 "\"");
+    }
+    // The failing statuses of Mesa CI's fails files; Crash and Timeout come from worker processes,
+    // Error from a case the GL side could not render.
+    constexpr std::array<const char*, 4> kExpectations = {"Fail", "Crash", "Timeout", "Error"};
+    constexpr std::array<const char*, 4> kNoExpectation = {"Pass", "Skip", "Flake",
+                                                           "UnexpectedPass"};
+    if (std::find(kNoExpectation.begin(), kNoExpectation.end(), status) != kNoExpectation.end())
+      continue;
+    if (std::find(kExpectations.begin(), kExpectations.end(), status) == kExpectations.end())
+      throw std::runtime_error(
+          where + "expected a status of Fail, Crash, Timeout or Error, got \"" + status + "\"" +
+          (status == "ExpectedFail" ? " (ExpectedFail says that a case failed, not how: write "
+                                      "its outcome)"
+                                    : ""));
     if (!b.expected.emplace(name, status).second)
-      throw std::runtime_error(file.string() + ":" + std::to_string(n) +
-                               ": expected each case once, got " + name + " again");
+      throw std::runtime_error(where + "expected each case once, got " + name + " again");
   }
   if (in.bad()) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   return b;
@@ -55,7 +76,7 @@ void apply(const Baseline& b, CaseResult& r) {
   if (it->second == to_string(r.status)) {
     r.message = "expected " + it->second + ": " + r.message;
     r.status = Status::expected_fail;
-  } else if (r.status == Status::fail || r.status == Status::error) {
+  } else if (fails_run(r.status)) {
     // Failing in another way than the baseline says is a change someone must look at.
     r.message = "expected " + it->second + ", got " + to_string(r.status) + ": " + r.message;
   } else if (r.status == Status::pass) {
@@ -64,8 +85,34 @@ void apply(const Baseline& b, CaseResult& r) {
   }
 }
 
-bool fails_run(Status s) {
-  return s == Status::fail || s == Status::error || s == Status::unexpected_pass;
+const std::string* Patterns::match(const std::string& name) const {
+  for (const auto& [text, re] : list)
+    if (std::regex_match(name, re)) return &text;
+  return nullptr;
+}
+
+Patterns read_patterns(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw std::runtime_error(
+        file.string() + ": expected a file of regular expressions, one per line, got " +
+        (std::filesystem::exists(file, ec) ? "something else" : "no such file"));
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot read it");
+  Patterns p;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    line = trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    try {
+      p.list.emplace_back(line, std::regex(line, std::regex::ECMAScript));
+    } catch (const std::regex_error& e) {
+      throw std::runtime_error(file.string() + ":" + std::to_string(n) +
+                               ": expected a regular expression, got \"" + line + "\" (" +
+                               e.what() + ")");
+    }
+  }
+  return p;
 }
 
 }  // namespace glrc::cli

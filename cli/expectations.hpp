@@ -1,10 +1,16 @@
-// Expected results, in Mesa CI's format: a *-fails.txt file of `case,Status` lines, `#`
-// comments and blank lines ignored (the evidence for each entry goes in the comment above it).
+// Expected results, in Mesa CI's formats:
+// - a baseline (*-fails.txt, or a previous run's failures.csv): `case,Status` lines, optionally
+//   with a third field (results.csv's seconds); `#` comments and blank lines ignored (the
+//   evidence for each entry goes in the comment above it);
+// - flakes and skips files (*-flakes.txt, *-skips.txt): one regular expression per line, matched
+//   against the whole case name.
 #pragma once
 
 #include <filesystem>
 #include <map>
+#include <regex>
 #include <string>
+#include <vector>
 
 #include "core/result.hpp"
 
@@ -14,8 +20,9 @@ struct Baseline {
   std::map<std::string, std::string> expected;  // case name -> status as written ("Fail")
 };
 
-// Throws std::runtime_error with "<file>:<line>: expected `case,Status`, got ..." on bad input
-// (statuses: Fail, Crash, Timeout, Error).
+// Throws std::runtime_error with "<file>:<line>: expected `case,Status`, got ..." on bad input.
+// Statuses Fail, Crash, Timeout and Error are expectations; Pass, Skip, Flake and UnexpectedPass
+// (lines of a results.csv or failures.csv) expect nothing and are ignored.
 Baseline read_baseline(const std::filesystem::path& file);
 
 // Applies the baseline to a result: a listed case with the listed status becomes ExpectedFail, a
@@ -23,7 +30,12 @@ Baseline read_baseline(const std::filesystem::path& file);
 // with another status keeps it, with the expectation in its message.
 void apply(const Baseline& b, CaseResult& r);
 
-// Whether a status fails the run.
-bool fails_run(Status s);
+struct Patterns {
+  std::vector<std::pair<std::string, std::regex>> list;  // as written, compiled
+  // The first pattern matching all of `name`, or nullptr.
+  const std::string* match(const std::string& name) const;
+};
+// Throws std::runtime_error "<file>:<line>: expected a regular expression, got ..." on bad input.
+Patterns read_patterns(const std::filesystem::path& file);
 
 }  // namespace glrc::cli

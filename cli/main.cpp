@@ -4,17 +4,24 @@
 
 #include <fmt/core.h>
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <regex>
 
 #include "casefile/casefile.hpp"
+#include "cli/compare.hpp"
 #include "cli/expectations.hpp"
 #include "cli/identify.hpp"
+#include "cli/mesa_prefix.hpp"
+#include "cli/run.hpp"
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
+#include "cli/workers.hpp"
 #include "compare/compare.hpp"
 #include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
@@ -23,46 +30,6 @@
 
 namespace glrc::cli {
 namespace {
-int cmd_run(const Options& o) {
-  const auto start = Clock::now();
-  const std::vector<Case> cases = load_cases(o);
-  const std::filesystem::path out = output_folder(o.out);
-  const Baseline baseline = load_baseline(o);
-  auto renderer = open_renderer(o);
-  RunInfo info = run_info(o, *renderer);
-  fmt::print("glrefcheck run: {} cases on {} ({}), GL {} | model {} | tolerance {}\n", cases.size(),
-             info.gl_renderer, o.backend, info.gl_version, info.model, info.tolerance);
-  std::fflush(stdout);
-
-  const Progress progress;
-  std::vector<CaseResult> results;
-  for (size_t k = 0; k < cases.size(); ++k) {
-    progress.show(k, cases.size(), cases[k].name);
-    CaseResult r = check(cases[k], o, *renderer).result;
-    apply(baseline, r);
-    progress.clear();
-    fmt::print("{}\n", report::case_line(r));
-    std::fflush(stdout);
-    results.push_back(std::move(r));
-  }
-  info.seconds = seconds_since(start);
-
-  std::map<Status, int> count;
-  for (const auto& r : results)
-    ++count[r.status];
-  fmt::print(
-      "\n{} cases: {} pass, {} fail, {} expected fail, {} unexpected pass, {} error, {} skip"
-      " in {:.2f} s\n",
-      results.size(), count[Status::pass], count[Status::fail], count[Status::expected_fail],
-      count[Status::unexpected_pass], count[Status::error], count[Status::skip], info.seconds);
-  report::write_results_json(out / "results.json", info, results);
-  report::write_junit(out / "junit.xml", info, results);
-  fmt::print("wrote {}/results.json and {}/junit.xml\n", o.out, o.out);
-  for (const auto& r : results)
-    if (fails_run(r.status)) return 1;
-  return 0;
-}
-
 int cmd_diff(const Options& o) {
   const std::vector<Case> cases = load_cases(o);
   if (cases.size() != 1)
@@ -71,7 +38,7 @@ int cmd_diff(const Options& o) {
   const Case& c = cases[0];
   const std::filesystem::path out = output_folder(o.out);
   auto renderer = open_renderer(o);
-  const RunInfo info = run_info(o, *renderer);
+  const RunInfo info = run_info(o, renderer->info());
   const Checked checked = check(c, o, *renderer);
   const CaseResult& r = checked.result;
   fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} | tolerance {}\n\n", c.name,
@@ -157,6 +124,22 @@ void add_gl_options(CLI::App& app, Options& o) {
   app.add_flag("--strict-coverage", o.strict_coverage,
                "count coverage mismatches at edges (within a subpixel step) as failures");
   app.add_option("--out", o.out, "output folder");
+  app.add_option("--mesa", o.mesa,
+                 "a Mesa install tree to run instead of the system's (scripts/mesa-fetch.sh "
+                 "VERSION unpacks one into .mesa/VERSION)");
+}
+
+// Starts this program again with the prefix's environment, once (a marker variable says it is
+// done), so that the dynamic loader finds the prefix's libraries first.
+void reexec_with_mesa(const Options& o, char** argv) {
+  const MesaPrefix prefix = find_mesa_prefix(o.mesa, o.backend);
+  const char* done = std::getenv("GLRC_MESA_PREFIX_APPLIED");
+  if (done && prefix.root == done) return;
+  for (const auto& [name, value] : mesa_environment(prefix, output_folder(o.out)))
+    setenv(name.c_str(), value.c_str(), 1);
+  setenv("GLRC_MESA_PREFIX_APPLIED", prefix.root.c_str(), 1);
+  execv("/proc/self/exe", argv);
+  throw InputError(std::string("--mesa: cannot start glrefcheck again: ") + std::strerror(errno));
 }
 
 int main_impl(int argc, char** argv) {
@@ -166,7 +149,42 @@ int main_impl(int argc, char** argv) {
 
   auto* run = app.add_subcommand("run", "run cases against a GL implementation");
   add_case_options(*run, o), add_model_options(*run, o), add_gl_options(*run, o);
-  run->add_option("--baseline", o.baseline, "known failures, `case,Status` lines (Mesa CI format)");
+  run->add_option("--baseline", o.baseline,
+                  "expected failures, `case,Status` lines (Mesa CI's *-fails.txt, or a previous "
+                  "run's failures.csv)");
+  run->add_option("--flakes", o.flakes,
+                  "known flaky cases, one regular expression per line: their failures do not "
+                  "fail the run (status Flake)");
+  run->add_option("--skips", o.skips, "cases not to run, one regular expression per line");
+  run->add_option("--jobs,-j", o.jobs, "worker processes in parallel (default: one per core)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--timeout", o.timeout,
+                  "seconds a case may take before its worker is killed (status Timeout)")
+      ->check(CLI::Range(0.001, 1e6));
+  run->add_option("--fraction", o.fraction, "run every N-th case (a shard, as deqp-runner)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--fraction-start", o.fraction_start,
+                  "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
+      ->check(CLI::PositiveNumber);
+  run->add_flag("--html", o.html, "also write report.html, a self-contained page");
+
+  CompareOptions compare_options;
+  auto* compare = add_compare_command(app, compare_options);
+
+  auto* worker = app.add_subcommand("worker", "(internal) a GL worker process of `run`");
+  worker->group("");  // not for people: `run` starts it
+
+  std::vector<std::string> merge_dirs;
+  auto* merge = app.add_subcommand("merge", "join the results of --fraction shards into one run");
+  merge->add_option("shards", merge_dirs, "the shards' results folders")->required();
+  merge->add_option("--out", o.out, "output folder")->required();
+  merge->add_flag("--html", o.html, "also write report.html");
+
+  std::string report_dir, report_file;
+  auto* report_cmd =
+      app.add_subcommand("report", "write a self-contained HTML page of a run folder");
+  report_cmd->add_option("run", report_dir, "a results folder (or its results.json)")->required();
+  report_cmd->add_option("--out", report_file, "the HTML file (default: <run>/report.html)");
 
   auto* diff = app.add_subcommand("diff", "check one case and write error heatmaps");
   add_case_options(*diff, o), add_model_options(*diff, o), add_gl_options(*diff, o);
@@ -201,7 +219,15 @@ int main_impl(int argc, char** argv) {
     return 2;
   }
   try {
+    if (*worker) return cmd_worker();
+    // GL from a Mesa prefix needs the loader's environment at process start: the commands that
+    // render in this process start it again with that environment (`run` gives it to its
+    // workers only).
+    if (!o.mesa.empty() && (*diff || *identify || *selftest)) reexec_with_mesa(o, argv);
     if (*run) return cmd_run(o);
+    if (*merge) return cmd_merge(merge_dirs, o.out, o.html);
+    if (*report_cmd) return cmd_report(report_dir, report_file);
+    if (*compare) return cmd_compare(compare_options);
     if (*diff) return cmd_diff(o);
     if (*digest) return cmd_digest(o);
     if (*selftest) return cmd_selftest(o);

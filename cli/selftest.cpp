@@ -47,7 +47,7 @@ int cmd_selftest(const Options& o) {
   const std::vector<Case> cases = load_cases(o);
   const Baseline baseline = load_baseline(o);
   auto renderer = open_renderer(o);
-  const RunInfo info = run_info(o, *renderer);
+  const RunInfo info = run_info(o, renderer->info());
   const int reported = renderer->info().subpixel_bits;
   fmt::print("glrefcheck selftest: {} cases on {} ({}), GL {} | tolerance {}\n", cases.size(),
              info.gl_renderer, o.backend, info.gl_version, info.tolerance);
@@ -66,7 +66,7 @@ int cmd_selftest(const Options& o) {
       run.clean = renderer->render(cases[k]);
       r = compare::compare(cases[k], run.expected, run.clean, run.tolerance);
     } catch (const gl::RenderError& e) {
-      r.name = cases[k].name, r.status = Status::error, r.message = e.what();
+      r.name = cases[k].name, r.status = r.outcome = Status::error, r.message = e.what();
     }
     apply(baseline, r);
     if (r.status == Status::pass) {

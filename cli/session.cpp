@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <regex>
 
+#include <nlohmann/json.hpp>
+
 #include "casefile/casefile.hpp"
 #include "compare/compare.hpp"
 #include "driver_models/driver_models.hpp"
@@ -92,21 +94,23 @@ std::unique_ptr<gl::Renderer> open_renderer(const Options& o) {
   }
 }
 
-RunInfo run_info(const Options& o, const gl::Renderer& r) {
+RunInfo run_info(const Options& o, const gl::GlInfo& gl) {
   RunInfo info;
   info.backend = o.backend;
   info.driver = o.driver;
   info.model = o.model == "ideal" ? model_of(o).describe()
                                   : o.model + " (bit-exact model of Mesa 22.3.6's driver)";
-  info.subpixel_bits = r.info().subpixel_bits;
+  info.subpixel_bits = gl.subpixel_bits;
   info.tolerance =
       o.tolerance == "exact" ? "exact"
       : o.varying_ulps || o.depth_ulps
           ? "ulps"
-          : "spec (subpixel bits " + std::to_string(freedom_bits(o, r.info().subpixel_bits)) + ")";
-  info.gl_vendor = r.info().vendor;
-  info.gl_renderer = r.info().renderer;
-  info.gl_version = r.info().version;
+          : "spec (subpixel bits " + std::to_string(freedom_bits(o, gl.subpixel_bits)) + ")";
+  info.gl_vendor = gl.vendor;
+  info.gl_renderer = gl.renderer;
+  info.gl_version = gl.version;
+  info.gl_library = gl.library;
+  info.mesa_prefix = o.mesa;
   return info;
 }
 
@@ -118,10 +122,11 @@ Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
   try {
     out.gl = renderer.render(c);
     out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported));
+    out.result.gl_digest = ref::digest(out.gl);
   } catch (const gl::RenderError& e) {
     out.result.name = c.name;
     out.result.description = c.description;
-    out.result.status = Status::error;
+    out.result.status = out.result.outcome = Status::error;
     out.result.message = e.what();
   }
   out.result.seconds = seconds_since(start);
@@ -155,6 +160,42 @@ Baseline load_baseline(const Options& o) {
   } catch (const std::runtime_error& e) {
     throw InputError(e.what());
   }
+}
+
+std::string options_json(const Options& o) {
+  nlohmann::json j = {{"model", o.model},
+                      {"subpixel_bits", o.subpixel_bits},
+                      {"planes", o.planes},
+                      {"tie_break", o.tie_break},
+                      {"backend", o.backend},
+                      {"driver", o.driver},
+                      {"device", o.device},
+                      {"tolerance", o.tolerance},
+                      {"strict_coverage", o.strict_coverage},
+                      {"out", o.out}};
+  if (o.spec_subpixel_bits) j["spec_subpixel_bits"] = *o.spec_subpixel_bits;
+  if (o.varying_ulps) j["varying_ulps"] = *o.varying_ulps;
+  if (o.depth_ulps) j["depth_ulps"] = *o.depth_ulps;
+  return j.dump();
+}
+
+Options options_from_json(const std::string& text) {
+  const auto j = nlohmann::json::parse(text);
+  Options o;
+  o.model = j.at("model");
+  o.subpixel_bits = j.at("subpixel_bits");
+  o.planes = j.at("planes");
+  o.tie_break = j.at("tie_break");
+  o.backend = j.at("backend");
+  o.driver = j.at("driver");
+  o.device = j.at("device");
+  o.tolerance = j.at("tolerance");
+  o.strict_coverage = j.at("strict_coverage");
+  o.out = j.at("out");
+  if (j.contains("spec_subpixel_bits")) o.spec_subpixel_bits = j["spec_subpixel_bits"].get<int>();
+  if (j.contains("varying_ulps")) o.varying_ulps = j["varying_ulps"].get<double>();
+  if (j.contains("depth_ulps")) o.depth_ulps = j["depth_ulps"].get<double>();
+  return o;
 }
 
 }  // namespace glrc::cli

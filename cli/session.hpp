@@ -50,7 +50,22 @@ struct Options {
   std::optional<double> varying_ulps, depth_ulps;
   bool strict_coverage = false;
   std::string baseline, out = "out";
+  // Mesa CI's expectations beyond the baseline: regular expressions, one per line.
+  std::string flakes, skips;
+  // A Mesa install tree to run instead of the system's (scripts/mesa-fetch.sh makes one).
+  std::string mesa;
+  // Worker processes: how many in parallel, and how long one case may take.
+  int jobs = 0;  // 0: one per available core
+  double timeout = 60;
+  // Sharding as deqp-runner does it: every `fraction`-th case, starting at `fraction_start`
+  // (1-based, like GitLab's CI_NODE_INDEX).
+  int fraction = 1, fraction_start = 1;
+  bool html = false;
 };
+
+// What a worker process needs of the options, as JSON (the options travel on its stdin).
+std::string options_json(const Options& o);
+Options options_from_json(const std::string& text);
 
 Model model_of(const Options& o);
 // The position freedom of the specification's tolerance: the subpixel bits the implementation
@@ -63,7 +78,7 @@ std::vector<Case> load_cases(const Options& o);
 // --baseline, or an empty one; InputError for a bad file.
 Baseline load_baseline(const Options& o);
 std::unique_ptr<gl::Renderer> open_renderer(const Options& o);
-RunInfo run_info(const Options& o, const gl::Renderer& r);
+RunInfo run_info(const Options& o, const gl::GlInfo& gl);
 
 // One case, end to end: reference, GL, comparison.
 struct Checked {

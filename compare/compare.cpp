@@ -308,6 +308,7 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
   for (const auto& ch : r.channels)
     pass = pass && ch.pass();
   r.status = pass ? Status::pass : Status::fail;
+  r.outcome = r.status;
   if (!pass) r.message = failure_message(r);
   return r;
 }

@@ -67,8 +67,21 @@ const char* to_string(Status s) {
       return "Skip";
     case Status::error:
       return "Error";
+    case Status::crash:
+      return "Crash";
+    case Status::timeout:
+      return "Timeout";
+    case Status::flake:
+      return "Flake";
   }
   return "Error";
+}
+
+std::optional<Status> status_from_string(std::string_view s) {
+  for (Status st : {Status::pass, Status::fail, Status::expected_fail, Status::unexpected_pass,
+                    Status::skip, Status::error, Status::crash, Status::timeout, Status::flake})
+    if (s == to_string(st)) return st;
+  return std::nullopt;
 }
 
 }  // namespace glrc

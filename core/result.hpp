@@ -3,15 +3,39 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/case.hpp"
 
 namespace glrc {
 
-enum class Status { pass, fail, expected_fail, unexpected_pass, skip, error };
-const char* to_string(Status s);
+// The statuses of Mesa CI's result files (deqp-runner's names). pass, fail, crash, timeout,
+// error and skip are what a case did; expected_fail, unexpected_pass and flake are what that
+// means against the expectations (--baseline, --flakes).
+enum class Status {
+  pass,
+  fail,
+  expected_fail,
+  unexpected_pass,
+  skip,
+  error,
+  crash,
+  timeout,
+  flake
+};
+const char* to_string(
+    Status s);  // "Pass", "Fail", "ExpectedFail", ..., "Crash", "Timeout", "Flake"
+// The inverse of to_string; nullopt for anything else.
+std::optional<Status> status_from_string(std::string_view s);
+// Whether a status fails the run (and goes to failures.csv): Fail, Crash, Timeout, Error, and
+// UnexpectedPass (the expectations need updating, as in Mesa CI).
+inline bool fails_run(Status s) {
+  return s == Status::fail || s == Status::crash || s == Status::timeout || s == Status::error ||
+         s == Status::unexpected_pass;
+}
 const char* to_string(ToleranceMode m);  // "spec", "ulps", "exact"
 
 struct WorstPixel {
@@ -67,11 +91,17 @@ struct CaseResult {
   std::string name;
   std::string description;
   Status status = Status::error;
+  // What the case did before expectations were applied: pass, fail, crash, timeout, error or
+  // skip. Comparing two runs compares outcomes, whatever each run's baseline said.
+  Status outcome = Status::error;
   std::string message;  // why it failed / was skipped; empty on pass
   Tolerance tolerance;
   CoverageStats coverage;
   std::vector<ChannelStats> channels;  // depth first, then each varying component
-  double seconds = 0;                  // reference + GL + compare
+  // SHA-256 of the GL frame's bits (ref::digest): two runs with the same digest drew the very
+  // same pixels, however the statistics read. Empty when GL gave no frame.
+  std::string gl_digest;
+  double seconds = 0;  // reference + GL + compare
 };
 
 // Run-wide facts for the reports.
@@ -80,6 +110,14 @@ struct RunInfo {
   std::string tolerance;  // "spec (subpixel bits 8)", "ulps" or "exact"
   int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
   std::string gl_vendor, gl_renderer, gl_version;
+  // The Mesa install tree given with --mesa (empty: the system's), and the driver library GL
+  // actually came from (libOSMesa, libEGL_mesa, ...), so nobody can mistake which Mesa ran.
+  std::string mesa_prefix, gl_library;
+  int jobs = 1;
+  // Sharding: this run holds every `fraction`-th case starting at `fraction_start` (1-based) of
+  // `total_cases`; fraction 1 is the whole suite.
+  int fraction = 1, fraction_start = 1;
+  size_t total_cases = 0;
   double seconds = 0;
 };
 

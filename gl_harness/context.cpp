@@ -3,6 +3,7 @@
 #include "gl_harness/context.hpp"
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <algorithm>
 #include <cctype>
@@ -72,6 +73,27 @@ void* library_symbol(void* library, const char* library_name, const char* symbol
     throw Unavailable(std::string(library_name) + " has no " + symbol +
                       ": it is too old or not the library expected; install a current Mesa");
   return p;
+}
+
+std::string loaded_library(std::initializer_list<const char*> prefixes) {
+  struct Search {
+    std::initializer_list<const char*> prefixes;
+    std::string found;
+  } search{prefixes, {}};
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* data) {
+        auto& s = *static_cast<Search*>(data);
+        const std::string_view path = info->dlpi_name ? info->dlpi_name : "";
+        const std::string_view base = path.substr(path.rfind('/') + 1);
+        for (const char* p : s.prefixes)
+          if (base.starts_with(p)) {
+            s.found = std::string(path);
+            return 1;
+          }
+        return 0;
+      },
+      &search);
+  return search.found;
 }
 
 bool is_mesa_software_driver(std::string_view driver) {

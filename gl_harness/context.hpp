@@ -57,6 +57,10 @@ void load_symbol(Function*& fn, void* library, const char* library_name, const c
   fn = reinterpret_cast<Function*>(library_symbol(library, library_name, symbol));
 }
 
+// The path of the first loaded shared object whose file name starts with one of `prefixes`
+// (dl_iterate_phdr, so it is the file the loader really mapped), or "".
+std::string loaded_library(std::initializer_list<const char*> prefixes);
+
 // Mesa's software drivers, the only ones picked through GALLIUM_DRIVER here.
 bool is_mesa_software_driver(std::string_view driver);
 

@@ -41,6 +41,9 @@ struct GlInfo {
   std::string vendor, renderer, version;
   // How the context was made, e.g. "EGL surfaceless platform (EGL 1.5, Mesa Project)".
   std::string platform;
+  // The driver library the context came from, as the dynamic loader found it (libOSMesa,
+  // libEGL_mesa, libEGL_nvidia...): which Mesa ran, whatever GL_VERSION claims.
+  std::string library;
   int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
   // GL_PROVOKING_VERTEX as reported by the fresh context, before anything set it (GL: last).
   ProvokingVertex initial_provoking_vertex = ProvokingVertex::last;

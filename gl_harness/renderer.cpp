@@ -206,6 +206,7 @@ class GlRenderer final : public Renderer {
                                          ? ProvokingVertex::first
                                          : ProvokingVertex::last;
     info_.platform = context_->describe();
+    info_.library = loaded_library({"libOSMesa.so", "libEGL_mesa.so", "libEGL_nvidia.so"});
     check_driver(t, info_.renderer, context_->describe());
 
     int major = integer(GL_MAJOR_VERSION), minor = integer(GL_MINOR_VERSION);

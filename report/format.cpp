@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 namespace glrc::report {
 
@@ -34,6 +35,18 @@ std::string float_text(double value) {
 
 std::string seconds_text(double seconds) {
   return fmt::format("{:.3f} s", seconds);
+}
+
+std::string short_message(const std::string& message, size_t max_chars) {
+  std::string line = message.substr(0, message.find('\n'));
+  if (line.size() > max_chars) line = line.substr(0, max_chars - 3) + "...";
+  return line;
+}
+
+nlohmann::json json_number(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return v;
 }
 
 }  // namespace glrc::report

@@ -1,7 +1,11 @@
-// Number formatting shared by the text and file reports, so a value reads the same everywhere.
+// Number and message formatting shared by the text and file reports, so a value reads the same
+// everywhere.
 #pragma once
 
+#include <cstddef>
 #include <string>
+
+#include <nlohmann/json_fwd.hpp>
 
 namespace glrc::report {
 
@@ -13,5 +17,17 @@ std::string ratio_text(double ratio);
 std::string float_text(double value);
 // A duration: "0.012 s".
 std::string seconds_text(double seconds);
+
+// A message in a listing: its first line, cut to `max_chars` with "..." (the whole message is in
+// results.json).
+std::string short_message(const std::string& message, size_t max_chars = 100);
+
+// A number in a JSON report. JSON has no NaN or infinity, and nlohmann would write them as null,
+// which reads back as "missing" rather than as the very finding (GL gave NaN) the report is
+// about. So a non-finite number is the string "nan", "inf" or "-inf"; every finite one stays a
+// number, and a reader must accept either in any numeric field. Frame values are float32:
+// widening to double is exact and nlohmann prints doubles with round-trip precision, so floats
+// read back bit for bit.
+nlohmann::json json_number(double v);
 
 }  // namespace glrc::report

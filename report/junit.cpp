@@ -49,8 +49,9 @@ std::string xml_escaped(std::string_view s) {
   return out;
 }
 
+// A failed check; Error (the case could not be judged at all) is JUnit's <error>.
 bool is_failure(Status s) {
-  return s == Status::fail || s == Status::unexpected_pass;
+  return fails_run(s) && s != Status::error;
 }
 
 // A few lines under the failure message, enough to triage without opening results.json.
@@ -83,9 +84,9 @@ std::string testcase_xml(const CaseResult& r) {
     body = fmt::format("      <error message=\"{}\" type=\"Error\"/>\n", message);
   } else if (r.status == Status::skip) {
     body = fmt::format("      <skipped message=\"{}\"/>\n", message);
-  } else if (r.status == Status::expected_fail) {
+  } else if (r.status == Status::expected_fail || r.status == Status::flake) {
     // Passing for CI, but say so: a known difference is still a difference.
-    body = fmt::format("      <system-out>ExpectedFail: {}&#10;{}</system-out>\n",
+    body = fmt::format("      <system-out>{}: {}&#10;{}</system-out>\n", to_string(r.status),
                        xml_escaped(r.message), xml_escaped(stats_text(r)));
   }
   if (body.empty()) return xml + "/>\n";

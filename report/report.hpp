@@ -13,6 +13,29 @@ namespace glrc::report {
 
 void write_results_json(const std::filesystem::path& file, const RunInfo& run,
                         const std::vector<CaseResult>& results);
+// A results.json read back (or a folder holding one). Throws std::runtime_error naming the file
+// and the field on anything malformed.
+struct RunResults {
+  RunInfo run;
+  std::vector<CaseResult> cases;
+};
+RunResults read_results_json(const std::filesystem::path& file_or_dir);
+// The run folder of such an argument (where its cases/<name>/ heatmaps are): the folder itself,
+// or the folder of the results.json.
+std::filesystem::path run_folder(const std::filesystem::path& file_or_dir);
+// One case as one line of JSON, the same fields as in results.json, and back (how worker
+// processes hand results to the runner).
+std::string case_result_json(const CaseResult& r);
+CaseResult case_result_from_json(const std::string& text, const std::string& source);
+
+// Mesa CI's files (deqp-runner's format): results.csv, one `case,Status,seconds` line per case;
+// failures.csv, the same for the cases whose status fails the run.
+void write_results_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results);
+void write_failures_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results);
+// All four files of a run folder: results.json, results.csv, failures.csv, junit.xml.
+void write_run_files(const std::filesystem::path& dir, const RunInfo& run,
+                     const std::vector<CaseResult>& results);
+
 void write_junit(const std::filesystem::path& file, const RunInfo& run,
                  const std::vector<CaseResult>& results);
 

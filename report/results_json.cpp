@@ -1,32 +1,18 @@
 // results.json: everything a CaseResult holds, for scripts and later comparison between runs.
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
+#include "report/format.hpp"
 #include "report/report.hpp"
 
 namespace glrc::report {
 namespace {
 
 using nlohmann::json;
-
-// JSON has no NaN or infinity, and nlohmann would write them as null, which reads back as
-// "missing" rather than as the very finding (GL gave NaN) the report is about. So a non-finite
-// number is written as the string "nan", "inf" or "-inf"; every finite one stays a number.
-// A reader must therefore accept a number or one of those three strings in any numeric field.
-json number(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return v;
-}
-
-// Frame values are float32; widening to double is exact, and nlohmann prints the double with
-// round-trip precision, so the float is recovered bit for bit.
-json number(float v) {
-  return number(double(v));
-}
 
 json run_json(const RunInfo& run) {
   return {{"backend", run.backend},
@@ -37,7 +23,13 @@ json run_json(const RunInfo& run) {
           {"gl_vendor", run.gl_vendor},
           {"gl_renderer", run.gl_renderer},
           {"gl_version", run.gl_version},
-          {"seconds", number(run.seconds)}};
+          {"mesa_prefix", run.mesa_prefix},
+          {"gl_library", run.gl_library},
+          {"jobs", run.jobs},
+          {"fraction", run.fraction},
+          {"fraction_start", run.fraction_start},
+          {"total_cases", run.total_cases},
+          {"seconds", json_number(run.seconds)}};
 }
 
 json summary_json(const std::vector<CaseResult>& results) {
@@ -50,7 +42,10 @@ json summary_json(const std::vector<CaseResult>& results) {
                {Status::expected_fail, "expected_fail"},
                {Status::unexpected_pass, "unexpected_pass"},
                {Status::skip, "skip"},
-               {Status::error, "error"}};
+               {Status::error, "error"},
+               {Status::crash, "crash"},
+               {Status::timeout, "timeout"},
+               {Status::flake, "flake"}};
   json summary = {{"total", results.size()}};
   for (const auto& k : kKeys) {
     size_t n = 0;
@@ -107,25 +102,25 @@ json channel_json(const ChannelStats& ch) {
   for (const auto& w : ch.worst)
     worst.push_back({{"x", w.x},
                      {"y", w.y},
-                     {"reference", number(w.reference)},
-                     {"gl", number(w.gl)},
-                     {"abs_error", number(w.abs_error)},
-                     {"ulps", number(w.ulps)},
-                     {"allowed", number(w.allowed)},
-                     {"ratio", number(w.ratio)}});
+                     {"reference", json_number(w.reference)},
+                     {"gl", json_number(w.gl)},
+                     {"abs_error", json_number(w.abs_error)},
+                     {"ulps", json_number(w.ulps)},
+                     {"allowed", json_number(w.allowed)},
+                     {"ratio", json_number(w.ratio)}});
   return {{"name", ch.name},
           {"compared", ch.compared},
           {"over_tolerance", ch.over_tolerance},
           {"non_finite", ch.non_finite},
           {"differing", ch.differing},
-          {"max_abs", number(ch.max_abs)},
-          {"max_ulps", number(ch.max_ulps)},
-          {"mean_ulps", number(ch.mean_ulps)},
-          {"rms_ulps", number(ch.rms_ulps)},
-          {"p99_ulps", number(ch.p99_ulps)},
-          {"tolerance_ulps", number(ch.tolerance_ulps)},
-          {"max_ratio", number(ch.max_ratio)},
-          {"p99_ratio", number(ch.p99_ratio)},
+          {"max_abs", json_number(ch.max_abs)},
+          {"max_ulps", json_number(ch.max_ulps)},
+          {"mean_ulps", json_number(ch.mean_ulps)},
+          {"rms_ulps", json_number(ch.rms_ulps)},
+          {"p99_ulps", json_number(ch.p99_ulps)},
+          {"tolerance_ulps", json_number(ch.tolerance_ulps)},
+          {"max_ratio", json_number(ch.max_ratio)},
+          {"p99_ratio", json_number(ch.p99_ratio)},
           {"pass", ch.pass()},
           {"worst", std::move(worst)}};
 }
@@ -137,19 +132,248 @@ json case_json(const CaseResult& r) {
   return {{"name", r.name},
           {"description", r.description},
           {"status", to_string(r.status)},
+          {"outcome", to_string(r.outcome)},
           {"message", r.message},
-          {"seconds", number(r.seconds)},
+          {"gl_digest", r.gl_digest},
+          {"seconds", json_number(r.seconds)},
           {"tolerance",
            {{"mode", to_string(r.tolerance.mode)},
             {"subpixel_bits", r.tolerance.subpixel_bits},
-            {"varying_ulps", number(r.tolerance.varying_ulps)},
-            {"depth_ulps", number(r.tolerance.depth_ulps)},
+            {"varying_ulps", json_number(r.tolerance.varying_ulps)},
+            {"depth_ulps", json_number(r.tolerance.depth_ulps)},
             {"allow_boundary", r.tolerance.allow_boundary}}},
           {"coverage", coverage_json(r.coverage)},
           {"channels", std::move(channels)}};
 }
 
+// ---- Reading back: the inverse of the above, for compare, merge and report. -------------------
+
+// A field that is missing or of the wrong type is one line naming the file and the field.
+struct Reader {
+  const std::filesystem::path& file;
+
+  [[noreturn]] void bad(const std::string& where, const std::string& expected) const {
+    throw std::runtime_error(file.string() + ": " + where + ": expected " + expected);
+  }
+  const json& field(const json& j, const std::string& where, const char* key) const {
+    if (!j.is_object() || !j.contains(key))
+      bad(where + "." + key, std::string("a field \"") + key + "\"");
+    return j.at(key);
+  }
+  double num(const json& j, const std::string& where, const char* key) const {
+    const json& v = field(j, where, key);
+    if (v.is_number()) return v.get<double>();
+    if (v.is_string()) {
+      const auto t = v.get<std::string>();
+      if (t == "nan") return std::nan("");
+      if (t == "inf") return HUGE_VAL;
+      if (t == "-inf") return -HUGE_VAL;
+    }
+    bad(where + "." + key, "a number or \"nan\", \"inf\", \"-inf\"");
+  }
+  uint64_t count(const json& j, const std::string& where, const char* key) const {
+    const json& v = field(j, where, key);
+    if (!v.is_number_unsigned()) bad(where + "." + key, "a count (an integer >= 0)");
+    return v.get<uint64_t>();
+  }
+  int integer(const json& j, const std::string& where, const char* key, int fallback) const {
+    if (!j.contains(key)) return fallback;  // fields added later than the first results.json
+    const json& v = field(j, where, key);
+    if (!v.is_number_integer()) bad(where + "." + key, "an integer");
+    return v.get<int>();
+  }
+  std::string str(const json& j, const std::string& where, const char* key,
+                  bool optional = false) const {
+    if (optional && !j.contains(key)) return "";
+    const json& v = field(j, where, key);
+    if (!v.is_string()) bad(where + "." + key, "a string");
+    return v.get<std::string>();
+  }
+  bool boolean(const json& j, const std::string& where, const char* key) const {
+    const json& v = field(j, where, key);
+    if (!v.is_boolean()) bad(where + "." + key, "true or false");
+    return v.get<bool>();
+  }
+  Status status(const json& j, const std::string& where, const char* key) const {
+    const auto s = status_from_string(str(j, where, key));
+    if (!s) bad(where + "." + key, "a status (Pass, Fail, Crash, ...)");
+    return *s;
+  }
+};
+
+RunInfo read_run(const Reader& rd, const json& j) {
+  RunInfo run;
+  run.backend = rd.str(j, "run", "backend");
+  run.driver = rd.str(j, "run", "driver");
+  run.model = rd.str(j, "run", "model");
+  run.tolerance = rd.str(j, "run", "tolerance");
+  run.subpixel_bits = rd.integer(j, "run", "gl_subpixel_bits", 0);
+  run.gl_vendor = rd.str(j, "run", "gl_vendor");
+  run.gl_renderer = rd.str(j, "run", "gl_renderer");
+  run.gl_version = rd.str(j, "run", "gl_version");
+  run.mesa_prefix = rd.str(j, "run", "mesa_prefix", true);
+  run.gl_library = rd.str(j, "run", "gl_library", true);
+  run.jobs = rd.integer(j, "run", "jobs", 1);
+  run.fraction = rd.integer(j, "run", "fraction", 1);
+  run.fraction_start = rd.integer(j, "run", "fraction_start", 1);
+  run.total_cases = j.contains("total_cases") ? rd.count(j, "run", "total_cases") : 0;
+  run.seconds = rd.num(j, "run", "seconds");
+  return run;
+}
+
+CoverageStats read_coverage(const Reader& rd, const json& j, const std::string& where) {
+  CoverageStats c;
+  c.both = rd.count(j, where, "both");
+  c.neither = rd.count(j, where, "neither");
+  c.reference_only = rd.count(j, where, "reference_only");
+  c.gl_only = rd.count(j, where, "gl_only");
+  c.other_primitive = rd.count(j, where, "other_primitive");
+  c.boundary = rd.count(j, where, "boundary");
+  c.exact_tie = rd.count(j, where, "exact_tie");
+  c.within_snapping = rd.count(j, where, "within_snapping");
+  c.fill_rule = rd.count(j, where, "fill_rule");
+  c.gaps = rd.count(j, where, "gaps");
+  c.double_hits = rd.count(j, where, "double_hits");
+  c.fragments_checked = rd.boolean(j, where, "fragments_checked");
+  c.failures = rd.count(j, where, "failures");
+  const json& list = rd.field(j, where, "mismatches");
+  if (!list.is_array()) rd.bad(where + ".mismatches", "an array");
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string at = where + ".mismatches[" + std::to_string(k) + "]";
+    CoverageStats::Pixel p;
+    p.x = rd.integer(list[k], at, "x", 0);
+    p.y = rd.integer(list[k], at, "y", 0);
+    p.reference = rd.integer(list[k], at, "reference", -1);
+    p.gl = rd.integer(list[k], at, "gl", -1);
+    p.boundary = rd.boolean(list[k], at, "boundary");
+    const std::string label = rd.str(list[k], at, "label");
+    bool known = false;
+    for (auto l : {CoverageStats::Label::exact_tie, CoverageStats::Label::within_snapping,
+                   CoverageStats::Label::fill_rule, CoverageStats::Label::gap,
+                   CoverageStats::Label::double_hit})
+      if (label == label_name(l)) p.label = l, known = true;
+    if (!known) rd.bad(at + ".label", "exact_tie, within_snapping, fill_rule, gap or double_hit");
+    c.mismatches.push_back(p);
+  }
+  return c;
+}
+
+ChannelStats read_channel(const Reader& rd, const json& j, const std::string& where) {
+  ChannelStats ch;
+  ch.name = rd.str(j, where, "name");
+  ch.compared = rd.count(j, where, "compared");
+  ch.over_tolerance = rd.count(j, where, "over_tolerance");
+  ch.non_finite = rd.count(j, where, "non_finite");
+  ch.differing = rd.count(j, where, "differing");
+  ch.max_abs = rd.num(j, where, "max_abs");
+  ch.max_ulps = rd.num(j, where, "max_ulps");
+  ch.mean_ulps = rd.num(j, where, "mean_ulps");
+  ch.rms_ulps = rd.num(j, where, "rms_ulps");
+  ch.p99_ulps = rd.num(j, where, "p99_ulps");
+  ch.tolerance_ulps = rd.num(j, where, "tolerance_ulps");
+  ch.max_ratio = rd.num(j, where, "max_ratio");
+  ch.p99_ratio = rd.num(j, where, "p99_ratio");
+  const json& list = rd.field(j, where, "worst");
+  if (!list.is_array()) rd.bad(where + ".worst", "an array");
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string at = where + ".worst[" + std::to_string(k) + "]";
+    WorstPixel w;
+    w.x = rd.integer(list[k], at, "x", 0);
+    w.y = rd.integer(list[k], at, "y", 0);
+    w.reference = float(rd.num(list[k], at, "reference"));
+    w.gl = float(rd.num(list[k], at, "gl"));
+    w.abs_error = rd.num(list[k], at, "abs_error");
+    w.ulps = rd.num(list[k], at, "ulps");
+    w.allowed = rd.num(list[k], at, "allowed");
+    w.ratio = rd.num(list[k], at, "ratio");
+    ch.worst.push_back(w);
+  }
+  return ch;
+}
+
+ToleranceMode read_mode(const Reader& rd, const json& j, const std::string& where) {
+  const std::string m = rd.str(j, where, "mode");
+  for (auto mode : {ToleranceMode::spec, ToleranceMode::ulps, ToleranceMode::exact})
+    if (m == to_string(mode)) return mode;
+  rd.bad(where + ".mode", "spec, ulps or exact");
+}
+
+CaseResult read_case(const Reader& rd, const json& j, const std::string& where) {
+  CaseResult r;
+  r.name = rd.str(j, where, "name");
+  r.description = rd.str(j, where, "description");
+  r.status = rd.status(j, where, "status");
+  if (j.contains("outcome")) {
+    r.outcome = rd.status(j, where, "outcome");
+  } else {  // written before outcomes were recorded
+    r.outcome = r.status == Status::expected_fail     ? Status::fail
+                : r.status == Status::unexpected_pass ? Status::pass
+                                                      : r.status;
+  }
+  r.message = rd.str(j, where, "message");
+  r.gl_digest = rd.str(j, where, "gl_digest", true);
+  r.seconds = rd.num(j, where, "seconds");
+  const json& t = rd.field(j, where, "tolerance");
+  r.tolerance.mode = read_mode(rd, t, where + ".tolerance");
+  r.tolerance.subpixel_bits = rd.integer(t, where + ".tolerance", "subpixel_bits", 4);
+  r.tolerance.varying_ulps = rd.num(t, where + ".tolerance", "varying_ulps");
+  r.tolerance.depth_ulps = rd.num(t, where + ".tolerance", "depth_ulps");
+  r.tolerance.allow_boundary = rd.boolean(t, where + ".tolerance", "allow_boundary");
+  r.coverage = read_coverage(rd, rd.field(j, where, "coverage"), where + ".coverage");
+  const json& chs = rd.field(j, where, "channels");
+  if (!chs.is_array()) rd.bad(where + ".channels", "an array");
+  for (size_t k = 0; k < chs.size(); ++k)
+    r.channels.push_back(read_channel(rd, chs[k], where + ".channels[" + std::to_string(k) + "]"));
+  return r;
+}
+
 }  // namespace
+
+std::string case_result_json(const CaseResult& r) {
+  return case_json(r).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+CaseResult case_result_from_json(const std::string& text, const std::string& source) {
+  const std::filesystem::path file(source);
+  const Reader rd{file};
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(source + ": expected a case result in JSON (" + e.what() + ")");
+  }
+  return read_case(rd, j, "case");
+}
+
+std::filesystem::path run_folder(const std::filesystem::path& file_or_dir) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file_or_dir, ec)) return file_or_dir;
+  return file_or_dir.has_parent_path() ? file_or_dir.parent_path() : ".";
+}
+
+RunResults read_results_json(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) return read_results_json(file / "results.json");
+  std::ifstream in(file);
+  if (!in)
+    throw std::runtime_error(
+        file.string() + ": expected a results.json (or a folder holding one)" +
+        (std::filesystem::exists(file, ec) ? ", cannot read it" : ", no such file"));
+  json doc;
+  try {
+    doc = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(file.string() + ": expected JSON (" + e.what() + ")");
+  }
+  const Reader rd{file};
+  RunResults out;
+  out.run = read_run(rd, rd.field(doc, "results.json", "run"));
+  const json& cases = rd.field(doc, "results.json", "cases");
+  if (!cases.is_array()) rd.bad("cases", "an array");
+  for (size_t k = 0; k < cases.size(); ++k)
+    out.cases.push_back(read_case(rd, cases[k], "cases[" + std::to_string(k) + "]"));
+  return out;
+}
 
 void write_results_json(const std::filesystem::path& file, const RunInfo& run,
                         const std::vector<CaseResult>& results) {

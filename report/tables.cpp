@@ -30,10 +30,6 @@ std::string worst_text(const CaseResult& r, Field field, Format format) {
   return format(worst);
 }
 
-std::string first_line(const std::string& s) {
-  return s.substr(0, s.find('\n'));
-}
-
 }  // namespace
 
 std::string case_line(const CaseResult& r) {
@@ -43,8 +39,7 @@ std::string case_line(const CaseResult& r) {
                   worst_text(r, &ChannelStats::max_ulps, ulps_text),
                   worst_text(r, &ChannelStats::max_ratio, ratio_text), r.coverage.failures,
                   r.coverage.boundary, seconds_text(r.seconds));
-  std::string message = first_line(r.message);
-  if (message.size() > kShortMessage) message = message.substr(0, kShortMessage - 3) + "...";
+  const std::string message = short_message(r.message, kShortMessage);
   if (r.status != Status::pass && !message.empty()) line += "  " + message;
   return line;
 }

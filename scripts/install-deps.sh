@@ -9,6 +9,8 @@ packages=(
   libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core
+  # The HTML report test opens the report in headless Chromium to check that it renders.
+  chromium
 )
 
 missing=()

@@ -17,11 +17,13 @@ struct Outcome {
 };
 
 // Runs glrefcheck with the given arguments in the source folder; stdout and stderr apart.
-inline Outcome glrefcheck(const std::string& args) {
+// `env`: shell variable assignments for it, e.g. "GLRC_TEST_STALL_CASE=x".
+inline Outcome glrefcheck(const std::string& args, const std::string& env = "") {
   const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
                                          ("glrc_cli_stderr_" + std::to_string(getpid()) + ".txt");
-  const std::string cmd = std::string("cd '") + GLRC_SOURCE_DIR + "' && '" + GLRC_BINARY_DIR +
-                          "/glrefcheck' " + args + " 2>'" + err_file.string() + "'";
+  const std::string cmd = std::string("cd '") + GLRC_SOURCE_DIR + "' && " + env + " '" +
+                          GLRC_BINARY_DIR + "/glrefcheck' " + args + " 2>'" + err_file.string() +
+                          "'";
   Outcome o;
   FILE* p = popen(cmd.c_str(), "r");
   char buf[4096];

@@ -1,0 +1,128 @@
+// The child side of cli/workers.hpp: one GL context, many cases.
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <iostream>
+#include <regex>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "casefile/casefile.hpp"
+#include "cli/workers.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+
+namespace {
+
+// Results go to a private copy of stdout; the real fd 1 is pointed at stderr (the log), so
+// whatever a driver prints cannot corrupt the protocol.
+class Channel {
+ public:
+  Channel() : fd_(dup(STDOUT_FILENO)) { dup2(STDERR_FILENO, STDOUT_FILENO); }
+  void send(const nlohmann::json& j) const {
+    send_line(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+  }
+  void send_raw_result(size_t index, const std::string& result_json) const {
+    // The CaseResult is already JSON: splice it rather than parse it again.
+    const std::string line =
+        "{\"index\":" + std::to_string(index) + ",\"result\":" + result_json + "}";
+    send_line(line);
+  }
+
+ private:
+  void send_line(std::string line) const {
+    line += '\n';
+    for (size_t done = 0; done < line.size();) {
+      const ssize_t n = write(fd_, line.data() + done, line.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) std::exit(3);  // the runner is gone: nobody to report to
+      done += size_t(n);
+    }
+  }
+  int fd_;
+};
+
+// For the tests of crash and timeout handling only: a case whose name matches
+// GLRC_TEST_STALL_CASE makes the worker write its pid to GLRC_TEST_STALL_PIDFILE and stop there,
+// as a hung driver would, so a test can kill it (crash) or let the timeout strike.
+void stall_if_asked(const std::string& name) {
+  const char* pattern = std::getenv("GLRC_TEST_STALL_CASE");
+  if (!pattern || !std::regex_match(name, std::regex(pattern))) return;
+  if (const char* pidfile = std::getenv("GLRC_TEST_STALL_PIDFILE")) {
+    const std::string tmp = std::string(pidfile) + ".tmp";
+    if (FILE* f = std::fopen(tmp.c_str(), "w")) {
+      std::fprintf(f, "%d\n", int(getpid()));
+      std::fclose(f);
+      std::rename(tmp.c_str(), pidfile);
+    }
+  }
+  for (;;)
+    pause();
+}
+
+CaseResult check_one(const nlohmann::json& job, const Options& o, gl::Renderer& renderer) {
+  const std::string file = job.at("file"), name = job.at("name");
+  Case c;
+  try {
+    c = casefile::load(file);
+  } catch (const std::exception& e) {
+    CaseResult r;
+    r.name = name, r.status = r.outcome = Status::error, r.message = e.what();
+    return r;
+  }
+  stall_if_asked(c.name);
+  Checked checked = check(c, o, renderer);
+  // A failing case gets its heatmaps now, while its frames exist: the HTML report and anyone
+  // triaging the run find them in <out>/cases/<case>/.
+  if (checked.result.outcome == Status::fail) {
+    try {
+      report::write_diff_images(std::filesystem::path(o.out) / "cases" / c.name, c,
+                                checked.reference, checked.gl, checked.result);
+    } catch (const std::exception& e) {
+      std::cerr << "glrefcheck worker: " << c.name << ": no heatmaps: " << e.what() << '\n';
+    }
+  }
+  return std::move(checked.result);
+}
+
+}  // namespace
+
+int cmd_worker() {
+  const Channel channel;
+  std::string line;
+  if (!std::getline(std::cin, line)) return 2;
+  Options o;
+  std::unique_ptr<gl::Renderer> renderer;
+  try {
+    o = options_from_json(line);
+    renderer = open_renderer(o);
+  } catch (const std::exception& e) {
+    channel.send({{"error", e.what()}});
+    return 2;
+  }
+  const gl::GlInfo& gl = renderer->info();
+  channel.send({{"hello",
+                 {{"vendor", gl.vendor},
+                  {"renderer", gl.renderer},
+                  {"version", gl.version},
+                  {"library", gl.library},
+                  {"platform", gl.platform},
+                  {"subpixel_bits", gl.subpixel_bits}}}});
+  while (std::getline(std::cin, line)) {
+    const auto job = nlohmann::json::parse(line);
+    const size_t index = job.at("index");
+    CaseResult r;
+    try {
+      r = check_one(job, o, *renderer);
+    } catch (const std::exception& e) {
+      r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
+    }
+    channel.send_raw_result(index, report::case_result_json(r));
+  }
+  return 0;
+}
+
+}  // namespace glrc::cli

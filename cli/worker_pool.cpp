@@ -1,0 +1,331 @@
+// The runner side of cli/workers.hpp: starts workers, hands out cases one at a time (so a slow
+// case never holds up a queue behind it), watches for deaths and timeouts with poll().
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fmt/core.h>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstring>
+#include <deque>
+#include <fstream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/workers.hpp"
+#include "report/report.hpp"
+
+extern char** environ;
+
+namespace glrc::cli {
+
+namespace {
+
+std::string self_executable() {
+  char buf[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) throw std::runtime_error("cannot find this program's own file (/proc/self/exe)");
+  return std::string(buf, size_t(n));
+}
+
+// The last lines of a worker's log: what the driver said before it died.
+// A slot's log holds all its workers one after the other: read from where this one began.
+std::string log_tail(const std::filesystem::path& log, std::streamoff from,
+                     size_t max_chars = 600) {
+  std::ifstream in(log, std::ios::binary);
+  in.seekg(from);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  if (text.size() > max_chars) text = "..." + text.substr(text.size() - max_chars);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
+    text.pop_back();
+  for (char& ch : text)
+    if (ch == '\n') ch = '|';
+  return text;
+}
+
+std::string describe_exit(int status) {
+  if (WIFSIGNALED(status))
+    return fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
+  if (WIFEXITED(status)) return fmt::format("exited with code {}", WEXITSTATUS(status));
+  return "ended";
+}
+
+struct Worker {
+  pid_t pid = -1;
+  int to = -1, from = -1;     // its stdin, its stdout
+  std::string buffer;         // what it sent that is not yet a whole line
+  bool ready = false;         // said hello
+  std::optional<size_t> job;  // index into cases of the case it is checking
+  Clock::time_point deadline;
+  Clock::time_point started;
+  std::filesystem::path log;
+  std::streamoff log_start = 0;
+};
+
+class Pool {
+ public:
+  Pool(const std::vector<const Case*>& cases, const Options& o, const WorkerSettings& s,
+       const std::function<void(const WorkerGl&)>& on_start,
+       const std::function<void(size_t, CaseResult)>& on_result)
+      : cases_(cases), s_(s), on_start_(on_start), on_result_(on_result) {
+    for (size_t k = 0; k < cases.size(); ++k)
+      queue_.push_back(k);
+    options_line_ = options_json(o) + "\n";
+    // The environment of the children: ours, with the prefix's variables replaced.
+    for (char** e = environ; *e; ++e) {
+      const std::string var(*e);
+      bool replaced = false;
+      for (const auto& [name, value] : s.environment)
+        replaced = replaced || var.starts_with(name + "=");
+      if (!replaced) env_.push_back(var);
+    }
+    for (const auto& [name, value] : s.environment)
+      env_.push_back(name + "=" + value);
+    exe_ = self_executable();
+  }
+
+  ~Pool() {
+    for (auto& w : workers_)
+      stop(w, true);
+  }
+
+  void run() {
+    const size_t n = std::min<size_t>(size_t(std::max(s_.jobs, 1)), cases_.size());
+    workers_.resize(n);
+    for (size_t k = 0; k < n; ++k)
+      start(workers_[k], k);
+    while (done_ < cases_.size()) {
+      std::vector<pollfd> fds;
+      std::vector<size_t> owner;
+      for (size_t k = 0; k < workers_.size(); ++k)
+        if (workers_[k].pid > 0) {
+          fds.push_back({workers_[k].from, POLLIN, 0});
+          owner.push_back(k);
+        }
+      if (fds.empty()) throw std::runtime_error("no worker left with cases to check");
+      const int wait_ms = next_deadline_ms();
+      const int ready = poll(fds.data(), fds.size(), wait_ms);
+      if (ready < 0 && errno != EINTR) throw std::runtime_error("poll failed");
+      for (size_t i = 0; i < fds.size(); ++i)
+        if (fds[i].revents) read_from(workers_[owner[i]], owner[i]);
+      check_deadlines();
+    }
+  }
+
+ private:
+  int next_deadline_ms() const {
+    std::optional<Clock::time_point> next;
+    for (const auto& w : workers_)
+      if (w.pid > 0 && (w.job || !w.ready) && (!next || w.deadline < *next)) next = w.deadline;
+    if (!next) return -1;
+    const double ms = std::chrono::duration<double, std::milli>(*next - Clock::now()).count();
+    return int(std::clamp(std::ceil(ms), 0.0, 3.6e6));
+  }
+
+  void start(Worker& w, size_t slot) {
+    int in_pipe[2], out_pipe[2];
+    if (pipe2(in_pipe, O_CLOEXEC) != 0 || pipe2(out_pipe, O_CLOEXEC) != 0)
+      throw std::runtime_error("cannot make a pipe for a worker");
+    const auto log = s_.log_dir / fmt::format("worker-{}.log", slot + 1);
+    const int log_fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    if (log_fd < 0) throw std::runtime_error("cannot write " + log.string());
+    const std::streamoff log_start = lseek(log_fd, 0, SEEK_END);
+    std::vector<char*> envp;
+    for (auto& e : env_)
+      envp.push_back(e.data());
+    envp.push_back(nullptr);
+    std::string worker_arg = "worker";
+    char* argv[] = {exe_.data(), worker_arg.data(), nullptr};
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("cannot start a worker process (fork failed)");
+    if (pid == 0) {
+      dup2(in_pipe[0], STDIN_FILENO);
+      dup2(out_pipe[1], STDOUT_FILENO);
+      dup2(log_fd, STDERR_FILENO);
+      execve(argv[0], argv, envp.data());
+      _exit(127);
+    }
+    close(in_pipe[0]);
+    close(out_pipe[1]);
+    close(log_fd);
+    w = Worker{};
+    w.pid = pid, w.to = in_pipe[1], w.from = out_pipe[0];
+    w.log = log;
+    w.log_start = log_start;
+    w.started = Clock::now();
+    // A driver can hang making its context too; that gets at least 30 s, since starting a
+    // process and JIT-compiling shaders on a loaded CI machine takes a while.
+    w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>(std::max(s_.timeout, 30.0)));
+    send(w, options_line_);
+  }
+
+  void send(Worker& w, const std::string& line) {
+    for (size_t done = 0; done < line.size();) {
+      const ssize_t n = write(w.to, line.data() + done, line.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) return;  // it died; reading its end of the pipe will say so
+      done += size_t(n);
+    }
+  }
+
+  void assign(Worker& w) {
+    if (queue_.empty()) {
+      stop(w, false);  // nothing left for it: end of input lets it exit
+      return;
+    }
+    const size_t k = queue_.front();
+    queue_.pop_front();
+    w.job = k;
+    w.started = Clock::now();
+    w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>(s_.timeout));
+    const nlohmann::json job = {
+        {"index", k}, {"file", cases_[k]->source_path}, {"name", cases_[k]->name}};
+    send(w, job.dump() + "\n");
+  }
+
+  void read_from(Worker& w, size_t slot) {
+    char buf[65536];
+    const ssize_t n = read(w.from, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) return;
+    if (n <= 0) return died(w, slot);
+    w.buffer.append(buf, size_t(n));
+    for (size_t eol; (eol = w.buffer.find('\n')) != std::string::npos;) {
+      const std::string line = w.buffer.substr(0, eol);
+      w.buffer.erase(0, eol + 1);
+      handle(w, line);
+      if (w.pid <= 0) return;
+    }
+  }
+
+  void handle(Worker& w, const std::string& line) {
+    nlohmann::json msg;
+    try {
+      msg = nlohmann::json::parse(line);
+    } catch (const nlohmann::json::parse_error&) {
+      throw std::runtime_error("a worker sent something that is not JSON: " + line.substr(0, 200));
+    }
+    if (msg.contains("error")) {
+      // No GL context: the same for every worker, so the run cannot go on.
+      throw InputError(msg["error"].get<std::string>());
+    }
+    if (msg.contains("hello")) {
+      w.ready = true;
+      if (!started_) {
+        const auto& h = msg["hello"];
+        WorkerGl gl;
+        gl.vendor = h.at("vendor"), gl.renderer = h.at("renderer"), gl.version = h.at("version");
+        gl.library = h.at("library"), gl.platform = h.at("platform");
+        gl.subpixel_bits = h.at("subpixel_bits");
+        started_ = true;
+        on_start_(gl);
+      }
+      return assign(w);
+    }
+    const size_t k = msg.at("index");
+    CaseResult r = report::case_result_from_json(msg.at("result").dump(), "worker result");
+    w.job.reset();
+    finish(k, std::move(r));
+    assign(w);
+  }
+
+  void finish(size_t k, CaseResult r) {
+    ++done_;
+    on_result_(k, std::move(r));
+  }
+
+  // A result the worker could not give: Crash or Timeout.
+  CaseResult lost(size_t k, Status status, const std::string& message, double seconds) const {
+    CaseResult r;
+    r.name = cases_[k]->name;
+    r.description = cases_[k]->description;
+    r.status = r.outcome = status;
+    r.message = message;
+    r.seconds = seconds;
+    return r;
+  }
+
+  void died(Worker& w, size_t slot) {
+    int status = 0;
+    waitpid(w.pid, &status, 0);
+    const std::string how = describe_exit(status);
+    const std::string tail = log_tail(w.log, w.log_start);
+    const auto job = w.job;
+    const bool was_ready = w.ready;
+    close(w.to), close(w.from);
+    w.pid = -1;
+    if (job) {
+      finish(*job, lost(*job, Status::crash,
+                        "worker " + how + (tail.empty() ? "" : "; its log ends: " + tail),
+                        seconds_since(w.started)));
+    } else if (!was_ready) {
+      // It died making its context. Once is a broken driver or prefix, not a case.
+      if (!started_ || ++startup_deaths_ > 3)
+        throw InputError("a GL worker " + how + " before it could make a GL context" +
+                         (tail.empty() ? "" : "; its log ends: " + tail));
+    }
+    if (!queue_.empty()) start(w, slot);
+  }
+
+  void check_deadlines() {
+    const auto now = Clock::now();
+    for (size_t k = 0; k < workers_.size(); ++k) {
+      Worker& w = workers_[k];
+      if (w.pid <= 0 || now < w.deadline || (w.ready && !w.job)) continue;
+      kill(w.pid, SIGKILL);
+      waitpid(w.pid, nullptr, 0);
+      close(w.to), close(w.from);
+      w.pid = -1;
+      if (!w.job)
+        throw InputError(fmt::format("a GL worker took over {} s to make a GL context",
+                                     std::max(s_.timeout, 30.0)));
+      const size_t job = *w.job;
+      finish(job, lost(job, Status::timeout,
+                       fmt::format("no result after {} s (--timeout); worker killed", s_.timeout),
+                       seconds_since(w.started)));
+      if (!queue_.empty()) start(w, k);
+    }
+  }
+
+  // Ends a worker: closing its input makes it exit; `now` kills it instead.
+  void stop(Worker& w, bool now) {
+    if (w.pid <= 0) return;
+    if (now) kill(w.pid, SIGKILL);
+    close(w.to), close(w.from);
+    waitpid(w.pid, nullptr, 0);
+    w.pid = -1;
+  }
+
+  const std::vector<const Case*>& cases_;
+  const WorkerSettings& s_;
+  const std::function<void(const WorkerGl&)>& on_start_;
+  const std::function<void(size_t, CaseResult)>& on_result_;
+  std::deque<size_t> queue_;
+  std::vector<Worker> workers_;
+  std::vector<std::string> env_;
+  std::string exe_, options_line_;
+  size_t done_ = 0;
+  bool started_ = false;
+  int startup_deaths_ = 0;
+};
+
+}  // namespace
+
+void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
+                    const WorkerSettings& s, const std::function<void(const WorkerGl&)>& on_start,
+                    const std::function<void(size_t, CaseResult)>& on_result) {
+  if (cases.empty()) return;
+  // A worker that dies while we write to it must not take the runner with it.
+  signal(SIGPIPE, SIG_IGN);
+  std::filesystem::create_directories(s.log_dir);
+  Pool pool(cases, o, s, on_start, on_result);
+  pool.run();
+}
+
+}  // namespace glrc::cli

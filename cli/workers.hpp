@@ -1,0 +1,49 @@
+// GL in worker processes. A driver that crashes or hangs takes its process with it, not the
+// run: `run` starts worker processes (`glrefcheck worker`, the same binary), each making one GL
+// context and checking many cases with it, since a context costs 20 to 170 ms here. A case whose
+// worker dies is `Crash`, one that runs past the timeout is `Timeout` (its worker is killed);
+// either way a fresh worker takes the next case.
+//
+// Protocol, one JSON document per line. On the worker's stdin: the options (options_json), then
+// {"index": k, "file": path, "name": case name} per case; end of input means stop. On its
+// stdout: {"hello": {gl info}} or {"error": "one line"} once the context exists, then
+// {"index": k, "result": CaseResult} per case. The worker's own stdout and stderr (and the
+// driver's messages) go to a log file: a crash report quotes its last lines.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli/session.hpp"
+#include "core/case.hpp"
+#include "core/result.hpp"
+
+namespace glrc::cli {
+
+// The child side: `glrefcheck worker`. Exit 0 at end of input, 2 when GL is unavailable.
+int cmd_worker();
+
+struct WorkerSettings {
+  int jobs = 1;
+  double timeout = 60;                                           // seconds per case
+  std::vector<std::pair<std::string, std::string>> environment;  // added for the children only
+  std::filesystem::path log_dir;                                 // worker-<n>.log
+};
+
+struct WorkerGl {
+  std::string vendor, renderer, version, library, platform;
+  int subpixel_bits = 0;
+};
+
+// Checks `cases` in worker processes. `on_start` gets the first worker's GL strings before any
+// result (throw from it to stop the run); `on_result` gets each result as it arrives (in
+// completion order), with its index into `cases`. Throws InputError when no worker can make a
+// GL context.
+void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
+                    const WorkerSettings& s, const std::function<void(const WorkerGl&)>& on_start,
+                    const std::function<void(size_t, CaseResult)>& on_result);
+
+}  // namespace glrc::cli

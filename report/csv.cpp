@@ -1,0 +1,42 @@
+// results.csv and failures.csv in deqp-runner's format, which Mesa CI's tooling reads: one
+// `case,Status,seconds` line per case, no header. A failures.csv can serve as the next run's
+// --baseline.
+#include <fstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "report/report.hpp"
+
+namespace glrc::report {
+namespace {
+
+void write_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results,
+               bool failures_only) {
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  std::ofstream out(file);
+  for (const auto& r : results)
+    if (!failures_only || fails_run(r.status))
+      out << fmt::format("{},{},{:.6f}\n", r.name, to_string(r.status), r.seconds);
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace
+
+void write_results_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results) {
+  write_csv(file, results, false);
+}
+
+void write_failures_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results) {
+  write_csv(file, results, true);
+}
+
+void write_run_files(const std::filesystem::path& dir, const RunInfo& run,
+                     const std::vector<CaseResult>& results) {
+  write_results_json(dir / "results.json", run, results);
+  write_results_csv(dir / "results.csv", results);
+  write_failures_csv(dir / "failures.csv", results);
+  write_junit(dir / "junit.xml", run, results);
+}
+
+}  // namespace glrc::report

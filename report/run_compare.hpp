@@ -1,0 +1,77 @@
+// Two runs side by side (`glrefcheck compare BASE CURRENT`): which cases regressed, which were
+// fixed, which were added or removed, and where the error against the reference grew by more
+// than a factor even though the case still passes. Knows nothing of GL: it reads results.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/result.hpp"
+#include "report/report.hpp"
+
+namespace glrc::report {
+
+// One channel (depth, color.x, ...) present in both runs with compared pixels in both.
+struct ChannelChange {
+  std::string channel;
+  // The error against the reference in ULPs of the attribute's scale (ChannelStats::max_ulps,
+  // p99_ulps), and the share of the allowance used (max_ratio), in each run.
+  double base_max_ulps = 0, current_max_ulps = 0;
+  double base_p99_ulps = 0, current_p99_ulps = 0;
+  double base_max_ratio = 0, current_max_ratio = 0;
+  // current > factor * max(base, min_ulps): grown beyond the factor (NaN counts as grown).
+  bool max_grew = false, p99_grew = false;
+};
+
+struct CaseChange {
+  enum class Kind {
+    regression,  // passed in base, fails now (Fail, Crash, Timeout, Error); or failed and now
+                 // crashes or times out (the case is no longer checked at all)
+    fix,         // failed in base, passes now
+    changed,     // failed in both, in different ways (e.g. Crash -> Fail)
+    added,       // only in current
+    removed,     // only in base
+    skipped,     // skipped in one run or both
+    precision,   // same outcome, but the error grew beyond the factor on some channel
+    unchanged,
+  };
+  std::string name;
+  Kind kind = Kind::unchanged;
+  // Outcomes (CaseResult::outcome: what the case did, whatever each run's baseline expected);
+  // nullopt where the case is absent from that run.
+  std::optional<Status> base, current;
+  std::string message;  // current's message (base's for removed cases)
+  // Whether GL drew the very same bits in both runs (CaseResult::gl_digest); nullopt when a
+  // run has no frame digest for it (a crash, or a results.json from before digests).
+  std::optional<bool> same_bits;
+  std::vector<ChannelChange> channels;  // every channel compared in both runs
+};
+const char* to_string(CaseChange::Kind k);  // "regression", "fix", ...
+
+struct RunComparison {
+  RunInfo base, current;
+  double factor = 2;    // precision growth that is flagged
+  double min_ulps = 1;  // errors below this many ULPs are rounding noise, not a base to grow from
+  // Every case of either run: current's order, then the cases only base has.
+  std::vector<CaseChange> cases;
+  size_t count(CaseChange::Kind k) const;
+  // Cases whose frames were compared bit for bit, and of those, the ones with identical bits.
+  size_t bits_compared() const;
+  size_t bits_identical() const;
+  bool has_regression() const { return count(CaseChange::Kind::regression) > 0; }
+};
+
+RunComparison compare_runs(const RunResults& base, const RunResults& current, double factor = 2,
+                           double min_ulps = 1);
+
+// The terminal text: both GL_VERSIONs, counts, then the regressions, fixes, changes,
+// added/removed cases and precision changes in a table (unchanged cases are counted only).
+std::string comparison_text(const RunComparison& c);
+// The same for CI comments (GitLab/GitHub Markdown).
+std::string comparison_markdown(const RunComparison& c);
+// Everything, for scripts: {"base": run, "current": run, "factor", "min_ulps", "summary": counts
+// by kind, "cases": [...]} (non-finite numbers as "nan"/"inf" strings, as in results.json).
+std::string comparison_json(const RunComparison& c);
+
+}  // namespace glrc::report
