@@ -57,6 +57,13 @@ void write_outputs(const std::filesystem::path& out, const RunInfo& info,
   fmt::print("wrote {} to {}/\n", files, out.string());
 }
 
+// A path under the working folder as a relative one, so logs and READMEs stay short.
+std::string shown_path(const std::string& path) {
+  std::error_code ec;
+  const auto rel = std::filesystem::relative(path, ec);
+  return !ec && !rel.empty() && *rel.begin() != ".." ? rel.string() : path;
+}
+
 bool any_fails_run(const std::vector<CaseResult>& results) {
   return std::any_of(results.begin(), results.end(),
                      [](const CaseResult& r) { return fails_run(r.status); });
@@ -84,6 +91,8 @@ int cmd_run(const Options& o) {
   s.jobs = o.jobs > 0 ? o.jobs : available_cores();
   s.timeout = o.timeout;
   s.log_dir = out / "logs";
+  // Known failures get their heatmaps only for the HTML report: triage needs the new ones.
+  s.images = [&](const Case& c) { return o.html || !baseline.expected.count(c.name); };
   std::optional<MesaPrefix> prefix;
   if (!o.mesa.empty()) {
     prefix = find_mesa_prefix(o.mesa, o.backend);
@@ -97,7 +106,7 @@ int cmd_run(const Options& o) {
   info.jobs = s.jobs;
   info.fraction = o.fraction, info.fraction_start = o.fraction_start;
   info.total_cases = all.size();
-  info.mesa_prefix = prefix ? prefix->root.string() : "";
+  info.mesa_prefix = o.mesa;  // as typed: results name the tree the way its user does
 
   std::vector<std::optional<CaseResult>> results(cases.size());
   std::vector<const Case*> to_check;
@@ -140,7 +149,7 @@ int cmd_run(const Options& o) {
         cases.size(), shard, info.gl_renderer, o.backend, info.gl_version, info.model,
         info.tolerance, std::min(size_t(s.jobs), to_check.size()),
         std::min(size_t(s.jobs), to_check.size()) == 1 ? "" : "s");
-    if (prefix) fmt::print("Mesa from {}: {}\n", info.mesa_prefix, info.gl_library);
+    if (prefix) fmt::print("Mesa from {}: {}\n", info.mesa_prefix, shown_path(info.gl_library));
     std::fflush(stdout);
   };
   const auto on_result = [&](size_t i, CaseResult r) {

@@ -77,7 +77,7 @@ CaseResult check_one(const nlohmann::json& job, const Options& o, gl::Renderer& 
   Checked checked = check(c, o, renderer);
   // A failing case gets its heatmaps now, while its frames exist: the HTML report and anyone
   // triaging the run find them in <out>/cases/<case>/.
-  if (checked.result.outcome == Status::fail) {
+  if (checked.result.outcome == Status::fail && job.value("images", true)) {
     try {
       report::write_diff_images(std::filesystem::path(o.out) / "cases" / c.name, c,
                                 checked.reference, checked.gl, checked.result);

@@ -185,8 +185,10 @@ class Pool {
     w.started = Clock::now();
     w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
                                  std::chrono::duration<double>(s_.timeout));
-    const nlohmann::json job = {
-        {"index", k}, {"file", cases_[k]->source_path}, {"name", cases_[k]->name}};
+    const nlohmann::json job = {{"index", k},
+                                {"file", cases_[k]->source_path},
+                                {"name", cases_[k]->name},
+                                {"images", s_.images(*cases_[k])}};
     send(w, job.dump() + "\n");
   }
 

@@ -5,8 +5,8 @@
 // either way a fresh worker takes the next case.
 //
 // Protocol, one JSON document per line. On the worker's stdin: the options (options_json), then
-// {"index": k, "file": path, "name": case name} per case; end of input means stop. On its
-// stdout: {"hello": {gl info}} or {"error": "one line"} once the context exists, then
+// {"index": k, "file": path, "name": case name, "images": bool} per case; end of input means stop.
+// On its stdout: {"hello": {gl info}} or {"error": "one line"} once the context exists, then
 // {"index": k, "result": CaseResult} per case. The worker's own stdout and stderr (and the
 // driver's messages) go to a log file: a crash report quotes its last lines.
 #pragma once
@@ -31,6 +31,9 @@ struct WorkerSettings {
   double timeout = 60;                                           // seconds per case
   std::vector<std::pair<std::string, std::string>> environment;  // added for the children only
   std::filesystem::path log_dir;                                 // worker-<n>.log
+  // Whether a case, should it fail, gets its heatmaps (about 0.8 s per case): by default not
+  // those the baseline already expects to fail.
+  std::function<bool(const Case&)> images = [](const Case&) { return true; };
 };
 
 struct WorkerGl {

@@ -344,6 +344,7 @@ void comparison_header(std::ostream& out, const RunComparison& c) {
       "<p>Precision changes: error grown more than {}× (errors under {} ulp "
       "count as {} ulp).</p>\n",
       c.factor, c.min_ulps, c.min_ulps);
+  out << "<p>" << escape(bits_summary(c)) << ".</p>\n";
 }
 
 constexpr std::array kKindOrder = {CaseChange::Kind::regression, CaseChange::Kind::fix,

@@ -237,6 +237,16 @@ size_t RunComparison::count(CaseChange::Kind k) const {
       std::count_if(cases.begin(), cases.end(), [&](const CaseChange& c) { return c.kind == k; }));
 }
 
+// Identical statistics do not mean identical pixels: the frame digests say whether a Mesa change
+// touched the rasterizer's output at all.
+std::string bits_summary(const RunComparison& c) {
+  const size_t n = c.bits_compared(), same = c.bits_identical();
+  if (n == 0) return "GL frames: no digests to compare bit for bit";
+  if (same == n) return fmt::format("GL frames: all {} bit-identical to base", n);
+  return fmt::format("GL frames: {} of {} bit-identical to base, {} with other bits", same, n,
+                     n - same);
+}
+
 size_t RunComparison::bits_compared() const {
   return size_t(std::count_if(cases.begin(), cases.end(),
                               [](const CaseChange& c) { return c.same_bits.has_value(); }));
@@ -292,16 +302,6 @@ RunComparison compare_runs(const RunResults& base, const RunResults& current, do
 
 namespace {
 
-// Identical statistics do not mean identical pixels: the frame digests say whether a Mesa change
-// touched the rasterizer's output at all.
-std::string bits_line(const RunComparison& c) {
-  const size_t n = c.bits_compared(), same = c.bits_identical();
-  if (n == 0) return "GL frames: no digests to compare bit for bit";
-  if (same == n) return fmt::format("GL frames: all {} bit-identical to base", n);
-  return fmt::format("GL frames: {} of {} bit-identical to base, {} with other bits", same, n,
-                     n - same);
-}
-
 // Unchanged cases whose frames differ: not a finding by the factor, but worth a look.
 std::vector<const CaseChange*> bits_changed(const RunComparison& c) {
   std::vector<const CaseChange*> out;
@@ -334,7 +334,7 @@ std::string comparison_text(const RunComparison& c) {
   };
   std::string text = run_line("base:", c.base) + run_line("current:", c.current);
   if (const auto note = setup_note(c); !note.empty()) text += note + "\n";
-  text += "\n" + counts_line(c) + "\n" + bits_line(c) + "\n";
+  text += "\n" + counts_line(c) + "\n" + bits_summary(c) + "\n";
 
   // One width for every section, so the names line up down the whole report.
   size_t name_width = 4, status_width = 1;
@@ -391,7 +391,7 @@ std::string comparison_markdown(const RunComparison& c) {
   if (!c.base.mesa_prefix.empty() || !c.current.mesa_prefix.empty())
     row("Mesa prefix", c.base.mesa_prefix, c.current.mesa_prefix);
   if (const auto note = setup_note(c); !note.empty()) md += "\n" + note + "\n";
-  md += "\n**" + counts_line(c) + "**\n\n" + bits_line(c) + "\n";
+  md += "\n**" + counts_line(c) + "**\n\n" + bits_summary(c) + "\n";
 
   const std::string both_skipped = skipped_in_both_note(c);
   for (const Kind k : kKinds) {

@@ -65,6 +65,9 @@ struct RunComparison {
 RunComparison compare_runs(const RunResults& base, const RunResults& current, double factor = 2,
                            double min_ulps = 1);
 
+// "GL frames: all 45 bit-identical to base", or how many differ in their bits.
+std::string bits_summary(const RunComparison& c);
+
 // The terminal text: both GL_VERSIONs, counts, then the regressions, fixes, changes,
 // added/removed cases and precision changes in a table (unchanged cases are counted only).
 std::string comparison_text(const RunComparison& c);

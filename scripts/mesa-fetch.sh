@@ -20,12 +20,13 @@ version=$1
   { echo "mesa-fetch: expected a Mesa version like 25.0.7, got \"$version\"" >&2; exit 2; }
 root=$(cd "$(dirname "$0")/.." && pwd)
 prefix=${2:-$root/.mesa/$version}
+shown=${prefix#"$root"/}  # messages name a prefix in the project relative to it
 work=$root/.mesa/apt
 arch=$(dpkg --print-architecture)
 triple=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || echo "$(uname -m)-linux-gnu")
 
 if [ -e "$prefix/usr/lib/$triple/libEGL_mesa.so.0" ] && [ -e "$prefix/.mesa-version" ]; then
-  echo "mesa-fetch: $(cat "$prefix/.mesa-version") is already in $prefix"
+  echo "mesa-fetch: $(cat "$prefix/.mesa-version") is already in $shown"
   exit 0
 fi
 
@@ -105,5 +106,5 @@ done
 echo "$mesa_version" >"$prefix.partial/.mesa-version"
 rm -rf "$prefix"
 mv "$prefix.partial" "$prefix"
-echo "mesa-fetch: Mesa $mesa_version ($arch) is in $prefix"
-echo "mesa-fetch: run it with: glrefcheck run --mesa $prefix --backend egl|osmesa --driver llvmpipe|softpipe"
+echo "mesa-fetch: Mesa $mesa_version ($arch) is in $shown"
+echo "mesa-fetch: run it with: glrefcheck run --mesa $shown --backend egl|osmesa --driver llvmpipe|softpipe"

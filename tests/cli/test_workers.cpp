@@ -116,7 +116,7 @@ nlohmann::json comparable(nlohmann::json results) {
 TEST_F(Workers, MergedShardsEqualTheUnshardedRun) {
   const std::string cases =
       "--filter '^(viewport|attr|clip_noperspective)' --baseline "
-      "cases/known-failures.txt";
+      "cases/known-failures.txt --html";  // known failures get heatmaps too
   const fs::path whole = dir_ / "whole";
   ASSERT_EQ(glrefcheck("run " + cases + " --jobs 2 --out '" + whole.string() + "'").exit_code, 0);
   std::string shards;
@@ -140,6 +140,8 @@ TEST_F(Workers, MergedShardsEqualTheUnshardedRun) {
   EXPECT_EQ(comparable(a), comparable(b));
   // The failing cases' heatmaps come along; the CSVs list the same statuses in the same order.
   EXPECT_TRUE(fs::exists(merged / "cases/clip_noperspective_x_plane/n.x_error.png"));
+  EXPECT_TRUE(fs::exists(whole / "report.html"));
+  EXPECT_TRUE(fs::exists(whole / "report.html"));
   auto csv_statuses = [](const fs::path& f) {
     std::string text;
     std::ifstream in(f);
