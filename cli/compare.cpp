@@ -1,4 +1,5 @@
 #include "cli/compare.hpp"
+#include "cli/validators.hpp"
 
 #include <fmt/core.h>
 #include <cmath>
@@ -16,24 +17,6 @@ namespace {
 
 // A finite number above `lower` (or at it, when `inclusive`): NaN would compare false
 // everywhere and flag nothing, an infinity would flag nothing or everything.
-CLI::Validator finite_number(double lower, bool inclusive) {
-  const std::string bound = fmt::format("{} {:g}", inclusive ? ">=" : ">", lower);
-  return CLI::Validator(
-      [=](std::string& s) -> std::string {
-        double v = 0;
-        try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) return "expected a number, got \"" + s + "\"";
-        } catch (const std::exception&) {
-          return "expected a number, got \"" + s + "\"";
-        }
-        const bool ok = std::isfinite(v) && (inclusive ? v >= lower : v > lower);
-        return ok ? "" : "expected a finite number " + bound + ", got " + s;
-      },
-      "NUMBER " + bound);
-}
-
 report::RunResults read_run(const std::string& path) {
   try {
     return report::read_results_json(path);

@@ -21,6 +21,7 @@
 #include "cli/run.hpp"
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
+#include "cli/validators.hpp"
 #include "cli/workers.hpp"
 #include "compare/compare.hpp"
 #include "driver_models/driver_models.hpp"
@@ -95,26 +96,11 @@ void add_gl_options(CLI::App& app, Options& o) {
       ->check(CLI::IsMember({"osmesa", "egl", "egl-device"}));
   app.add_option("--driver", o.driver, "Mesa gallium driver: llvmpipe, softpipe; \"\" for a GPU");
   app.add_option("--device", o.device, "egl-device: which EGL device");
-  // A tolerance is a finite number of ULPs: NaN would compare false everywhere, and an
-  // infinite one would say nothing.
-  const CLI::Validator finite_ulps(
-      [](std::string& s) -> std::string {
-        double v = 0;
-        try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) return "expected a number of ULPs, got \"" + s + "\"";
-        } catch (const std::exception&) {
-          return "expected a number of ULPs, got \"" + s + "\"";
-        }
-        return std::isfinite(v) && v >= 0 ? "" : "expected a finite number >= 0, got " + s;
-      },
-      "ULPS");
   app.add_option("--tolerance-ulps", o.varying_ulps,
                  "varying tolerance in ULPs of the attribute's scale (overrides case files)")
-      ->check(finite_ulps);
+      ->check(finite_number(0, true));
   app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0")
-      ->check(finite_ulps);
+      ->check(finite_number(0, true));
   app.add_option("--tolerance", o.tolerance,
                  "spec: what the GL specification allows (default); exact: zero differing bits")
       ->check(CLI::IsMember({"spec", "exact"}));

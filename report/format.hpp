@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -29,5 +30,10 @@ std::string short_message(const std::string& message, size_t max_chars = 100);
 // widening to double is exact and nlohmann prints doubles with round-trip precision, so floats
 // read back bit for bit.
 nlohmann::json json_number(double v);
+
+// Text for XML and HTML content and attribute values: markup characters as references,
+// newlines as &#10; (so attribute values keep them), other control characters as '?'. Case
+// names, messages and GL strings come from files and drivers: any of them may hold markup.
+std::string xml_escaped(std::string_view s);
 
 }  // namespace glrc::report

@@ -24,34 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Case names, messages and GL strings come from files and drivers: any of them may hold markup.
-std::string escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 // A fragment link must be percent-encoded to reach an id holding spaces or reserved characters.
 std::string fragment(std::string_view text) {
   std::string out;
@@ -114,8 +86,8 @@ window.addEventListener('load', function () {
 
 void begin_page(std::ostream& out, const std::string& title) {
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>"
-      << escape(title) << "</title>\n"
-      << kStyle << "</head>\n<body>\n<h1>" << escape(title) << "</h1>\n";
+      << xml_escaped(title) << "</title>\n"
+      << kStyle << "</head>\n<body>\n<h1>" << xml_escaped(title) << "</h1>\n";
 }
 
 void end_page(std::ostream& out) {
@@ -171,12 +143,12 @@ std::vector<std::string> png_names(const fs::path& dir, const std::vector<std::s
 
 std::string img_tag(const fs::path& png, const std::string& alt) {
   return "<img src=\"data:image/png;base64," + OIIO::Strutil::base64_encode(read_binary(png)) +
-         "\" alt=\"" + escape(alt) + "\">";
+         "\" alt=\"" + xml_escaped(alt) + "\">";
 }
 
 std::string figure(const fs::path& png) {
   const std::string name = png.filename().string();
-  return "<figure>" + img_tag(png, name) + "<figcaption>" + escape(name) +
+  return "<figure>" + img_tag(png, name) + "<figcaption>" + xml_escaped(name) +
          "</figcaption></figure>\n";
 }
 
@@ -204,7 +176,7 @@ void run_summary(std::ostream& out, const RunResults& results) {
   const RunInfo& run = results.run;
   out << "<table class=\"summary\">\n";
   auto row = [&](const char* label, const std::string& value) {
-    out << "<tr><th>" << label << "</th><td>" << escape(value) << "</td></tr>\n";
+    out << "<tr><th>" << label << "</th><td>" << xml_escaped(value) << "</td></tr>\n";
   };
   row("GL_RENDERER", run.gl_renderer);
   row("GL_VERSION", run.gl_version);
@@ -239,7 +211,7 @@ void case_table(std::ostream& out, const std::vector<CaseResult>& cases) {
       ulps = ulps_text(max_ulps);
       ratio = ratio_text(max_ratio);
     }
-    std::string name = escape(r.name);
+    std::string name = xml_escaped(r.name);
     if (is_failing(r)) {
       name = "<a href=\"#detail-" + fragment(r.name) + "\">" + name + "</a>";
     }
@@ -247,8 +219,9 @@ void case_table(std::ostream& out, const std::vector<CaseResult>& cases) {
         "<tr id=\"case-{}\" class=\"s-{}\"><td>{}</td>{}{}<td class=\"num\">{}</td>"
         "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{:.3f}</td>"
         "<td class=\"message\">{}</td></tr>\n",
-        escape(r.name), to_string(r.status), name, status_cell(r.status), status_cell(r.outcome),
-        ulps, ratio, r.coverage.failures, r.seconds, escape(r.message));
+        xml_escaped(r.name), to_string(r.status), name, status_cell(r.status),
+        status_cell(r.outcome), ulps, ratio, r.coverage.failures, r.seconds,
+        xml_escaped(r.message));
   }
   out << "</table>\n";
 }
@@ -263,8 +236,8 @@ void channel_table(std::ostream& out, const CaseResult& r) {
         "<tr class=\"s-{}\"><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
         "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>"
         "<td class=\"num\">{}</td><td class=\"num\">{}</td></tr>\n",
-        ch.pass() ? "Pass" : "Fail", escape(ch.name), ch.compared, ch.over_tolerance, ch.non_finite,
-        ulps_text(ch.max_ulps), ulps_text(ch.p99_ulps), ratio_text(ch.max_ratio),
+        ch.pass() ? "Pass" : "Fail", xml_escaped(ch.name), ch.compared, ch.over_tolerance,
+        ch.non_finite, ulps_text(ch.max_ulps), ulps_text(ch.p99_ulps), ratio_text(ch.max_ratio),
         ratio_text(ch.p99_ratio));
   }
   out << "</table>\n";
@@ -278,9 +251,9 @@ std::vector<std::string> channel_names(const std::vector<ChannelStats>& channels
 }
 
 void case_detail(std::ostream& out, const CaseResult& r, const fs::path& run_dir) {
-  out << fmt::format("<h3 id=\"detail-{}\" class=\"s-{}\">{} — {}</h3>\n", escape(r.name),
-                     to_string(r.status), escape(r.name), to_string(r.status));
-  if (!r.message.empty()) out << "<p class=\"message\">" << escape(r.message) << "</p>\n";
+  out << fmt::format("<h3 id=\"detail-{}\" class=\"s-{}\">{} — {}</h3>\n", xml_escaped(r.name),
+                     to_string(r.status), xml_escaped(r.name), to_string(r.status));
+  if (!r.message.empty()) out << "<p class=\"message\">" << xml_escaped(r.message) << "</p>\n";
   const CoverageStats& cov = r.coverage;
   if (cov.failures > 0) {
     out << fmt::format(
@@ -291,7 +264,7 @@ void case_detail(std::ostream& out, const CaseResult& r, const fs::path& run_dir
   const fs::path dir = case_dir(run_dir, r.name);
   const auto pngs = png_names(dir, channel_names(r.channels));
   if (pngs.empty()) {
-    out << "<p>No heatmaps in <code>" << escape((run_dir / "cases" / r.name).string())
+    out << "<p>No heatmaps in <code>" << xml_escaped((run_dir / "cases" / r.name).string())
         << "</code>.</p>\n";
     return;
   }
@@ -313,11 +286,11 @@ std::string grown_channels(const CaseChange& c) {
     if (!ch.max_grew && !ch.p99_grew) continue;
     if (!text.empty()) text += "<br>";
     if (ch.max_grew) {
-      text += fmt::format("{}: {} → {} ulp", escape(ch.channel), ulps_text(ch.base_max_ulps),
+      text += fmt::format("{}: {} → {} ulp", xml_escaped(ch.channel), ulps_text(ch.base_max_ulps),
                           ulps_text(ch.current_max_ulps));
     } else {
-      text += fmt::format("{}: p99 {} → {} ulp", escape(ch.channel), ulps_text(ch.base_p99_ulps),
-                          ulps_text(ch.current_p99_ulps));
+      text += fmt::format("{}: p99 {} → {} ulp", xml_escaped(ch.channel),
+                          ulps_text(ch.base_p99_ulps), ulps_text(ch.current_p99_ulps));
     }
   }
   return text;
@@ -326,8 +299,8 @@ std::string grown_channels(const CaseChange& c) {
 void comparison_header(std::ostream& out, const RunComparison& c) {
   out << "<table class=\"summary\">\n<tr><th></th><th>base</th><th>current</th></tr>\n";
   auto row = [&](const char* label, const std::string& base, const std::string& current) {
-    out << "<tr><th>" << label << "</th><td>" << escape(base) << "</td><td>" << escape(current)
-        << "</td></tr>\n";
+    out << "<tr><th>" << label << "</th><td>" << xml_escaped(base) << "</td><td>"
+        << xml_escaped(current) << "</td></tr>\n";
   };
   row("GL_VERSION", c.base.gl_version, c.current.gl_version);
   row("GL_RENDERER", c.base.gl_renderer, c.current.gl_renderer);
@@ -344,7 +317,7 @@ void comparison_header(std::ostream& out, const RunComparison& c) {
       "<p>Precision changes: error grown more than {}× (errors under {} ulp "
       "count as {} ulp).</p>\n",
       c.factor, c.min_ulps, c.min_ulps);
-  out << "<p>" << escape(bits_summary(c)) << ".</p>\n";
+  out << "<p>" << xml_escaped(bits_summary(c)) << ".</p>\n";
 }
 
 constexpr std::array kKindOrder = {CaseChange::Kind::regression, CaseChange::Kind::fix,
@@ -384,10 +357,10 @@ ChangeImages change_images(const CaseChange& c, const fs::path& base_dir,
 }
 
 void side_by_side(std::ostream& out, const CaseChange& c, const ChangeImages& images) {
-  out << fmt::format("<h3 id=\"detail-{}\" class=\"k-{}\">{} — {}: {} → {}</h3>\n", escape(c.name),
-                     to_string(c.kind), escape(c.name), to_string(c.kind), status_text(c.base),
-                     status_text(c.current));
-  if (!c.message.empty()) out << "<p class=\"message\">" << escape(c.message) << "</p>\n";
+  out << fmt::format("<h3 id=\"detail-{}\" class=\"k-{}\">{} — {}: {} → {}</h3>\n",
+                     xml_escaped(c.name), to_string(c.kind), xml_escaped(c.name), to_string(c.kind),
+                     status_text(c.base), status_text(c.current));
+  if (!c.message.empty()) out << "<p class=\"message\">" << xml_escaped(c.message) << "</p>\n";
   const auto& [base, current, base_pngs, current_pngs, names] = images;
   out << "<table class=\"images\">\n<tr><th>file</th><th>base</th><th>current</th></tr>\n";
   auto cell = [&](const fs::path& dir, const std::vector<std::string>& have,
@@ -399,7 +372,7 @@ void side_by_side(std::ostream& out, const CaseChange& c, const ChangeImages& im
     }
   };
   for (const auto& name : names) {
-    out << "<tr><td><code>" << escape(name) << "</code></td>";
+    out << "<tr><td><code>" << xml_escaped(name) << "</code></td>";
     cell(base, base_pngs, name);
     cell(current, current_pngs, name);
     out << "</tr>\n";
@@ -464,15 +437,15 @@ void write_comparison_html(const std::filesystem::path& file, const RunCompariso
     for (size_t i = 0; i < c.cases.size(); ++i) {
       const CaseChange& x = c.cases[i];
       if (x.kind == CaseChange::Kind::unchanged) continue;
-      std::string name = escape(x.name);
+      std::string name = xml_escaped(x.name);
       if (has_images[i]) {
         name = "<a href=\"#detail-" + fragment(x.name) + "\">" + name + "</a>";
       }
       out << fmt::format(
           "<tr id=\"case-{}\" class=\"k-{}\"><td>{}</td><td>{}</td><td>{} → {}</td>"
           "<td class=\"mono\">{}</td><td class=\"message\">{}</td></tr>\n",
-          escape(x.name), to_string(x.kind), name, to_string(x.kind), status_text(x.base),
-          status_text(x.current), grown_channels(x), escape(x.message));
+          xml_escaped(x.name), to_string(x.kind), name, to_string(x.kind), status_text(x.base),
+          status_text(x.current), grown_channels(x), xml_escaped(x.message));
     }
     out << "</table>\n";
   }
@@ -486,7 +459,7 @@ void write_comparison_html(const std::filesystem::path& file, const RunCompariso
   std::string without;
   for (size_t i = 0; i < c.cases.size(); ++i) {
     if (!shows_images(c.cases[i].kind) || has_images[i]) continue;
-    without += (without.empty() ? "" : ", ") + escape(c.cases[i].name);
+    without += (without.empty() ? "" : ", ") + xml_escaped(c.cases[i].name);
   }
   if (!without.empty()) {
     out << "<p>No heatmaps in either run's <code>cases/</code> folder for: " << without

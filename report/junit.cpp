@@ -10,45 +10,6 @@
 namespace glrc::report {
 namespace {
 
-// Escapes text for XML 1.0 content and attribute values. Control characters other than tab,
-// newline and carriage return are not allowed in XML 1.0 at all, even as references, so they
-// become '?'. Newlines are written as references so that attribute values keep them.
-std::string xml_escaped(std::string_view s) {
-  std::string out;
-  out.reserve(s.size());
-  for (char ch : s) {
-    switch (ch) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      case '\n':
-        out += "&#10;";
-        break;
-      case '\r':
-        out += "&#13;";
-        break;
-      case '\t':
-        out += "&#9;";
-        break;
-      default:
-        out += (static_cast<unsigned char>(ch) < 0x20) ? '?' : ch;
-    }
-  }
-  return out;
-}
-
 // A failed check; Error (the case could not be judged at all) is JUnit's <error>.
 bool is_failure(Status s) {
   return fails_run(s) && s != Status::error;
