@@ -101,12 +101,17 @@ int cmd_run(const Options& o) {
   // Heatmaps of an earlier run in this folder would be taken for this run's.
   std::filesystem::remove_all(out / "cases");
 
+  // What the run knows before GL (enough when every case is skipped), and again once a worker
+  // has told the GL strings.
+  const auto run_fields = [&](RunInfo& i) {
+    i.backend = o.backend, i.driver = o.driver;
+    i.jobs = s.jobs;
+    i.fraction = o.fraction, i.fraction_start = o.fraction_start;
+    i.total_cases = all.size();
+    i.mesa_prefix = o.mesa;  // as typed: results name the tree the way its user does
+  };
   RunInfo info;
-  info.backend = o.backend, info.driver = o.driver;
-  info.jobs = s.jobs;
-  info.fraction = o.fraction, info.fraction_start = o.fraction_start;
-  info.total_cases = all.size();
-  info.mesa_prefix = o.mesa;  // as typed: results name the tree the way its user does
+  run_fields(info);
 
   std::vector<std::optional<CaseResult>> results(cases.size());
   std::vector<const Case*> to_check;
@@ -126,19 +131,13 @@ int cmd_run(const Options& o) {
 
   const Progress progress;
   size_t done = results.size() - to_check.size();
-  const auto on_start = [&](const WorkerGl& gl) {
-    gl::GlInfo g;
-    g.vendor = gl.vendor, g.renderer = gl.renderer, g.version = gl.version;
-    g.library = gl.library, g.subpixel_bits = gl.subpixel_bits;
+  const auto on_start = [&](const gl::GlInfo& gl) {
     if (prefix && !from_prefix(*prefix, gl.library))
       throw InputError("--mesa " + o.mesa + ": GL came from " +
                        (gl.library.empty() ? "an unknown library" : gl.library) +
                        ", not from the prefix (GL_VERSION " + gl.version + ")");
-    const RunInfo from_gl = run_info(o, g);
-    info.model = from_gl.model, info.tolerance = from_gl.tolerance;
-    info.subpixel_bits = from_gl.subpixel_bits;
-    info.gl_vendor = g.vendor, info.gl_renderer = g.renderer, info.gl_version = g.version;
-    info.gl_library = g.library;
+    info = run_info(o, gl);
+    run_fields(info);
     std::string shard;
     if (o.fraction > 1)
       shard = fmt::format(" (shard {} of {}, {} cases in all)", o.fraction_start, o.fraction,

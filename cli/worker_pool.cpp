@@ -70,7 +70,7 @@ struct Worker {
 class Pool {
  public:
   Pool(const std::vector<const Case*>& cases, const Options& o, const WorkerSettings& s,
-       const std::function<void(const WorkerGl&)>& on_start,
+       const std::function<void(const gl::GlInfo&)>& on_start,
        const std::function<void(size_t, CaseResult)>& on_result)
       : cases_(cases), s_(s), on_start_(on_start), on_result_(on_result) {
     for (size_t k = 0; k < cases.size(); ++k)
@@ -221,7 +221,7 @@ class Pool {
       w.ready = true;
       if (!started_) {
         const auto& h = msg["hello"];
-        WorkerGl gl;
+        gl::GlInfo gl;
         gl.vendor = h.at("vendor"), gl.renderer = h.at("renderer"), gl.version = h.at("version");
         gl.library = h.at("library"), gl.platform = h.at("platform");
         gl.subpixel_bits = h.at("subpixel_bits");
@@ -306,7 +306,7 @@ class Pool {
 
   const std::vector<const Case*>& cases_;
   const WorkerSettings& s_;
-  const std::function<void(const WorkerGl&)>& on_start_;
+  const std::function<void(const gl::GlInfo&)>& on_start_;
   const std::function<void(size_t, CaseResult)>& on_result_;
   std::deque<size_t> queue_;
   std::vector<Worker> workers_;
@@ -320,7 +320,7 @@ class Pool {
 }  // namespace
 
 void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
-                    const WorkerSettings& s, const std::function<void(const WorkerGl&)>& on_start,
+                    const WorkerSettings& s, const std::function<void(const gl::GlInfo&)>& on_start,
                     const std::function<void(size_t, CaseResult)>& on_result) {
   if (cases.empty()) return;
   // A worker that dies while we write to it must not take the runner with it.

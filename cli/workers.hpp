@@ -20,6 +20,7 @@
 #include "cli/session.hpp"
 #include "core/case.hpp"
 #include "core/result.hpp"
+#include "gl_harness/gl_harness.hpp"
 
 namespace glrc::cli {
 
@@ -36,17 +37,12 @@ struct WorkerSettings {
   std::function<bool(const Case&)> images = [](const Case&) { return true; };
 };
 
-struct WorkerGl {
-  std::string vendor, renderer, version, library, platform;
-  int subpixel_bits = 0;
-};
-
 // Checks `cases` in worker processes. `on_start` gets the first worker's GL strings before any
 // result (throw from it to stop the run); `on_result` gets each result as it arrives (in
 // completion order), with its index into `cases`. Throws InputError when no worker can make a
 // GL context.
 void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
-                    const WorkerSettings& s, const std::function<void(const WorkerGl&)>& on_start,
+                    const WorkerSettings& s, const std::function<void(const gl::GlInfo&)>& on_start,
                     const std::function<void(size_t, CaseResult)>& on_result);
 
 }  // namespace glrc::cli
