@@ -39,6 +39,12 @@ namespace edge {
 inline constexpr uint8_t tie = 1;       // the centre lies exactly on an edge
 inline constexpr uint8_t snapping = 2;  // within the snapping band of an outer edge or clip plane
 inline constexpr uint8_t shared = 4;    // within the snapping band of an edge two triangles share
+// Within the reach of a triangle whose orientation the position freedom can change (it may turn
+// over, vanish or appear): which primitives cover the pixel, and how often, is not decided.
+inline constexpr uint8_t unstable = 8;
+// Another triangle's fragment is within the depth allowance of the winner's: either may win the
+// depth test (Expectation::candidates holds the others).
+inline constexpr uint8_t depth_order = 16;
 }  // namespace edge
 
 // What a correct implementation may produce: the exact reference frame, and around it the

@@ -35,43 +35,39 @@ float round_up(double bound) {
   return double(f) < bound ? std::nextafter(f, INFINITY) : f;
 }
 
-double position_freedom(const Case& c, const TriangleSetup& t, int subpixel_bits) {
-  const Viewport& vp = c.viewport;
-  double m = std::max({std::fabs(double(vp.x)), std::fabs(double(vp.x) + vp.width),
-                       std::fabs(double(vp.y)), std::fabs(double(vp.y) + vp.height),
-                       double(c.fb_width), double(c.fb_height)});
-  for (const WindowVertex& v : t.v) {
-    if (sgn(v.w_c) <= 0) continue;
-    m = std::max({m, std::fabs(mpq_class(v.x_h / v.w_c).get_d()),
-                  std::fabs(mpq_class(v.y_h / v.w_c).get_d())});
-  }
-  return std::ldexp(1.0, -subpixel_bits) + kPositionRoundings * kFloatUnitRoundoff * m;
+double value_freedom(const Case& c, const TriangleSetup& t, double scale, int generations) {
+  double w = 1, m = 1 + std::max(c.fb_width, c.fb_height);
+  for (uint32_t index : t.index)
+    w = std::max(w, std::fabs(double(c.vertices[index].clip[3])));
+  m = std::max({m, 1 + std::fabs(double(c.viewport.x)) + c.viewport.width,
+                1 + std::fabs(double(c.viewport.y)) + c.viewport.height});
+  return (kValueRoundings + kClippedValueRoundings * generations) * kFloatUnitRoundoff * scale +
+         kDenormalFlushes * 0x1p-126 * m * w;
 }
 
-Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double delta,
-                     double spread, double scale)
-    : delta_(delta), spread_(spread), scale_(scale) {
+Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
+                     double values)
+    : spread_(spread), values_(values) {
   double c[6];
   normalized_doubles(numerator, denominator, c);
   an_ = c[0], bn_ = c[1], cn_ = c[2], ad_ = c[3], bd_ = c[4], cd_ = c[5];
 }
 
-double Allowance::at(int px, int py, float value) const {
+double Allowance::at(int px, int py, float value, double delta, double extra) const {
   const double v = double(value);
   const double x = px + 0.5, y = py + 0.5;  // window coordinates of the centre
   const double d = ad_ * px + bd_ * py + cd_;
-  const double arithmetic_values = kValueRoundings * kFloatUnitRoundoff * scale_;
   if (!(std::fabs(d) > 0) || !std::isfinite(v)) return std::numeric_limits<double>::infinity();
   // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
   const double vx = (an_ - v * ad_) / d, vy = (bn_ - v * bd_) / d;
-  const double position = std::min(1.5 * delta_ * (std::fabs(vx) + std::fabs(vy)), spread_);
+  const double position = std::min(1.5 * delta * (std::fabs(vx) + std::fabs(vy)), spread_);
   // Each plane evaluated in float from the window origin: its terms' magnitudes.
   const double n0 = cn_ - (an_ + bn_) / 2, d0 = cd_ - (ad_ + bd_) / 2;
   const double en = std::fabs(n0) + std::fabs(an_ * x) + std::fabs(bn_ * y);
   const double ed = std::fabs(d0) + std::fabs(ad_ * x) + std::fabs(bd_ * y);
   const double evaluation =
       kEvaluationRoundings * kFloatUnitRoundoff * (en + std::fabs(v) * ed) / std::fabs(d);
-  return position + evaluation + arithmetic_values;
+  return position + evaluation + values_ + extra;
 }
 
 }  // namespace glrc::ref

@@ -50,8 +50,8 @@ bool CoverageTest::covers(int px, int py) const {
   return true;
 }
 
-uint8_t CoverageTest::classify(int px, int py, double freedom,
-                               const std::array<bool, 3>& shared) const {
+uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
+                               bool unstable) const {
   uint8_t bits = 0;
   // Distances first: a centre far outside any band needs no exact sign.
   std::array<double, 3> d{}, band{};
@@ -66,6 +66,7 @@ uint8_t CoverageTest::classify(int px, int py, double freedom,
   for (int i = 0; i < 3; ++i)
     if (d[i] <= band[i]) bits |= shared[i] ? edge::shared : edge::snapping;
   if (near_d <= freedom || far_d <= freedom) bits |= edge::snapping;
+  if (unstable) bits |= edge::unstable;
   if (bits == 0) return 0;
 
   // Exactly on an edge of the coverage test (snapped or exact) or of the exact triangle, and

@@ -22,8 +22,10 @@ class CoverageTest {
   // triangle grown by the bands, and within the band of an edge (shared: of an edge another
   // triangle shares; snapping: of an outer edge, or of a near/far line, whose band is
   // `freedom`). tie: the centre is exactly on an edge of this coverage test or of the exact
-  // triangle, and not outside the others.
-  uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared) const;
+  // triangle, and not outside the others. unstable: the triangle's orientation is not decided
+  // by the freedom; every centre inside it grown by the bands is marked edge::unstable.
+  uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
+                   bool unstable = false) const;
 
  private:
   const TriangleSetup& t_;

@@ -4,6 +4,7 @@
 #include "ref/allowance.hpp"
 #include "ref/coverage.hpp"
 #include "ref/depth.hpp"
+#include "ref/freedom.hpp"
 #include "ref/interpolation.hpp"
 #include "ref/mesh.hpp"
 #include "ref/reference.hpp"
@@ -29,24 +30,35 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
   for (int p = 0; p < int(c.triangles.size()); ++p)
     setups.push_back(setup_triangle(c, m, p));
   const std::vector<std::array<bool, 3>> shared = shared_edges(setups);
+  std::vector<bool> component_smooth;
+  for (int v : component_varying(c))
+    component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
 
   for (int p = 0; p < int(c.triangles.size()); ++p) {
     const TriangleSetup& t = setups[size_t(p)];
-    if (!t.drawn) continue;
+    // A triangle this model does not draw (zero snapped area, culled) may still be drawn by
+    // another implementation when its orientation is not decided by the freedom.
+    if (!t.drawn && !(allowance && t.has_edges && c.cull != CullFace::front_and_back)) continue;
+    const PositionFreedom freedom = allowance ? PositionFreedom(c, t, bits) : PositionFreedom();
+    const bool unstable = allowance && freedom.may_turn_over();
+    if (!t.drawn && !unstable) continue;
     const CoverageTest coverage(t, m);
-    const double delta = allowance ? position_freedom(c, t, bits) : model_step;
+    auto delta_at = [&](int px, int py) { return allowance ? freedom.at(px, py) : model_step; };
 
-    // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further.
-    const int margin = 1 + int(std::ceil(delta * 1.5));
+    // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further
+    // (the viewport bounds it anyway; the clamp keeps the conversion defined).
+    const double largest = allowance ? freedom.largest() : model_step;
+    const int margin = 1 + int(std::min(std::ceil(largest * 1.5), 1e6));
     const int bx0 = std::max(viewport.x0, t.box.x0 - margin),
               bx1 = std::min(viewport.x1, t.box.x1 + margin);
     const int by0 = std::max(viewport.y0, t.box.y0 - margin),
               by1 = std::min(viewport.y1, t.box.y1 + margin);
     for (int py = by0; py <= by1; ++py)
       for (int px = bx0; px <= bx1; ++px)
-        r.edges[f.index(px, py)] |= coverage.classify(px, py, delta, shared[size_t(p)]);
+        r.edges[f.index(px, py)] |=
+            coverage.classify(px, py, delta_at(px, py), shared[size_t(p)], unstable);
 
-    if (t.box.empty()) continue;
+    if (!t.drawn || t.box.empty()) continue;
     const Barycentrics b = barycentrics(t, m);
     const Plane depth_forms = depth_plane(t, b);
     const RatioEvaluator depth = depth_forms.evaluator();
@@ -54,11 +66,14 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
     std::vector<Allowance> allowed;
     Allowance depth_allowed;
     if (allowance) {
+      const int generations = freedom.generations();
       for (const ComponentPlane& cp : planes)
-        allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, delta, cp.spread, cp.scale);
+        allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
+                             value_freedom(c, t, cp.scale, generations));
       const double n = c.depth_near, fa = c.depth_far;
-      depth_allowed = Allowance(depth_forms.numerator, depth_forms.denominator, delta, INFINITY,
-                                std::max(std::fabs(n), std::fabs(fa)));
+      depth_allowed =
+          Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
+                    value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations));
     }
     for (int py = t.box.y0; py <= t.box.y1; ++py) {
       for (int px = t.box.x0; px <= t.box.x1; ++px) {
@@ -72,11 +87,17 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
         for (size_t k = 0; k < planes.size(); ++k)
           f.components[k][i] = planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
         if (!allowance) continue;
+        const double delta = freedom.at(px, py);
+        // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
+        const double weight = freedom.generations() > 0 ? freedom.weight_at(px, py) : 0.0;
         r.allowed.primitive[i] = p;
-        r.allowed.depth[i] = round_up(depth_allowed.at(px, py, z));
+        r.allowed.depth[i] = round_up(depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py)));
         for (size_t k = 0; k < planes.size(); ++k)
           r.allowed.components[k][i] =
-              planes[k].flat ? 0.0f : round_up(allowed[k].at(px, py, f.components[k][i]));
+              planes[k].flat
+                  ? 0.0f
+                  : round_up(allowed[k].at(px, py, f.components[k][i], delta,
+                                           component_smooth[k] ? weight * planes[k].spread : 0.0));
       }
     }
   }

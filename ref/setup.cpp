@@ -43,10 +43,14 @@ std::optional<std::array<long, 2>> snap(const WindowVertex& v, int bits) {
 
 bool culled(const Case& c, bool front_facing) {
   switch (c.cull) {
-    case CullFace::none: return false;
-    case CullFace::front: return front_facing;
-    case CullFace::back: return !front_facing;
-    case CullFace::front_and_back: return true;
+    case CullFace::none:
+      return false;
+    case CullFace::front:
+      return front_facing;
+    case CullFace::back:
+      return !front_facing;
+    case CullFace::front_and_back:
+      return true;
   }
   return false;
 }
@@ -66,7 +70,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
   TriangleSetup t;
   t.primitive = primitive;
   t.index = c.triangles[primitive];
-  for (int i = 0; i < 3; ++i) t.v[i] = to_window(c.vertices[t.index[i]], c);
+  for (int i = 0; i < 3; ++i)
+    t.v[i] = to_window(c.vertices[t.index[i]], c);
 
   // Homogeneous edge functions: E_i(p) = (col_j × col_k) · p with p = (x_w, y_w, 1) and
   // x_w = px + 1/2; det = col_0 · (col_1 × col_2) is 2·area·w_0·w_1·w_2 when all w_c > 0, and
@@ -76,7 +81,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
                      {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
                      {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
   H3 g[3];
-  for (int i = 0; i < 3; ++i) g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
+  for (int i = 0; i < 3; ++i)
+    g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
   const mpq_class det = g[0].x * col[0].x + g[0].y * col[0].y + g[0].w * col[0].w;
   const int det_sign = sgn(det);
 
@@ -84,7 +90,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
       std::all_of(t.v.begin(), t.v.end(), [](const WindowVertex& v) { return sgn(v.w_c) > 0; });
   std::optional<std::array<long, 2>> s[3];
   if (m.subpixel_bits > 0 && all_w_positive) {
-    for (int i = 0; i < 3; ++i) s[i] = snap(t.v[i], m.subpixel_bits);
+    for (int i = 0; i < 3; ++i)
+      s[i] = snap(t.v[i], m.subpixel_bits);
     if (s[0] && s[1] && s[2]) t.path = CoveragePath::snapped;
   }
 
@@ -93,8 +100,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
     const auto& s0 = *s[0];
     const auto& s1 = *s[1];
     const auto& s2 = *s[2];
-    const int128 area2 = int128(s1[0] - s0[0]) * (s2[1] - s0[1]) -
-                         int128(s2[0] - s0[0]) * (s1[1] - s0[1]);
+    const int128 area2 =
+        int128(s1[0] - s0[0]) * (s2[1] - s0[1]) - int128(s2[0] - s0[0]) * (s1[1] - s0[1]);
     facing_sign = area2 > 0 ? 1 : area2 < 0 ? -1 : 0;
     const int bits = m.subpixel_bits;
     for (int i = 0; i < 3; ++i) {
@@ -109,11 +116,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
       t.snapped_edges[i] = e;
     }
   }
-  if (facing_sign == 0 || det_sign == 0) return t;  // zero area: nothing is drawn
-  t.front_facing = (facing_sign > 0) == (c.front_face == FrontFace::ccw);
-  if (culled(c, t.front_facing)) return t;
-  t.drawn = true;
-
+  if (det_sign == 0) return t;  // zero area: nothing is drawn, by any implementation
+  t.has_edges = true;
   for (int i = 0; i < 3; ++i) {
     LinearForm e{g[i].x, g[i].y, (g[i].x + g[i].y) / 2 + g[i].w};
     if (det_sign < 0) e = e * mpq_class(-1);
@@ -127,7 +131,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
     const double step = std::ldexp(1.0, -m.subpixel_bits);
     long lo[2] = {s[0]->at(0), s[0]->at(1)}, hi[2] = {lo[0], lo[1]};
     for (int i = 1; i < 3; ++i)
-      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], s[i]->at(k)), hi[k] = std::max(hi[k], s[i]->at(k));
+      for (int k = 0; k < 2; ++k)
+        lo[k] = std::min(lo[k], s[i]->at(k)), hi[k] = std::max(hi[k], s[i]->at(k));
     // Exact in double: |s| < 2^40, and the scaling is a power of two.
     t.box.x0 = std::max(t.box.x0, int(std::ceil(double(lo[0]) * step - 0.5)));
     t.box.x1 = std::min(t.box.x1, int(std::floor(double(hi[0]) * step - 0.5)));
@@ -137,7 +142,8 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (const auto& v : t.v) {
       const double w[2] = {mpq_class(v.x_h / v.w_c).get_d(), mpq_class(v.y_h / v.w_c).get_d()};
-      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], w[k]), hi[k] = std::max(hi[k], w[k]);
+      for (int k = 0; k < 2; ++k)
+        lo[k] = std::min(lo[k], w[k]), hi[k] = std::max(hi[k], w[k]);
     }
     // Only bounds the loop, coverage itself is exact: a one-pixel margin absorbs the rounding.
     auto clamp_int = [](double d) { return int(std::clamp(d, -1e9, 1e9)); };
@@ -146,6 +152,11 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
     t.box.y0 = std::max(t.box.y0, clamp_int(std::floor(lo[1] - 0.5) - 1));
     t.box.y1 = std::min(t.box.y1, clamp_int(std::ceil(hi[1] - 0.5) + 1));
   }
+
+  if (facing_sign == 0) return t;  // zero snapped area: this model draws nothing
+  t.front_facing = (facing_sign > 0) == (c.front_face == FrontFace::ccw);
+  if (culled(c, t.front_facing)) return t;
+  t.drawn = true;
   return t;
 }
 

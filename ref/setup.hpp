@@ -29,6 +29,9 @@ struct TriangleSetup {
   std::array<WindowVertex, 3> v;
   std::array<uint32_t, 3> index{};  // into Case::vertices
   bool drawn = false;               // false: zero area, or culled
+  // The exact triangle has area: edges and box are set, even when it is not drawn (a
+  // triangle culled or of zero snapped area may still be drawn by another implementation).
+  bool has_edges = false;
   bool front_facing = true;
   CoveragePath path = CoveragePath::homogeneous;
 

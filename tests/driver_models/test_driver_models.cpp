@@ -4,12 +4,14 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <string>
 
 #include "casefile/casefile.hpp"
 #include "core/case.hpp"
 #include "core/frame.hpp"
 #include "driver_models/driver_models.hpp"
+#include "ref/reference.hpp"
 
 namespace glrc::driver_models {
 namespace {
@@ -118,6 +120,45 @@ TEST(DriverModelDeterminism, SameCaseSameBits) {
                   0)
             << c.name;
     }
+  }
+}
+
+// Mesa's own clipper and setup, bit for bit, on random clip-heavy triangles (x, y within
+// ±3·w_c, z within ±1.2·w_c, some w_c <= 0): every smooth value and depth stays within the
+// specification's allowance the reference derives from the clipped polygon (ref/freedom.hpp).
+TEST(DriverModelAllowance, ClippedTrianglesStayWithinTheAllowance) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (Driver d : kDrivers) {
+    double worst = 0;
+    long compared = 0;
+    for (int attempt = 0; attempt < 150; ++attempt) {
+      Case c;
+      c.name = "clip";
+      c.varyings = {{"c", 2, Interpolation::smooth}};
+      for (int i = 0; i < 3; ++i) {
+        const double w = attempt % 3 == i ? 1.5 * unit(rng) - 0.5 : 1.1 + unit(rng);
+        const double s = std::max(std::fabs(w), 0.05);
+        c.vertices.push_back({{float(3 * s * unit(rng)), float(3 * s * unit(rng)),
+                               float(1.2 * s * unit(rng)), float(w)},
+                              {float(unit(rng)), float(unit(rng))}});
+      }
+      c.triangles = {{0, 1, 2}};
+      const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
+      const Frame f = render(c, d);
+      for (size_t i = 0; i < f.pixel_count(); ++i) {
+        if (r.frame.primitive[i] != 0 || f.primitive[i] != 0) continue;
+        ++compared;
+        auto share = [&](float ref, float got, float allowed) {
+          worst = std::max(worst, std::fabs(double(got) - double(ref)) / double(allowed));
+        };
+        share(r.frame.depth[i], f.depth[i], r.allowed.depth[i]);
+        for (size_t k = 0; k < 2; ++k)
+          share(r.frame.components[k][i], f.components[k][i], r.allowed.components[k][i]);
+      }
+    }
+    EXPECT_GT(compared, 50000) << to_string(d);
+    EXPECT_LE(worst, 1.0) << to_string(d);
   }
 }
 

@@ -1,0 +1,223 @@
+#include "ref/freedom.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "ref/allowance.hpp"
+
+namespace glrc::ref {
+
+namespace {
+
+// A vertex in clip space with the absolute error bound of each component.
+struct ClipVertex {
+  std::array<double, 4> p{}, e{};
+  int generation = 0;
+};
+
+// The largest magnitude of the viewport's centre: x_w = x_n·w/2 + (x + w/2) rounds the product
+// and the sum, an error of u·(|x_w| + |x + w/2|) at most.
+double viewport_magnitude(const Viewport& vp) {
+  return std::max(std::fabs(vp.x + vp.width / 2.0), std::fabs(vp.y + vp.height / 2.0));
+}
+
+double snap_and_round(double x_w, double y_w, double m, int bits) {
+  return std::ldexp(1.0, -bits) +
+         kPositionRoundings * kFloatUnitRoundoff * (std::max(std::fabs(x_w), std::fabs(y_w)) + m);
+}
+
+}  // namespace
+
+ConcaveEnvelope::ConcaveEnvelope(const std::vector<std::array<double, 3>>& points) {
+  if (points.empty()) return;
+  lo_ = hi_ = points[0][2];
+  for (const auto& p : points)
+    lo_ = std::min(lo_, p[2]), hi_ = std::max(hi_, p[2]);
+  const size_t n = points.size();
+  // At most nine vertices (a triangle clipped by six planes): every triple is cheap. A triple's
+  // plane is a facet of the upper hull when no point lies above it.
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      for (size_t k = j + 1; k < n; ++k) {
+        const auto &p = points[i], &q = points[j], &r = points[k];
+        const double ux = q[0] - p[0], uy = q[1] - p[1], uv = q[2] - p[2];
+        const double wx = r[0] - p[0], wy = r[1] - p[1], wv = r[2] - p[2];
+        const double nz = ux * wy - uy * wx;
+        if (!(std::fabs(nz) > 1e-12 * std::hypot(ux, uy) * std::hypot(wx, wy))) continue;
+        const double a = -(uy * wv - uv * wy) / nz, b = -(uv * wx - ux * wv) / nz;
+        const double c = p[2] - a * p[0] - b * p[1];
+        bool facet = true;
+        for (const auto& s : points) {
+          const double plane = a * s[0] + b * s[1] + c;
+          const double slack =
+              1e-9 * (std::fabs(a * s[0]) + std::fabs(b * s[1]) + std::fabs(c) + std::fabs(s[2]));
+          if (s[2] > plane + slack) {
+            facet = false;
+            break;
+          }
+        }
+        if (facet) planes_.push_back({a, b, c});
+      }
+}
+
+double ConcaveEnvelope::at(double x, double y) const {
+  if (planes_.empty()) return hi_;
+  double v = INFINITY;
+  for (const auto& p : planes_)
+    v = std::min(v, p[0] * x + p[1] * y + p[2]);
+  return std::clamp(v, lo_, hi_);
+}
+
+std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t,
+                                           int subpixel_bits) {
+  std::vector<ClipVertex> poly;
+  for (uint32_t index : t.index) {
+    ClipVertex v;
+    for (int k = 0; k < 4; ++k)
+      v.p[size_t(k)] = double(c.vertices[index].clip[size_t(k)]);
+    poly.push_back(v);
+  }
+  // Signed distances to the six planes of the view volume, >= 0 inside, in Mesa's order:
+  // x >= -w_c, x <= w_c, y likewise, then z.
+  auto distance = [&](const ClipVertex& v, int plane) {
+    const double w = v.p[3];
+    const size_t axis = size_t(plane / 2);
+    return plane % 2 == 0 ? w + v.p[axis] : w - v.p[axis];
+  };
+  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
+    std::vector<ClipVertex> out;
+    for (size_t i = 0; i < poly.size(); ++i) {
+      const ClipVertex& a = poly[i];
+      const ClipVertex& b = poly[(i + 1) % poly.size()];
+      const double da = distance(a, plane), db = distance(b, plane);
+      if (da >= 0) out.push_back(a);
+      if ((da > 0 && db < 0) || (da < 0 && db > 0)) {
+        const double s = da / (da - db);
+        ClipVertex m;
+        m.generation = std::max(a.generation, b.generation) + 1;
+        // Interpolated from the endpoint nearer the plane, as Mesa's clipper does: the step
+        // taken is the shorter part of the edge, so no cancellation.
+        const double step = std::min(s, 1 - s);
+        for (size_t k = 0; k < 4; ++k) {
+          m.p[k] = a.p[k] + s * (b.p[k] - a.p[k]);
+          m.e[k] = (1 - s) * a.e[k] + s * b.e[k] +
+                   kFloatUnitRoundoff *
+                       (kClipRoundings * step * std::fabs(b.p[k] - a.p[k]) + std::fabs(m.p[k]));
+        }
+        out.push_back(m);
+      }
+    }
+    poly = std::move(out);
+  }
+  std::vector<PolygonVertex> result;
+  if (poly.size() < 3) return result;
+  const Viewport& vp = c.viewport;
+  const double half_w = vp.width / 2.0, half_h = vp.height / 2.0;
+  const double m = viewport_magnitude(vp);
+  for (const ClipVertex& v : poly) {
+    const double w = v.p[3];
+    if (!(w > 0)) return {};  // only the eye itself: nothing that can be drawn
+    const double xn = v.p[0] / w, yn = v.p[1] / w, zn = v.p[2] / w;
+    PolygonVertex out;
+    out.x_w = vp.x + half_w + xn * half_w;
+    out.y_w = vp.y + half_h + yn * half_h;
+    out.generation = v.generation;
+    const double clip_x = half_w * (v.e[0] + std::fabs(xn) * v.e[3]) / w;
+    const double clip_y = half_h * (v.e[1] + std::fabs(yn) * v.e[3]) / w;
+    out.delta = snap_and_round(out.x_w, out.y_w, m, subpixel_bits) + std::max(clip_x, clip_y);
+    out.depth = std::fabs(double(c.depth_far) - double(c.depth_near)) / 2 *
+                (v.e[2] + std::fabs(zn) * v.e[3]) / w;
+    out.weight = v.e[3] / w;
+    out.w_c = w;
+    result.push_back(out);
+  }
+  return result;
+}
+
+PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subpixel_bits) {
+  const Viewport& vp = c.viewport;
+  const double m = viewport_magnitude(vp);
+  bool clipped = false, in_guard_band = true;
+  std::vector<std::array<double, 3>> whole;
+  for (uint32_t index : t.index) {
+    const auto& p = c.vertices[index].clip;
+    const double w = p[3];
+    clipped =
+        clipped || !(w > 0) || std::fabs(p[0]) > w || std::fabs(p[1]) > w || std::fabs(p[2]) > w;
+    if (!(w > 0)) {
+      in_guard_band = false;
+      continue;
+    }
+    const double x_w = vp.x + vp.width / 2.0 * (1 + p[0] / w);
+    const double y_w = vp.y + vp.height / 2.0 * (1 + p[1] / w);
+    const double centre_distance = std::max(std::fabs(x_w - (vp.x + vp.width / 2.0)),
+                                            std::fabs(y_w - (vp.y + vp.height / 2.0)));
+    in_guard_band = in_guard_band && centre_distance <= kGuardBandPixels;
+    whole.push_back({x_w, y_w, snap_and_round(x_w, y_w, m, subpixel_bits)});
+  }
+  bool any = false;
+  if (const std::vector<PolygonVertex> polygon = clipped_polygon(c, t, subpixel_bits);
+      !polygon.empty()) {
+    any = true;
+    std::vector<std::array<double, 3>> delta, depth, weight, inverse_w;
+    for (const PolygonVertex& v : polygon) {
+      delta.push_back({v.x_w, v.y_w, v.delta});
+      depth.push_back({v.x_w, v.y_w, v.depth});
+      weight.push_back({v.x_w, v.y_w, v.weight / v.w_c});
+      inverse_w.push_back({v.x_w, v.y_w, 1 / v.w_c});
+      generations_ = std::max(generations_, v.generation);
+    }
+    delta_[0] = ConcaveEnvelope(delta);
+    depth_ = ConcaveEnvelope(depth);
+    if (generations_ > 0)
+      weight_ = ConcaveEnvelope(weight), inverse_w_ = ConcaveEnvelope(inverse_w);
+  }
+  // A guard-band rasterizer draws a triangle whose vertices all lie inside its guard band
+  // without clipping it in x and y.
+  if (clipped && in_guard_band && whole.size() == 3) delta_[1] = ConcaveEnvelope(whole), any = true;
+  if (!any) delta_[0] = ConcaveEnvelope({{0, 0, snap_and_round(0, 0, m, subpixel_bits)}});
+
+  // Orientation: 2·area moves by at most Σ_j δ_j·(|E_j.x| + |E_j.y|) to first order (E_j the
+  // edge opposite vertex j: the gradient of 2·area in vertex j is E_j turned by 90 degrees), and
+  // by at most 8·δ² more (the cross product of two moves of up to 2δ per axis).
+  std::array<std::array<double, 2>, 3> p{};
+  std::array<double, 3> d{};
+  for (size_t j = 0; j < 3; ++j) {
+    const auto& v = c.vertices[t.index[j]].clip;
+    if (!(v[3] > 0)) return;
+    p[j] = {vp.x + vp.width / 2.0 * (1 + double(v[0]) / v[3]),
+            vp.y + vp.height / 2.0 * (1 + double(v[1]) / v[3])};
+    d[j] = snap_and_round(p[j][0], p[j][1], m, subpixel_bits);
+  }
+  const double area2 =
+      (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+  double bound = 0;
+  for (size_t j = 0; j < 3; ++j) {
+    const auto& a = p[(j + 1) % 3];
+    const auto& b = p[(j + 2) % 3];
+    bound += d[j] * (std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]));
+  }
+  const double largest_move = std::max({d[0], d[1], d[2]});
+  bound += 8 * largest_move * largest_move;
+  may_turn_over_ = !(std::fabs(area2) > bound);
+}
+
+double PositionFreedom::at(int px, int py) const {
+  const double x = px + 0.5, y = py + 0.5;
+  return std::max(delta_[0].at(x, y), delta_[1].at(x, y));
+}
+
+double PositionFreedom::depth_at(int px, int py) const {
+  return depth_.at(px + 0.5, py + 0.5);
+}
+
+double PositionFreedom::weight_at(int px, int py) const {
+  const double inverse_w = inverse_w_.at(px + 0.5, py + 0.5);
+  return inverse_w > 0 ? weight_.at(px + 0.5, py + 0.5) / inverse_w : 0.0;
+}
+
+double PositionFreedom::largest() const {
+  return std::max(delta_[0].largest(), delta_[1].largest());
+}
+
+}  // namespace glrc::ref

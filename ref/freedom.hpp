@@ -1,0 +1,121 @@
+// Position freedom: how far the vertices an implementation actually rasterizes may lie from the
+// exact ones, per pixel. It is derived from the polygon an implementation rasterizes, not from
+// the triangle the case gives, because a vertex the clipper throws away is never turned into a
+// window position by anybody: it only matters through the new vertices clipping makes.
+//
+// Which polygon. Mesa's clipper cuts the triangle against all six planes of the view volume,
+// x and y first, then near and far: that polygon, each vertex with its own rounding. A
+// guard-band rasterizer draws a triangle whose vertices lie inside its guard band
+// (kGuardBandPixels from the viewport's centre) without clipping it: then the triangle itself,
+// each vertex with its window position's rounding, is taken too, and the freedom is the larger.
+// Not covered: an implementation that clips near and far first and builds attribute planes from
+// the vertices it computes there, where w_c cancels near the eye (hardware that clips near and
+// far keeps its planes from the triangle's own vertices).
+//
+// Each vertex's freedom (pixels, in x and in y):
+//   snapping   2^-bits: any grid of at least the GL_SUBPIXEL_BITS reported, any rounding;
+//   rounding   c_p·u·(max(|x_w|, |y_w|) + M), the divide and viewport transform in float32 (M:
+//              the largest viewport coordinate);
+//   clipping   for a vertex made by clipping edge A-B at C = A + t·(B - A): whatever t an
+//              implementation computes, the point A + t·(B - A) lies on the triangle's own plane,
+//              with values consistent with it, so an error in t only slides the vertex along the
+//              edge, which changes no value. What does leave the plane is the rounding of each
+//              component of C on its own: 2u·τ·|B_k - A_k| + u·|C_k| with τ the part of the edge
+//              stepped over from the endpoint interpolated from. Mesa's clipper (draw_pipe_clip.c)
+//              interpolates from the endpoint nearer the plane, τ = min(t, 1 - t), so no
+//              cancellation; e_k = u·(c_c·τ·|B_k - A_k| + |C_k|) with c_c = 2, plus the errors A
+//              and B already carry, (1 - t)·e_A + t·e_B (a corner made by two planes). In the
+//              window that is (e_x + |x_c/w_c|·e_w)/w_c times half the viewport width, likewise y.
+// z_w moves likewise by (e_z + |z_c/w_c|·e_w)/w_c·|f - n|/2, and 1/w_c by a relative e_w/w_c.
+//
+// Per pixel. Moving the polygon's vertex j by d_j moves the value at a pixel by -λ_j ∇v·d_j, with
+// λ_j the pixel's barycentric weight in the polygon's triangle (the implementation's fan) that
+// holds it; so the freedom at a pixel is Σ λ_j δ_j. The largest of that over every way to cut the
+// polygon into triangles is the least concave majorant of the δ_j (ConcaveEnvelope), which needs
+// no knowledge of the fan. A far vertex therefore counts in proportion to its weight at the pixel,
+// and the bound is continuous in the vertices: no jump when w_c crosses 0.
+//
+// What the two principles give: one vertex at w_c = 2^-20 is clipped away; the new vertices are
+// made from clip coordinates of magnitude 1 and lie inside the view volume, so the freedom stays
+// near 2^-bits (tight). A triangle whose clip coordinates reach 2^21 gets new vertices computed
+// from magnitudes of 2^21: e_k ~ 2^-1, tens of pixels in the window (wide).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/case.hpp"
+#include "ref/setup.hpp"
+
+namespace glrc::ref {
+
+inline constexpr double kClipRoundings = 2;
+// An implementation's guard band, pixels from the viewport's centre. Its size matters little: a
+// vertex's rounding grows with its distance, and its weight at the visible pixels shrinks.
+inline constexpr double kGuardBandPixels = 65536;
+
+// The least concave function over the plane that is at least `value` at each point (x, y,
+// value): at a point inside the points' hull, the largest Σ λ_j value_j over all triangles of
+// the points that hold it. Evaluated as the minimum of its facets' planes, clamped to the
+// values' range outside the hull. Fewer than three points not on one line: the largest value.
+class ConcaveEnvelope {
+ public:
+  ConcaveEnvelope() = default;
+  explicit ConcaveEnvelope(const std::vector<std::array<double, 3>>& points);
+  double at(double x, double y) const;
+  double largest() const { return hi_; }
+
+ private:
+  std::vector<std::array<double, 3>> planes_;  // a·x + b·y + c
+  double lo_ = 0, hi_ = 0;
+};
+
+// One vertex of the polygon an implementation rasterizes, with the freedom it has.
+struct PolygonVertex {
+  double x_w = 0, y_w = 0;  // window position (pixels)
+  double delta = 0;         // position freedom, pixels, in x and in y
+  double depth = 0;         // freedom of z_w from clipping arithmetic (z_w units)
+  double weight = 0;        // relative freedom of 1/w_c from clipping arithmetic
+  double w_c = 1;
+  int generation = 0;  // clip planes that made it; 0 for a vertex of the case
+};
+
+// Triangle t clipped in clip space against the view volume in Mesa's order (x, y, then near
+// and far), each vertex with its freedom for an implementation reporting `subpixel_bits`.
+// Empty when nothing of the triangle is left.
+std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t,
+                                           int subpixel_bits);
+
+// The freedom of one triangle, per pixel: the largest of the polygons' envelopes (see above).
+class PositionFreedom {
+ public:
+  PositionFreedom() = default;
+  PositionFreedom(const Case& c, const TriangleSetup& t, int subpixel_bits);
+  // δ at the centre of pixel (px, py), pixels.
+  double at(int px, int py) const;
+  // Freedom of z_w at the pixel from the clipping of depth (0 for an unclipped triangle).
+  double depth_at(int px, int py) const;
+  // How much a smooth value may move at the pixel, as a share of the triangle's spread, from
+  // the relative errors ρ_j of clipped vertices' 1/w_c: a value is Σ μ_j v_j with perspective
+  // weights μ_j = λ_j (1/w_j) / (1/w), and re-weighting vertex j by 1 + ρ_j moves it by at most
+  // Σ μ_j ρ_j·spread = (Σ λ_j ρ_j/w_j)·w at the pixel, the sum taken as an envelope again.
+  double weight_at(int px, int py) const;
+  // How many clip planes made the polygon's newest vertex (0 when nothing is clipped).
+  int generations() const { return generations_; }
+  // The largest δ of any vertex: how far any edge can move.
+  double largest() const;
+  // Whether the triangle's orientation can change (it may turn over, or become degenerate)
+  // when each vertex moves within its freedom: then the coverage of the pixels it may reach is
+  // not decided by the specification. Needs every w_c > 0; a triangle reaching behind the eye
+  // is never that thin.
+  bool may_turn_over() const { return may_turn_over_; }
+
+ private:
+  // The clipped polygon, the whole triangle in a guard band.
+  std::array<ConcaveEnvelope, 2> delta_;
+  ConcaveEnvelope depth_, weight_, inverse_w_;
+  int generations_ = 0;
+  bool may_turn_over_ = false;
+};
+
+}  // namespace glrc::ref
