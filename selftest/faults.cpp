@@ -1,8 +1,11 @@
 #include "selftest/faults.hpp"
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <utility>
 
 namespace glrc::selftest {
@@ -20,6 +23,97 @@ long largest_covered(const Frame& f, int k) {
     if (v > best_value) best = long(i), best_value = v;
   }
   return best;
+}
+
+// Window position (x_w, y_w) of a vertex with w_c > 0, in double: accurate enough to find the
+// pixels next to an edge; the tests that must be exact (on a row of centres, inside a span)
+// compare exact products instead.
+std::array<double, 2> window_of(const Case& c, const std::array<float, 4>& clip) {
+  const Viewport& vp = c.viewport;
+  return {(double(clip[0]) / clip[3] + 1) * vp.width / 2 + vp.x,
+          (double(clip[1]) / clip[3] + 1) * vp.height / 2 + vp.y};
+}
+
+// Whether GL draws triangle t at all: every w_c > 0 (the fault leaves clipped triangles alone),
+// a non-zero area in window coordinates, and not culled.
+bool drawn_unclipped(const Case& c, const std::array<uint32_t, 3>& t) {
+  std::array<std::array<double, 2>, 3> p{};
+  for (int k = 0; k < 3; ++k) {
+    const std::array<float, 4>& clip = c.vertices[t[size_t(k)]].clip;
+    if (!(clip[3] > 0)) return false;
+    p[size_t(k)] = window_of(c, clip);
+  }
+  const double area =
+      (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+  if (area == 0) return false;
+  const bool front = (area > 0) == (c.front_face == FrontFace::ccw);
+  switch (c.cull) {
+    case CullFace::none:
+      return true;
+    case CullFace::front:
+      return !front;
+    case CullFace::back:
+      return front;
+    case CullFace::front_and_back:
+      return false;
+  }
+  return true;
+}
+
+// The sign of (pixel coordinate + 1/2) - (window coordinate of a vertex with w_c > 0), along one
+// axis of the viewport (origin o, size n): exact, since c + 1/2 against (q_c/w_c + 1)·n/2 + o
+// compares as (2·(c - o) + 1 - n)·w_c against q_c·n, products of a float and an integer below
+// 2^14 that a double holds exactly.
+int centre_minus_vertex(int pixel, int o, int n, float q, float w) {
+  const double lhs = double(2 * (pixel - o) + 1 - n) * w, rhs = double(q) * n;
+  return lhs > rhs ? 1 : lhs < rhs ? -1 : 0;
+}
+
+// Pixels whose centre lies exactly on a horizontal edge that two drawn (unclipped) triangles
+// share, lying on its two sides; the edge's ends excluded.
+std::vector<size_t> centres_on_shared_horizontal_edges(const Case& c, const Frame& f) {
+  // Edges by their ends' clip coordinates, smaller first: what GL sees as the same two points.
+  using Key = std::pair<std::array<float, 4>, std::array<float, 4>>;
+  std::map<Key, std::vector<size_t>> by_edge;  // -> triangles using it
+  for (size_t t = 0; t < c.triangles.size(); ++t) {
+    if (!drawn_unclipped(c, c.triangles[t])) continue;
+    for (int i = 0; i < 3; ++i) {
+      auto a = c.vertices[c.triangles[t][size_t(i)]].clip;
+      auto b = c.vertices[c.triangles[t][size_t((i + 1) % 3)]].clip;
+      if (b < a) std::swap(a, b);
+      by_edge[{a, b}].push_back(t);
+    }
+  }
+  const Viewport& vp = c.viewport;
+  std::vector<size_t> pixels;
+  for (const auto& [ends, users] : by_edge) {
+    const auto& [a, b] = ends;
+    // Horizontal: y_a/w_a == y_b/w_b, exact as products of two floats in double.
+    if (users.size() < 2 || double(a[1]) * b[3] != double(b[1]) * a[3]) continue;
+    // The third vertices of two of the users on opposite sides of the edge.
+    const auto [ax, ay] = window_of(c, a);
+    bool above = false, below = false;
+    for (size_t t : users)
+      for (uint32_t k : c.triangles[t]) {
+        const double y = window_of(c, c.vertices[k].clip)[1];
+        above = above || y > ay;
+        below = below || y < ay;
+      }
+    if (!above || !below) continue;
+    // On a row of centres.
+    const int py = int(std::floor(ay));
+    if (py < 0 || py >= f.height || centre_minus_vertex(py, vp.y, vp.height, a[1], a[3]) != 0)
+      continue;
+    const double bx = window_of(c, b)[0];
+    const int x0 = std::max(0, int(std::floor(std::min(ax, bx))) - 1);
+    const int x1 = std::min(f.width - 1, int(std::ceil(std::max(ax, bx))) + 1);
+    for (int px = x0; px <= x1; ++px) {
+      const int sa = centre_minus_vertex(px, vp.x, vp.width, a[0], a[3]);
+      const int sb = centre_minus_vertex(px, vp.x, vp.width, b[0], b[3]);
+      if (sa * sb < 0) pixels.push_back(f.index(px, py));
+    }
+  }
+  return pixels;
 }
 
 std::vector<Fault> make_faults() {
@@ -119,6 +213,24 @@ std::vector<Fault> make_faults() {
                       return true;
                     }
                     return false;
+                  }});
+  list.push_back({"shared-horizontal-edge-drawn-twice",
+                  "centres on a horizontal edge two triangles share drawn by both (no tie rule "
+                  "for horizontal edges)",
+                  nullptr, [](const Case& c, const Expectation& e, Frame& f) {
+                    if (f.fragments.empty()) return false;
+                    bool any = false;
+                    for (size_t i : centres_on_shared_horizontal_edges(c, f)) {
+                      // Only where the reference's edge bits let the comparator count
+                      // fragments: on the shared edge and away from every outer edge.
+                      const uint8_t bits = e.edges[i];
+                      if (!(bits & edge::shared) || !(bits & edge::tie) ||
+                          (bits & edge::snapping) || f.primitive[i] < 0 || f.fragments[i] == 2)
+                        continue;
+                      f.fragments[i] = 2;  // the values GL wrote stay: one of the two triangles'
+                      any = true;
+                    }
+                    return any;
                   }});
   return list;
 }

@@ -25,7 +25,7 @@ struct Fault {
 // The faults, in a fixed order: smooth computed as noperspective; provoking vertex flipped;
 // positions shifted by half a pixel; depth range nudged by 1e-4; one value in one pixel changed
 // by 1e-3 relative; varyings kept to 11 mantissa bits; two varying components swapped; one pixel
-// dropped on a shared edge.
+// dropped on a shared edge; every centre on a shared horizontal edge drawn by both triangles.
 const std::vector<Fault>& faults();
 
 // x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).

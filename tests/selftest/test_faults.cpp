@@ -14,10 +14,11 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, EightInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 8u);
+TEST(Faults, NineInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 9u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
-  EXPECT_EQ(faults().back().name, "shared-edge-pixel-dropped");
+  EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
+  EXPECT_EQ(faults().back().name, "shared-horizontal-edge-drawn-twice");
 }
 
 TEST(Faults, KeepMantissaBitsRoundsToNearestEven) {
@@ -74,6 +75,53 @@ TEST(Faults, FrameFaultsChangeTheFrame) {
   EXPECT_EQ(g.primitive[1], Frame::kNoPrimitive);
   EXPECT_EQ(g.fragments[1], 0);
   EXPECT_EQ(g.primitive[0], 0);
+}
+
+// Two triangles sharing the edge (0.5, 3.5)-(7.5, 3.5) of an 8x8 viewport, on the row of centres
+// y = 3.5; one end at w_c = 2, so the edge is horizontal only in window coordinates.
+Case shared_horizontal_edge() {
+  Case c;
+  c.viewport = {0, 0, 8, 8};
+  c.fb_width = c.fb_height = 8;
+  c.vertices = {{{-0.875f, -0.125f, 0, 1}, {}},
+                {{1.75f, -0.25f, 0, 2}, {}},
+                {{0, 0.875f, 0, 1}, {}},
+                {{0, -0.875f, 0, 1}, {}}};
+  c.triangles = {{0, 1, 2}, {1, 0, 3}};  // above, below; both counter-clockwise
+  return c;
+}
+
+TEST(Faults, SharedHorizontalEdgeDrawnTwice) {
+  const Case c = shared_horizontal_edge();
+  Frame f(8, 8, 0);
+  f.fragments.assign(f.pixel_count(), 0);
+  for (int x = 0; x < 8; ++x)
+    f.primitive[f.index(x, 3)] = 0, f.fragments[f.index(x, 3)] = 1;
+  Expectation e{f, std::vector<uint8_t>(f.pixel_count(), 0), Frame()};
+  for (int x = 1; x < 7; ++x)
+    e.edges[f.index(x, 3)] = edge::shared | edge::tie;
+  e.edges[f.index(1, 3)] |= edge::snapping;  // near an outer edge: fragments are not counted
+  e.edges[f.index(3, 4)] = edge::shared;     // near the edge but not on it
+
+  Frame g = f;
+  EXPECT_TRUE(fault("shared-horizontal-edge-drawn-twice").after(c, e, g));
+  for (int x = 0; x < 8; ++x)
+    EXPECT_EQ(g.fragments[f.index(x, 3)], x >= 2 && x <= 6 ? 2 : 1) << x;
+  EXPECT_EQ(g.fragments[f.index(3, 4)], 0);
+  EXPECT_EQ(g.primitive, f.primitive);
+
+  // The lower triangle culled: the edge is no longer shared, and nothing changes.
+  Case culled = c;
+  culled.triangles[1] = {0, 1, 3};  // clockwise
+  culled.cull = CullFace::back;
+  g = f;
+  EXPECT_FALSE(fault("shared-horizontal-edge-drawn-twice").after(culled, e, g));
+  EXPECT_EQ(g.fragments, f.fragments);
+
+  // Without fragment counts there is nothing to double.
+  g = f;
+  g.fragments.clear();
+  EXPECT_FALSE(fault("shared-horizontal-edge-drawn-twice").after(c, e, g));
 }
 
 }  // namespace
