@@ -14,8 +14,9 @@ namespace glrc::compare {
 
 // Judges a GL frame against what a correct implementation may produce. Spec tolerance needs
 // expected.allowed; coverage mismatches are labelled from expected.edges; fragment counts are
-// checked for watertightness where both frames have them. Sets status to pass or fail (never
-// anything else) and fills the statistics.
+// checked for watertightness where both frames have them. Sets status to pass or fail, or to
+// skip for a failing case outside the range GL specifies (outside_specified_range, with the
+// reason in the message), and fills the statistics.
 CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
                    const Tolerance& tolerance);
 

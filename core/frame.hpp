@@ -3,6 +3,7 @@
 // (GL window coordinates, y up).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -47,6 +48,15 @@ inline constexpr uint8_t unstable = 8;
 inline constexpr uint8_t depth_order = 16;
 }  // namespace edge
 
+// A fragment a conforming implementation may keep at a pixel instead of the reference's: its
+// depth is within the depth allowances of the winner's, so the depth test may go either way.
+struct Candidate {
+  size_t pixel = 0;
+  int32_t primitive = Frame::kNoPrimitive;
+  float depth = 0, allowed_depth = 0;
+  std::vector<float> values, allowed;  // per component, as in Frame::components
+};
+
 // What a correct implementation may produce: the exact reference frame, and around it the
 // freedom the specification leaves.
 struct Expectation {
@@ -55,6 +65,18 @@ struct Expectation {
   // Per pixel and channel (depth, components), the largest |gl - reference| a conforming
   // implementation can produce there; no components when not computed.
   Frame allowed;
+  // Where the depth test's winner is not decided (edge::depth_order), the other fragments that
+  // may win, sorted by pixel; only with an allowance.
+  std::vector<Candidate> candidates;
+
+  // The candidate of primitive p at pixel i, or nullptr.
+  const Candidate* candidate(size_t i, int32_t p) const {
+    auto it = std::lower_bound(candidates.begin(), candidates.end(), i,
+                               [](const Candidate& a, size_t pixel) { return a.pixel < pixel; });
+    for (; it != candidates.end() && it->pixel == i; ++it)
+      if (it->primitive == p) return &*it;
+    return nullptr;
+  }
 };
 
 }  // namespace glrc

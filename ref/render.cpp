@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "ref/allowance.hpp"
 #include "ref/coverage.hpp"
@@ -11,6 +12,16 @@
 #include "ref/setup.hpp"
 
 namespace glrc::ref {
+
+namespace {
+
+// How far the centre of pixel (px, py) is from the nearest side of the viewport, pixels.
+double viewport_side_distance(const Viewport& vp, int px, int py) {
+  const double x = px + 0.5, y = py + 0.5;
+  return std::min({x - vp.x, double(vp.x) + vp.width - x, y - vp.y, double(vp.y) + vp.height - y});
+}
+
+}  // namespace
 
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits) {
   Reference r{Frame(c.fb_width, c.fb_height, c.component_count()),
@@ -30,6 +41,8 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
   for (int p = 0; p < int(c.triangles.size()); ++p)
     setups.push_back(setup_triangle(c, m, p));
   const std::vector<std::array<bool, 3>> shared = shared_edges(setups);
+  // Fragments that may win the depth test instead of the reference's, by pixel.
+  std::map<size_t, std::vector<Candidate>> candidates;
   std::vector<bool> component_smooth;
   for (int v : component_varying(c))
     component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
@@ -59,6 +72,7 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
             coverage.classify(px, py, delta_at(px, py), shared[size_t(p)], unstable);
 
     if (!t.drawn || t.box.empty()) continue;
+    const bool clipped_sides = allowance && freedom.generations() > 0;
     const Barycentrics b = barycentrics(t, m);
     const Plane depth_forms = depth_plane(t, b);
     const RatioEvaluator depth = depth_forms.evaluator();
@@ -80,26 +94,81 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
         if (!coverage.covers(px, py)) continue;
         const size_t i = f.index(px, py);
         const float z = depth.at(px, py);
-        if (!depth_test(c.depth_func, z, f.depth[i])) continue;
+        auto value = [&](size_t k) {
+          return planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
+        };
+        if (!allowance) {
+          if (!depth_test(c.depth_func, z, f.depth[i])) continue;
+          f.primitive[i] = p;
+          f.depth[i] = z;
+          ++f.fragments[i];
+          for (size_t k = 0; k < planes.size(); ++k)
+            f.components[k][i] = value(k);
+          continue;
+        }
+        const double delta = freedom.at(px, py);
+        // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
+        // no pixel centre is; but they move with its vertices, inwards too.
+        if (clipped_sides && viewport_side_distance(c.viewport, px, py) <= delta)
+          r.edges[i] |= edge::snapping;
+        // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
+        const double weight = freedom.generations() > 0 ? freedom.weight_at(px, py) : 0.0;
+        auto allowed_at = [&](size_t k, float v) {
+          return planes[k].flat ? 0.0f
+                                : round_up(allowed[k].at(
+                                      px, py, v, delta,
+                                      component_smooth[k] ? weight * planes[k].spread : 0.0));
+        };
+        const float z_allowed =
+            round_up(depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py)));
+        // Depths within each other's allowances: either fragment may win the depth test.
+        auto close = [&](float other, float other_allowed) {
+          return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
+        };
+        const bool ordered = c.depth_func != DepthFunc::always && f.fragments[i] > 0;
+        const bool contested = ordered && close(f.depth[i], r.allowed.depth[i]);
+        if (!depth_test(c.depth_func, z, f.depth[i])) {
+          if (!contested) continue;
+          Candidate loser{i, p, z, z_allowed, {}, {}};
+          for (size_t k = 0; k < planes.size(); ++k) {
+            loser.values.push_back(value(k));
+            loser.allowed.push_back(allowed_at(k, loser.values.back()));
+          }
+          candidates[i].push_back(std::move(loser));
+          continue;
+        }
+        if (ordered) {
+          // Keep the candidates that may still win against the new winner; the old winner is
+          // one when it was close.
+          std::vector<Candidate>& others = candidates[i];
+          std::erase_if(others,
+                        [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
+          if (contested) {
+            Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
+            for (size_t k = 0; k < planes.size(); ++k) {
+              old.values.push_back(f.components[k][i]);
+              old.allowed.push_back(r.allowed.components[k][i]);
+            }
+            others.push_back(std::move(old));
+          }
+        }
         f.primitive[i] = p;
         f.depth[i] = z;
         ++f.fragments[i];
-        for (size_t k = 0; k < planes.size(); ++k)
-          f.components[k][i] = planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
-        if (!allowance) continue;
-        const double delta = freedom.at(px, py);
-        // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
-        const double weight = freedom.generations() > 0 ? freedom.weight_at(px, py) : 0.0;
         r.allowed.primitive[i] = p;
-        r.allowed.depth[i] = round_up(depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py)));
-        for (size_t k = 0; k < planes.size(); ++k)
-          r.allowed.components[k][i] =
-              planes[k].flat
-                  ? 0.0f
-                  : round_up(allowed[k].at(px, py, f.components[k][i], delta,
-                                           component_smooth[k] ? weight * planes[k].spread : 0.0));
+        r.allowed.depth[i] = z_allowed;
+        for (size_t k = 0; k < planes.size(); ++k) {
+          f.components[k][i] = value(k);
+          r.allowed.components[k][i] = allowed_at(k, f.components[k][i]);
+        }
       }
     }
+  }
+  for (auto& [i, list] : candidates) {
+    if (list.empty()) continue;
+    r.edges[i] |= edge::depth_order;
+    for (Candidate& k : list)
+      r.candidates.push_back(std::move(k));
   }
   return r;
 }

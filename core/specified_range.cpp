@@ -1,0 +1,31 @@
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+
+#include "core/case.hpp"
+
+namespace glrc {
+
+std::optional<std::string> outside_specified_range(const Case& c) {
+  const std::vector<std::string> names = component_names(c);
+  auto beyond = [](const std::string& what, float value) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%g", double(value));
+    return what + " = " + number +
+           " is beyond 2^32, the largest magnitude GL guarantees (OpenGL 4.6 section 2.3.4.1)";
+  };
+  for (size_t v = 0; v < c.vertices.size(); ++v) {
+    const Vertex& vertex = c.vertices[v];
+    const std::string at = "vertices[" + std::to_string(v) + "].";
+    for (size_t k = 0; k < 4; ++k)
+      if (!(std::fabs(vertex.clip[k]) <= kSpecifiedMagnitude))
+        return beyond(at + "clip[" + std::to_string(k) + "]", vertex.clip[k]);
+    for (size_t k = 0; k < vertex.values.size(); ++k)
+      if (!(std::fabs(vertex.values[k]) <= kSpecifiedMagnitude))
+        return beyond(at + (k < names.size() ? names[k] : "value"), vertex.values[k]);
+  }
+  return std::nullopt;
+}
+
+}  // namespace glrc
