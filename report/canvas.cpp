@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <stdexcept>
 
+#if GLRC_IMAGES
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#endif
 
 namespace glrc::report {
 namespace {
 
+#if GLRC_IMAGES
 OIIO::ImageSpec rgb_spec(const Canvas& canvas) {
   return OIIO::ImageSpec(canvas.width, canvas.height, 3, OIIO::TypeDesc::FLOAT);
 }
+#endif
 
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
@@ -54,6 +58,7 @@ void paint_frame(Canvas& canvas, int x0, int y0, int factor, int frame_width, in
                   colour_of(x, y));
 }
 
+#if GLRC_IMAGES
 std::optional<std::string> find_font() {
   // DejaVu ships with most Linux desktops (Debian: fonts-dejavu-core); OIIO's own default font
   // is often missing. text_size loads the face, so it tells whether drawing will work.
@@ -98,5 +103,18 @@ void write_png(const Canvas& canvas, const std::filesystem::path& file) {
     throw std::runtime_error("cannot write " + file.string() + ": " + one_line(why));
   }
 }
+#else
+// Built without OpenImageIO (GLRC_IMAGES=OFF): a lean glrefcheck that checks and reports in
+// text, JSON and CSV, and refuses to write images.
+std::optional<std::string> find_font() {
+  return std::nullopt;
+}
+void draw_text(Canvas&, const std::optional<std::string>&, int, int, const std::string&, int, Rgb,
+               Align, int) {}
+void write_png(const Canvas&, const std::filesystem::path& file) {
+  throw std::runtime_error("cannot write " + file.string() +
+                           ": glrefcheck was built without OpenImageIO (GLRC_IMAGES=OFF)");
+}
+#endif
 
 }  // namespace glrc::report

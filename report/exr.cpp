@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <stdexcept>
 
+#if GLRC_IMAGES
 #include <OpenImageIO/imagebuf.h>
+#endif
 
 namespace glrc::report {
 
@@ -16,6 +18,7 @@ void write_exr(const std::filesystem::path& file, int width, int height,
     std::copy_n(values.begin() + ptrdiff_t(y) * width, width,
                 upright.begin() + ptrdiff_t(height - 1 - y) * width);
 
+#if GLRC_IMAGES
   OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
   spec.channelnames = {"Y"};
   spec.attribute("ImageDescription", description);
@@ -28,6 +31,11 @@ void write_exr(const std::filesystem::path& file, int width, int height,
     std::replace(why.begin(), why.end(), '\n', ' ');
     throw std::runtime_error("cannot write " + file.string() + ": " + why);
   }
+#else
+  (void)description;
+  throw std::runtime_error("cannot write " + file.string() +
+                           ": glrefcheck was built without OpenImageIO (GLRC_IMAGES=OFF)");
+#endif
 }
 
 }  // namespace glrc::report
