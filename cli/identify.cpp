@@ -286,7 +286,8 @@ void print_bits(const BitsFinding& f, size_t frames) {
   if (best.mismatches == 0)
     verdict += ", which explains every probe pixel";
   else
-    verdict += fmt::format(", the closest: {} mismatches remain", best.mismatches);
+    verdict += fmt::format(", the closest: {} {}", best.mismatches,
+                           best.mismatches == 1 ? "mismatch remains" : "mismatches remain");
   if (!f.distinct) verdict += " (other candidates explain the probes as well)";
   fmt::print("   identified: {}\n", verdict);
   if (f.identified == f.reported)

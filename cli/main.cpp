@@ -27,6 +27,7 @@
 #include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
+#include "report/format.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
@@ -45,11 +46,21 @@ int cmd_diff(const Options& o) {
   fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} | tolerance {}\n\n", c.name,
              c.description, info.gl_renderer, info.gl_version, info.subpixel_bits, info.model,
              info.tolerance);
+  for (const std::string& w : info.gl_warnings)
+    fmt::print("warning: {}\n", w);
+  if (!info.gl_warnings.empty()) fmt::print("\n");
   fmt::print("{}\n", report::case_line(r));
   if (r.status == Status::error) return 1;
-  fmt::print("\n{}\n{}\n", report::stats_table(r), report::worst_pixels_table(r, 10));
+  fmt::print("\n{}\n", report::stats_table(r));
+  // Coverage first: a pixel covered by the wrong triangle has no value error to show.
+  if (const std::string table =
+          report::coverage_failures_table(r, checked.reference.frame, checked.gl, 20);
+      !table.empty())
+    fmt::print("{}\n", table);
+  if (const std::string table = report::worst_pixels_table(r, 10); !table.empty())
+    fmt::print("{}\n", table);
   const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r);
-  fmt::print("wrote {} images to {}/\n", files.size(), o.out);
+  fmt::print("wrote {} to {}/\n", report::count_text(files.size(), "image", "images"), o.out);
   return fails_run(r.status) ? 1 : 0;
 }
 
@@ -94,7 +105,9 @@ void add_model_options(CLI::App& app, Options& o) {
 void add_gl_options(CLI::App& app, Options& o) {
   app.add_option("--backend", o.backend, "osmesa, egl (Mesa surfaceless) or egl-device")
       ->check(CLI::IsMember({"osmesa", "egl", "egl-device"}));
-  app.add_option("--driver", o.driver, "Mesa gallium driver: llvmpipe, softpipe; \"\" for a GPU");
+  app.add_option(
+      "--driver", o.driver,
+      "Mesa gallium driver: llvmpipe, softpipe, zink (egl: GL on lavapipe); \"\" for a GPU");
   app.add_option("--device", o.device, "egl-device: which EGL device");
   app.add_option("--tolerance-ulps", o.varying_ulps,
                  "varying tolerance in ULPs of the attribute's scale (overrides case files)")

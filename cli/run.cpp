@@ -10,6 +10,7 @@
 #include "cli/expectations.hpp"
 #include "cli/mesa_prefix.hpp"
 #include "cli/workers.hpp"
+#include "report/format.hpp"
 #include "report/html.hpp"
 #include "report/report.hpp"
 
@@ -37,8 +38,9 @@ std::string summary(const std::vector<CaseResult>& results, double seconds) {
   std::map<Status, int> count;
   for (const auto& r : results)
     ++count[r.status];
-  std::string text = fmt::format("{} cases: {} pass, {} fail, {} expected fail, {} unexpected pass",
-                                 results.size(), count[Status::pass], count[Status::fail],
+  std::string text = fmt::format("{}: {} pass, {} fail, {} expected fail, {} unexpected pass",
+                                 report::count_text(results.size(), "case", "cases"),
+                                 count[Status::pass], count[Status::fail],
                                  count[Status::expected_fail], count[Status::unexpected_pass]);
   for (Status s : {Status::crash, Status::timeout, Status::flake})
     if (count[s]) text += fmt::format(", {} {}", count[s], to_string(s));
@@ -140,15 +142,17 @@ int cmd_run(const Options& o) {
     run_fields(info);
     std::string shard;
     if (o.fraction > 1)
-      shard = fmt::format(" (shard {} of {}, {} cases in all)", o.fraction_start, o.fraction,
-                          all.size());
+      shard = fmt::format(" (shard {} of {}, {} in all)", o.fraction_start, o.fraction,
+                          report::count_text(all.size(), "case", "cases"));
     fmt::print(
-        "glrefcheck run: {} cases{} on {} ({}), GL {} | model {} | tolerance {} | {} "
+        "glrefcheck run: {}{} on {} ({}), GL {} | model {} | tolerance {} | {} "
         "worker{}\n",
-        cases.size(), shard, info.gl_renderer, o.backend, info.gl_version, info.model,
-        info.tolerance, std::min(size_t(s.jobs), to_check.size()),
+        report::count_text(cases.size(), "case", "cases"), shard, info.gl_renderer, o.backend,
+        info.gl_version, info.model, info.tolerance, std::min(size_t(s.jobs), to_check.size()),
         std::min(size_t(s.jobs), to_check.size()) == 1 ? "" : "s");
     if (prefix) fmt::print("Mesa from {}: {}\n", info.mesa_prefix, shown_path(info.gl_library));
+    for (const std::string& w : info.gl_warnings)
+      fmt::print("warning: {}\n", w);
     std::fflush(stdout);
   };
   const auto on_result = [&](size_t i, CaseResult r) {

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "compare/compare.hpp"
+#include "report/format.hpp"
 #include "report/report.hpp"
 #include "selftest/faults.hpp"
 
@@ -49,8 +50,11 @@ int cmd_selftest(const Options& o) {
   auto renderer = open_renderer(o);
   const RunInfo info = run_info(o, renderer->info());
   const int reported = renderer->info().subpixel_bits;
-  fmt::print("glrefcheck selftest: {} cases on {} ({}), GL {} | tolerance {}\n", cases.size(),
-             info.gl_renderer, o.backend, info.gl_version, info.tolerance);
+  fmt::print("glrefcheck selftest: {} on {} ({}), GL {} | tolerance {}\n",
+             report::count_text(cases.size(), "case", "cases"), info.gl_renderer, o.backend,
+             info.gl_version, info.tolerance);
+  for (const std::string& w : info.gl_warnings)
+    fmt::print("warning: {}\n", w);
 
   // Without a fault every case must pass (or fail only as the baseline expects); only the
   // cases that pass clean can show that they catch a fault.
@@ -118,10 +122,12 @@ int cmd_selftest(const Options& o) {
     missed += row.caught == 0;
   }
   fmt::print(
-      "\n{} faults, {} caught, {} missed; without a fault: {} of {} cases pass, {} expected "
-      "failures, {} unexpected failures ({:.2f} s)\n",
-      rows.size(), int(rows.size()) - missed, missed, runs.size(), cases.size(), expected_failures,
-      clean_failures, seconds_since(start));
+      "\n{}, {} caught, {} missed; without a fault: {} of {} pass, {}, {} ({:.2f} s)\n",
+      report::count_text(rows.size(), "fault", "faults"), int(rows.size()) - missed, missed,
+      runs.size(), report::count_text(cases.size(), "case", "cases"),
+      report::count_text(uint64_t(expected_failures), "expected failure", "expected failures"),
+      report::count_text(uint64_t(clean_failures), "unexpected failure", "unexpected failures"),
+      seconds_since(start));
   return missed == 0 && clean_failures == 0 ? 0 : 1;
 }
 

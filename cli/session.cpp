@@ -110,6 +110,7 @@ RunInfo run_info(const Options& o, const gl::GlInfo& gl) {
   info.gl_renderer = gl.renderer;
   info.gl_version = gl.version;
   info.gl_library = gl.library;
+  info.gl_warnings = gl.warnings;
   info.mesa_prefix = o.mesa;
   return info;
 }

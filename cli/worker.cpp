@@ -110,7 +110,9 @@ int cmd_worker() {
                   {"version", gl.version},
                   {"library", gl.library},
                   {"platform", gl.platform},
-                  {"subpixel_bits", gl.subpixel_bits}}}});
+                  {"subpixel_bits", gl.subpixel_bits},
+                  {"primitive_id_from_geometry_shader", gl.primitive_id_from_geometry_shader},
+                  {"warnings", gl.warnings}}}});
   while (std::getline(std::cin, line)) {
     const auto job = nlohmann::json::parse(line);
     const size_t index = job.at("index");

@@ -225,6 +225,8 @@ class Pool {
         gl.vendor = h.at("vendor"), gl.renderer = h.at("renderer"), gl.version = h.at("version");
         gl.library = h.at("library"), gl.platform = h.at("platform");
         gl.subpixel_bits = h.at("subpixel_bits");
+        gl.primitive_id_from_geometry_shader = h.value("primitive_id_from_geometry_shader", false);
+        gl.warnings = h.value("warnings", std::vector<std::string>{});
         started_ = true;
         on_start_(gl);
       }

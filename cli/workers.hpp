@@ -6,7 +6,9 @@
 //
 // Protocol, one JSON document per line. On the worker's stdin: the options (options_json), then
 // {"index": k, "file": path, "name": case name, "images": bool} per case; end of input means stop.
-// On its stdout: {"hello": {gl info}} or {"error": "one line"} once the context exists, then
+// On its stdout: {"hello": {gl info}} (GL strings, subpixel bits, whether gl_PrimitiveID comes
+// from a geometry shader, and warnings: what the implementation got wrong while the context set
+// up) or {"error": "one line"} once the context exists, then
 // {"index": k, "result": CaseResult} per case. The worker's own stdout and stderr (and the
 // driver's messages) go to a log file: a crash report quotes its last lines.
 #pragma once

@@ -126,20 +126,21 @@ std::string failure_message(const CaseResult& r) {
       part += " at " + std::to_string(ch.worst[0].x) + "," + std::to_string(ch.worst[0].y);
     append(part + ")");
   }
-  if (more > 0) append(std::to_string(more) + " more channels");
+  if (more > 0) append(std::to_string(more) + (more == 1 ? " more channel" : " more channels"));
   const CoverageStats& cov = r.coverage;
   if (cov.failures > 0) {
     std::string part = "coverage: " + std::to_string(cov.failures) + " px fail (";
     std::string kinds;
-    auto kind = [&](uint64_t n, const char* what) {
-      if (n) kinds += (kinds.empty() ? "" : ", ") + std::to_string(n) + " " + what;
+    // "1 gap on a shared edge", "2 gaps on shared edges".
+    auto kind = [&](uint64_t n, const char* one, const char* many) {
+      if (n) kinds += (kinds.empty() ? "" : ", ") + std::to_string(n) + " " + (n == 1 ? one : many);
     };
-    kind(cov.fill_rule, "fill-rule errors");
-    kind(cov.gaps, "gaps on shared edges");
-    kind(cov.double_hits, "double hits on shared edges");
+    kind(cov.fill_rule, "fill-rule error", "fill-rule errors");
+    kind(cov.gaps, "gap on a shared edge", "gaps on shared edges");
+    kind(cov.double_hits, "double hit on a shared edge", "double hits on shared edges");
     if (!r.tolerance.allow_boundary || r.tolerance.mode == ToleranceMode::exact) {
-      kind(cov.exact_tie, "exact ties");
-      kind(cov.within_snapping, "within snapping");
+      kind(cov.exact_tie, "exact tie", "exact ties");
+      kind(cov.within_snapping, "within snapping", "within snapping");
     }
     append(part + kinds + ")");
   }

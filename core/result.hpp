@@ -113,6 +113,9 @@ struct RunInfo {
   // The Mesa install tree given with --mesa (empty: the system's), and the driver library GL
   // actually came from (libOSMesa, libEGL_mesa, ...), so nobody can mistake which Mesa ran.
   std::string mesa_prefix, gl_library;
+  // What the implementation got wrong while the GL side set up (gl::GlInfo::warnings, e.g. a
+  // wrong first draw), one line each. The run went on regardless.
+  std::vector<std::string> gl_warnings;
   int jobs = 1;
   // Sharding: this run holds every `fraction`-th case starting at `fraction_start` (1-based) of
   // `total_cases`; fraction 1 is the whole suite.

@@ -100,6 +100,10 @@ bool is_mesa_software_driver(std::string_view driver) {
   return driver == "llvmpipe" || driver == "softpipe";
 }
 
+bool is_mesa_cpu_driver(std::string_view driver) {
+  return is_mesa_software_driver(driver) || driver == "zink";
+}
+
 void select_driver(const Target& t) {
   // The driver this process committed to. Mesa creates its screen (and reads GALLIUM_DRIVER)
   // once per process and loader, so a later request for another driver would quietly get the
@@ -115,8 +119,10 @@ void select_driver(const Target& t) {
   if (t.driver.empty()) return;  // whatever the platform gives, e.g. a GPU's own driver
   setenv("GALLIUM_DRIVER", t.driver.c_str(), 1);
   // Without it Mesa's EGL would try hardware DRI drivers first and only fall back to swrast
-  // (the one that honours GALLIUM_DRIVER) when they fail. OSMesa is software only anyway.
-  if (t.backend != Backend::osmesa && is_mesa_software_driver(t.driver))
+  // (the one that honours GALLIUM_DRIVER) when they fail. zink needs it too: with it zink
+  // picks a CPU Vulkan device (lavapipe), without it eglInitialize fails on a machine without a
+  // GPU (Mesa 22.3.6). OSMesa is software only anyway.
+  if (t.backend != Backend::osmesa && is_mesa_cpu_driver(t.driver))
     setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
 }
 
@@ -129,7 +135,11 @@ static std::string lower(std::string_view s) {
 
 void check_driver(const Target& t, std::string_view gl_renderer, std::string_view where) {
   if (t.driver.empty()) return;
-  if (lower(gl_renderer).find(lower(t.driver)) != std::string::npos) return;
+  const std::string renderer = lower(gl_renderer), driver = lower(t.driver);
+  // zink names the Vulkan driver under it ("zink (llvmpipe (LLVM 15.0.6, 256 bits))"): that
+  // is not the GL driver asked for.
+  const bool zink = renderer.starts_with("zink") && driver != "zink";
+  if (!zink && renderer.find(driver) != std::string::npos) return;
   throw Unavailable("asked for driver " + t.driver + ", but GL_RENDERER is '" +
                     std::string(gl_renderer) + "' on " + std::string(where) +
                     "; this Mesa may lack that gallium driver, GALLIUM_DRIVER was read before "

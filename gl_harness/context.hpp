@@ -61,8 +61,12 @@ void load_symbol(Function*& fn, void* library, const char* library_name, const c
 // (dl_iterate_phdr, so it is the file the loader really mapped), or "".
 std::string loaded_library(std::initializer_list<const char*> prefixes);
 
-// Mesa's software drivers, the only ones picked through GALLIUM_DRIVER here.
+// Mesa's software rasterizers, llvmpipe and softpipe: what OSMesa runs.
 bool is_mesa_software_driver(std::string_view driver);
+// Mesa's drivers that run on the CPU, picked through GALLIUM_DRIVER with LIBGL_ALWAYS_SOFTWARE
+// on EGL: llvmpipe, softpipe, and zink (GL on Vulkan), which then runs on lavapipe, Mesa's CPU
+// Vulkan driver (Debian's mesa-vulkan-drivers).
+bool is_mesa_cpu_driver(std::string_view driver);
 
 // Sets GALLIUM_DRIVER (and for EGL, LIBGL_ALWAYS_SOFTWARE) for t.driver before the library
 // creates its screen. Mesa reads them once per process, so a second call with another driver

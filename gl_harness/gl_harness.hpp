@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/case.hpp"
 #include "core/frame.hpp"
@@ -27,8 +28,9 @@ enum class DepthFormat { float32, unorm24 };
 
 struct Target {
   Backend backend = Backend::osmesa;
-  std::string driver = "llvmpipe";  // Mesa's gallium driver; "" = whatever the platform gives
-  int device_index = 0;             // egl-device: which EGLDevice
+  // Mesa's gallium driver (llvmpipe, softpipe; zink on EGL); "" = whatever the platform gives
+  std::string driver = "llvmpipe";
+  int device_index = 0;  // egl-device: which EGLDevice
   // What glrefcheck identify changes; the defaults are what every other command uses.
   // false: glProvokingVertex is never called on this renderer's context, so flat varyings come
   // from the context's default provoking vertex (GL's default is the last) and
@@ -51,6 +53,10 @@ struct GlInfo {
   // drew nothing when the fragment shader read gl_PrimitiveID (softpipe, Mesa 22.3.6). Only
   // then: on llvmpipe a geometry shader changes the bits of varyings and depth.
   bool primitive_id_from_geometry_shader = false;
+  // What the implementation got wrong while the renderer set up, one line each: today a wrong
+  // first draw (which pixel, what was expected, what came). The renderer works all the same;
+  // every case passes or fails on its own, so a run reports these and goes on.
+  std::vector<std::string> warnings;
 };
 
 // A library, platform, driver or GL feature this machine lacks. what() is one line saying what
@@ -79,7 +85,7 @@ class Renderer {
 // driver. Several renderers with the same driver may coexist; each makes its own context
 // current in render().
 // Environment: a non-empty driver sets GALLIUM_DRIVER=driver; for the EGL backends and
-// llvmpipe/softpipe also LIBGL_ALWAYS_SOFTWARE=1.
+// llvmpipe/softpipe/zink also LIBGL_ALWAYS_SOFTWARE=1 (zink then runs on lavapipe).
 std::unique_ptr<Renderer> create_renderer(const Target& t);
 
 }  // namespace glrc::gl

@@ -99,13 +99,15 @@ class OsmesaContext final : public Context {
 }  // namespace
 
 std::unique_ptr<Context> create_osmesa_context(const Target& t) {
-  // OSMesa renders with Mesa's software drivers only; asked for any other, Mesa 22.3 crashes
-  // inside OSMesaCreateContextAttribs instead of failing.
+  // OSMesa renders with llvmpipe and softpipe only; asked for any other, Mesa 22.3 crashes
+  // inside OSMesaCreateContextAttribs instead of failing. zink too: libOSMesa has it built in,
+  // but its software winsys gives zink no screen and OSMesaCreateContextAttribs segfaults
+  // (Mesa 22.3.6, with and without LIBGL_ALWAYS_SOFTWARE).
   if (!t.driver.empty() && !is_mesa_software_driver(t.driver))
     throw Unavailable(
         "OSMesa runs Mesa's software drivers only: expected --driver llvmpipe or "
         "softpipe, got \"" +
-        t.driver + "\" (use --backend egl-device for a GPU)");
+        t.driver + "\" (use --backend egl" + (t.driver == "zink" ? "" : "-device for a GPU") + ")");
   return std::make_unique<OsmesaContext>(osmesa_library());
 }
 

@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "gl_harness/context.hpp"
+#include "gl_harness/first_draw.hpp"
 #include "gl_harness/gl_functions.hpp"
 #include "gl_harness/gl_harness.hpp"
 
@@ -374,36 +376,42 @@ class GlRenderer final : public Renderer {
   // softpipe (Mesa 22.3.6) drops every triangle when the fragment shader reads gl_PrimitiveID
   // and no geometry shader runs. A pass-through geometry shader avoids that and, on softpipe,
   // leaves every varying and depth bit as it is; on llvmpipe it does not (it changes bits), so
-  // it is used only where a plain draw of a triangle covering the whole framebuffer gives no
-  // pixel at all.
+  // it is used only where the plain draw of a triangle covering the whole framebuffer is wrong
+  // and the geometry shader's is right (choose_first_draw). A draw wrong either way is the
+  // implementation's fault, which is what the cases are there to report: a warning
+  // (GlInfo::warnings), never Unavailable.
   void probe() {
-    Case c;
-    c.name = "gl_harness_probe";
-    c.fb_width = c.fb_height = 4;
-    c.viewport = {0, 0, 4, 4};
-    c.varyings = {Varying{"v", 1, Interpolation::flat}};
-    for (auto [x, y] : {std::pair{-1.0f, -1.0f}, {3.0f, -1.0f}, {-1.0f, 3.0f}})
-      c.vertices.push_back(Vertex{{x, y, 0.0f, 1.0f}, {1.0f}});
-    c.triangles = {{0, 1, 2}};
-    auto covers = [&c, this] {
-      try {
-        Frame f = render(c);
-        return f.primitive[0] == 0 && f.components[0][0] == 1.0f;
-      } catch (const RenderError& e) {
-        // create_renderer promises Unavailable: a context that cannot draw this is unusable.
-        throw Unavailable("'" + info_.renderer + "' on " + context_->describe() +
-                          " fails a first draw: " + e.what());
-      }
-    };
-    if (covers()) return;
+    const Case c = first_draw_case();
+    FirstDrawVerdict plain;
+    try {
+      plain = judge_first_draw(render(c));
+    } catch (const RenderError& e) {
+      // create_renderer promises Unavailable: a context that cannot even set up this draw (its
+      // framebuffer formats, its shaders) cannot run any case.
+      throw Unavailable("'" + info_.renderer + "' on " + context_->describe() +
+                        " fails a first draw: " + e.what());
+    }
+    if (plain.right()) return;
+    use_geometry_shader(true);
+    std::optional<FirstDrawVerdict> with_gs;
+    try {
+      with_gs = judge_first_draw(render(c));
+    } catch (const RenderError& e) {
+      with_gs = FirstDrawVerdict{kFirstDrawPixels, std::string("no draw: ") + e.what()};
+    }
+    const FirstDrawChoice choice = choose_first_draw(plain, with_gs);
+    if (!choice.geometry_shader) use_geometry_shader(false);
+    if (!choice.warning.empty())
+      info_.warnings.push_back("'" + info_.renderer + "' on " + context_->describe() + ": " +
+                               choice.warning);
+  }
+
+  // Programs are cached without the geometry shader's part in their key: switching drops them.
+  void use_geometry_shader(bool on) {
     for (auto& [key, program] : programs_)
       gl_.DeleteProgram(program);
     programs_.clear();
-    info_.primitive_id_from_geometry_shader = true;
-    if (covers()) return;
-    throw Unavailable("'" + info_.renderer + "' on " + context_->describe() +
-                      " draws nothing for a triangle covering the framebuffer, with or without "
-                      "a geometry shader for gl_PrimitiveID");
+    info_.primitive_id_from_geometry_shader = on;
   }
 
   GLuint compile(GLenum stage, const std::string& source, const Case& c) {

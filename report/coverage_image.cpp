@@ -1,10 +1,14 @@
 #include "report/coverage_image.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "compare/compare.hpp"
+#include "report/format.hpp"
 
 namespace glrc::report {
 namespace {
@@ -12,7 +16,7 @@ namespace {
 constexpr int kMargin = 12;
 constexpr int kTitleHeight = 50;
 constexpr int kMinWidth = 512;
-constexpr int kLegendHeight = 120;
+constexpr int kLegendHeight = 144;
 constexpr Rgb kBackground{0.1f, 0.1f, 0.1f};
 constexpr Rgb kText{0.92f, 0.92f, 0.92f};
 
@@ -23,6 +27,8 @@ constexpr Rgb kOtherPrimitive{1.0f, 0.55f, 0.0f};
 constexpr Rgb kWhite{1, 1, 1};
 constexpr Rgb kGap{0.0f, 0.9f, 0.9f};          // cyan: no fragment where a mesh needs one
 constexpr Rgb kDoubleHit{0.95f, 0.0f, 0.95f};  // magenta: two fragments on a shared edge
+// Rings around failing pixels: a hue no pixel colour uses.
+constexpr Rgb kFailRing{0.3f, 1.0f, 0.2f};
 // The edge band only hints where boundary mismatches would be allowed, so it is a faint tint.
 constexpr Rgb kEdgeTint{0.85f, 0.8f, 0.25f};
 constexpr float kEdgeTintAmount = 0.22f;
@@ -75,12 +81,39 @@ void draw_legend(Canvas& canvas, const std::optional<std::string>& font, int top
   const int row4 = row3 + 24;
   swatch(canvas, font, x0, row4, kGap, "gap on a shared edge");
   swatch(canvas, font, x0 + column, row4, kDoubleHit, "double hit on a shared edge");
+  const int row5 = row4 + 24;
+  canvas.fill(x0, row5, 14, 14, kFailRing);
+  canvas.fill(x0 + 3, row5 + 3, 8, 8, kBackground);
+  draw_text(canvas, font, x0 + 20, row5 + 12, "ring: a failing pixel (counts against the verdict)",
+            13, kText);
+}
+
+// A ring of the upscaled frame pixel (x, y) at (x0, y0) with `factor`: clear of the pixel's
+// corners, at least 5 canvas pixels out so that it shows at factor 1, and drawn only inside the
+// frame's image (never over title or legend).
+void draw_ring(Canvas& canvas, int x0, int y0, int factor, int frame_width, int frame_height, int x,
+               int y) {
+  const double cx = x0 + (x + 0.5) * factor, cy = y0 + (frame_height - 1 - y + 0.5) * factor;
+  const double inner = std::max(0.75 * factor + 1.5, 5.0);
+  const double outer = inner + std::max(2.0, factor / 8.0);
+  const int reach = int(outer) + 1;
+  const int x_end = x0 + frame_width * factor, y_end = y0 + frame_height * factor;
+  for (int py = int(cy) - reach; py <= int(cy) + reach; ++py)
+    for (int px = int(cx) - reach; px <= int(cx) + reach; ++px) {
+      if (px < x0 || py < y0 || px >= x_end || py >= y_end) continue;
+      const double d = std::hypot(px + 0.5 - cx, py + 0.5 - cy);
+      if (d >= inner && d <= outer) canvas.fill(px, py, 1, 1, kFailRing);
+    }
 }
 
 }  // namespace
 
+bool explained_mismatches_fail(const Tolerance& t) {
+  return !t.allow_boundary || t.mode == ToleranceMode::exact;
+}
+
 Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
-                       const std::optional<std::string>& font) {
+                       const std::optional<std::string>& font, bool explained_fail) {
   const Frame& reference = expected.frame;
   const std::vector<uint8_t>& edge_band = expected.edges;
   const int factor = upscale_factor(reference.width, reference.height);
@@ -91,23 +124,29 @@ Canvas render_coverage(const Expectation& expected, const Frame& gl, const Cover
   const bool has_band = edge_band.size() == reference.pixel_count();
   const int text_width = canvas.width - 2 * kMargin;
   draw_text(canvas, font, kMargin, 22,
-            fmt::format("coverage   {} failures   ties {}   within snapping {}   fill-rule {}"
+            fmt::format("coverage   {}   ties {}   within snapping {}   fill-rule {}"
                         "   gaps {}   double hits {}",
-                        stats.failures, stats.exact_tie, stats.within_snapping, stats.fill_rule,
-                        stats.gaps, stats.double_hits),
+                        count_text(stats.failures, "failure", "failures"), stats.exact_tie,
+                        stats.within_snapping, stats.fill_rule, stats.gaps, stats.double_hits),
             16, kText, Align::left, text_width);
   draw_text(canvas, font, kMargin, 42,
             fmt::format("both {}   reference only {}   GL only {}   other primitive {}", stats.both,
                         stats.reference_only, stats.gl_only, stats.other_primitive),
             12, kText, Align::left, text_width);
 
-  paint_frame(canvas, (canvas.width - image_w) / 2, kTitleHeight, factor, reference.width,
-              reference.height, [&](int x, int y) {
-                const size_t i = reference.index(x, y);
-                return pixel_colour(
-                    reference.primitive[i], gl.primitive[i], has_band && edge_band[i] != 0,
-                    has_band ? compare::coverage_label(expected, gl, i) : std::nullopt);
-              });
+  const int image_x = (canvas.width - image_w) / 2;
+  std::vector<std::pair<int, int>> failing;
+  paint_frame(
+      canvas, image_x, kTitleHeight, factor, reference.width, reference.height, [&](int x, int y) {
+        const size_t i = reference.index(x, y);
+        const auto label = has_band ? compare::coverage_label(expected, gl, i) : std::nullopt;
+        if (label && (explained_fail || !compare::explained(*label))) failing.emplace_back(x, y);
+        return pixel_colour(reference.primitive[i], gl.primitive[i], has_band && edge_band[i] != 0,
+                            label);
+      });
+  // After every pixel is painted: a ring overlaps its neighbours.
+  for (const auto& [x, y] : failing)
+    draw_ring(canvas, image_x, kTitleHeight, factor, reference.width, reference.height, x, y);
   draw_legend(canvas, font, kTitleHeight + image_h);
   return canvas;
 }

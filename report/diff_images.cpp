@@ -73,7 +73,8 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
     write_exr(out("_ref.exr"), e.width, e.height, e.reference, e.name + ": reference");
   }
   written.push_back(dir / "coverage.png");
-  write_png(render_coverage(expected, gl, r.coverage, font), written.back());
+  write_png(render_coverage(expected, gl, r.coverage, font, explained_mismatches_fail(r.tolerance)),
+            written.back());
   return written;
 }
 

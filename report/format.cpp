@@ -37,6 +37,10 @@ std::string seconds_text(double seconds) {
   return fmt::format("{:.3f} s", seconds);
 }
 
+std::string count_text(uint64_t n, std::string_view one, std::string_view many) {
+  return std::to_string(n) + " " + std::string(n == 1 ? one : many);
+}
+
 std::string short_message(const std::string& message, size_t max_chars) {
   std::string line = message.substr(0, message.find('\n'));
   if (line.size() > max_chars) line = line.substr(0, max_chars - 3) + "...";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,10 @@ std::string ratio_text(double ratio);
 std::string float_text(double value);
 // A duration: "0.012 s".
 std::string seconds_text(double seconds);
+
+// A count with its noun in the right number: count_text(1, "case", "cases") is "1 case",
+// count_text(2, ...) "2 cases", count_text(0, ...) "0 cases".
+std::string count_text(uint64_t n, std::string_view one, std::string_view many);
 
 // A message in a listing: its first line, cut to `max_chars` with "..." (the whole message is in
 // results.json).

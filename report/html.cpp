@@ -190,6 +190,8 @@ void run_summary(std::ostream& out, const RunResults& results) {
   row("GL_VENDOR", run.gl_vendor);
   if (!run.mesa_prefix.empty()) row("Mesa prefix", run.mesa_prefix);
   if (!run.gl_library.empty()) row("GL library", run.gl_library);
+  for (const std::string& w : run.gl_warnings)
+    row("GL warning", w);
   row("model", run.model);
   row("tolerance", run.tolerance);
   row("jobs", std::to_string(run.jobs));
@@ -263,9 +265,9 @@ void case_detail(std::ostream& out, const CaseResult& r, const fs::path& run_dir
   if (!r.message.empty()) out << "<p class=\"message\">" << xml_escaped(r.message) << "</p>\n";
   const CoverageStats& cov = r.coverage;
   if (cov.failures > 0) {
-    out << fmt::format(
-        "<p>Coverage: {} failing pixels (fill rule {}, gaps {}, double hits {}).</p>\n",
-        cov.failures, cov.fill_rule, cov.gaps, cov.double_hits);
+    out << fmt::format("<p>Coverage: {} (fill rule {}, gaps {}, double hits {}).</p>\n",
+                       count_text(cov.failures, "failing pixel", "failing pixels"), cov.fill_rule,
+                       cov.gaps, cov.double_hits);
   }
   channel_table(out, r);
   const fs::path dir = case_dir(run_dir, r.name);

@@ -25,10 +25,11 @@ std::string stats_text(const CaseResult& r) {
         ch.over_tolerance, ch.compared, ch.non_finite);
   const auto& cov = r.coverage;
   text += fmt::format(
-      "coverage: {} failures; reference only {}, GL only {}, other primitive {}; exact tie {}, "
+      "coverage: {}; reference only {}, GL only {}, other primitive {}; exact tie {}, "
       "within snapping {}, fill-rule error {}, gaps {}, double hits {}\n",
-      cov.failures, cov.reference_only, cov.gl_only, cov.other_primitive, cov.exact_tie,
-      cov.within_snapping, cov.fill_rule, cov.gaps, cov.double_hits);
+      count_text(cov.failures, "failure", "failures"), cov.reference_only, cov.gl_only,
+      cov.other_primitive, cov.exact_tie, cov.within_snapping, cov.fill_rule, cov.gaps,
+      cov.double_hits);
   return text;
 }
 

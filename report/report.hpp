@@ -43,8 +43,16 @@ void write_junit(const std::filesystem::path& file, const RunInfo& run,
 std::string case_line(const CaseResult& r);
 // The per-channel statistics table for `diff`.
 std::string stats_table(const CaseResult& r);
-// The n worst pixels over all channels: x, y, channel, reference, GL, error.
+// The n worst pixels over all channels: x, y, channel, reference, GL, error. "" when no
+// channel has a worst pixel (nothing compared, e.g. GL drew nothing).
 std::string worst_pixels_table(const CaseResult& r, size_t n);
+// The failing coverage pixels for `diff`, at most n of those CoverageStats::mismatches keeps
+// (compare keeps the first 64 mismatches in row order): x, y, the reference's and GL's
+// primitive ("-" for none), the reference's and GL's fragment count (from the frames; "-" where
+// a frame has none) and the kind of mismatch, then how many more fail. "" when no coverage pixel
+// fails.
+std::string coverage_failures_table(const CaseResult& r, const Frame& reference, const Frame& gl,
+                                    size_t n);
 
 // Writes, for depth and each component, colour-mapped PNG heatmaps with legends of the error
 // (_error.png), of the allowance (_allowed.png) and of their ratio (_ratio.png); EXRs of the

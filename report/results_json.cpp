@@ -25,6 +25,7 @@ json run_json(const RunInfo& run) {
           {"gl_version", run.gl_version},
           {"mesa_prefix", run.mesa_prefix},
           {"gl_library", run.gl_library},
+          {"gl_warnings", run.gl_warnings},
           {"jobs", run.jobs},
           {"fraction", run.fraction},
           {"fraction_start", run.fraction_start},
@@ -213,6 +214,14 @@ RunInfo read_run(const Reader& rd, const json& j) {
   run.gl_version = rd.str(j, "run", "gl_version");
   run.mesa_prefix = rd.str(j, "run", "mesa_prefix", true);
   run.gl_library = rd.str(j, "run", "gl_library", true);
+  if (j.contains("gl_warnings")) {  // optional: runs before it have none
+    const json& w = j["gl_warnings"];
+    if (!w.is_array()) rd.bad("run.gl_warnings", "an array of strings");
+    for (size_t k = 0; k < w.size(); ++k) {
+      if (!w[k].is_string()) rd.bad("run.gl_warnings[" + std::to_string(k) + "]", "a string");
+      run.gl_warnings.push_back(w[k].get<std::string>());
+    }
+  }
   run.jobs = rd.integer(j, "run", "jobs", 1);
   run.fraction = rd.integer(j, "run", "fraction", 1);
   run.fraction_start = rd.integer(j, "run", "fraction_start", 1);

@@ -103,7 +103,7 @@ std::string counted(size_t n, Kind k) {
 }
 
 std::string counts_line(const RunComparison& c) {
-  std::string line = fmt::format("{} cases: ", c.cases.size());
+  std::string line = count_text(c.cases.size(), "case", "cases") + ": ";
   for (size_t k = 0; k < std::size(kKinds); ++k)
     line += (k ? ", " : "") + counted(c.count(kKinds[k]), kKinds[k]);
   return line;

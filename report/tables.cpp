@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "report/coverage_image.hpp"
 #include "report/format.hpp"
 #include "report/report.hpp"
 
@@ -28,6 +29,23 @@ std::string worst_text(const CaseResult& r, Field field, Format format) {
     worst = std::max(worst, ch.*field);
   }
   return format(worst);
+}
+
+// The kind of a coverage mismatch, as the statistics name it.
+const char* label_text(CoverageStats::Label l) {
+  switch (l) {
+    case CoverageStats::Label::exact_tie:
+      return "exact tie";
+    case CoverageStats::Label::within_snapping:
+      return "within snapping";
+    case CoverageStats::Label::fill_rule:
+      return "fill-rule error";
+    case CoverageStats::Label::gap:
+      return "gap on a shared edge";
+    case CoverageStats::Label::double_hit:
+      return "double hit on a shared edge";
+  }
+  return "mismatch";
 }
 
 }  // namespace
@@ -105,6 +123,7 @@ std::string worst_pixels_table(const CaseResult& r, size_t n) {
     return ua > ub;
   });
   if (entries.size() > n) entries.resize(n);
+  if (entries.empty()) return "";
 
   size_t name_width = 7;
   for (const auto& e : entries)
@@ -123,6 +142,42 @@ std::string worst_pixels_table(const CaseResult& r, size_t n) {
                  std::isfinite(e.pixel->ulps) ? fmt::format("{:.6g}", e.pixel->ulps)
                                               : ulps_text(e.pixel->ulps),
                  float_text(float(e.pixel->allowed)), ratio_text(e.pixel->ratio));
+  return table;
+}
+
+std::string coverage_failures_table(const CaseResult& r, const Frame& reference, const Frame& gl,
+                                    size_t n) {
+  const CoverageStats& cov = r.coverage;
+  if (cov.failures == 0) return "";
+  const bool explained_fail = explained_mismatches_fail(r.tolerance);
+  const auto primitive_text = [](int32_t p) {
+    return p == Frame::kNoPrimitive ? std::string("-") : std::to_string(p);
+  };
+  const auto fragments_text = [](const Frame& f, int x, int y) {
+    if (f.fragments.size() != f.pixel_count() || x < 0 || y < 0 || x >= f.width || y >= f.height)
+      return std::string("-");
+    return std::to_string(f.fragments[f.index(x, y)]);
+  };
+  const auto row = [](auto&& x, auto&& y, auto&& ref_p, auto&& gl_p, auto&& ref_f, auto&& gl_f,
+                      auto&& label) {
+    return fmt::format("{:>5} {:>5}  {:>9}  {:>9}  {:>9}  {:>9}  {}\n", x, y, ref_p, gl_p, ref_f,
+                       gl_f, label);
+  };
+  // x, y are GL window coordinates (row 0 at the bottom), as everywhere in the results.
+  std::string table = row("x", "y", "ref prim", "GL prim", "ref frags", "GL frags", "coverage");
+  size_t shown = 0;
+  for (const auto& p : cov.mismatches) {
+    if (p.boundary && !explained_fail) continue;  // allowed: not a failure
+    if (shown == n) break;
+    ++shown;
+    table +=
+        row(p.x, p.y, primitive_text(p.reference), primitive_text(p.gl),
+            fragments_text(reference, p.x, p.y), fragments_text(gl, p.x, p.y), label_text(p.label));
+  }
+  if (cov.failures > shown)
+    table +=
+        fmt::format("{} (coverage.png rings every failing pixel)\n",
+                    count_text(cov.failures - shown, "more failing pixel", "more failing pixels"));
   return table;
 }
 

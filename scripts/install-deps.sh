@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git
   libosmesa6-dev libgl-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgles-dev libgbm1
+  # lavapipe, Mesa's CPU Vulkan driver: what --driver zink (GL on Vulkan) runs on.
+  mesa-vulkan-drivers
   libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core

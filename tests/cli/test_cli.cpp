@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -119,6 +120,97 @@ TEST(Cli, KnownDriverBugIsAnExpectedFailure) {
       glrefcheck("run " + filter + " --baseline '" + (d / "bad.txt").string() + "'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("bad.txt:1: expected a status of Fail"), std::string::npos) << bad.err;
+}
+
+// A driver whose first draw is wrong (GL_harness's probe: a triangle covering a 4x4
+// framebuffer, one flat float of 1) is what glrefcheck is there to report, not a reason to stop:
+// the run prints and records a warning naming the pixel, and every case passes or fails on its
+// own. The fault is planted in the real driver, not in glrefcheck: Mesa's
+// MESA_SHADER_READ_PATH replaces a shader whose SHA-1 names a file there, so the fragment shader
+// of the probe's program (and of its geometry-shader variant) is swapped for one that adds 1 to
+// the flat value. Its file name comes from MESA_SHADER_DUMP_PATH on a first, clean run.
+std::string sha1_of(const std::string& text, const fs::path& scratch) {
+  std::ofstream(scratch, std::ios::binary) << text;
+  FILE* p = popen(("sha1sum '" + scratch.string() + "'").c_str(), "r");
+  char hex[41] = {};
+  const size_t n = fread(hex, 1, 40, p);
+  pclose(p);
+  return std::string(hex, n);
+}
+
+TEST(Cli, WrongFirstDrawIsAWarningAndEveryCaseStillRuns) {
+  const fs::path d = temp_dir("first_draw");
+  fs::create_directories(d / "cases");
+  fs::create_directories(d / "dump");
+  fs::create_directories(d / "read");
+  fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases/face_on.json", d / "cases/face_on.json");
+  // The first draw's program: one flat float, so this case draws with the planted fault too.
+  std::ofstream(d / "cases/flat_one.json") << R"({
+    "description": "One flat float of 1 over a triangle.",
+    "varyings": [{"name": "f", "size": 1, "interpolation": "flat"}],
+    "vertices": [{"clip": [-0.8, -0.75, 0.1, 1], "f": [1]},
+                 {"clip": [0.85, -0.6, -0.2, 1], "f": [1]},
+                 {"clip": [0.05, 0.9, 0.4, 1], "f": [1]}]
+  })";
+  const std::string run = "run '" + (d / "cases").string() + "' --jobs 1 --out '";
+
+  const Outcome clean = glrefcheck(run + (d / "clean").string() + "'",
+                                   "MESA_SHADER_DUMP_PATH='" + (d / "dump").string() + "'");
+  ASSERT_EQ(clean.exit_code, 0) << clean.out << clean.err;
+  EXPECT_EQ(clean.out.find("warning:"), std::string::npos) << clean.out;
+  fs::path shader;
+  std::string source;
+  for (const auto& f : fs::directory_iterator(d / "dump")) {
+    std::ifstream in(f.path());
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (f.path().filename().string().rfind("FS_", 0) == 0 &&
+        text.find("flat in float v0;") != std::string::npos)
+      shader = f.path(), source = text;
+  }
+  ASSERT_FALSE(source.empty()) << "Mesa's MESA_SHADER_DUMP_PATH wrote no fragment shader of the "
+                                  "first draw's program into "
+                               << (d / "dump");
+  ASSERT_EQ(shader.filename().string(), "FS_" + sha1_of(source, d / "scratch") + ".glsl");
+  const auto plant = [](std::string text, const std::string& input) {
+    const std::string assign = "o0 = vec4(" + input + "0, ";
+    const size_t at = text.find(assign);
+    EXPECT_NE(at, std::string::npos) << text;
+    return text.replace(at, assign.size(), "o0 = vec4(" + input + "0 + 1.0, ");
+  };
+  std::ofstream(d / "read" / shader.filename()) << plant(source, "v");
+  // The same program fed by the pass-through geometry shader reads g0 instead of v0.
+  std::string gs_source = source;
+  for (size_t at; (at = gs_source.find("v0")) != std::string::npos;)
+    gs_source.replace(at, 2, "g0");
+  std::ofstream(d / "read" / ("FS_" + sha1_of(gs_source, d / "scratch") + ".glsl"))
+      << plant(gs_source, "g");
+
+  const Outcome o = glrefcheck(run + (d / "faulty").string() + "'",
+                               "MESA_SHADER_READ_PATH='" + (d / "read").string() + "'");
+  std::cout << "[ run      ] with the planted fault, glrefcheck run printed:\n" << o.out;
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;  // a case fails; nothing is a usage error
+  EXPECT_EQ(o.err, "");
+  const std::string warning =
+      "the first draw (one triangle covering a 4x4 framebuffer) is wrong: pixel (0, 0) expected "
+      "primitive 0 and flat value 1, got primitive 0 and value 2 (16 of 16 pixels wrong); with "
+      "a pass-through geometry shader for gl_PrimitiveID: pixel (0, 0) expected primitive 0 and "
+      "flat value 1, got primitive 0 and value 2 (16 of 16 pixels wrong); cases are drawn "
+      "without a geometry shader and each passes or fails on its own";
+  EXPECT_NE(o.out.find("\nwarning: 'llvmpipe"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find(warning + "\n"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("\nPass           face_on "), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("\nFail           flat_one "), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("f.x: "), std::string::npos) << o.out;  // the value is what fails
+  EXPECT_NE(o.out.find("\n2 cases: 1 pass, 1 fail,"), std::string::npos) << o.out;
+
+  const auto json = nlohmann::json::parse(std::ifstream(d / "faulty" / "results.json"));
+  ASSERT_EQ(json["run"]["gl_warnings"].size(), 1u) << json["run"];
+  EXPECT_NE(json["run"]["gl_warnings"][0].get<std::string>().find(warning), std::string::npos);
+  EXPECT_EQ(json["summary"]["pass"].get<int>(), 1);
+  EXPECT_EQ(json["summary"]["fail"].get<int>(), 1);
+  // The clean run records no warning.
+  const auto clean_json = nlohmann::json::parse(std::ifstream(d / "clean" / "results.json"));
+  EXPECT_EQ(clean_json["run"]["gl_warnings"], nlohmann::json::array());
 }
 
 }  // namespace

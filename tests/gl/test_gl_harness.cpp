@@ -1,7 +1,8 @@
 // gl_harness on a real GL implementation. Mesa picks its driver once per process, so this
 // binary renders with one backend and driver, chosen by environment:
 //   GLRC_TEST_BACKEND = osmesa (default) | egl | egl-device
-//   GLRC_TEST_DRIVER  = llvmpipe (default) | softpipe | "" (set but empty: the platform's own)
+//   GLRC_TEST_DRIVER  = llvmpipe (default) | softpipe | zink (egl) | "" (set but empty: the
+//                       platform's own)
 // Cases are built here in C++ so that only gl_harness and core are under test.
 #include <gtest/gtest.h>
 
@@ -22,6 +23,7 @@
 #include "core/result.hpp"
 #include "gl_harness/context.hpp"
 #include "gl_harness/egl_context.hpp"
+#include "gl_harness/first_draw.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
 #include "tests/support/gl_test_target.hpp"
@@ -208,6 +210,119 @@ TEST(GlLibraries, WrongDriverIsUnavailable) {
   }
   t.driver = "";  // the platform's own driver: anything goes
   EXPECT_NO_THROW(check_driver(t, "NVIDIA H100 80GB HBM3/PCIe/SSE2", "EGL device 0"));
+  // zink names the Vulkan driver under it: llvmpipe asked for, zink on lavapipe is not it.
+  t.driver = "zink";
+  EXPECT_NO_THROW(check_driver(t, "zink (llvmpipe (LLVM 15.0.6, 256 bits))", "EGL"));
+  t.driver = "llvmpipe";
+  EXPECT_THROW(check_driver(t, "zink (llvmpipe (LLVM 15.0.6, 256 bits))", "EGL"), Unavailable);
+}
+
+TEST(GlLibraries, ZinkIsACpuDriverOnEglOnly) {
+  EXPECT_TRUE(is_mesa_cpu_driver("zink"));
+  EXPECT_TRUE(is_mesa_cpu_driver("llvmpipe"));
+  EXPECT_FALSE(is_mesa_software_driver("zink"));  // OSMesa cannot run it
+  EXPECT_FALSE(is_mesa_cpu_driver("radeonsi"));
+  // Refused before libOSMesa is touched (it would segfault in OSMesaCreateContextAttribs).
+  Target t;
+  t.backend = Backend::osmesa;
+  t.driver = "zink";
+  try {
+    create_osmesa_context(t);
+    FAIL() << "OSMesa accepted zink";
+  } catch (const Unavailable& e) {
+    EXPECT_STREQ(e.what(),
+                 "OSMesa runs Mesa's software drivers only: expected --driver llvmpipe or "
+                 "softpipe, got \"zink\" (use --backend egl)");
+  }
+}
+
+// --- The first draw, judged on synthetic frames (a wrong driver is not needed) ---
+
+// What a right implementation draws for first_draw_case().
+Frame right_first_draw() {
+  Frame f(4, 4, 1);
+  for (size_t i = 0; i < f.pixel_count(); ++i) {
+    f.primitive[i] = 0;
+    f.components[0][i] = 1.0f;
+  }
+  return f;
+}
+
+TEST(FirstDraw, CaseCoversTheWholeFramebuffer) {
+  const Case c = first_draw_case();
+  EXPECT_EQ(c.fb_width, 4);
+  EXPECT_EQ(c.fb_height, 4);
+  ASSERT_EQ(c.varyings.size(), 1u);
+  EXPECT_EQ(c.varyings[0].interpolation, Interpolation::flat);
+  // The reference agrees with what the judge expects.
+  const ref::Reference r = ref::render(c, Model{}, 8);
+  EXPECT_TRUE(judge_first_draw(r.frame).right()) << judge_first_draw(r.frame).fault;
+}
+
+TEST(FirstDraw, RightFrameIsRight) {
+  const FirstDrawVerdict v = judge_first_draw(right_first_draw());
+  EXPECT_TRUE(v.right());
+  EXPECT_EQ(v.fault, "");
+}
+
+TEST(FirstDraw, WrongFlatValueNamesPixelExpectedAndGot) {
+  Frame f = right_first_draw();
+  f.components[0][f.index(2, 1)] = 0.5f;
+  f.components[0][f.index(3, 3)] = 1.00000012f;
+  const FirstDrawVerdict v = judge_first_draw(f);
+  EXPECT_EQ(v.wrong_pixels, 2);
+  EXPECT_EQ(v.fault,
+            "pixel (2, 1) expected primitive 0 and flat value 1, got primitive 0 and value 0.5 "
+            "(2 of 16 pixels wrong)");
+}
+
+TEST(FirstDraw, WrongPrimitiveIdAndNothingDrawnAreWrong) {
+  Frame f = right_first_draw();
+  f.primitive[f.index(0, 0)] = 7;
+  EXPECT_EQ(judge_first_draw(f).fault,
+            "pixel (0, 0) expected primitive 0 and flat value 1, got primitive 7 and value 1 "
+            "(1 of 16 pixels wrong)");
+  const FirstDrawVerdict nothing = judge_first_draw(Frame(4, 4, 1));  // softpipe without a GS
+  EXPECT_EQ(nothing.wrong_pixels, 16);
+  EXPECT_EQ(nothing.fault,
+            "pixel (0, 0) expected primitive 0 and flat value 1, got primitive none and value 0 "
+            "(16 of 16 pixels wrong)");
+  EXPECT_EQ(judge_first_draw(Frame(2, 2, 1)).wrong_pixels, 16);
+}
+
+TEST(FirstDraw, GeometryShaderOnlyWhereItDrawsRight) {
+  const FirstDrawVerdict right = judge_first_draw(right_first_draw());
+  const FirstDrawVerdict nothing = judge_first_draw(Frame(4, 4, 1));
+  Frame one_off = right_first_draw();
+  one_off.components[0][0] = 2.0f;
+  const FirstDrawVerdict wrong = judge_first_draw(one_off);
+
+  // llvmpipe: right at once; the geometry shader is never tried.
+  FirstDrawChoice c = choose_first_draw(right, std::nullopt);
+  EXPECT_FALSE(c.geometry_shader);
+  EXPECT_EQ(c.warning, "");
+  // softpipe 22.3.6: nothing without, right with a geometry shader. Not a fault.
+  c = choose_first_draw(nothing, right);
+  EXPECT_TRUE(c.geometry_shader);
+  EXPECT_EQ(c.warning, "");
+  // A wrong flat value with and without: a warning, no geometry shader, the run goes on.
+  c = choose_first_draw(wrong, wrong);
+  EXPECT_FALSE(c.geometry_shader);
+  EXPECT_EQ(c.warning,
+            "the first draw (one triangle covering a 4x4 framebuffer) is wrong: pixel (0, 0) "
+            "expected primitive 0 and flat value 1, got primitive 0 and value 2 (1 of 16 pixels "
+            "wrong); with a pass-through geometry shader for gl_PrimitiveID: pixel (0, 0) "
+            "expected primitive 0 and flat value 1, got primitive 0 and value 2 (1 of 16 pixels "
+            "wrong); cases are drawn without a geometry shader and each passes or fails on its "
+            "own");
+  // Nothing drawn without, one pixel wrong with: the geometry shader draws more, and is used.
+  c = choose_first_draw(nothing, wrong);
+  EXPECT_TRUE(c.geometry_shader);
+  EXPECT_NE(c.warning.find("cases are drawn with a geometry shader"), std::string::npos);
+  // The geometry shader does not even compile: its fault is the render error.
+  c = choose_first_draw(wrong, FirstDrawVerdict{16, "no draw: case 'x': geometry shader ..."});
+  EXPECT_FALSE(c.geometry_shader);
+  EXPECT_NE(c.warning.find("gl_PrimitiveID: no draw: case 'x'"), std::string::npos) << c.warning;
 }
 
 // --- With the renderer ---
@@ -228,7 +343,8 @@ TEST_F(Gl, InfoNamesDriverAndVersion) {
   for (char ch : info.renderer)
     lower_renderer += char(std::tolower((unsigned char)ch));
   EXPECT_NE(lower_renderer.find(target().driver), std::string::npos) << info.renderer;
-  if (is_mesa_software_driver(target().driver)) {
+  EXPECT_TRUE(info.warnings.empty()) << info.warnings.front();  // the first draw is right
+  if (is_mesa_cpu_driver(target().driver)) {
     EXPECT_NE(info.version.find("Mesa"), std::string::npos) << info.version;
     // What the driver models of the reference are built on (MESA_NOTES.md).
     EXPECT_EQ(info.subpixel_bits, target().driver == "llvmpipe" ? 8 : 4);
@@ -243,7 +359,12 @@ TEST_F(Gl, InfoNamesDriverAndVersion) {
     const char* gallium = std::getenv("GALLIUM_DRIVER");
     EXPECT_STREQ(gallium ? gallium : "", target().driver.c_str());
   }
-  if (target().backend != Backend::osmesa && is_mesa_software_driver(target().driver)) {
+  if (target().driver == "zink") {
+    // GL on Vulkan, here on lavapipe (LIBGL_ALWAYS_SOFTWARE picks a CPU Vulkan device).
+    EXPECT_EQ(info.renderer.rfind("zink (", 0), 0u) << info.renderer;
+    EXPECT_EQ(target().backend, Backend::egl) << "zink runs through EGL only";
+  }
+  if (target().backend != Backend::osmesa && is_mesa_cpu_driver(target().driver)) {
     const char* software = std::getenv("LIBGL_ALWAYS_SOFTWARE");
     EXPECT_STREQ(software ? software : "", "1");
   }

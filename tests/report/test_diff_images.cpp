@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "report/coverage_image.hpp"
 #include "report/report.hpp"
 #include "tests/report/test_helpers.hpp"
 
@@ -144,6 +145,79 @@ TEST_F(ReportTest, DiffImagesWritesEveryChannelAndCoverage) {
 
   const Image coverage = read_image(dir_ / "diff" / "coverage.png");
   EXPECT_GE(coverage.width, 512);
+}
+
+// Canvas pixels of exactly the failing-pixel ring's colour in rows [0, rows), and where they lie.
+struct RingPixels {
+  size_t count = 0;
+  int min_x = 1 << 30, max_x = -1, min_y = 1 << 30, max_y = -1;
+};
+RingPixels ring_pixels(const Canvas& canvas, int rows) {
+  RingPixels r;
+  for (int y = 0; y < std::min(rows, canvas.height); ++y)
+    for (int x = 0; x < canvas.width; ++x) {
+      const float* p = &canvas.rgb[(size_t(y) * canvas.width + x) * 3];
+      if (p[0] != 0.3f || p[1] != 1.0f || p[2] != 0.2f) continue;
+      ++r.count;
+      r.min_x = std::min(r.min_x, x), r.max_x = std::max(r.max_x, x);
+      r.min_y = std::min(r.min_y, y), r.max_y = std::max(r.max_y, y);
+    }
+  return r;
+}
+
+// The same, in the size x size square at (x0, y0).
+RingPixels ring_pixels_in(const Canvas& canvas, int x0, int y0, int size) {
+  RingPixels r;
+  for (int y = y0; y < y0 + size; ++y)
+    for (int x = x0; x < x0 + size; ++x) {
+      const float* p = &canvas.rgb[(size_t(y) * canvas.width + x) * 3];
+      r.count += p[0] == 0.3f && p[1] == 1.0f && p[2] == 0.2f;
+    }
+  return r;
+}
+
+TEST(CoverageImage, RingsEveryFailingPixelAndOnlyThose) {
+  const Frame ref = reference_frame();
+  Frame gl = ref;
+  gl.primitive[gl.index(6, 2)] = 0;  // GL only, far from every edge: a fill-rule error
+  gl.primitive[gl.index(0, 4)] = Frame::kNoPrimitive;  // reference only, but an exact tie
+  std::vector<uint8_t> edges(kW * kH, 0);
+  edges[ref.index(0, 4)] = edge::tie | edge::snapping;
+  const Expectation expected{ref, edges, Frame()};
+  const int factor = upscale_factor(kW, kH);
+  ASSERT_EQ(factor, 64);
+  constexpr int kTitle = 50;  // the frame's image starts below the title
+  const int image_end = kTitle + kH * factor;
+
+  const Canvas canvas = render_coverage(expected, gl, CoverageStats{}, std::nullopt);
+  const RingPixels rings = ring_pixels(canvas, image_end);
+  // One ring of radius about 0.75 x 64 and 8 px wide: about pi (57.5^2 - 49.5^2) = 2,690
+  // canvas pixels, none clipped.
+  EXPECT_GT(rings.count, 2400u);
+  EXPECT_LT(rings.count, 3000u);
+  // Centred on frame pixel (6, 2): image column 6, image row 6 - 1 - 2 = 3.
+  const int x0 = (canvas.width - kW * factor) / 2;
+  const int cx = x0 + 6 * factor + factor / 2, cy = kTitle + 3 * factor + factor / 2;
+  EXPECT_NEAR((rings.min_x + rings.max_x) / 2.0, cx, 1.0);
+  EXPECT_NEAR((rings.min_y + rings.max_y) / 2.0, cy, 1.0);
+  // Around the pixel, not on it: no ring colour anywhere in the pixel's 64 x 64 block, corners
+  // included (the ring's inner radius, 49.5, is past the half diagonal, 45.3).
+  EXPECT_GT(rings.max_x - rings.min_x, 2 * 49);
+  const RingPixels block = ring_pixels_in(canvas, cx - factor / 2, cy - factor / 2, factor);
+  EXPECT_EQ(block.count, 0u);
+  // The legend explains the ring with a swatch of its own: a 14 x 14 square with an 8 x 8 hole.
+  EXPECT_EQ(ring_pixels(canvas, canvas.height).count, rings.count + 14 * 14 - 8 * 8);
+
+  // The exact tie fails only where ties count (--strict-coverage, --tolerance exact): a second
+  // ring, cut by the image's left edge.
+  EXPECT_GT(
+      ring_pixels(render_coverage(expected, gl, CoverageStats{}, std::nullopt, true), image_end)
+          .count,
+      rings.count + 1000);
+  // Nothing fails: no ring.
+  EXPECT_EQ(
+      ring_pixels(render_coverage(expected, ref, CoverageStats{}, std::nullopt), image_end).count,
+      0u);
 }
 
 TEST_F(ReportTest, DiffImagesShowNonFiniteValuesInMagenta) {

@@ -68,6 +68,32 @@ TEST_F(ReportTest, ResultsJsonHoldsRunSummaryAndCases) {
   EXPECT_EQ(doc["cases"][3]["status"], "ExpectedFail");
 }
 
+TEST_F(ReportTest, ResultsJsonKeepsGlWarnings) {
+  RunInfo run = run_info();
+  write_results_json(dir_ / "none" / "results.json", run, {passing_case()});
+  EXPECT_EQ(written(dir_ / "none" / "results.json")["run"]["gl_warnings"], json::array());
+  EXPECT_TRUE(read_results_json(dir_ / "none").run.gl_warnings.empty());
+
+  run.gl_warnings = {"'llvmpipe' on OSMesa: the first draw (...) is wrong: pixel (0, 0) ..."};
+  write_results_json(dir_ / "warned" / "results.json", run, {passing_case()});
+  EXPECT_EQ(written(dir_ / "warned" / "results.json")["run"]["gl_warnings"][0], run.gl_warnings[0]);
+  EXPECT_EQ(read_results_json(dir_ / "warned").run.gl_warnings, run.gl_warnings);
+
+  // Optional (earlier runs have none), but when present a list of strings.
+  json doc = written(dir_ / "warned" / "results.json");
+  doc["run"]["gl_warnings"] = "one string";
+  std::ofstream(dir_ / "warned" / "results.json") << doc.dump();
+  try {
+    read_results_json(dir_ / "warned");
+    FAIL() << "a string accepted for gl_warnings";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("run.gl_warnings"), std::string::npos) << e.what();
+  }
+  doc["run"].erase("gl_warnings");
+  std::ofstream(dir_ / "warned" / "results.json") << doc.dump();
+  EXPECT_TRUE(read_results_json(dir_ / "warned").run.gl_warnings.empty());
+}
+
 TEST_F(ReportTest, ResultsJsonWritesNonFiniteNumbersAsStrings) {
   const auto file = dir_ / "results.json";
   write_results_json(file, run_info(), {nan_case()});

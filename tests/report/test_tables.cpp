@@ -81,5 +81,66 @@ TEST(WorstPixelsTable, PrintsFloatsExactly) {
   EXPECT_NE(table.find("0.100000024"), std::string::npos) << table;
 }
 
+TEST(WorstPixelsTable, EmptyWhenNoPixelWasCompared) {
+  CaseResult r;
+  r.channels = {channel("depth", 0, 16), channel("color.x", 0, 64)};
+  EXPECT_EQ(worst_pixels_table(r, 10), "");
+}
+
+// A coverage-only failure: GL left out one pixel of a mesh (a gap on a shared edge) and
+// covered one the reference does not (fill rule); a third mismatch is an allowed tie.
+CaseResult coverage_case() {
+  CaseResult r;
+  r.name = "fan";
+  r.status = Status::fail;
+  r.coverage.failures = 2;
+  r.coverage.boundary = 1;
+  using Label = CoverageStats::Label;
+  r.coverage.mismatches = {{1, 0, 0, Frame::kNoPrimitive, false, Label::gap},
+                           {2, 1, 1, Frame::kNoPrimitive, true, Label::exact_tie},
+                           {3, 2, Frame::kNoPrimitive, 1, false, Label::fill_rule}};
+  r.channels = {channel("depth", 0, 16)};
+  return r;
+}
+
+TEST(CoverageFailuresTable, ListsFailingPixelsWithPrimitivesFragmentsAndLabel) {
+  Frame reference(4, 3, 0), gl(4, 3, 0);
+  reference.fragments.assign(12, 1);
+  gl.fragments.assign(12, 1);
+  gl.fragments[gl.index(1, 0)] = 0;
+  gl.fragments[gl.index(3, 2)] = 1;
+  reference.fragments[reference.index(3, 2)] = 0;
+  const std::string table = coverage_failures_table(coverage_case(), reference, gl, 20);
+  EXPECT_EQ(table,
+            "    x     y   ref prim    GL prim  ref frags   GL frags  coverage\n"
+            "    1     0          0          -          1          0  gap on a shared edge\n"
+            "    3     2          -          1          0          1  fill-rule error\n")
+      << table;
+}
+
+TEST(CoverageFailuresTable, AllowedTiesAreListedOnlyWhereTheyFail) {
+  CaseResult r = coverage_case();
+  r.tolerance.allow_boundary = false;  // --strict-coverage
+  r.coverage.failures = 3;
+  const std::string table = coverage_failures_table(r, Frame(), Frame(), 20);
+  EXPECT_NE(table.find("\n    2     1          1          -          -          -  exact tie\n"),
+            std::string::npos)
+      << table;
+}
+
+TEST(CoverageFailuresTable, SaysHowManyMoreFailAndIsEmptyWithoutFailures) {
+  CaseResult r = coverage_case();
+  r.coverage.failures = 40;  // compare keeps only the first mismatches
+  const std::string table = coverage_failures_table(r, Frame(), Frame(), 1);
+  EXPECT_EQ(table.find("fill-rule error"), std::string::npos) << table;  // n = 1
+  EXPECT_NE(table.find("\n39 more failing pixels (coverage.png rings every failing pixel)\n"),
+            std::string::npos)
+      << table;
+  r.coverage.failures = 2;
+  EXPECT_NE(coverage_failures_table(r, Frame(), Frame(), 1).find("\n1 more failing pixel ("),
+            std::string::npos);
+  EXPECT_EQ(coverage_failures_table(passing_case(), Frame(), Frame(), 20), "");
+}
+
 }  // namespace
 }  // namespace glrc::report::test
