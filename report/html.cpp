@@ -184,6 +184,7 @@ void run_summary(std::ostream& out, const RunResults& results) {
   if (!run.mesa_prefix.empty()) row("Mesa prefix", run.mesa_prefix);
   if (!run.gl_library.empty()) row("GL library", run.gl_library);
   row("model", run.model);
+  if (!run.model_source.empty()) row("model from", run.model_source);
   row("tolerance", run.tolerance);
   row("jobs", std::to_string(run.jobs));
   row("wall time", seconds_text(run.seconds));
