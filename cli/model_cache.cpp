@@ -63,8 +63,8 @@ std::optional<Model> model_from_json(const json& j) {
   const auto bits = j.find("subpixel_bits");
   const auto planes = j.find("planes");
   const auto tie = j.find("tie_break");
-  if (bits == j.end() || !bits->is_number_integer() || planes == j.end() ||
-      !planes->is_string() || tie == j.end() || !tie->is_string())
+  if (bits == j.end() || !bits->is_number_integer() || planes == j.end() || !planes->is_string() ||
+      tie == j.end() || !tie->is_string())
     return std::nullopt;
   Model m;
   m.subpixel_bits = bits->get<int>();
@@ -76,8 +76,8 @@ std::optional<Model> model_from_json(const json& j) {
   else
     return std::nullopt;
   bool known = false;
-  for (TieBreak t : {TieBreak::bottom_left, TieBreak::top_left, TieBreak::bottom_right,
-                     TieBreak::top_right})
+  for (TieBreak t :
+       {TieBreak::bottom_left, TieBreak::top_left, TieBreak::bottom_right, TieBreak::top_right})
     if (*tie == to_string(t)) m.tie_break = t, known = true;
   if (!known) return std::nullopt;
   return m;
