@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/model_cache.hpp"
 #include "compare/compare.hpp"
 #include "core/frame.hpp"
 #include "ref/reference.hpp"
@@ -803,7 +804,66 @@ size_t triangle_count(const std::vector<Probe>& probes) {
   return n;
 }
 
+// Sections 1 to 3: the choices the reference takes as a Model. `rnd` draws the probes; the
+// later sections draw theirs after these, so the probes are the same in every use.
+struct ModelFindings {
+  BitsFinding bits;
+  PlanesFinding planes;
+  TieFinding ties;
+  size_t coverage_frames = 0, plane_triangles = 0, tie_triangles = 0;
+  Model model() const {
+    Model m;
+    m.subpixel_bits = bits.identified;
+    m.planes = planes.identified;
+    m.tie_break = ties.identified;
+    return m;
+  }
+};
+
+ModelFindings find_model(gl::Renderer& renderer, Random& rnd) {
+  ModelFindings f;
+  const std::vector<Probe> coverage = render_all(renderer, subpixel_probes(rnd));
+  f.bits = identify_bits(coverage, renderer.info().subpixel_bits);
+  f.coverage_frames = coverage.size();
+
+  const std::vector<Probe> planes_probes =
+      render_all(renderer, {plane_triangles(rnd, 0), plane_triangles(rnd, 1)});
+  f.planes = identify_planes(planes_probes, f.bits.identified);
+  f.plane_triangles = triangle_count(planes_probes);
+
+  std::vector<TieCentre> centres;
+  std::vector<Case> tie_cases;
+  for (int k = 0; k < 2; ++k)
+    tie_cases.push_back(tie_triangles(rnd, k, size_t(k), centres));
+  const std::vector<Probe> tie_probes = render_all(renderer, std::move(tie_cases));
+  f.ties = identify_ties(tie_probes, centres, f.bits.identified);
+  f.tie_triangles = triangle_count(tie_probes);
+  return f;
+}
+
+constexpr uint64_t kSeed = 0x5eed1de47;
+
 }  // namespace
+
+Model identify_model(gl::Renderer& renderer) {
+  Random rnd(kSeed);
+  return find_model(renderer, rnd).model();
+}
+
+ModelChoice choose_model(const Options& o, gl::Renderer& renderer) {
+  if (auto chosen = model_from_command_line(o)) return *chosen;
+  const gl::GlInfo& info = renderer.info();
+  const ModelCacheSlot cache = model_cache_slot(info.renderer, info.version, driver_files(info));
+  if (const auto cached = cache.load()) return {*cached, "identify (cached)"};
+  Model m;
+  try {
+    m = identify_model(renderer);
+  } catch (const std::exception& e) {
+    return fallback_model(o, e.what());
+  }
+  cache.save(m);
+  return {m, "identify"};
+}
 
 int cmd_identify(const Options& o) {
   const auto start = Clock::now();
@@ -814,23 +874,16 @@ int cmd_identify(const Options& o) {
   fmt::print("glrefcheck identify: {} ({}), GL {}\n\n", info.renderer, o.backend, info.version);
   std::fflush(stdout);
 
-  Random rnd(0x5eed1de47);
-  const std::vector<Probe> coverage = render_all(*renderer, subpixel_probes(rnd));
-  const BitsFinding bits = identify_bits(coverage, info.subpixel_bits);
-  print_bits(bits, coverage.size());
-
-  const std::vector<Probe> planes_probes =
-      render_all(*renderer, {plane_triangles(rnd, 0), plane_triangles(rnd, 1)});
-  const PlanesFinding planes = identify_planes(planes_probes, bits.identified);
-  print_planes(planes, bits.identified, triangle_count(planes_probes));
-
-  std::vector<TieCentre> centres;
-  std::vector<Case> tie_cases;
-  for (int k = 0; k < 2; ++k)
-    tie_cases.push_back(tie_triangles(rnd, k, size_t(k), centres));
-  const std::vector<Probe> tie_probes = render_all(*renderer, std::move(tie_cases));
-  const TieFinding ties = identify_ties(tie_probes, centres, bits.identified);
-  print_ties(ties, bits.identified, triangle_count(tie_probes));
+  Random rnd(kSeed);
+  const ModelFindings found = find_model(*renderer, rnd);
+  print_bits(found.bits, found.coverage_frames);
+  print_planes(found.planes, found.bits.identified, found.plane_triangles);
+  print_ties(found.ties, found.bits.identified, found.tie_triangles);
+  const BitsFinding& bits = found.bits;
+  const PlanesFinding& planes = found.planes;
+  const TieFinding& ties = found.ties;
+  // What identify found is what run, diff and selftest would identify: keep it for them.
+  model_cache_slot(info.renderer, info.version, driver_files(info)).save(found.model());
 
   const Case provoking_case = provoking_triangles(rnd);
   const Probe provoking_probe{provoking_case, render_gl(*raw, provoking_case)};

@@ -40,12 +40,15 @@ int cmd_diff(const Options& o) {
   const Case& c = cases[0];
   const std::filesystem::path out = output_folder(o.out);
   auto renderer = open_renderer(o);
-  const RunInfo info = run_info(o, renderer->info());
-  const Checked checked = check(c, o, *renderer);
+  const ModelChoice model = choose_model(o, *renderer);
+  Options judged = o;
+  set_model(judged, model.model);
+  const RunInfo info = run_info(o, renderer->info(), model);
+  const Checked checked = check(c, judged, *renderer);
   const CaseResult& r = checked.result;
-  fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} | tolerance {}\n\n", c.name,
-             c.description, info.gl_renderer, info.gl_version, info.subpixel_bits, info.model,
-             info.tolerance);
+  fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} from {} | tolerance {}\n\n",
+             c.name, c.description, info.gl_renderer, info.gl_version, info.subpixel_bits,
+             info.model, info.model_source, info.tolerance);
   for (const std::string& w : info.gl_warnings)
     fmt::print("warning: {}\n", w);
   if (!info.gl_warnings.empty()) fmt::print("\n");
@@ -64,6 +67,8 @@ int cmd_diff(const Options& o) {
   return fails_run(r.status) ? 1 : 0;
 }
 
+// No GL here, so nothing to identify: --model identified (the default) and ideal both give the
+// fixed model of --subpixel-bits, --planes and --tie-break, which tests/digests.txt holds.
 int cmd_digest(const Options& o) {
   const auto driver = driver_models::driver_from_string(o.model);
   for (const Case& c : load_cases(o))
@@ -91,15 +96,33 @@ void add_case_options(CLI::App& app, Options& o) {
 
 void add_model_options(CLI::App& app, Options& o) {
   app.add_option("--model", o.model,
-                 "ideal: the exact reference (default); llvmpipe, softpipe: bit-exact models of "
-                 "those drivers, for --tolerance exact")
-      ->check(CLI::IsMember({"ideal", "llvmpipe", "softpipe"}));
-  app.add_option("--subpixel-bits", o.subpixel_bits, "reference snapping: 0 (none) to 16")
+                 "identified: the exact reference with the subpixel bits, planes and tie rule "
+                 "`identify` finds for the implementation, cached (default); ideal: the exact "
+                 "reference with the fixed model subpixel_bits=8 planes=unsnapped "
+                 "tie=bottom-left, or what --subpixel-bits, --planes, --tie-break say; llvmpipe, "
+                 "softpipe: bit-exact models of those drivers, for --tolerance exact")
+      ->check(CLI::IsMember({"identified", "ideal", "llvmpipe", "softpipe"}));
+  app.add_option("--subpixel-bits", o.subpixel_bits,
+                 "reference snapping: 0 (none) to 16; takes the model from the command line")
       ->check(CLI::Range(0, 16));
-  app.add_option("--planes", o.planes, "attribute planes from snapped or unsnapped positions")
+  app.add_option("--planes", o.planes,
+                 "attribute planes from snapped or unsnapped positions; takes the model from the "
+                 "command line")
       ->check(CLI::IsMember({"snapped", "unsnapped"}));
-  app.add_option("--tie-break", o.tie_break, "pixel centres on an edge")
+  app.add_option("--tie-break", o.tie_break,
+                 "pixel centres on an edge; takes the model from the command line")
       ->check(CLI::IsMember({"bottom-left", "top-left", "bottom-right", "top-right"}));
+}
+
+// Whether the subcommand that ran was given any of the model's own options.
+bool model_options_given(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands())
+    for (const char* name : {"--subpixel-bits", "--planes", "--tie-break"})
+      try {
+        if (sub->count(name) > 0) return true;
+      } catch (const CLI::OptionNotFound&) {
+      }
+  return false;
 }
 
 void add_gl_options(CLI::App& app, Options& o) {
@@ -217,6 +240,7 @@ int main_impl(int argc, char** argv) {
     fmt::print(stderr, "glrefcheck: {} (see --help)\n", e.what());
     return 2;
   }
+  o.model_given = model_options_given(app);
   try {
     if (*worker) return cmd_worker();
     // GL from a Mesa prefix needs the loader's environment at process start: the commands that

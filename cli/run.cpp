@@ -133,22 +133,23 @@ int cmd_run(const Options& o) {
 
   const Progress progress;
   size_t done = results.size() - to_check.size();
-  const auto on_start = [&](const gl::GlInfo& gl) {
+  const auto on_start = [&](const gl::GlInfo& gl, const ModelChoice& model) {
     if (prefix && !from_prefix(*prefix, gl.library))
       throw InputError("--mesa " + o.mesa + ": GL came from " +
                        (gl.library.empty() ? "an unknown library" : gl.library) +
                        ", not from the prefix (GL_VERSION " + gl.version + ")");
-    info = run_info(o, gl);
+    info = run_info(o, gl, model);
     run_fields(info);
     std::string shard;
     if (o.fraction > 1)
       shard = fmt::format(" (shard {} of {}, {} in all)", o.fraction_start, o.fraction,
                           report::count_text(all.size(), "case", "cases"));
     fmt::print(
-        "glrefcheck run: {}{} on {} ({}), GL {} | model {} | tolerance {} | {} "
+        "glrefcheck run: {}{} on {} ({}), GL {} | model {} from {} | tolerance {} | {} "
         "worker{}\n",
         report::count_text(cases.size(), "case", "cases"), shard, info.gl_renderer, o.backend,
-        info.gl_version, info.model, info.tolerance, std::min(size_t(s.jobs), to_check.size()),
+        info.gl_version, info.model, info.model_source, info.tolerance,
+        std::min(size_t(s.jobs), to_check.size()),
         std::min(size_t(s.jobs), to_check.size()) == 1 ? "" : "s");
     if (prefix) fmt::print("Mesa from {}: {}\n", info.mesa_prefix, shown_path(info.gl_library));
     for (const std::string& w : info.gl_warnings)

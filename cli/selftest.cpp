@@ -5,6 +5,7 @@
 #include <bit>
 #include <cstring>
 
+#include "cli/identify.hpp"
 #include "compare/compare.hpp"
 #include "report/format.hpp"
 #include "report/report.hpp"
@@ -43,16 +44,20 @@ struct FaultRow {
 
 }  // namespace
 
-int cmd_selftest(const Options& o) {
+int cmd_selftest(const Options& options) {
   const auto start = Clock::now();
-  const std::vector<Case> cases = load_cases(o);
-  const Baseline baseline = load_baseline(o);
-  auto renderer = open_renderer(o);
-  const RunInfo info = run_info(o, renderer->info());
+  const std::vector<Case> cases = load_cases(options);
+  const Baseline baseline = load_baseline(options);
+  auto renderer = open_renderer(options);
+  // Every case, clean and with a fault, is judged by one model.
+  const ModelChoice model = choose_model(options, *renderer);
+  Options o = options;
+  set_model(o, model.model);
+  const RunInfo info = run_info(options, renderer->info(), model);
   const int reported = renderer->info().subpixel_bits;
-  fmt::print("glrefcheck selftest: {} on {} ({}), GL {} | tolerance {}\n",
+  fmt::print("glrefcheck selftest: {} on {} ({}), GL {} | model {} from {} | tolerance {}\n",
              report::count_text(cases.size(), "case", "cases"), info.gl_renderer, o.backend,
-             info.gl_version, info.tolerance);
+             info.gl_version, info.model, info.model_source, info.tolerance);
   for (const std::string& w : info.gl_warnings)
     fmt::print("warning: {}\n", w);
 

@@ -22,6 +22,28 @@ Model model_of(const Options& o) {
   return m;
 }
 
+void set_model(Options& o, const Model& m) {
+  o.subpixel_bits = m.subpixel_bits;
+  o.planes = m.planes == Planes::snapped ? "snapped" : "unsnapped";
+  o.tie_break = to_string(m.tie_break);
+}
+
+std::optional<ModelChoice> model_from_command_line(const Options& o) {
+  // Any of the model's own options names the model outright: a developer testing a hypothesis
+  // ("is it top-left?") gets exactly the model typed, the rest at the fixed defaults.
+  if (o.model_given) return ModelChoice{model_of(o), "command line"};
+  if (o.model == "identified") return std::nullopt;
+  if (o.model == "ideal") return ModelChoice{model_of(o), "default"};
+  return ModelChoice{model_of(o), "command line"};  // a driver model
+}
+
+ModelChoice fallback_model(const Options& o, const std::string& why) {
+  std::string reason = why;
+  std::replace(reason.begin(), reason.end(), '\n', ' ');
+  if (reason.size() > 200) reason = reason.substr(0, 197) + "...";
+  return {model_of(o), "default (identify failed: " + reason + ")"};
+}
+
 int freedom_bits(const Options& o, int reported) {
   return std::max(o.spec_subpixel_bits.value_or(reported), 4);
 }
@@ -43,7 +65,7 @@ std::vector<Case> load_cases(const Options& o) {
   // Every command loads its cases first: options that cannot go together stop it here, before
   // any work.
   const bool fixed = o.varying_ulps || o.depth_ulps;
-  if (o.model != "ideal" && o.tolerance == "spec" && !fixed)
+  if (driver_models::driver_from_string(o.model) && o.tolerance == "spec" && !fixed)
     throw InputError("--model " + o.model +
                      ": a driver model is judged bit for bit (--tolerance exact) or by fixed "
                      "ULPs (--tolerance-ulps), not by the specification's allowance");
@@ -94,12 +116,14 @@ std::unique_ptr<gl::Renderer> open_renderer(const Options& o) {
   }
 }
 
-RunInfo run_info(const Options& o, const gl::GlInfo& gl) {
+RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& model) {
   RunInfo info;
   info.backend = o.backend;
   info.driver = o.driver;
-  info.model = o.model == "ideal" ? model_of(o).describe()
-                                  : o.model + " (bit-exact model of Mesa 22.3.6's driver)";
+  info.model = driver_models::driver_from_string(o.model)
+                   ? o.model + " (bit-exact model of Mesa 22.3.6's driver)"
+                   : model.model.describe();
+  info.model_source = model.source;
   info.subpixel_bits = gl.subpixel_bits;
   info.tolerance =
       o.tolerance == "exact" ? "exact"
@@ -168,6 +192,7 @@ std::string options_json(const Options& o) {
                       {"subpixel_bits", o.subpixel_bits},
                       {"planes", o.planes},
                       {"tie_break", o.tie_break},
+                      {"model_given", o.model_given},
                       {"backend", o.backend},
                       {"driver", o.driver},
                       {"device", o.device},
@@ -187,6 +212,7 @@ Options options_from_json(const std::string& text) {
   o.subpixel_bits = j.at("subpixel_bits");
   o.planes = j.at("planes");
   o.tie_break = j.at("tie_break");
+  o.model_given = j.at("model_given");
   o.backend = j.at("backend");
   o.driver = j.at("driver");
   o.device = j.at("device");

@@ -37,10 +37,15 @@ inline double seconds_since(Clock::time_point t) {
 struct Options {
   std::vector<std::string> paths;
   std::string filter;
-  // Model: the exact reference's choices, or a bit-exact model of one driver
-  std::string model = "ideal";
+  // Model: "identified" (what `identify` finds for the implementation), "ideal" (the exact
+  // reference with the choices below), or a bit-exact model of one driver ("llvmpipe",
+  // "softpipe").
+  std::string model = "identified";
   int subpixel_bits = 8;
   std::string planes = "unsnapped", tie_break = "bottom-left";
+  // Whether --subpixel-bits, --planes or --tie-break was on the command line: then the
+  // reference's model is the command line's, whatever --model says.
+  bool model_given = false;
   // GL
   std::string backend = "osmesa", driver = "llvmpipe";
   int device = 0;
@@ -67,7 +72,25 @@ struct Options {
 std::string options_json(const Options& o);
 Options options_from_json(const std::string& text);
 
+// The exact reference's model from subpixel_bits, planes and tie_break.
 Model model_of(const Options& o);
+// Sets subpixel_bits, planes and tie_break to `m` (so that model_of(o) is m).
+void set_model(Options& o, const Model& m);
+
+// The model that judges a run and where it came from.
+struct ModelChoice {
+  Model model;
+  // "identify" (found now), "identify (cached)", "command line" (--subpixel-bits, --planes,
+  // --tie-break, or a driver model), "default" (--model ideal: the fixed default model); after a
+  // failed identification "default (identify failed: why)".
+  std::string source;
+};
+// The model when the command line decides it, nullopt when the implementation must be
+// identified (--model identified, the default, with no --subpixel-bits, --planes, --tie-break).
+// With a driver model (--model llvmpipe) the reference's model only labels ties and bands.
+std::optional<ModelChoice> model_from_command_line(const Options& o);
+// The fixed default model (the command line's choices), when identification failed: `why`.
+ModelChoice fallback_model(const Options& o, const std::string& why);
 // The position freedom of the specification's tolerance: the subpixel bits the implementation
 // reports (GL requires at least 4), unless the command line names others.
 int freedom_bits(const Options& o, int reported);
@@ -78,7 +101,8 @@ std::vector<Case> load_cases(const Options& o);
 // --baseline, or an empty one; InputError for a bad file.
 Baseline load_baseline(const Options& o);
 std::unique_ptr<gl::Renderer> open_renderer(const Options& o);
-RunInfo run_info(const Options& o, const gl::GlInfo& gl);
+// The run's description; `model` is what judged it (model_from_command_line or identified).
+RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& model);
 
 // One case, end to end: reference, GL, comparison.
 struct Checked {
@@ -87,6 +111,8 @@ struct Checked {
   Frame gl;
 };
 
+// `o` holds the model that judges the case (set_model), whatever its `model` says of where it
+// came from.
 Checked check(const Case& c, const Options& o, gl::Renderer& renderer);
 // What the case is compared against: the exact reference with the specification's allowance
 // (for an implementation reporting `reported_bits`), or with --model a driver model's frame.

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "casefile/casefile.hpp"
+#include "cli/identify.hpp"
+#include "cli/model_cache.hpp"
 #include "cli/workers.hpp"
 #include "report/report.hpp"
 
@@ -112,13 +114,29 @@ int cmd_worker() {
                   {"platform", gl.platform},
                   {"subpixel_bits", gl.subpixel_bits},
                   {"primitive_id_from_geometry_shader", gl.primitive_id_from_geometry_shader},
-                  {"warnings", gl.warnings}}}});
+                  {"warnings", gl.warnings},
+                  {"driver_files", driver_files(gl)}}}});
   while (std::getline(std::cin, line)) {
     const auto job = nlohmann::json::parse(line);
+    if (job.contains("identify")) {
+      // For the tests only: a driver that crashes on identify's probes.
+      if (std::getenv("GLRC_TEST_CRASH_IDENTIFY")) std::abort();
+      try {
+        channel.send({{"identified", model_json(identify_model(*renderer))}});
+      } catch (const std::exception& e) {
+        channel.send({{"identify_error", e.what()}});
+      }
+      continue;
+    }
     const size_t index = job.at("index");
     CaseResult r;
     try {
-      r = check_one(job, o, *renderer);
+      // Every case of the run is judged by the run's model, which the runner chose.
+      Options judged = o;
+      const auto model = model_from_json(job.at("model"));
+      if (!model) throw std::runtime_error("a job without a valid model: " + line);
+      set_model(judged, *model);
+      r = check_one(job, judged, *renderer);
     } catch (const std::exception& e) {
       r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
     }

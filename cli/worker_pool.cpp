@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/model_cache.hpp"
 #include "cli/workers.hpp"
 #include "report/report.hpp"
 
@@ -60,6 +61,7 @@ struct Worker {
   int to = -1, from = -1;     // its stdin, its stdout
   std::string buffer;         // what it sent that is not yet a whole line
   bool ready = false;         // said hello
+  bool identifying = false;   // asked to identify the implementation
   std::optional<size_t> job;  // index into cases of the case it is checking
   Clock::time_point deadline;
   Clock::time_point started;
@@ -70,9 +72,8 @@ struct Worker {
 class Pool {
  public:
   Pool(const std::vector<const Case*>& cases, const Options& o, const WorkerSettings& s,
-       const std::function<void(const gl::GlInfo&)>& on_start,
-       const std::function<void(size_t, CaseResult)>& on_result)
-      : cases_(cases), s_(s), on_start_(on_start), on_result_(on_result) {
+       const OnStart& on_start, const std::function<void(size_t, CaseResult)>& on_result)
+      : cases_(cases), o_(o), s_(s), on_start_(on_start), on_result_(on_result) {
     for (size_t k = 0; k < cases.size(); ++k)
       queue_.push_back(k);
     options_line_ = options_json(o) + "\n";
@@ -121,7 +122,8 @@ class Pool {
   int next_deadline_ms() const {
     std::optional<Clock::time_point> next;
     for (const auto& w : workers_)
-      if (w.pid > 0 && (w.job || !w.ready) && (!next || w.deadline < *next)) next = w.deadline;
+      if (w.pid > 0 && (w.job || !w.ready || w.identifying) && (!next || w.deadline < *next))
+        next = w.deadline;
     if (!next) return -1;
     const double ms = std::chrono::duration<double, std::milli>(*next - Clock::now()).count();
     return int(std::clamp(std::ceil(ms), 0.0, 3.6e6));
@@ -179,6 +181,7 @@ class Pool {
       stop(w, false);  // nothing left for it: end of input lets it exit
       return;
     }
+    if (!model_) return;  // it waits for the model
     const size_t k = queue_.front();
     queue_.pop_front();
     w.job = k;
@@ -188,7 +191,8 @@ class Pool {
     const nlohmann::json job = {{"index", k},
                                 {"file", cases_[k]->source_path},
                                 {"name", cases_[k]->name},
-                                {"images", s_.images(*cases_[k])}};
+                                {"images", s_.images(*cases_[k])},
+                                {"model", model_json(model_->model)}};
     send(w, job.dump() + "\n");
   }
 
@@ -221,22 +225,50 @@ class Pool {
       w.ready = true;
       if (!started_) {
         const auto& h = msg["hello"];
-        gl::GlInfo gl;
-        gl.vendor = h.at("vendor"), gl.renderer = h.at("renderer"), gl.version = h.at("version");
-        gl.library = h.at("library"), gl.platform = h.at("platform");
-        gl.subpixel_bits = h.at("subpixel_bits");
-        gl.primitive_id_from_geometry_shader = h.value("primitive_id_from_geometry_shader", false);
-        gl.warnings = h.value("warnings", std::vector<std::string>{});
+        gl_.vendor = h.at("vendor"), gl_.renderer = h.at("renderer"), gl_.version = h.at("version");
+        gl_.library = h.at("library"), gl_.platform = h.at("platform");
+        gl_.subpixel_bits = h.at("subpixel_bits");
+        gl_.primitive_id_from_geometry_shader = h.value("primitive_id_from_geometry_shader", false);
+        gl_.warnings = h.value("warnings", std::vector<std::string>{});
         started_ = true;
-        on_start_(gl);
+        return begin_model(w, h.value("driver_files", std::vector<std::string>{}));
       }
       return assign(w);
+    }
+    if (msg.contains("identified") || msg.contains("identify_error")) {
+      w.identifying = false;
+      if (msg.contains("identify_error"))
+        return model_chosen(fallback_model(o_, msg["identify_error"].get<std::string>()));
+      const auto m = model_from_json(msg["identified"]);
+      if (!m) return model_chosen(fallback_model(o_, "a worker sent " + line.substr(0, 200)));
+      cache_.save(*m);
+      return model_chosen({*m, "identify"});
     }
     const size_t k = msg.at("index");
     CaseResult r = report::case_result_from_json(msg.at("result").dump(), "worker result");
     w.job.reset();
     finish(k, std::move(r));
     assign(w);
+  }
+
+  // The first worker said hello: the model comes from the command line, or the cache, or
+  // that worker identifies the implementation while the others wait.
+  void begin_model(Worker& w, const std::vector<std::string>& driver_files) {
+    if (auto chosen = model_from_command_line(o_)) return model_chosen(*chosen);
+    cache_ = model_cache_slot(gl_.renderer, gl_.version, driver_files);
+    if (const auto cached = cache_.load()) return model_chosen({*cached, "identify (cached)"});
+    w.identifying = true;
+    w.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                    std::chrono::duration<double>(std::max(s_.timeout, 30.0)));
+    send(w, "{\"identify\":true}\n");
+  }
+
+  // Every case is judged by `chosen`: the run starts, and the workers waiting get cases.
+  void model_chosen(const ModelChoice& chosen) {
+    model_ = chosen;
+    on_start_(gl_, chosen);
+    for (Worker& w : workers_)
+      if (w.pid > 0 && w.ready && !w.job && !w.identifying) assign(w);
   }
 
   void finish(size_t k, CaseResult r) {
@@ -261,9 +293,11 @@ class Pool {
     const std::string how = describe_exit(status);
     const std::string tail = log_tail(w.log, w.log_start);
     const auto job = w.job;
-    const bool was_ready = w.ready;
+    const bool was_ready = w.ready, was_identifying = w.identifying;
     close(w.to), close(w.from);
     w.pid = -1;
+    w.identifying = false;
+    if (was_identifying) model_chosen(fallback_model(o_, "its worker " + how));
     if (job) {
       finish(*job, lost(*job, Status::crash,
                         "worker " + how + (tail.empty() ? "" : "; its log ends: " + tail),
@@ -281,11 +315,18 @@ class Pool {
     const auto now = Clock::now();
     for (size_t k = 0; k < workers_.size(); ++k) {
       Worker& w = workers_[k];
-      if (w.pid <= 0 || now < w.deadline || (w.ready && !w.job)) continue;
+      if (w.pid <= 0 || now < w.deadline || (w.ready && !w.job && !w.identifying)) continue;
       kill(w.pid, SIGKILL);
       waitpid(w.pid, nullptr, 0);
       close(w.to), close(w.from);
       w.pid = -1;
+      if (w.identifying) {
+        w.identifying = false;
+        model_chosen(fallback_model(
+            o_, fmt::format("no answer after {} s; worker killed", std::max(s_.timeout, 30.0))));
+        if (!queue_.empty()) start(w, k);
+        continue;
+      }
       if (!w.job)
         throw InputError(fmt::format("a GL worker took over {} s to make a GL context",
                                      std::max(s_.timeout, 30.0)));
@@ -307,22 +348,26 @@ class Pool {
   }
 
   const std::vector<const Case*>& cases_;
+  const Options& o_;
   const WorkerSettings& s_;
-  const std::function<void(const gl::GlInfo&)>& on_start_;
+  const OnStart& on_start_;
   const std::function<void(size_t, CaseResult)>& on_result_;
   std::deque<size_t> queue_;
   std::vector<Worker> workers_;
   std::vector<std::string> env_;
   std::string exe_, options_line_;
   size_t done_ = 0;
-  bool started_ = false;
+  bool started_ = false;  // the first worker said hello
+  gl::GlInfo gl_;         // its GL strings
+  ModelCacheSlot cache_;
+  std::optional<ModelChoice> model_;  // what judges every case, once known
   int startup_deaths_ = 0;
 };
 
 }  // namespace
 
 void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
-                    const WorkerSettings& s, const std::function<void(const gl::GlInfo&)>& on_start,
+                    const WorkerSettings& s, const OnStart& on_start,
                     const std::function<void(size_t, CaseResult)>& on_result) {
   if (cases.empty()) return;
   // A worker that dies while we write to it must not take the runner with it.

@@ -5,12 +5,19 @@
 // either way a fresh worker takes the next case.
 //
 // Protocol, one JSON document per line. On the worker's stdin: the options (options_json), then
-// {"index": k, "file": path, "name": case name, "images": bool} per case; end of input means stop.
-// On its stdout: {"hello": {gl info}} (GL strings, subpixel bits, whether gl_PrimitiveID comes
-// from a geometry shader, and warnings: what the implementation got wrong while the context set
-// up) or {"error": "one line"} once the context exists, then
-// {"index": k, "result": CaseResult} per case. The worker's own stdout and stderr (and the
+// {"index": k, "file": path, "name": case name, "images": bool, "model": {"subpixel_bits",
+// "planes", "tie_break"}} per case, or {"identify": true}; end of input means stop. On its
+// stdout: {"hello": {gl info, "driver_files": [paths]}} (GL strings, subpixel bits, whether
+// gl_PrimitiveID comes from a geometry shader, and warnings: what the implementation got wrong
+// while the context set up) or {"error": "one line"} once the context exists, then
+// {"index": k, "result": CaseResult} per case and {"identified": model} or
+// {"identify_error": "one line"} per identify. The worker's own stdout and stderr (and the
 // driver's messages) go to a log file: a crash report quotes its last lines.
+//
+// The model: the runner decides it once per run, from the command line, or from the model cache
+// (cli/model_cache.hpp) for the first worker's GL strings and driver files, or else by asking
+// the first worker to identify the implementation (about 0.5 s); the other workers wait for it.
+// Every case of the run then carries that one model.
 #pragma once
 
 #include <filesystem>
@@ -39,12 +46,15 @@ struct WorkerSettings {
   std::function<bool(const Case&)> images = [](const Case&) { return true; };
 };
 
-// Checks `cases` in worker processes. `on_start` gets the first worker's GL strings before any
-// result (throw from it to stop the run); `on_result` gets each result as it arrives (in
-// completion order), with its index into `cases`. Throws InputError when no worker can make a
-// GL context.
+// Checks `cases` in worker processes. `on_start` gets the first worker's GL strings and the
+// model that judges every case before any result (throw from it to stop the run); `on_result`
+// gets each result as it arrives (in completion order), with its index into `cases`. Throws
+// InputError when no worker can make a GL context. An identification that fails (the worker
+// dies, times out or cannot draw a probe) leaves the run to the fixed default model
+// (fallback_model), which the model's source says.
+using OnStart = std::function<void(const gl::GlInfo&, const ModelChoice&)>;
 void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
-                    const WorkerSettings& s, const std::function<void(const gl::GlInfo&)>& on_start,
+                    const WorkerSettings& s, const OnStart& on_start,
                     const std::function<void(size_t, CaseResult)>& on_result);
 
 }  // namespace glrc::cli

@@ -107,6 +107,9 @@ struct CaseResult {
 // Run-wide facts for the reports.
 struct RunInfo {
   std::string backend, driver, model;
+  // Where `model` came from: "identify", "identify (cached)", "command line", "default"
+  // (cli's ModelChoice); empty in results written before it was recorded.
+  std::string model_source;
   std::string tolerance;  // "spec (subpixel bits 8)", "ulps" or "exact"
   int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
   std::string gl_vendor, gl_renderer, gl_version;

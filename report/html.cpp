@@ -193,6 +193,7 @@ void run_summary(std::ostream& out, const RunResults& results) {
   for (const std::string& w : run.gl_warnings)
     row("GL warning", w);
   row("model", run.model);
+  if (!run.model_source.empty()) row("model from", run.model_source);
   row("tolerance", run.tolerance);
   row("jobs", std::to_string(run.jobs));
   row("wall time", seconds_text(run.seconds));

@@ -75,6 +75,7 @@ void write_junit(const std::filesystem::path& file, const RunInfo& run,
   xml += fmt::format("  <testsuite name=\"{}\" {}>\n", suite, counts);
   xml += "    <properties>\n";
   for (const auto& [name, value] : {std::pair{"model", &run.model},
+                                    {"model_source", &run.model_source},
                                     {"gl_vendor", &run.gl_vendor},
                                     {"gl_renderer", &run.gl_renderer},
                                     {"gl_version", &run.gl_version}})

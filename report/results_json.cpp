@@ -18,6 +18,7 @@ json run_json(const RunInfo& run) {
   return {{"backend", run.backend},
           {"driver", run.driver},
           {"model", run.model},
+          {"model_source", run.model_source},
           {"tolerance", run.tolerance},
           {"gl_subpixel_bits", run.subpixel_bits},
           {"gl_vendor", run.gl_vendor},
@@ -207,6 +208,7 @@ RunInfo read_run(const Reader& rd, const json& j) {
   run.backend = rd.str(j, "run", "backend");
   run.driver = rd.str(j, "run", "driver");
   run.model = rd.str(j, "run", "model");
+  run.model_source = rd.str(j, "run", "model_source", true);
   run.tolerance = rd.str(j, "run", "tolerance");
   run.subpixel_bits = rd.integer(j, "run", "gl_subpixel_bits", 0);
   run.gl_vendor = rd.str(j, "run", "gl_vendor");

@@ -199,9 +199,15 @@ std::string md_cell(const std::string& s) {
 }
 
 nlohmann::json run_json(const RunInfo& r) {
-  return {{"backend", r.backend},       {"driver", r.driver},       {"gl_renderer", r.gl_renderer},
-          {"gl_version", r.gl_version}, {"gl_vendor", r.gl_vendor}, {"mesa_prefix", r.mesa_prefix},
-          {"model", r.model},           {"tolerance", r.tolerance}};
+  return {{"backend", r.backend},
+          {"driver", r.driver},
+          {"gl_renderer", r.gl_renderer},
+          {"gl_version", r.gl_version},
+          {"gl_vendor", r.gl_vendor},
+          {"mesa_prefix", r.mesa_prefix},
+          {"model", r.model},
+          {"model_source", r.model_source},
+          {"tolerance", r.tolerance}};
 }
 
 nlohmann::json optional_status(const std::optional<Status>& s) {

@@ -89,6 +89,7 @@ inline RunInfo run_info() {
   run.backend = "osmesa";
   run.driver = "llvmpipe";
   run.model = "subpixel_bits=8 planes=snapped tie=top_left";
+  run.model_source = "identify (cached)";
   run.gl_vendor = "Mesa";
   run.gl_renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
   run.gl_version = "4.5 (Compatibility Profile) Mesa 22.3.6";

@@ -25,6 +25,8 @@ TEST_F(ReportTest, ResultsJsonHoldsRunSummaryAndCases) {
   EXPECT_EQ(doc["run"]["driver"], "llvmpipe");
   EXPECT_EQ(doc["run"]["gl_renderer"], "llvmpipe (LLVM 15.0.6, 256 bits)");
   EXPECT_EQ(doc["run"]["seconds"], 1.75);
+  EXPECT_EQ(doc["run"]["model"], "subpixel_bits=8 planes=snapped tie=top_left");
+  EXPECT_EQ(doc["run"]["model_source"], "identify (cached)");
 
   const json& summary = doc["summary"];
   EXPECT_EQ(summary["total"], 4);

@@ -2,6 +2,7 @@
 // error is flagged, and what the text, Markdown and JSON say about it.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -402,6 +403,13 @@ TEST_F(RunCompareFiles, ComparesRunsReadBackFromResultsJson) {
   EXPECT_EQ(c.cases[1].kind, Kind::fix);
   EXPECT_EQ(c.cases[1].base, Status::fail);
   EXPECT_EQ(c.base.gl_renderer, "llvmpipe (LLVM 15.0.6, 256 bits)");
+  EXPECT_EQ(c.base.model_source, "identify (cached)");
+
+  // results.json written before model_source existed still reads, with none.
+  auto old = nlohmann::json::parse(read_text(dir_ / "base" / "results.json"));
+  old["run"].erase("model_source");
+  std::ofstream(dir_ / "base" / "results.json") << old.dump();
+  EXPECT_EQ(read_results_json(dir_ / "base").run.model_source, "");
 }
 
 // Frame digests tell bit-identical frames from frames whose statistics merely agree.
