@@ -213,4 +213,28 @@ TEST(Cli, WrongFirstDrawIsAWarningAndEveryCaseStillRuns) {
   EXPECT_EQ(clean_json["run"]["gl_warnings"], nlohmann::json::array());
 }
 
+TEST(Cli, ACaseBeyondTheSpecifiedRangeIsASkipWithTheReason) {
+  const fs::path d = temp_dir("beyond_range");
+  fs::create_directories(d / "cases");
+  // Clip coordinates of FLT_MAX: Mesa draws nothing of this triangle, the reference all of it.
+  std::ofstream(d / "cases/flt_max.json") << R"({
+    "description": "Clip coordinates of FLT_MAX, beyond the 2^32 GL guarantees.",
+    "varyings": [{"name": "c", "size": 1}],
+    "vertices": [{"clip": [-0.5, -0.5, 0, 1], "c": [0]},
+                 {"clip": ["0x1.fffffep127", -0.5, 0, 1], "c": [1]},
+                 {"clip": [-0.5, "0x1.fffffep127", 0, 1], "c": [2]}]
+  })";
+  const Outcome o = glrefcheck("run '" + (d / "cases").string() + "' --jobs 1 --out '" +
+                               (d / "out").string() + "'");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;  // not held against the implementation
+  EXPECT_NE(o.out.find("Skip           flt_max"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("outside GL's specified range: vertices[1].clip[0] = 3.40282e+38 is "
+                       "beyond 2^32"),
+            std::string::npos)
+      << o.out;
+  std::ifstream csv(d / "out/results.csv");
+  const std::string text((std::istreambuf_iterator<char>(csv)), {});
+  EXPECT_NE(text.find("flt_max,Skip,"), std::string::npos) << text;
+}
+
 }  // namespace
