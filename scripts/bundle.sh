@@ -15,8 +15,8 @@ cmake --build build-lean -j "$(nproc)" --target glrefcheck >build-lean.build.log
 rm -rf "$dir" && mkdir -p "$dir/lib"
 cp build-lean/glrefcheck "$dir/"
 strip "$dir/glrefcheck"
-# Everything ldd resolves except the C library's own parts, which the other machine has.
+# Everything ldd resolves except the C and C++ runtimes, which a newer machine has newer.
 ldd build-lean/glrefcheck | awk '$3 ~ /^\// {print $3}' |
-  grep -vE '/(libc|libm|libdl|libpthread|librt|ld-linux-x86-64)\.so' |
+  grep -vE '/(libc|libm|libdl|libpthread|librt|ld-linux-x86-64|libstdc\+\+|libgcc_s)\.so' |
   while read -r lib; do cp -L "$lib" "$dir/lib/"; done
 echo "bundled $dir/glrefcheck with $(ls "$dir/lib" | wc -l) libraries ($(du -sh "$dir" | cut -f1))"
