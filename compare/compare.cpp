@@ -204,6 +204,25 @@ PixelError pixel_error(float reference, float gl, double ulp) {
   return e;
 }
 
+float Judged::value(const Expectation& e, size_t i, int channel) const {
+  if (candidate) return channel == kDepth ? candidate->depth : candidate->values[size_t(channel)];
+  return channel == kDepth ? e.frame.depth[i] : e.frame.components[size_t(channel)][i];
+}
+
+double Judged::allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const {
+  if (!candidate || !a.per_pixel()) return a.at(i, ulp);
+  return channel == kDepth ? candidate->allowed_depth : candidate->allowed[size_t(channel)];
+}
+
+Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
+                      const Tolerance& tolerance) {
+  const int32_t pr = e.frame.primitive[i], pg = gl.primitive[i];
+  if (same_primitive(c, pr, pg)) return {true, nullptr};
+  if (tolerance.mode == ToleranceMode::exact || pg < 0) return {};
+  const Candidate* other = e.candidate(i, pg);
+  return {other != nullptr, other};
+}
+
 std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
                                                    size_t i) {
   using Label = CoverageStats::Label;
@@ -254,7 +273,7 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
 
   // Coverage first; the pixels where values are compared are kept for the channel passes, with
   // the candidate GL kept where the depth test could go either way.
-  std::vector<std::pair<size_t, const Candidate*>> compared;
+  std::vector<std::pair<size_t, Judged>> compared;
   auto& cov = r.coverage;
   cov.fragments_checked = reference.fragments.size() == reference.pixel_count() &&
                           gl.fragments.size() == gl.pixel_count();
@@ -265,12 +284,9 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
       const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
       if (pr == pg && pr == Frame::kNoPrimitive) {
         ++cov.neither;
-      } else if (same_primitive(c, pr, pg)) {
+      } else if (const Judged j = judged_against(c, expected, gl, i, tolerance); j.compared) {
         ++cov.both;
-        compared.push_back({i, nullptr});
-      } else if (const Candidate* other = exact ? nullptr : expected.candidate(i, pg)) {
-        ++cov.both;
-        compared.push_back({i, other});
+        compared.push_back({i, j});
       } else if (pg == Frame::kNoPrimitive) {
         ++cov.reference_only;
       } else if (pr == Frame::kNoPrimitive) {
@@ -302,25 +318,17 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
     acc.exact = exact;
     const bool depth = k == kDepth;
     acc.stats.name = depth ? "depth" : names[size_t(k)];
-    const std::vector<float>& ref_values =
-        depth ? reference.depth : reference.components[size_t(k)];
     const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
     const ChannelAllowance allowance(c, expected, tolerance, k);
     acc.ulps.reserve(compared.size());
     acc.ratios.reserve(compared.size());
     double largest_allowance_ulps = 0;
-    for (const auto& [i, other] : compared) {
-      const double ulp = ulps.ulp(other ? other->primitive : reference.primitive[i], k);
-      double allowed = allowance.at(i, ulp);
-      float expected_value = ref_values[i];
-      if (other) {
-        expected_value = depth ? other->depth : other->values[size_t(k)];
-        if (allowance.per_pixel())
-          allowed = depth ? other->allowed_depth : other->allowed[size_t(k)];
-      }
+    for (const auto& [i, judged] : compared) {
+      const double ulp = ulps.ulp(judged.primitive(expected, i), k);
+      const double allowed = judged.allowed(allowance, i, ulp, k);
       largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
-      acc.add(int(i % size_t(reference.width)), int(i / size_t(reference.width)), expected_value,
-              gl_values[i], ulp, allowed);
+      acc.add(int(i % size_t(reference.width)), int(i / size_t(reference.width)),
+              judged.value(expected, i, k), gl_values[i], ulp, allowed);
     }
     acc.stats.tolerance_ulps =
         allowance.per_pixel() ? largest_allowance_ulps : allowance.fixed_ulps();

@@ -68,6 +68,23 @@ inline bool same_primitive(const Case& c, int32_t reference, int32_t gl) {
   return reference == gl && reference >= 0 && size_t(reference) < c.triangles.size();
 }
 
+// What GL's values at pixel i are judged against: the reference's own fragment where both name
+// the same triangle, or, where GL kept another fragment that may win the depth test, that
+// candidate (not in exact mode, which asks for the reference's bits); nothing to compare
+// elsewhere.
+struct Judged {
+  bool compared = false;
+  const Candidate* candidate = nullptr;  // nullptr: the reference's fragment
+  int32_t primitive(const Expectation& e, size_t i) const {
+    return candidate ? candidate->primitive : e.frame.primitive[i];
+  }
+  // The expected value of channel (kDepth or a component) and the allowance there.
+  float value(const Expectation& e, size_t i, int channel) const;
+  double allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const;
+};
+Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
+                      const Tolerance& tolerance);
+
 // How pixel i's coverage disagrees with what is expected, or nothing where it does not: a
 // different primitive is an exact tie, within snapping or a fill-rule error by the expected
 // edge bits; a different fragment count (when both frames have counts) away from outer edges is

@@ -30,15 +30,18 @@ ChannelError channel_error(const Case& c, const Expectation& expected, const Fra
   const compare::UlpTable ulp_table(c);
 
   for (size_t i = 0; i < n; ++i) {
-    const int32_t prim = reference.primitive[i];
-    if (!compare::same_primitive(c, prim, gl.primitive[i])) continue;
+    const compare::Judged judged = compare::judged_against(c, expected, gl, i, tolerance);
+    if (!judged.compared) continue;
     e.compared[i] = true;
+    // Where GL kept another fragment that may win the depth test, that is the expectation.
+    const int k = depth ? compare::kDepth : channel;
+    e.reference[i] = judged.value(expected, i, k);
     // Both values are float32, so the difference is exact in double.
     e.signed_error[i] = float(double(e.gl[i]) - double(e.reference[i]));
-    const double ulp = ulp_table.ulp(prim, depth ? compare::kDepth : channel);
+    const double ulp = ulp_table.ulp(judged.primitive(expected, i), k);
     const compare::PixelError pe = compare::pixel_error(e.reference[i], e.gl[i], ulp);
     e.ulps[i] = pe.ulps;
-    const double allowed = allowance.at(i, ulp);
+    const double allowed = judged.allowed(allowance, i, ulp, k);
     e.allowed[i] = float(allowed);
     e.allowed_ulps[i] = allowed / ulp;
     if (std::isfinite(pe.ulps))

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "report/channel_error.hpp"
 #include "report/coverage_image.hpp"
 #include "report/report.hpp"
 #include "tests/report/test_helpers.hpp"
@@ -237,6 +238,28 @@ TEST_F(ReportTest, DiffImagesRejectFramesOfAnotherSize) {
   EXPECT_THROW(write_diff_images(dir_, c, Expectation{reference_frame(), {}, Frame()},
                                  Frame(4, 4, 1), CaseResult{}),
                std::runtime_error);
+}
+
+TEST(ChannelError, APixelWonByAnotherFragmentIsJudgedByThatFragment) {
+  Case c = one_triangle_case();
+  c.depth_func = DepthFunc::less;
+  c.triangles = {{0, 1, 2}, {0, 1, 2}};
+  Expectation e{reference_frame(), std::vector<uint8_t>(size_t(kW) * kH, 0), Frame()};
+  const size_t i = e.frame.index(kErrX, kErrY);
+  e.edges[i] = edge::depth_order;
+  // The second triangle's fragment at that pixel may win: its value is 7.
+  e.candidates.push_back({i, 1, 0.5f, 1e-6f, {7.0f}, {1e-6f}});
+  Frame gl = e.frame;
+  gl.primitive[i] = 1;
+  gl.components[0][i] = 7.0f;
+  const ChannelError err = channel_error(c, e, gl, 0, Tolerance{ToleranceMode::ulps});
+  EXPECT_TRUE(err.compared[i]);
+  EXPECT_EQ(err.reference[i], 7.0f);
+  EXPECT_EQ(err.signed_error[i], 0.0f);
+  // Where GL names a triangle that is neither the winner nor a candidate, nothing is compared.
+  gl.primitive[e.frame.index(0, 0)] = 1;
+  EXPECT_FALSE(
+      channel_error(c, e, gl, 0, Tolerance{ToleranceMode::ulps}).compared[e.frame.index(0, 0)]);
 }
 
 }  // namespace
