@@ -103,9 +103,10 @@ std::vector<std::string> component_names(const Case& c);
 std::vector<int> component_varying(const Case& c);
 
 // GL guarantees its floating-point arithmetic for magnitudes up to 2^32 only (OpenGL 4.6
-// section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate or attribute
-// value beyond that asks for something no implementation promises. The reason, naming the
-// first such number, or nothing when every input is within the range.
+// section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate of a vertex a
+// triangle uses, or an interpolated (not flat) value, beyond that asks for something no
+// implementation promises. The reason, naming the first such number, or nothing when every
+// input computed on is within the range.
 inline constexpr double kSpecifiedMagnitude = 0x1p32;
 std::optional<std::string> outside_specified_range(const Case& c);
 

@@ -15,15 +15,24 @@ std::optional<std::string> outside_specified_range(const Case& c) {
     return what + " = " + number +
            " is beyond 2^32, the largest magnitude GL guarantees (OpenGL 4.6 section 2.3.4.1)";
   };
+  // Only what is computed on: the positions of vertices that triangles use, and the values that
+  // are interpolated (flat values are copied, whatever their magnitude).
+  const std::vector<int> owner = component_varying(c);
+  std::vector<bool> used(c.vertices.size(), false);
+  for (const auto& t : c.triangles)
+    for (uint32_t v : t)
+      if (v < used.size()) used[v] = true;
   for (size_t v = 0; v < c.vertices.size(); ++v) {
+    if (!used[v]) continue;
     const Vertex& vertex = c.vertices[v];
     const std::string at = "vertices[" + std::to_string(v) + "].";
     for (size_t k = 0; k < 4; ++k)
       if (!(std::fabs(vertex.clip[k]) <= kSpecifiedMagnitude))
         return beyond(at + "clip[" + std::to_string(k) + "]", vertex.clip[k]);
-    for (size_t k = 0; k < vertex.values.size(); ++k)
-      if (!(std::fabs(vertex.values[k]) <= kSpecifiedMagnitude))
-        return beyond(at + (k < names.size() ? names[k] : "value"), vertex.values[k]);
+    for (size_t k = 0; k < vertex.values.size() && k < owner.size(); ++k)
+      if (c.varyings[size_t(owner[k])].interpolation != Interpolation::flat &&
+          !(std::fabs(vertex.values[k]) <= kSpecifiedMagnitude))
+        return beyond(at + names[k], vertex.values[k]);
   }
   return std::nullopt;
 }

@@ -94,6 +94,17 @@ TEST(SpecifiedRange, AFailureBeyond2To32IsReportedAsOutsideTheRange) {
   const CaseResult r = compare(c, e, gl, Tolerance{});
   EXPECT_EQ(r.status, Status::skip);
   EXPECT_EQ(r.message.rfind("outside GL's specified range: vertices[1].c.x", 0), 0u) << r.message;
+  // An unused vertex or a flat value beyond the range is never computed on: still a failure.
+  Case unused = c;
+  unused.vertices[1].values[0] = 1;
+  unused.vertices.push_back({{1e10f, 0, 0, 1}, {0}});
+  EXPECT_FALSE(outside_specified_range(unused));
+  EXPECT_EQ(compare(unused, e, gl, Tolerance{}).status, Status::fail);
+  Case flat = c;
+  flat.vertices[1].values[0] = 1;
+  flat.varyings.push_back({"f", 1, Interpolation::flat});
+  for (Vertex& v : flat.vertices) v.values.push_back(5e9f);
+  EXPECT_FALSE(outside_specified_range(flat));
   // Inside the range the same difference fails.
   c.vertices[1].values[0] = 0x1p32f;
   EXPECT_FALSE(outside_specified_range(c));
