@@ -46,11 +46,19 @@ double value_freedom(const Case& c, const TriangleSetup& t, double scale, int ge
 }
 
 Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-                     double values)
+                     double values, const std::vector<std::array<double, 2>>& anchors)
     : spread_(spread), values_(values) {
   double c[6];
   normalized_doubles(numerator, denominator, c);
   an_ = c[0], bn_ = c[1], cn_ = c[2], ad_ = c[3], bd_ = c[4], cd_ = c[5];
+  // The forms take pixel coordinates px = x - 1/2.
+  auto at = [&](double x, double y) -> std::array<double, 4> {
+    return {x, y, std::fabs(an_ * (x - 0.5) + bn_ * (y - 0.5) + cn_),
+            std::fabs(ad_ * (x - 0.5) + bd_ * (y - 0.5) + cd_)};
+  };
+  anchors_.push_back(at(0, 0));
+  for (const auto& a : anchors)
+    if (std::isfinite(a[0]) && std::isfinite(a[1])) anchors_.push_back(at(a[0], a[1]));
 }
 
 double Allowance::at(int px, int py, float value, double delta, double extra) const {
@@ -61,12 +69,14 @@ double Allowance::at(int px, int py, float value, double delta, double extra) co
   // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
   const double vx = (an_ - v * ad_) / d, vy = (bn_ - v * bd_) / d;
   const double position = std::min(1.5 * delta * (std::fabs(vx) + std::fabs(vy)), spread_);
-  // Each plane evaluated in float from the window origin: its terms' magnitudes.
-  const double n0 = cn_ - (an_ + bn_) / 2, d0 = cd_ - (ad_ + bd_) / 2;
-  const double en = std::fabs(n0) + std::fabs(an_ * x) + std::fabs(bn_ * y);
-  const double ed = std::fabs(d0) + std::fabs(ad_ * x) + std::fabs(bd_ * y);
-  const double evaluation =
-      kEvaluationRoundings * kFloatUnitRoundoff * (en + std::fabs(v) * ed) / std::fabs(d);
+  // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor.
+  double terms = 0;
+  for (const auto& a : anchors_) {
+    const double en = a[2] + std::fabs(an_ * (x - a[0])) + std::fabs(bn_ * (y - a[1]));
+    const double ed = a[3] + std::fabs(ad_ * (x - a[0])) + std::fabs(bd_ * (y - a[1]));
+    terms = std::max(terms, en + std::fabs(v) * ed);
+  }
+  const double evaluation = kEvaluationRoundings * kFloatUnitRoundoff * terms / std::fabs(d);
   return position + evaluation + values_ + extra;
 }
 

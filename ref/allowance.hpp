@@ -12,10 +12,12 @@
 // convex combination of them. Depth adds the z_w freedom of clipped vertices (freedom.hpp).
 //
 // Arithmetic. The planes N = Σ λ_i a_i and D = Σ λ_i b_i (a = v/w, b = 1/w for smooth;
-// a = v, b = 1 for noperspective and depth) evaluated in float32, anchored at the window origin,
-// and the divide N/D:
-//     c_e·u·(|N_0| + |N_x·x| + |N_y·y| + |v|·(|D_0| + |D_x·x| + |D_y·y|)) / |D|
-// with u = 2^-24 and N_0 the plane's value at the window origin.
+// a = v, b = 1 for noperspective and depth) evaluated in float32 from an anchor point, and the
+// divide N/D:
+//     c_e·u·(|N_a| + |N_x·(x - x_a)| + |N_y·(y - y_a)| + |v|·(|D_a| + ...)) / |D|
+// with u = 2^-24 and N_a the plane's value at the anchor, which is the implementation's choice:
+// the window origin, or a vertex of the polygon it rasterizes (llvmpipe anchors at the
+// triangle's vertex 0, where a vertex with a tiny w_c makes N_a huge); the largest is taken.
 //
 // Values. The float rounding of the vertex values themselves and of 1/w, c_v·u·s with s the
 // largest |v_i|; a vertex made by clipping carries values rounded once per clip plane that made
@@ -26,6 +28,9 @@
 // coordinate M and the largest |w_c|: c_d·2^-126·(1 + M)·max(1, |w|).
 // c_p = c_e = c_v = c_d = 8 roundings. Flat values are copied: allowance 0.
 #pragma once
+
+#include <array>
+#include <vector>
 
 #include "core/case.hpp"
 #include "ref/exact.hpp"
@@ -52,8 +57,10 @@ class Allowance {
   // The exact N and D of the channel (as in interpolation.hpp), in pixel coordinates; `spread`:
   // max v_i - min v_i (infinite when unknown); `values`: value_freedom above, plus ρ·spread
   // for a smooth channel of a clipped triangle.
+  // `anchors`: window positions where the implementation may anchor its planes (besides the
+  // window origin): PositionFreedom::anchors.
   Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-            double values);
+            double values, const std::vector<std::array<double, 2>>& anchors = {});
   // At pixel (px, py), whose value is `value`: `delta` is the position freedom there
   // (PositionFreedom::at, pixels) and `extra` any further absolute freedom there (depth:
   // PositionFreedom::depth_at).
@@ -62,6 +69,8 @@ class Allowance {
  private:
   double an_ = 0, bn_ = 0, cn_ = 0, ad_ = 0, bd_ = 0, cd_ = 0;
   double spread_ = 0, values_ = 0;
+  // Per anchor (the origin first): x, y and the planes' values there, |N(a)| and |D(a)|.
+  std::vector<std::array<double, 4>> anchors_;
 };
 
 }  // namespace glrc::ref

@@ -168,13 +168,19 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
       generations_ = std::max(generations_, v.generation);
     }
     delta_[0] = ConcaveEnvelope(delta);
+    for (const auto& d : delta)
+      anchors_.push_back({d[0], d[1]});
     depth_ = ConcaveEnvelope(depth);
     if (generations_ > 0)
       weight_ = ConcaveEnvelope(weight), inverse_w_ = ConcaveEnvelope(inverse_w);
   }
   // A guard-band rasterizer draws a triangle whose vertices all lie inside its guard band
   // without clipping it in x and y.
-  if (clipped && in_guard_band && whole.size() == 3) delta_[1] = ConcaveEnvelope(whole), any = true;
+  if (clipped && in_guard_band && whole.size() == 3) {
+    delta_[1] = ConcaveEnvelope(whole), any = true;
+    for (const auto& d : whole)
+      anchors_.push_back({d[0], d[1]});
+  }
   if (!any) delta_[0] = ConcaveEnvelope({{0, 0, snap_and_round(0, 0, m, subpixel_bits)}});
 
   // Orientation: 2·area moves by at most Σ_j δ_j·(|E_j.x| + |E_j.y|) to first order (E_j the

@@ -103,7 +103,8 @@ TEST(SpecifiedRange, AFailureBeyond2To32IsReportedAsOutsideTheRange) {
   Case flat = c;
   flat.vertices[1].values[0] = 1;
   flat.varyings.push_back({"f", 1, Interpolation::flat});
-  for (Vertex& v : flat.vertices) v.values.push_back(5e9f);
+  for (Vertex& v : flat.vertices)
+    v.values.push_back(5e9f);
   EXPECT_FALSE(outside_specified_range(flat));
   // Inside the range the same difference fails.
   c.vertices[1].values[0] = 0x1p32f;

@@ -219,10 +219,13 @@ TEST(Freedom, AClippedTriangleIsJudgedAsTightlyAsItsClippedPolygon) {
   RecordProperty("median_ratio", std::to_string(median));
   // Within 4x at 99% of the pixels. Where a clip plane cuts an edge close to the eye (w_c of
   // the new vertex far below the edge's ends), float32 clipping leaves 1/w_c a relative error
-  // of 2u·|w_end|/w_c, which no rounding of the exact polygon has: the bound keeps it, up to
-  // about 15x there (llvmpipe's bit-exact clipper stays far inside both: tests/driver_models).
+  // of 2u·|w_end|/w_c, which no rounding of the exact polygon has, and an implementation may
+  // anchor its planes at such a vertex, where N is huge: not knowing its fan, the bound takes
+  // every polygon vertex as a possible anchor, while each triangle of the rewritten fan has
+  // only its own three. Up to about 33x there (llvmpipe's bit-exact clipper stays inside
+  // both: tests/driver_models).
   EXPECT_LE(p99, 4.0);
-  EXPECT_LE(worst, 16.0);
+  EXPECT_LE(worst, 40.0);
   EXPECT_LT(median, 1.2);
   EXPECT_GT(median, 0.8);
 }
