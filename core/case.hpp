@@ -105,8 +105,9 @@ std::vector<int> component_varying(const Case& c);
 // GL guarantees its floating-point arithmetic for magnitudes up to 2^32 only (OpenGL 4.6
 // section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate of a vertex a
 // triangle uses, or an interpolated (not flat) value, beyond that asks for something no
-// implementation promises. The reason, naming the first such number, or nothing when every
-// input computed on is within the range.
+// implementation promises; so does a denormal clip coordinate, which may be flushed to 0. The
+// reason, naming the first such number, or nothing when every input computed on is within the
+// range.
 inline constexpr double kSpecifiedMagnitude = 0x1p32;
 std::optional<std::string> outside_specified_range(const Case& c);
 

@@ -26,9 +26,19 @@ std::optional<std::string> outside_specified_range(const Case& c) {
     if (!used[v]) continue;
     const Vertex& vertex = c.vertices[v];
     const std::string at = "vertices[" + std::to_string(v) + "].";
-    for (size_t k = 0; k < 4; ++k)
-      if (!(std::fabs(vertex.clip[k]) <= kSpecifiedMagnitude))
-        return beyond(at + "clip[" + std::to_string(k) + "]", vertex.clip[k]);
+    for (size_t k = 0; k < 4; ++k) {
+      const float x = vertex.clip[k];
+      if (!(std::fabs(x) <= kSpecifiedMagnitude))
+        return beyond(at + "clip[" + std::to_string(k) + "]", x);
+      // A denormal position may be read as 0 (GLSL lets denormals flush), which moves the
+      // vertex anywhere up to the eye: no picture is wrong then.
+      if (x != 0 && std::fpclassify(x) == FP_SUBNORMAL) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%g", double(x));
+        return at + "clip[" + std::to_string(k) + "] = " + number +
+               " is a denormal, which GLSL may flush to 0 (OpenGL 4.6 section 2.3.4.1)";
+      }
+    }
     for (size_t k = 0; k < vertex.values.size() && k < owner.size(); ++k)
       if (c.varyings[size_t(owner[k])].interpolation != Interpolation::flat &&
           !(std::fabs(vertex.values[k]) <= kSpecifiedMagnitude))

@@ -106,6 +106,11 @@ TEST(SpecifiedRange, AFailureBeyond2To32IsReportedAsOutsideTheRange) {
   for (Vertex& v : flat.vertices)
     v.values.push_back(5e9f);
   EXPECT_FALSE(outside_specified_range(flat));
+  Case denormal = unused;
+  denormal.vertices[0].clip = {0x1p-149f, 0x1p-149f, 0, 0x1p-149f};
+  EXPECT_NE(
+      outside_specified_range(denormal)->find("vertices[0].clip[0] = 1.4013e-45 is a denormal"),
+      std::string::npos);
   // Inside the range the same difference fails.
   c.vertices[1].values[0] = 0x1p32f;
   EXPECT_FALSE(outside_specified_range(c));
