@@ -72,7 +72,7 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
             coverage.classify(px, py, delta_at(px, py), shared[size_t(p)], unstable);
 
     if (!t.drawn || t.box.empty()) continue;
-    const bool clipped_sides = allowance && freedom.generations() > 0;
+    const bool clipped = allowance && freedom.generations() > 0;
     const Barycentrics b = barycentrics(t, m);
     const Plane depth_forms = depth_plane(t, b);
     const RatioEvaluator depth = depth_forms.evaluator();
@@ -110,10 +110,10 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
         const double delta = freedom.at(px, py);
         // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
         // no pixel centre is; but they move with its vertices, inwards too.
-        if (clipped_sides && viewport_side_distance(c.viewport, px, py) <= delta)
+        if (clipped && viewport_side_distance(c.viewport, px, py) <= delta)
           r.edges[i] |= edge::snapping;
         // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
-        const double weight = freedom.generations() > 0 ? freedom.weight_at(px, py) : 0.0;
+        const double weight = clipped ? freedom.weight_at(px, py) : 0.0;
         auto allowed_at = [&](size_t k, float v) {
           return planes[k].flat ? 0.0f
                                 : round_up(allowed[k].at(
@@ -138,20 +138,19 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
           candidates[i].push_back(std::move(loser));
           continue;
         }
-        if (ordered) {
-          // Keep the candidates that may still win against the new winner; the old winner is
-          // one when it was close.
-          std::vector<Candidate>& others = candidates[i];
-          std::erase_if(others,
+        // Keep the candidates that may still win against the new winner (looked up, not
+        // inserted: a pixel drawn over by a clear winner needs no entry).
+        if (const auto it = candidates.find(i); it != candidates.end())
+          std::erase_if(it->second,
                         [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
-          if (contested) {
-            Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
-            for (size_t k = 0; k < planes.size(); ++k) {
-              old.values.push_back(f.components[k][i]);
-              old.allowed.push_back(r.allowed.components[k][i]);
-            }
-            others.push_back(std::move(old));
+        // The old winner is one when it was close.
+        if (contested) {
+          Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
+          for (size_t k = 0; k < planes.size(); ++k) {
+            old.values.push_back(f.components[k][i]);
+            old.allowed.push_back(r.allowed.components[k][i]);
           }
+          candidates[i].push_back(std::move(old));
         }
         f.primitive[i] = p;
         f.depth[i] = z;
