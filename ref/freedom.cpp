@@ -169,7 +169,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     }
     delta_[0] = ConcaveEnvelope(delta);
     for (const auto& d : delta)
-      anchors_.push_back({d[0], d[1]});
+      polygon_.push_back({d[0], d[1]});
     depth_ = ConcaveEnvelope(depth);
     if (generations_ > 0)
       weight_ = ConcaveEnvelope(weight), inverse_w_ = ConcaveEnvelope(inverse_w);
@@ -179,7 +179,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   if (clipped && in_guard_band && whole.size() == 3) {
     delta_[1] = ConcaveEnvelope(whole), any = true;
     for (const auto& d : whole)
-      anchors_.push_back({d[0], d[1]});
+      whole_.push_back({d[0], d[1]});
   }
   if (!any) delta_[0] = ConcaveEnvelope({{0, 0, snap_and_round(0, 0, m, subpixel_bits)}});
 

@@ -104,9 +104,11 @@ class PositionFreedom {
   int generations() const { return generations_; }
   // The largest δ of any vertex: how far any edge can move.
   double largest() const;
-  // Window positions of the vertices an implementation may rasterize (the polygon's, and the
-  // triangle's own in a guard band): where it may anchor its attribute planes.
-  const std::vector<std::array<double, 2>>& anchors() const { return anchors_; }
+  // What an implementation may rasterize, as window positions: the clipped polygon (the
+  // triangle itself when nothing is clipped; empty when nothing is left), and the triangle
+  // itself when a guard-band rasterizer would draw it unclipped (else empty).
+  const std::vector<std::array<double, 2>>& polygon() const { return polygon_; }
+  const std::vector<std::array<double, 2>>& guard_band_triangle() const { return whole_; }
   // Whether the triangle's orientation can change (it may turn over, or become degenerate)
   // when each vertex moves within its freedom: then the coverage of the pixels it may reach is
   // not decided by the specification. Needs every w_c > 0; a triangle reaching behind the eye
@@ -117,7 +119,7 @@ class PositionFreedom {
   // The clipped polygon, the whole triangle in a guard band.
   std::array<ConcaveEnvelope, 2> delta_;
   ConcaveEnvelope depth_, weight_, inverse_w_;
-  std::vector<std::array<double, 2>> anchors_;
+  std::vector<std::array<double, 2>> polygon_, whole_;
   int generations_ = 0;
   bool may_turn_over_ = false;
 };

@@ -83,12 +83,13 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
       const int generations = freedom.generations();
       for (const ComponentPlane& cp : planes)
         allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
-                             value_freedom(c, t, cp.scale, generations), freedom.anchors());
+                             value_freedom(c, t, cp.scale, generations), freedom.polygon(),
+                             freedom.guard_band_triangle(), freedom.largest());
       const double n = c.depth_near, fa = c.depth_far;
       depth_allowed =
           Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
                     value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations),
-                    freedom.anchors());
+                    freedom.polygon(), freedom.guard_band_triangle(), freedom.largest());
     }
     for (int py = t.box.y0; py <= t.box.y1; ++py) {
       for (int px = t.box.x0; px <= t.box.x1; ++px) {

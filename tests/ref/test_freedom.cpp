@@ -183,28 +183,45 @@ TEST(Freedom, AClippedTriangleIsJudgedAsTightlyAsItsClippedPolygon) {
                               std::fabs(v.clip[1]) > v.clip[3] || std::fabs(v.clip[2]) > v.clip[3];
                      });
     if (!cut) continue;
-    // The same picture as the fan of the clipped polygon, every number rounded to float32.
+    // The same picture as a fan of the clipped polygon, every number rounded to float32: from
+    // each of its vertices in turn, since the implementation chooses its fan, and the bound of
+    // a clipped triangle holds for every choice.
     Case rewritten = c;
     rewritten.vertices.clear();
-    rewritten.triangles.clear();
     for (const Point& q : clipped)
       rewritten.vertices.push_back({{float(q.p[0]), float(q.p[1]), float(q.p[2]), float(q.p[3])},
                                     {float(q.v[0]), float(q.v[1])}});
-    for (uint32_t i = 1; i + 1 < clipped.size(); ++i)
-      rewritten.triangles.push_back({0, i, i + 1});
-    const Reference a = render(c, Model{}, 8), b = render(rewritten, Model{}, 8);
+    const Reference a = render(c, Model{}, 8);
+    std::vector<Reference> fans;
+    const auto n = uint32_t(clipped.size());
+    for (uint32_t pivot = 0; pivot < n; ++pivot) {
+      rewritten.triangles.clear();
+      for (uint32_t i = 1; i + 1 < n; ++i)
+        rewritten.triangles.push_back({pivot, (pivot + i) % n, (pivot + i + 1) % n});
+      fans.push_back(render(rewritten, Model{}, 8));
+    }
     int compared = 0;
     for (size_t i = 0; i < a.frame.pixel_count(); ++i) {
-      if (a.frame.primitive[i] != 0 || b.frame.primitive[i] < 0) continue;
+      if (a.frame.primitive[i] != 0) continue;
+      // The polygon's allowance: the largest over the fans that draw the pixel.
+      float depth = 0;
+      std::array<float, 2> values{};
+      for (const Reference& b : fans) {
+        if (b.frame.primitive[i] < 0) continue;
+        depth = std::max(depth, b.allowed.depth[i]);
+        for (size_t k = 0; k < 2; ++k)
+          values[k] = std::max(values[k], b.allowed.components[k][i]);
+      }
+      if (!(depth > 0)) continue;
       ++compared;
       auto ratio = [&](float x, float y) {
         const double r = double(x) / double(y);
         ratios.push_back(r);
         worst = std::max(worst, r);
       };
-      ratio(a.allowed.depth[i], b.allowed.depth[i]);
+      ratio(a.allowed.depth[i], depth);
       for (size_t k = 0; k < 2; ++k)
-        ratio(a.allowed.components[k][i], b.allowed.components[k][i]);
+        ratio(a.allowed.components[k][i], values[k]);
     }
     triangles += compared > 0;
   }
@@ -219,11 +236,10 @@ TEST(Freedom, AClippedTriangleIsJudgedAsTightlyAsItsClippedPolygon) {
   RecordProperty("median_ratio", std::to_string(median));
   // Within 4x at 99% of the pixels. Where a clip plane cuts an edge close to the eye (w_c of
   // the new vertex far below the edge's ends), float32 clipping leaves 1/w_c a relative error
-  // of 2u·|w_end|/w_c, which no rounding of the exact polygon has, and an implementation may
-  // anchor its planes at such a vertex, where N is huge: not knowing its fan, the bound takes
-  // every polygon vertex as a possible anchor, while each triangle of the rewritten fan has
-  // only its own three. Up to about 33x there (llvmpipe's bit-exact clipper stays inside
-  // both: tests/driver_models).
+  // of 2u·|w_end|/w_c, which no rounding of the exact polygon has; and not knowing the fan, the
+  // bound takes every triangle of the polygon's vertices as a possible fan triangle, while the
+  // rewritten polygon is drawn as fans only. Measured: p99 3.5, up to 38x (llvmpipe's
+  // bit-exact clipper stays inside both: tests/driver_models).
   EXPECT_LE(p99, 4.0);
   EXPECT_LE(worst, 40.0);
   EXPECT_LT(median, 1.2);
