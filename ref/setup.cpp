@@ -127,6 +127,9 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
   // Pixels that can be covered: pixel centres inside the (snapped or exact) window-space
   // bounding box; with a vertex at w_c <= 0 the visible part is unbounded: the whole viewport.
   t.box = viewport_box(c);
+  // Window coordinates may pass the int range (clip x of 1e8 is 3.2e9 pixels): clamp before
+  // converting, the viewport clips the box anyway.
+  auto clamp_int = [](double d) { return int(std::clamp(d, -1e9, 1e9)); };
   if (t.path == CoveragePath::snapped) {
     const double step = std::ldexp(1.0, -m.subpixel_bits);
     long lo[2] = {s[0]->at(0), s[0]->at(1)}, hi[2] = {lo[0], lo[1]};
@@ -134,10 +137,10 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
       for (int k = 0; k < 2; ++k)
         lo[k] = std::min(lo[k], s[i]->at(k)), hi[k] = std::max(hi[k], s[i]->at(k));
     // Exact in double: |s| < 2^40, and the scaling is a power of two.
-    t.box.x0 = std::max(t.box.x0, int(std::ceil(double(lo[0]) * step - 0.5)));
-    t.box.x1 = std::min(t.box.x1, int(std::floor(double(hi[0]) * step - 0.5)));
-    t.box.y0 = std::max(t.box.y0, int(std::ceil(double(lo[1]) * step - 0.5)));
-    t.box.y1 = std::min(t.box.y1, int(std::floor(double(hi[1]) * step - 0.5)));
+    t.box.x0 = std::max(t.box.x0, clamp_int(std::ceil(double(lo[0]) * step - 0.5)));
+    t.box.x1 = std::min(t.box.x1, clamp_int(std::floor(double(hi[0]) * step - 0.5)));
+    t.box.y0 = std::max(t.box.y0, clamp_int(std::ceil(double(lo[1]) * step - 0.5)));
+    t.box.y1 = std::min(t.box.y1, clamp_int(std::floor(double(hi[1]) * step - 0.5)));
   } else if (all_w_positive) {
     double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
     for (const auto& v : t.v) {
@@ -146,7 +149,6 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
         lo[k] = std::min(lo[k], w[k]), hi[k] = std::max(hi[k], w[k]);
     }
     // Only bounds the loop, coverage itself is exact: a one-pixel margin absorbs the rounding.
-    auto clamp_int = [](double d) { return int(std::clamp(d, -1e9, 1e9)); };
     t.box.x0 = std::max(t.box.x0, clamp_int(std::floor(lo[0] - 0.5) - 1));
     t.box.x1 = std::min(t.box.x1, clamp_int(std::ceil(hi[0] - 0.5) + 1));
     t.box.y0 = std::max(t.box.y0, clamp_int(std::floor(lo[1] - 0.5) - 1));

@@ -11,6 +11,8 @@ packages=(
   libglm-dev libopenimageio-dev openimageio-tools
   nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core
+  # libFuzzer targets and sanitizer builds (scripts/fuzz.sh, scripts/sanitize.sh).
+  clang libclang-rt-14-dev
   # The HTML report test opens the report in headless Chromium to check that it renders.
   chromium
 )
