@@ -45,96 +45,78 @@ double value_freedom(const Case& c, const TriangleSetup& t, double scale, int ge
          kDenormalFlushes * 0x1p-126 * m * w;
 }
 
+FanTriangles::FanTriangles(const WindowPolygon& polygon, double margin) {
+  if (!(margin >= 0)) margin = 0;
+  for (const auto& a : polygon)
+    if (!std::isfinite(a[0]) || !std::isfinite(a[1])) return;
+  const size_t n = polygon.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      for (size_t k = j + 1; k < n; ++k) {
+        const std::array<double, 2> q[3] = {polygon[i], polygon[j], polygon[k]};
+        const double area2 =
+            (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[2][0] - q[0][0]) * (q[1][1] - q[0][1]);
+        // Three vertices on one line (on one clip plane): nothing to draw.
+        if (!(std::fabs(area2) > 0)) continue;
+        Triangle t{};
+        t.box[0] = std::min({q[0][0], q[1][0], q[2][0]}) - margin;
+        t.box[1] = std::min({q[0][1], q[1][1], q[2][1]}) - margin;
+        t.box[2] = std::max({q[0][0], q[1][0], q[2][0]}) + margin;
+        t.box[3] = std::max({q[0][1], q[1][1], q[2][1]}) + margin;
+        const double orientation = area2 > 0 ? 1 : -1;
+        for (size_t e = 0; e < 3; ++e) {
+          const auto& p0 = q[e];
+          const auto& p1 = q[(e + 1) % 3];
+          // Left of p0 -> p1 for a counter-clockwise triangle: inside.
+          double ea = -(p1[1] - p0[1]) * orientation, eb = (p1[0] - p0[0]) * orientation;
+          const double length = std::hypot(ea, eb);
+          ea /= length, eb /= length;
+          t.edge[e][0] = ea, t.edge[e][1] = eb, t.edge[e][2] = margin - (ea * p0[0] + eb * p0[1]);
+          // G from the vertex q_e as the anchor (allowance.hpp).
+          const auto& p2 = q[(e + 2) % 3];
+          const double e1x = p1[0] - p0[0], e1y = p1[1] - p0[1];
+          const double e2x = p2[0] - p0[0], e2y = p2[1] - p0[1];
+          const double kappa = std::fabs(e1x * e2y) + std::fabs(e2x * e1y);
+          const double same = 2 * std::max(std::fabs(e1x * e2x), std::fabs(e1y * e2y));
+          t.condition = std::max(t.condition, (2 * kappa + same) / std::fabs(area2));
+        }
+        triangles_.push_back(t);
+      }
+}
+
+double FanTriangles::condition(double x, double y) const {
+  double g = 0;
+  for (const Triangle& t : triangles_) {
+    if (t.condition <= g) continue;
+    if (x < t.box[0] || x > t.box[2] || y < t.box[1] || y > t.box[3]) continue;
+    bool inside = true;
+    for (const auto& e : t.edge)
+      inside = inside && e[0] * x + e[1] * y + e[2] >= 0;
+    if (inside) g = t.condition;
+  }
+  return g;
+}
+
 Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-                     double values, const WindowPolygon& polygon, const WindowPolygon& guard_band,
-                     double margin)
+                     double values, const WindowPolygon& polygon, const WindowPolygon& guard_band)
     : spread_(spread), values_(values) {
   double c[6];
   normalized_doubles(numerator, denominator, c);
   an_ = c[0], bn_ = c[1], cn_ = c[2], ad_ = c[3], bd_ = c[4], cd_ = c[5];
   // The forms take pixel coordinates px = x - 1/2.
-  auto n_at = [&](double x, double y) { return an_ * (x - 0.5) + bn_ * (y - 0.5) + cn_; };
-  auto d_at = [&](double x, double y) { return ad_ * (x - 0.5) + bd_ * (y - 0.5) + cd_; };
-  anchors_.push_back({0, 0, std::fabs(n_at(0, 0)), std::fabs(d_at(0, 0))});
-  if (!(margin >= 0)) margin = 0;
-  bool finite = true;
+  auto at = [&](double x, double y, bool fan) {
+    return Anchor{x, y, std::fabs(an_ * (x - 0.5) + bn_ * (y - 0.5) + cn_),
+                  std::fabs(ad_ * (x - 0.5) + bd_ * (y - 0.5) + cd_), fan};
+  };
+  anchors_.push_back(at(0, 0, false));
   for (const WindowPolygon* p : {&polygon, &guard_band})
-    for (const auto& a : *p) {
-      const bool here = std::isfinite(a[0]) && std::isfinite(a[1]);
-      if (here)
-        anchors_.push_back({a[0], a[1], std::fabs(n_at(a[0], a[1])), std::fabs(d_at(a[0], a[1]))});
-      finite = finite && (here || p != &polygon);
-    }
-  if (finite) {
-    // Every triangle of the polygon's vertices may be one of the implementation's fan.
-    const size_t n = polygon.size();
-    for (size_t i = 0; i < n; ++i)
-      for (size_t j = i + 1; j < n; ++j)
-        for (size_t k = j + 1; k < n; ++k) {
-          const std::array<double, 2> q[3] = {polygon[i], polygon[j], polygon[k]};
-          const double area2 =
-              (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[2][0] - q[0][0]) * (q[1][1] - q[0][1]);
-          // Three vertices on one line (on one clip plane): nothing to draw.
-          if (!(std::fabs(area2) > 0)) continue;
-          FanTriangle t{};
-          t.box[0] = std::min({q[0][0], q[1][0], q[2][0]}) - margin;
-          t.box[1] = std::min({q[0][1], q[1][1], q[2][1]}) - margin;
-          t.box[2] = std::max({q[0][0], q[1][0], q[2][0]}) + margin;
-          t.box[3] = std::max({q[0][1], q[1][1], q[2][1]}) + margin;
-          const double orientation = area2 > 0 ? 1 : -1;
-          for (int e = 0; e < 3; ++e) {
-            const auto& a = q[e];
-            const auto& b = q[(e + 1) % 3];
-            // Left of a->b for a counter-clockwise triangle: inside.
-            double ea = -(b[1] - a[1]) * orientation, eb = (b[0] - a[0]) * orientation;
-            const double length = std::hypot(ea, eb);
-            ea /= length, eb /= length;
-            t.edge[e][0] = ea, t.edge[e][1] = eb, t.edge[e][2] = -(ea * a[0] + eb * a[1]) + margin;
-          }
-          for (int a = 0; a < 3; ++a) {
-            const auto& qi = q[a];
-            const auto& qj = q[(a + 1) % 3];
-            const auto& qk = q[(a + 2) % 3];
-            const double e1x = qj[0] - qi[0], e1y = qj[1] - qi[1];
-            const double e2x = qk[0] - qi[0], e2y = qk[1] - qi[1];
-            const double n_i = n_at(qi[0], qi[1]), d_i = d_at(qi[0], qi[1]);
-            const double dn1 = std::fabs(n_at(qj[0], qj[1]) - n_i),
-                         dn2 = std::fabs(n_at(qk[0], qk[1]) - n_i);
-            const double dd1 = std::fabs(d_at(qj[0], qj[1]) - d_i),
-                         dd2 = std::fabs(d_at(qk[0], qk[1]) - d_i);
-            const double inverse = 1 / std::fabs(area2);
-            SetupAnchor& s = t.anchor[a];
-            s.x = qi[0], s.y = qi[1], s.n = n_i, s.d = d_i;
-            s.nx = (dn1 * std::fabs(e2y) + dn2 * std::fabs(e1y)) * inverse;
-            s.ny = (dn1 * std::fabs(e2x) + dn2 * std::fabs(e1x)) * inverse;
-            s.dx = (dd1 * std::fabs(e2y) + dd2 * std::fabs(e1y)) * inverse;
-            s.dy = (dd1 * std::fabs(e2x) + dd2 * std::fabs(e1x)) * inverse;
-            s.kappa = (std::fabs(e1x * e2y) + std::fabs(e2x * e1y)) * inverse;
-          }
-          fan_.push_back(t);
-        }
-  }
+    for (const auto& a : *p)
+      if (std::isfinite(a[0]) && std::isfinite(a[1]))
+        anchors_.push_back(at(a[0], a[1], p == &polygon));
 }
 
-double Allowance::setup_at(double x, double y, double n, double d, double v) const {
-  double worst = 0;
-  for (const FanTriangle& t : fan_) {
-    if (x < t.box[0] || x > t.box[2] || y < t.box[1] || y > t.box[3]) continue;
-    bool inside = true;
-    for (const auto& e : t.edge)
-      inside = inside && e[0] * x + e[1] * y + e[2] >= 0;
-    if (!inside) continue;
-    for (const SetupAnchor& s : t.anchor) {
-      const double ax = std::fabs(x - s.x), ay = std::fabs(y - s.y);
-      const double in = s.nx * ax + s.ny * ay + s.kappa * std::fabs(n - s.n);
-      const double id = s.dx * ax + s.dy * ay + s.kappa * std::fabs(d - s.d);
-      worst = std::max(worst, in + std::fabs(v) * id);
-    }
-  }
-  return worst;
-}
-
-double Allowance::at(int px, int py, float value, double delta, double extra) const {
+double Allowance::at(int px, int py, float value, double delta, double extra,
+                     double condition) const {
   const double v = double(value);
   const double x = px + 0.5, y = py + 0.5;  // window coordinates of the centre
   const double d = ad_ * px + bd_ * py + cd_;
@@ -142,18 +124,20 @@ double Allowance::at(int px, int py, float value, double delta, double extra) co
   // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
   const double vx = (an_ - v * ad_) / d, vy = (bn_ - v * bd_) / d;
   const double position = std::min(1.5 * delta * (std::fabs(vx) + std::fabs(vy)), spread_);
-  // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor.
-  double terms = 0;
-  for (const auto& a : anchors_) {
-    const double en = a[2] + std::fabs(an_ * (x - a[0])) + std::fabs(bn_ * (y - a[1]));
-    const double ed = a[3] + std::fabs(ad_ * (x - a[0])) + std::fabs(bd_ * (y - a[1]));
+  // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor;
+  // and set up from a fan triangle anchored at a polygon vertex.
+  const double gn = std::fabs(an_) + std::fabs(bn_), gd = std::fabs(ad_) + std::fabs(bd_);
+  double terms = 0, setup = 0;
+  for (const Anchor& a : anchors_) {
+    const double dx = std::fabs(x - a.x), dy = std::fabs(y - a.y);
+    const double en = a.n + std::fabs(an_) * dx + std::fabs(bn_) * dy;
+    const double ed = a.d + std::fabs(ad_) * dx + std::fabs(bd_) * dy;
     terms = std::max(terms, en + std::fabs(v) * ed);
+    if (a.fan) setup = std::max(setup, (gn + std::fabs(v) * gd) * std::max(dx, dy));
   }
   const double evaluation = kEvaluationRoundings * kFloatUnitRoundoff * terms / std::fabs(d);
-  const double n = an_ * px + bn_ * py + cn_;
-  const double setup =
-      kSetupRoundings * kFloatUnitRoundoff * setup_at(x, y, n, d, v) / std::fabs(d);
-  return position + evaluation + setup + values_ + extra;
+  const double set_up = kSetupRoundings * kFloatUnitRoundoff * condition * setup / std::fabs(d);
+  return position + evaluation + set_up + values_ + extra;
 }
 
 }  // namespace glrc::ref

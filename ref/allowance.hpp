@@ -20,24 +20,28 @@
 // triangle's vertex 0, where a vertex with a tiny w_c makes N_a huge); the largest is taken.
 //
 // Setup. The plane's gradient is computed in float32 from one triangle of the implementation's
-// fan, anchored at one of its vertices i, with edges e1 = q_j - q_i, e2 = q_k - q_i and value
-// differences da1, da2 (llvmpipe's calc_coef4, softpipe's setup_tri_coefficients):
+// fan, anchored at one of its vertices q_i, with edges e1 = q_j - q_i, e2 = q_k - q_i and value
+// differences da1 = ∇N·e1, da2 = ∇N·e2 (llvmpipe's calc_coef4, softpipe's setup_tri_coefficients):
 //     ∂N/∂x = (da1·e2.y - da2·e1.y) / 2A,   ∂N/∂y = (da2·e1.x - da1·e2.x) / 2A
 // The differences' own roundings are consistent moves of a vertex or of a value (covered
 // above); what is not: each product's rounding, u·(|da1·e2.y| + |da2·e1.y|)/|2A| in ∂N/∂x (and
 // likewise in y), which no longer cancels where the fan triangle is a sliver; and 2A computed
 // from two rounded products, a relative error κ·u common to both components, κ = (|e1.x·e2.y|
-// + |e2.x·e1.y|)/|2A|, which scales the plane about q_i: κ·u·|N(p) - N(q_i)|. Carried to the
-// pixel p by |x - x_i| and |y - y_i|, with c_s roundings:
-//     c_s·u·(T_x·|x - x_i| + T_y·|y - y_i| + κ·|N(p) - N_i|   + |v|·(the same for D)) / |D|
-// The fan is the implementation's, so every triangle of the polygon's vertices that holds the
-// pixel (within the vertices' position freedom) and each of its vertices as the anchor is
-// tried, and the largest taken. Large only inside slivers: a clipped vertex close to another
-// one makes them, and llvmpipe's fan uses them (measured: 2.3e-4 relative error in N on one).
-// This is the setup of an implementation that clips (Mesa's draw module, then float planes
-// from unsnapped positions). Not covered: a guard-band rasterizer that sets up float gradients
-// the same way on a triangle reaching far outside the viewport; one that snaps first has 2A
-// exact and interpolates from its vertices (evaluation above), and that is what is assumed.
+// + |e2.x·e1.y|)/|2A|, which scales the plane about q_i: κ·u·|N(p) - N(q_i)|. With |da| <=
+// |N_x·e.x| + |N_y·e.y| and |N(p) - N(q_i)| <= |N_x|·|x - x_i| + |N_y|·|y - y_i|, all of it is at
+// most G·u·(|N_x| + |N_y|)·max(|x - x_i|, |y - y_i|), with G = 2κ + 2·max(|e1.x·e2.x|,
+// |e1.y·e2.y|)/|2A| a number of the triangle's shape alone (about 5 for a well-shaped one,
+// hundreds for a sliver). So, with c_s roundings:
+//     c_s·u·G(p)·max_i ((|N_x| + |N_y|)·d_i + |v|·(|D_x| + |D_y|)·d_i) / |D|,  d_i = max(|x-x_i|,
+//     |y-y_i|)
+// The fan is the implementation's: G(p) is the largest G of any triangle of the polygon's
+// vertices that holds the pixel (within the vertices' position freedom; FanTriangles), and q_i
+// ranges over the polygon's vertices. Large only inside slivers: a clipped vertex close to
+// another one makes them, and llvmpipe's fan uses them (measured: 2.3e-4 relative error in N
+// on one). This is the setup of an implementation that clips (Mesa's draw module, then float
+// planes from unsnapped positions). Not covered: a guard-band rasterizer that sets up float
+// gradients the same way on a triangle reaching far outside the viewport; one that snaps first
+// has 2A exact and interpolates from its vertices (evaluation above), and that is assumed.
 //
 // Values. The float rounding of the vertex values themselves and of 1/w, c_v·u·s with s the
 // largest |v_i|; a vertex made by clipping carries values rounded once per clip plane that made
@@ -74,6 +78,30 @@ float round_up(double bound);
 // channel of largest vertex magnitude `scale` on triangle t of case c.
 double value_freedom(const Case& c, const TriangleSetup& t, double scale, int generations);
 
+// The triangles of a polygon's vertices: every triangle an implementation's fan of it may have
+// (for a convex polygon, any of them is in some triangulation), and which of them hold a pixel.
+// Built once per triangle of the case and shared by every channel's Allowance.
+class FanTriangles {
+ public:
+  FanTriangles() = default;
+  // `polygon`: window positions (PositionFreedom::polygon); `margin`: how far outside a
+  // triangle a pixel centre may lie and still be drawn with it (the vertices' largest position
+  // freedom, pixels). Three vertices on one line make no triangle.
+  FanTriangles(const WindowPolygon& polygon, double margin);
+  size_t size() const { return triangles_.size(); }
+  // G(p) above: the largest shape factor G of the triangles that hold the window point (x, y)
+  // within the margin; 0 when none does.
+  double condition(double x, double y) const;
+
+ private:
+  struct Triangle {
+    double box[4];      // x0, y0, x1, y1 grown by the margin
+    double edge[3][3];  // a·x + b·y + c >= 0 inside: unit normals, c grown by the margin
+    double condition;   // G
+  };
+  std::vector<Triangle> triangles_;
+};
+
 // The allowance of one interpolated channel (a varying component or depth) over one triangle.
 class Allowance {
  public:
@@ -81,38 +109,28 @@ class Allowance {
   // The exact N and D of the channel (as in interpolation.hpp), in pixel coordinates; `spread`:
   // max v_i - min v_i (infinite when unknown); `values`: value_freedom above, plus ρ·spread
   // for a smooth channel of a clipped triangle.
-  // `polygon` and `guard_band`: what the implementation may rasterize (PositionFreedom::polygon
-  // and guard_band_triangle): their vertices are where it may anchor its planes (besides the
-  // window origin), and the triangles of the polygon's vertices are its possible fan
-  // triangles, which hold a pixel when it lies within `margin` pixels of them (the vertices'
-  // largest position freedom).
+  // `polygon`: the vertices of the polygon the implementation rasterizes, where its fan
+  // triangles may be anchored (PositionFreedom::polygon); `guard_band`: the guard-band
+  // triangle's (PositionFreedom::guard_band_triangle). Both, and the window origin, are where
+  // the planes may be evaluated from.
   Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-            double values, const WindowPolygon& polygon = {}, const WindowPolygon& guard_band = {},
-            double margin = 0);
+            double values, const WindowPolygon& polygon = {}, const WindowPolygon& guard_band = {});
   // At pixel (px, py), whose value is `value`: `delta` is the position freedom there
-  // (PositionFreedom::at, pixels) and `extra` any further absolute freedom there (depth:
-  // PositionFreedom::depth_at).
-  double at(int px, int py, float value, double delta, double extra = 0) const;
+  // (PositionFreedom::at, pixels), `extra` any further absolute freedom there (depth:
+  // PositionFreedom::depth_at), `condition` the setup's G(p) (FanTriangles::condition).
+  double at(int px, int py, float value, double delta, double extra = 0,
+            double condition = 0) const;
 
  private:
   double an_ = 0, bn_ = 0, cn_ = 0, ad_ = 0, bd_ = 0, cd_ = 0;
   double spread_ = 0, values_ = 0;
-  // Per anchor (the origin first): x, y and the planes' values there, |N(a)| and |D(a)|.
-  std::vector<std::array<double, 4>> anchors_;
-  // A possible fan triangle: its edge functions, grown by the margin, and per vertex as the
-  // anchor the setup terms above.
-  struct SetupAnchor {
-    double x, y, n, d;      // position, N and D there (signed)
-    double nx, ny, dx, dy;  // T_x and T_y of N, of D
-    double kappa;           // the condition of 2A from that vertex
+  // Per anchor (the origin first): x, y, the planes' values there, |N(a)| and |D(a)|, and
+  // whether a fan triangle may be set up from it (a vertex of the polygon).
+  struct Anchor {
+    double x, y, n, d;
+    bool fan;
   };
-  struct FanTriangle {
-    double box[4];      // x0, y0, x1, y1 grown by the margin
-    double edge[3][3];  // a·x + b·y + c >= 0 inside, normalized, minus the margin
-    SetupAnchor anchor[3];
-  };
-  std::vector<FanTriangle> fan_;
-  double setup_at(double x, double y, double n, double d, double v) const;
+  std::vector<Anchor> anchors_;
 };
 
 }  // namespace glrc::ref

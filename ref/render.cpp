@@ -79,17 +79,24 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
     const std::vector<ComponentPlane> planes = component_planes(c, t, b);
     std::vector<Allowance> allowed;
     Allowance depth_allowed;
+    // The implementation's possible fan triangles, shared by every channel; and where its
+    // planes may be anchored.
+    const FanTriangles fan =
+        allowance ? FanTriangles(freedom.polygon(), freedom.largest()) : FanTriangles();
+    WindowPolygon anchors = freedom.polygon();
+    for (const auto& q : freedom.guard_band_triangle())
+      anchors.push_back(q);
     if (allowance) {
       const int generations = freedom.generations();
       for (const ComponentPlane& cp : planes)
         allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
                              value_freedom(c, t, cp.scale, generations), freedom.polygon(),
-                             freedom.guard_band_triangle(), freedom.largest());
+                             freedom.guard_band_triangle());
       const double n = c.depth_near, fa = c.depth_far;
       depth_allowed =
           Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
                     value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations),
-                    freedom.polygon(), freedom.guard_band_triangle(), freedom.largest());
+                    freedom.polygon(), freedom.guard_band_triangle());
     }
     for (int py = t.box.y0; py <= t.box.y1; ++py) {
       for (int px = t.box.x0; px <= t.box.x1; ++px) {
@@ -115,14 +122,16 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
           r.edges[i] |= edge::snapping;
         // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
         const double weight = clipped ? freedom.weight_at(px, py) : 0.0;
+        const double condition = fan.condition(px + 0.5, py + 0.5);
         auto allowed_at = [&](size_t k, float v) {
-          return planes[k].flat ? 0.0f
-                                : round_up(allowed[k].at(
-                                      px, py, v, delta,
-                                      component_smooth[k] ? weight * planes[k].spread : 0.0));
+          return planes[k].flat
+                     ? 0.0f
+                     : round_up(allowed[k].at(px, py, v, delta,
+                                              component_smooth[k] ? weight * planes[k].spread : 0.0,
+                                              condition));
         };
         const float z_allowed =
-            round_up(depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py)));
+            round_up(depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition));
         // Depths within each other's allowances: either fragment may win the depth test.
         auto close = [&](float other, float other_allowed) {
           return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);

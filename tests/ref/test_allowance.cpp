@@ -92,9 +92,9 @@ TEST(Allowance, FlatIsExactAndDepthIsPositive) {
   ASSERT_EQ(r.frame.primitive[i], 0);
   EXPECT_EQ(r.allowed.components[0][i], 0.0f);
   // z_w changes by 1/64 per pixel along x and along y: 1.5·2^-8·(1/64 + 1/64) from position,
-  // plus a little arithmetic.
+  // plus a little arithmetic (evaluation and setup: under 2%).
   EXPECT_GT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64));
-  EXPECT_LT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64) * 1.01);
+  EXPECT_LT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64) * 1.02);
 }
 
 TEST(Allowance, GrowsWithDistanceFromTheOrigin) {
