@@ -1,6 +1,7 @@
 #include "report/channel_error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -95,6 +96,61 @@ ChannelError as_ratio_map(const ChannelError& e) {
   m.name = e.name + " actual/allowed";
   m.allowed_ulps.assign(m.ulps.size(), 1.0);  // over 1 fails
   return m;
+}
+
+namespace {
+
+// How bad pixel i is, for choosing what a block or a tile shows: compared first, then a
+// non-finite error, then the share of the allowance, then the error.
+std::array<double, 4> badness(const ChannelError& e, size_t i) {
+  if (!e.compared[i]) return {0, 0, 0, 0};
+  const double ulps = e.ulps[i], allowed = e.allowed_ulps[i];
+  const bool finite = std::isfinite(ulps);
+  double share = finite ? (allowed > 0 ? ulps / allowed : (ulps > 0 ? INFINITY : 0)) : INFINITY;
+  if (std::isnan(share)) share = INFINITY;
+  return {1, finite ? 0.0 : 1.0, share, finite ? ulps : 0.0};
+}
+
+}  // namespace
+
+ChannelError downsampled(const ChannelError& e, int factor) {
+  if (factor <= 1) return e;
+  ChannelError d;
+  d.name = e.name, d.quantity = e.quantity, d.unit = e.unit, d.judged = e.judged;
+  d.width = (e.width + factor - 1) / factor;
+  d.height = (e.height + factor - 1) / factor;
+  d.max_finite_ulps = e.max_finite_ulps;
+  d.non_finite = e.non_finite;
+  const size_t n = size_t(d.width) * size_t(d.height);
+  d.reference.resize(n), d.gl.resize(n), d.signed_error.resize(n), d.allowed.resize(n);
+  d.ulps.resize(n), d.allowed_ulps.resize(n), d.compared.resize(n);
+  for (int by = 0; by < d.height; ++by)
+    for (int bx = 0; bx < d.width; ++bx) {
+      size_t pick = size_t(by * factor) * size_t(e.width) + size_t(bx * factor);
+      std::array<double, 4> worst = badness(e, pick);
+      for (int y = by * factor; y < std::min(e.height, (by + 1) * factor); ++y)
+        for (int x = bx * factor; x < std::min(e.width, (bx + 1) * factor); ++x) {
+          const size_t i = size_t(y) * size_t(e.width) + size_t(x);
+          const auto b = badness(e, i);
+          if (b > worst) worst = b, pick = i;
+        }
+      const size_t o = size_t(by) * size_t(d.width) + size_t(bx);
+      d.reference[o] = e.reference[pick], d.gl[o] = e.gl[pick];
+      d.signed_error[o] = e.signed_error[pick], d.allowed[o] = e.allowed[pick];
+      d.ulps[o] = e.ulps[pick], d.allowed_ulps[o] = e.allowed_ulps[pick];
+      d.compared[o] = e.compared[pick];
+    }
+  return d;
+}
+
+long worst_pixel(const ChannelError& e) {
+  long pick = -1;
+  std::array<double, 4> worst{0, 0, 0, 0};
+  for (size_t i = 0; i < e.compared.size(); ++i) {
+    const auto b = badness(e, i);
+    if (b[0] > 0 && (pick < 0 || b > worst)) worst = b, pick = long(i);
+  }
+  return pick;
 }
 
 }  // namespace glrc::report

@@ -44,4 +44,14 @@ ChannelError as_allowance_map(const ChannelError& e);
 // How much of the allowance each pixel used: error / allowance (over 1 fails).
 ChannelError as_ratio_map(const ChannelError& e);
 
+// The map shrunk by `factor` in x and y (blocks of factor x factor pixels; the last ones may be
+// partial), each block showing its worst pixel: a non-finite error first, then the largest
+// share of the allowance, then the largest error, so that no failure disappears from a picture
+// of a large frame. max_finite_ulps and non_finite keep the whole frame's values.
+ChannelError downsampled(const ChannelError& e, int factor);
+
+// The pixel whose error uses the largest share of its allowance (non-finite first); -1 when
+// nothing is compared.
+long worst_pixel(const ChannelError& e);
+
 }  // namespace glrc::report

@@ -57,7 +57,9 @@ std::string coverage_failures_table(const CaseResult& r, const Frame& reference,
 // Writes, for depth and each component, colour-mapped PNG heatmaps with legends of the error
 // (_error.png), of the allowance (_allowed.png) and of their ratio (_ratio.png); EXRs of the
 // signed error, the allowance, and the GL and reference values; and coverage.png. Returns the
-// files.
+// files. A frame over 2^20 pixels gets maps only of its failing channels, shrunk to 1024 pixels
+// on the long side (each pixel the worst of its block), and EXRs of a 256 x 256 tile around each
+// one's worst pixel (_error_tile.exr, ...), so that pictures of any frame stay small and quick.
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
                                                      const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r);

@@ -177,6 +177,79 @@ RingPixels ring_pixels_in(const Canvas& canvas, int x0, int y0, int size) {
   return r;
 }
 
+// A frame over 2^20 pixels: maps of the failing channel only, shrunk to at most 1024 pixels on
+// the long side with the failing pixel kept, and full-resolution EXR tiles around it; nothing
+// of the passing channel. (A 4096 x 4096 case with 7 vec4 varyings wrote 204 files and 1.2 GB
+// before; now 7.3 MB.)
+TEST_F(ReportTest, LargeFramesGetShrunkMapsOfFailingChannelsAndTilesAroundTheWorstPixel) {
+  constexpr int w = 1100, h = 1000, bad_x = 1001, bad_y = 77;
+  Case c;
+  c.name = "large";
+  c.fb_width = w, c.fb_height = h;
+  c.viewport = {0, 0, w, h};
+  c.varyings = {{"v", 2, Interpolation::smooth}};
+  c.vertices = {{{-1, -1, 0, 1}, {1, 1}}, {{3, -1, 0, 1}, {1, 1}}, {{-1, 3, 0, 1}, {1, 1}}};
+  c.triangles = {{0, 1, 2}};
+  Frame ref(w, h, 2);
+  ref.primitive.assign(ref.pixel_count(), 0);
+  ref.depth.assign(ref.pixel_count(), 0.5f);
+  for (auto& component : ref.components)
+    component.assign(ref.pixel_count(), 1.0f);
+  Frame allowed(w, h, 2);
+  allowed.primitive = ref.primitive;
+  allowed.depth.assign(ref.pixel_count(), 0x1p-20f);
+  for (auto& component : allowed.components)
+    component.assign(ref.pixel_count(), 0x1p-20f);
+  Frame gl = ref;
+  gl.components[0][gl.index(bad_x, bad_y)] = 1.5f;
+  CaseResult r;
+  r.name = c.name;
+  r.channels.resize(3);
+  r.channels[0].name = "depth", r.channels[1].name = "v.x", r.channels[2].name = "v.y";
+  r.channels[1].over_tolerance = 1;
+
+  const auto files = write_diff_images(
+      dir_ / "large", c, Expectation{ref, std::vector<uint8_t>(size_t(w) * h, 0), allowed}, gl, r);
+  std::vector<std::string> names;
+  for (const auto& f : files)
+    names.push_back(f.filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"coverage.png", "v.x_allowed.png", "v.x_allowed_tile.exr",
+                                      "v.x_error.png", "v.x_error_tile.exr", "v.x_gl_tile.exr",
+                                      "v.x_ratio.png", "v.x_ref_tile.exr"}));
+  const Image tile = read_image(dir_ / "large" / "v.x_error_tile.exr");
+  ASSERT_EQ(tile.width, 256);
+  ASSERT_EQ(tile.height, 256);
+  // Centred on the bad pixel, kept inside the frame: x from 1100 - 256 = 844 (1001 - 128 would
+  // pass the right side), y from 0 (77 - 128 would pass the bottom); rows flipped as in every
+  // EXR.
+  const int x0 = w - 256, y0 = 0;
+  EXPECT_EQ(tile.at(bad_x - x0, 255 - (bad_y - y0)), 0.5f);
+  EXPECT_EQ(tile.at(bad_x - x0 + 1, 255 - (bad_y - y0)), 0.0f);
+  const Image map = read_image(dir_ / "large" / "v.x_error.png");
+  EXPECT_LE(map.width, 1024 + 200);  // 550 x 500 pixels of frame, and the margins and legend
+}
+
+// Downsampling keeps each block's worst pixel: the one failing pixel of a million survives.
+TEST(ChannelErrorMap, DownsampledKeepsTheWorstPixelOfEachBlock) {
+  ChannelError e;
+  e.name = "v.x";
+  e.width = 10, e.height = 7;
+  const size_t n = 70;
+  e.reference.assign(n, 1), e.gl.assign(n, 1), e.signed_error.assign(n, 0), e.allowed.assign(n, 1);
+  e.ulps.assign(n, 1), e.allowed_ulps.assign(n, 2), e.compared.assign(n, true);
+  e.ulps[size_t(6 * 10 + 9)] = 3;  // over its allowance, in the last (partial) block
+  e.ulps[size_t(0 * 10 + 1)] = 1.5;
+  const ChannelError d = downsampled(e, 4);
+  ASSERT_EQ(d.width, 3);
+  ASSERT_EQ(d.height, 2);
+  EXPECT_EQ(d.ulps[size_t(1 * 3 + 2)], 3);
+  EXPECT_EQ(d.ulps[0], 1.5);
+  EXPECT_EQ(d.ulps[1], 1);
+  EXPECT_EQ(worst_pixel(e), 69);
+}
+
 TEST(CoverageImage, RingsEveryFailingPixelAndOnlyThose) {
   const Frame ref = reference_frame();
   Frame gl = ref;
