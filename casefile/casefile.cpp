@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iterator>
@@ -911,6 +912,16 @@ std::string line_and_column(std::string_view text, size_t offset) {
 // message for a byte that is not UTF-8 gives no offset.
 void check_bytes(const Loader& loader, std::string_view text) {
   for (size_t i = 0; i < text.size();) {
+    // Eight ASCII bytes without a NUL at a time: a 50 MB case is mostly that.
+    if (i + 8 <= text.size()) {
+      uint64_t w;
+      std::memcpy(&w, text.data() + i, 8);
+      constexpr uint64_t kHigh = 0x8080808080808080ull, kLow = 0x0101010101010101ull;
+      if ((w & kHigh) == 0 && ((w - kLow) & ~w & kHigh) == 0) {
+        i += 8;
+        continue;
+      }
+    }
     if (text[i] == '\0')
       loader.fail(line_and_column(text, i), "a JSON text without NUL bytes",
                   "a NUL byte at offset " + std::to_string(i));
