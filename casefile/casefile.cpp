@@ -15,8 +15,8 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <locale>
 #include <map>
@@ -273,7 +273,8 @@ class Loader {
   std::vector<float> numbers(const json& v, const std::string& path,
                              std::initializer_list<size_t> counts) const {
     std::vector<float> out;
-    numbers_into(v, [&] { return path; }, counts, out);
+    numbers_into(
+        v, [&] { return path; }, counts, out);
     return out;
   }
 
@@ -630,13 +631,15 @@ void Loader::load_vertices(const json& list, const std::optional<Transform>& tra
     if (!clip && !pos) fail(path(), "exactly one of clip, position", "neither");
     std::vector<float> f;
     if (clip) {
-      numbers_into(*clip, [&] { return path_key(path(), "clip"); }, {4}, f);
+      numbers_into(
+          *clip, [&] { return path_key(path(), "clip"); }, {4}, f);
       vertex.clip = {f[0], f[1], f[2], f[3]};
     } else {
       if (!transform)
         fail(path_key(path(), "position"),
              "clip coordinates, or a \"transform\" in the case to use position", "no transform");
-      numbers_into(*pos, [&] { return path_key(path(), "position"); }, {3, 4}, f);
+      numbers_into(
+          *pos, [&] { return path_key(path(), "position"); }, {3, 4}, f);
       positions.push_back({f[0], f[1], f[2], f.size() == 4 ? double(f[3]) : 1.0});
       from_position.push_back(i);
     }
@@ -785,9 +788,7 @@ class DomBuilder final : public json::json_sax_t {
   bool boolean(bool b) override { return add(b); }
   bool number_integer(json::number_integer_t v) override { return add(v); }
   bool number_unsigned(json::number_unsigned_t v) override { return add(v); }
-  bool number_float(json::number_float_t v, const std::string& /*text*/) override {
-    return add(v);
-  }
+  bool number_float(json::number_float_t v, const std::string& /*text*/) override { return add(v); }
   bool string(std::string& s) override { return add(std::move(s)); }
   bool binary(json::binary_t& b) override { return add(std::move(b)); }
   bool start_object(size_t /*size*/) override { return open(json::object()); }
@@ -882,8 +883,8 @@ class DomBuilder final : public json::json_sax_t {
 // loader sees the field.
 std::string expected_number_at(const std::string& path) {
   const auto ends_with = [&](std::string_view tail) {
-    return path.size() >= tail.size() && path.compare(path.size() - tail.size(), tail.size(),
-                                                      tail) == 0;
+    return path.size() >= tail.size() &&
+           path.compare(path.size() - tail.size(), tail.size(), tail) == 0;
   };
   if (path == "framebuffer.width" || path == "framebuffer.height" || path == "viewport.width" ||
       path == "viewport.height")
@@ -933,9 +934,9 @@ void check_bytes(const Loader& loader, std::string_view text) {
     if (n == 0) {
       char byte[8];
       std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[i]));
-      loader.fail(line_and_column(text, i), "UTF-8 text",
-                  std::string("the byte ") + byte + ", which is not UTF-8, at offset " +
-                      std::to_string(i));
+      loader.fail(
+          line_and_column(text, i), "UTF-8 text",
+          std::string("the byte ") + byte + ", which is not UTF-8, at offset " + std::to_string(i));
     }
     i += n;
   }
@@ -1074,8 +1075,7 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
     }
     if (!fs::is_directory(st)) {
       // Reading a FIFO would wait for a writer; a device is no case either.
-      say("glrefcheck: ignored " + printable(arg) + ": " + file_kind(st) +
-          ", not a regular file");
+      say("glrefcheck: ignored " + printable(arg) + ": " + file_kind(st) + ", not a regular file");
       continue;
     }
     std::vector<fs::path> pending = {p};

@@ -122,8 +122,7 @@ Case from_wire(const json& j) {
     const json& t = j.at("tolerance");
     if (t.contains("varying_ulps")) c.tolerance.varying_ulps = t["varying_ulps"].get<double>();
     if (t.contains("depth_ulps")) c.tolerance.depth_ulps = t["depth_ulps"].get<double>();
-    if (t.contains("allow_boundary"))
-      c.tolerance.allow_boundary = t["allow_boundary"].get<bool>();
+    if (t.contains("allow_boundary")) c.tolerance.allow_boundary = t["allow_boundary"].get<bool>();
     return c;
   } catch (const json::exception& e) {
     throw std::runtime_error(std::string("wire: ") + e.what());

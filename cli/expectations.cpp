@@ -113,8 +113,8 @@ Regex::Regex(const std::string& pattern) {
   o.set_log_errors(false);  // the error comes back as one line, not on stderr
   re_ = std::make_unique<Compiled>(pattern, o);
   if (!re_->re.ok())
-    throw std::runtime_error("expected a regular expression (RE2 syntax), got \"" +
-                             shown(pattern) + "\" (" + re_->re.error() + ")");
+    throw std::runtime_error("expected a regular expression (RE2 syntax), got \"" + shown(pattern) +
+                             "\" (" + re_->re.error() + ")");
 }
 Regex::~Regex() = default;
 Regex::Regex(Regex&&) noexcept = default;

@@ -107,12 +107,11 @@ class EglContext final : public Context {
       const char* driver = std::getenv("GALLIUM_DRIVER");
       if (driver && *driver)
         throw Unavailable("eglInitialize failed on " + platform_ + ": driver \"" +
-                          std::string(driver) +
-                          "\" (GALLIUM_DRIVER) could not start (" + error +
+                          std::string(driver) + "\" (GALLIUM_DRIVER) could not start (" + error +
                           "); is it a gallium driver of this Mesa? Mesa's CPU drivers are "
                           "llvmpipe, softpipe and zink");
-      throw Unavailable("eglInitialize failed on " + platform_ + " with the platform's default "
-                        "driver: " + error);
+      throw Unavailable("eglInitialize failed on " + platform_ +
+                        " with the platform's default driver: " + error);
     }
     {
       std::lock_guard lock(display_mutex);

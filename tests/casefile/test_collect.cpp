@@ -67,12 +67,14 @@ TEST_F(CaseFileTest, CollectSearchesAFolderReachedByLinksOnce) {
   fs::create_directory_symlink(".", dir_ / "d/b");
   fs::create_directory_symlink("..", dir_ / "d/up");
   std::vector<std::string> notes;
-  const auto got = collect({(dir_ / "d").string()}, [&](const std::string& n) { notes.push_back(n); });
+  const auto got =
+      collect({(dir_ / "d").string()}, [&](const std::string& n) { notes.push_back(n); });
   EXPECT_EQ(strings(got), (std::vector<std::string>{(dir_ / "d/x.json").string()}));
   ASSERT_EQ(notes.size(), 3u);
   for (const std::string& n : notes)
     EXPECT_NE(n.find(": a symbolic link to a folder searched already"), std::string::npos) << n;
-  EXPECT_EQ(notes[0].rfind("glrefcheck: ignored " + (dir_ / "d").string() + "/", 0), 0u) << notes[0];
+  EXPECT_EQ(notes[0].rfind("glrefcheck: ignored " + (dir_ / "d").string() + "/", 0), 0u)
+      << notes[0];
 }
 
 // A FIFO named as a case blocked forever; sockets and devices are no cases either. Ignored with
@@ -83,14 +85,15 @@ TEST_F(CaseFileTest, CollectIgnoresFifosAndDevicesWithOneLine) {
   ASSERT_EQ(mkfifo((dir_ / "named.json").c_str(), 0600), 0);
   std::vector<std::string> notes;
   const auto note = [&](const std::string& n) { notes.push_back(n); };
-  const auto got = collect({(dir_ / "d").string(), (dir_ / "named.json").string(), "/dev/null"}, note);
+  const auto got =
+      collect({(dir_ / "d").string(), (dir_ / "named.json").string(), "/dev/null"}, note);
   EXPECT_EQ(strings(got), (std::vector<std::string>{(dir_ / "d/x.json").string()}));
-  EXPECT_EQ(notes, (std::vector<std::string>{
-                       "glrefcheck: ignored " + (dir_ / "d/pipe.json").string() +
-                           ": a FIFO, not a regular file",
-                       "glrefcheck: ignored " + (dir_ / "named.json").string() +
-                           ": a FIFO, not a regular file",
-                       "glrefcheck: ignored /dev/null: a character device, not a regular file"}));
+  EXPECT_EQ(
+      notes,
+      (std::vector<std::string>{
+          "glrefcheck: ignored " + (dir_ / "d/pipe.json").string() + ": a FIFO, not a regular file",
+          "glrefcheck: ignored " + (dir_ / "named.json").string() + ": a FIFO, not a regular file",
+          "glrefcheck: ignored /dev/null: a character device, not a regular file"}));
 }
 
 // A name that is not UTF-8 cannot go into results.json: refused before any work, not by the
@@ -104,8 +107,9 @@ TEST_F(CaseFileTest, CollectRefusesPathsThatAreNotUtf8) {
       FAIL() << "no error for " << arg;
     } catch (const CaseError& e) {
       EXPECT_EQ(std::string(e.what()),
-                (dir_ / "d").string() + "/x\\xFF.json: expected a path in UTF-8 (case names go into "
-                                        "JSON), got the byte 0xFF at offset " +
+                (dir_ / "d").string() +
+                    "/x\\xFF.json: expected a path in UTF-8 (case names go into "
+                    "JSON), got the byte 0xFF at offset " +
                     std::to_string((dir_ / "d").string().size() + 2));
     }
   }

@@ -12,7 +12,8 @@ namespace {
 // `n` vertices (n a multiple of 3) with one vec4 varying, each on one line of about 110 bytes;
 // `extra` goes inside the object of vertex `extra_at`.
 std::string many_vertices(size_t n, size_t extra_at = size_t(-1), const std::string& extra = "") {
-  std::string s = R"({"description": "many", "varyings": [{"name": "c", "size": 4}], "vertices": [)";
+  std::string s =
+      R"({"description": "many", "varyings": [{"name": "c", "size": 4}], "vertices": [)";
   s.reserve(n * 112);
   for (size_t i = 0; i < n; ++i) {
     const std::string k = std::to_string(i % 1000);
@@ -64,19 +65,21 @@ TEST_F(CaseFileTest, HugeNumberInAnIntegerFieldExpectsAnInteger) {
                 ": framebuffer.width: expected an integer in 1..4096, got 1e400 (beyond the "
                 "range of a double)");
   EXPECT_EQ(
-      error_of(R"({"description": "d", "viewport": {"x": -1e999, "y": 0, "width": 8, "height": 8}, )" +
-               tri + "}"),
-      file + ": viewport.x: expected an integer in 0..4095, got -1e999 (beyond the range of a "
-             "double)");
+      error_of(
+          R"({"description": "d", "viewport": {"x": -1e999, "y": 0, "width": 8, "height": 8}, )" +
+          tri + "}"),
+      file +
+          ": viewport.x: expected an integer in 0..4095, got -1e999 (beyond the range of a "
+          "double)");
   EXPECT_EQ(error_of(R"({"description": "d", )" + tri + R"(, "triangles": [[0, 1e400, 2]]})"),
             file +
                 ": triangles[0][1]: expected a vertex index (an integer), got 1e400 (beyond the "
                 "range of a double)");
-  EXPECT_EQ(error_of(R"({"description": "d", "varyings": [{"name": "v", "size": 1e400}], )" + tri +
-                     "}"),
-            file +
-                ": varyings[0].size: expected an integer in 1..4, got 1e400 (beyond the range "
-                "of a double)");
+  EXPECT_EQ(
+      error_of(R"({"description": "d", "varyings": [{"name": "v", "size": 1e400}], )" + tri + "}"),
+      file +
+          ": varyings[0].size: expected an integer in 1..4, got 1e400 (beyond the range "
+          "of a double)");
   // A float field keeps the float32 expectation.
   EXPECT_EQ(error_of(R"({"description": "d", "vertices": [{"clip": [1e400, -1, 0, 1]}]})"),
             file +
@@ -111,8 +114,9 @@ TEST_F(CaseFileTest, NonUtf8ByteIsReportedWithItsOffset) {
             std::string::npos);
   // Valid multi-byte UTF-8 passes the check (and fails later for what it is).
   EXPECT_EQ(error_of("{\"description\": \"caf\xC3\xA9 \xF0\x9F\x98\x80\"}"),
-            file + ": vertices: expected an array of vertices, got nothing (the field is "
-                   "required)");
+            file +
+                ": vertices: expected an array of vertices, got nothing (the field is "
+                "required)");
 }
 
 // A key holding \u0000 cut the message at the NUL (what() is a C string).
@@ -123,8 +127,9 @@ TEST_F(CaseFileTest, ControlCharactersInKeysAndValuesAreEscaped) {
                      R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
                      R"(viewport, depth_range, state, varyings, transform, vertices, triangles, )"
                      R"(tolerance, got unknown key "a\u0000b\u001Fc")");
-  EXPECT_EQ(error_of(R"({"description": "two\nlines\u0007"})"),
-            file + R"(: description: expected a non-empty one-line string, got "two\nlines\u0007")");
+  EXPECT_EQ(
+      error_of(R"({"description": "two\nlines\u0007"})"),
+      file + R"(: description: expected a non-empty one-line string, got "two\nlines\u0007")");
   // A file name with a newline stays one line too.
   EXPECT_EQ(error_of("[]", "new\nline.json"),
             (dir_ / "new").string() +
@@ -168,8 +173,7 @@ TEST_F(CaseFileTest, LoadRefusesAFifoAndADirectory) {
 TEST_F(CaseFileTest, DeepNestingIsOneLine) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   EXPECT_EQ(error_of(R"({"description": "d", "vertices": )" + deep + "}"),
-            (dir_ / "case.json").string() +
-                ": vertices[0]: expected an object, got an array of 1");
+            (dir_ / "case.json").string() + ": vertices[0]: expected an object, got an array of 1");
 }
 
 }  // namespace

@@ -26,8 +26,8 @@ namespace fs = std::filesystem;
 std::string run_worker(const std::string& input) {
   const fs::path in = fs::temp_directory_path() / ("glrc_parse_once_" + std::to_string(getpid()));
   std::ofstream(in) << input;
-  const std::string cmd = "'" GLRC_BINARY_DIR "/glrefcheck' worker < '" + in.string() +
-                          "' 2>/dev/null";
+  const std::string cmd =
+      "'" GLRC_BINARY_DIR "/glrefcheck' worker < '" + in.string() + "' 2>/dev/null";
   std::string out;
   FILE* p = popen(cmd.c_str(), "r");
   char buf[4096];
@@ -42,7 +42,8 @@ TEST(ParseOnce, TheWorkerChecksTheCaseItIsHandedNotTheFile) {
   Case c = casefile::load(GLRC_SOURCE_DIR "/cases/face_on.json");
   Options o;
   o.model = "ideal";
-  o.out = (fs::temp_directory_path() / ("glrc_parse_once_out_" + std::to_string(getpid()))).string();
+  o.out =
+      (fs::temp_directory_path() / ("glrc_parse_once_out_" + std::to_string(getpid()))).string();
   const nlohmann::json job = {{"index", 0},
                               {"file", "/nonexistent/face_on.json"},
                               {"case", casefile::to_wire(c)},

@@ -79,8 +79,8 @@ TEST(Patterns, DeeplyNestedGroupsAreNoCrash) {
     Regex(std::string(50, '(') + "a{1000}" + std::string(50, ')') + "{1000}");
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("expected a regular expression (RE2 syntax), got \"(((", 0),
-              0u)
+    EXPECT_EQ(
+        std::string(e.what()).rfind("expected a regular expression (RE2 syntax), got \"(((", 0), 0u)
         << e.what();
   }
 }
@@ -119,8 +119,9 @@ TEST(Patterns, BadFilterOnTheCommandLineIsOneLine) {
 
 // `--backend egl --driver bogus` said only that eglInitialize failed.
 TEST(EglDriver, AnUnknownDriverIsNamed) {
-  const auto o = test::glrefcheck("run cases/face_on.json --backend egl --driver bogus --jobs 1 --out '" +
-                                  temp_dir("bogus").string() + "'");
+  const auto o =
+      test::glrefcheck("run cases/face_on.json --backend egl --driver bogus --jobs 1 --out '" +
+                       temp_dir("bogus").string() + "'");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.err.find("driver \"bogus\" (GALLIUM_DRIVER) could not start"), std::string::npos)
       << o.err;

@@ -75,9 +75,8 @@ TEST(SharedEdges, SameAsEveryPairOnRandomMeshes) {
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 4; ++x)
         for (float w : {1.0f, 2.0f, 0.5f})
-          c.vertices.push_back({{(-0.75f + 0.5f * float(x)) * w, (-0.75f + 0.5f * float(y)) * w,
-                                 0.0f, w},
-                                {}});
+          c.vertices.push_back(
+              {{(-0.75f + 0.5f * float(x)) * w, (-0.75f + 0.5f * float(y)) * w, 0.0f, w}, {}});
     std::uniform_int_distribution<uint32_t> vertex(0, uint32_t(c.vertices.size() - 1));
     for (int t = 0; t < 400; ++t)
       c.triangles.push_back({vertex(rng), vertex(rng), vertex(rng)});
