@@ -36,7 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Memory for one case file's document, released all at once: a large case is millions of small
-// containers, and allocating and freeing each one on the heap was a fifth of its loading time.
+// containers, and allocating and freeing each one on the heap cost about a tenth of its loading.
 class Arena {
  public:
   void* take(size_t n, size_t align) {
