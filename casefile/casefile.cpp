@@ -205,6 +205,21 @@ std::string fmt_double(double d) {
 std::string path_key(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : parent + "." + std::string(key);
 }
+// A field path as a message shows it: a key of 10,000 characters, or a value 100,000 arrays
+// deep, would make the message any length. The start and the end (the field itself) stay.
+std::string shown_path(const std::string& path) {
+  constexpr size_t kKeep = 100;
+  if (path.size() <= 2 * kKeep) return path;
+  size_t head = kKeep, tail = path.size() - kKeep;
+  const auto inside_character = [&](size_t i) {
+    return (static_cast<unsigned char>(path[i]) & 0xC0) == 0x80;
+  };
+  while (head > 0 && inside_character(head))
+    --head;
+  while (tail < path.size() && inside_character(tail))
+    ++tail;
+  return path.substr(0, head) + "..." + path.substr(tail);
+}
 std::string path_index(const std::string& parent, size_t i) {
   return parent + "[" + std::to_string(i) + "]";
 }
@@ -227,7 +242,7 @@ class Loader {
   [[noreturn]] void fail(const std::string& path, const std::string& expected,
                          const std::string& got) const {
     std::string msg = file_ + ": ";
-    if (!path.empty()) msg += path + ": ";
+    if (!path.empty()) msg += shown_path(path) + ": ";
     msg += "expected " + expected + ", got " + got;
     // One line, always, whatever a file name or a key holds.
     throw CaseError(printable(msg));
@@ -922,11 +937,12 @@ class DomBuilder final : public json::json_sax_t {
     std::string p;
     for (size_t k = 0; k < stack_.size(); ++k) {
       const Level& l = stack_[k];
+      // Appended in place: a path 100,000 levels deep must not be copied at every level.
       if (l.node->is_array()) {
         const size_t n = l.node->size();
-        p = path_index(p, k + 1 < stack_.size() ? n - 1 : n);
+        p += "[" + std::to_string(k + 1 < stack_.size() ? n - 1 : n) + "]";
       } else if (l.slot) {
-        p = path_key(p, *l.key);
+        p += (p.empty() ? "" : ".") + *l.key;
       } else {
         break;
       }

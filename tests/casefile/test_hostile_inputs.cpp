@@ -169,6 +169,27 @@ TEST_F(CaseFileTest, LoadRefusesAFifoAndADirectory) {
   }
 }
 
+// A huge key or a deep path makes no huge message: the path keeps its start and its end.
+TEST_F(CaseFileTest, LongKeysAndDeepPathsAreCutInMessages) {
+  const std::string file = (dir_ / "case.json").string();
+  const std::string key(10000, 'k');
+  const std::string msg = error_of(R"({"description": "d", ")" + key + R"(": 1})");
+  EXPECT_EQ(msg, file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
+                     ": expected one of the keys description, framebuffer, viewport, "
+                     "depth_range, state, varyings, transform, vertices, triangles, tolerance, "
+                     "got unknown key \"" +
+                     std::string(60, 'k') + "...\"");
+  // 1e400 inside 100,000 nested arrays: the path is vertices[0][0]...[0].
+  const std::string deep =
+      error_of(R"({"description": "d", "vertices": )" + std::string(100000, '[') + "1e400");
+  std::string full = "vertices";
+  for (int i = 0; i < 100000; ++i)
+    full += "[0]";
+  EXPECT_EQ(deep, file + ": " + full.substr(0, 100) + "..." + full.substr(full.size() - 100) +
+                      ": expected a number within float32 range, got 1e400 (beyond the range "
+                      "of a double)");
+}
+
 // Deep nesting is parsed without recursion and refused as the wrong shape.
 TEST_F(CaseFileTest, DeepNestingIsOneLine) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
