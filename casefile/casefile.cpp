@@ -6,13 +6,17 @@
 #include "casefile/casefile.hpp"
 
 #include <locale.h>
+#include <sys/stat.h>
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
+#include <iterator>
 #include <limits>
 #include <locale>
 #include <map>
@@ -29,30 +33,133 @@
 namespace glrc::casefile {
 namespace {
 
-using json = nlohmann::json;
 namespace fs = std::filesystem;
+
+// Memory for one case file's document, released all at once: a large case is millions of small
+// containers, and allocating and freeing each one on the heap cost about a tenth of its loading.
+class Arena {
+ public:
+  void* take(size_t n, size_t align) {
+    size_t at = (used_ + align - 1) & ~(align - 1);
+    if (blocks_.empty() || at + n > size_) {
+      size_ = std::max<size_t>(n, size_t(1) << 22);
+      blocks_.push_back(std::make_unique<std::byte[]>(size_));
+      at = 0;
+    }
+    used_ = at + n;
+    return blocks_.back().get() + at;
+  }
+
+ private:
+  std::vector<std::unique_ptr<std::byte[]>> blocks_;
+  size_t size_ = 0, used_ = 0;
+};
+thread_local Arena* open_arena = nullptr;
+
+// nlohmann-json makes its allocators by default construction, so the arena is found through a
+// thread-local: while one is open (ArenaScope), containers come from it and freeing them is a
+// no-op; otherwise from the heap. Every document of this file lives and dies within one scope.
+template <typename T>
+struct ArenaAllocator {
+  using value_type = T;
+  ArenaAllocator() = default;
+  template <typename U>
+  ArenaAllocator(const ArenaAllocator<U>& /*other*/) {}
+  T* allocate(size_t n) {
+    return open_arena ? static_cast<T*>(open_arena->take(n * sizeof(T), alignof(T)))
+                      : std::allocator<T>().allocate(n);
+  }
+  void deallocate(T* p, size_t n) {
+    if (!open_arena) std::allocator<T>().deallocate(p, n);
+  }
+  template <typename U>
+  bool operator==(const ArenaAllocator<U>& /*other*/) const {
+    return true;
+  }
+};
+
+class ArenaScope {
+ public:
+  ArenaScope() { open_arena = &arena_; }
+  ~ArenaScope() { open_arena = nullptr; }
+  ArenaScope(const ArenaScope&) = delete;
+  ArenaScope& operator=(const ArenaScope&) = delete;
+
+ private:
+  Arena arena_;
+};
+
+using json = nlohmann::basic_json<std::map, std::vector, std::string, bool, std::int64_t,
+                                  std::uint64_t, double, ArenaAllocator>;
 
 constexpr int kMaxSize = 4096;      // framebuffer and viewport extent
 constexpr size_t kMaxVaryings = 7;  // 8 color attachments, one holds gl_PrimitiveID
 
+// The length of the UTF-8 sequence starting at s[i], or 0 when none starts there (RFC 3629:
+// overlong forms, surrogates and code points beyond U+10FFFF are not UTF-8, as nlohmann-json
+// also holds).
+size_t utf8_length(std::string_view s, size_t i) {
+  const auto at = [&](size_t k) { return k < s.size() ? static_cast<unsigned char>(s[k]) : 0; };
+  const unsigned char c = at(i);
+  const auto cont = [&](size_t k, unsigned char lo = 0x80, unsigned char hi = 0xBF) {
+    return at(k) >= lo && at(k) <= hi;
+  };
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) return cont(i + 1) ? 2 : 0;
+  if (c >= 0xE0 && c <= 0xEF) {
+    const unsigned char lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
+    return cont(i + 1, lo, hi) && cont(i + 2) ? 3 : 0;
+  }
+  if (c >= 0xF0 && c <= 0xF4) {
+    const unsigned char lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
+    return cont(i + 1, lo, hi) && cont(i + 2) && cont(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+// `s` fit for one line of a UTF-8 terminal: control characters as \n, \r, \t or \u00XX (a
+// NUL would also end a C string, cutting the message), bytes that are not UTF-8 as \xXX; at most
+// `max` bytes of `s` (never half a character), then "...".
+std::string printable(std::string_view s, size_t max = std::string::npos) {
+  std::string out;
+  size_t i = 0;
+  while (i < s.size()) {
+    const size_t n = utf8_length(s, i);
+    if (i + std::max<size_t>(n, 1) > max) break;
+    const auto c = static_cast<unsigned char>(s[i]);
+    char buf[8];
+    if (n == 0) {
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20 || c == 0x7F) {
+      std::snprintf(buf, sizeof buf, "\\u%04X", c);
+      out += buf;
+    } else {
+      out.append(s.substr(i, n));
+    }
+    i += std::max<size_t>(n, 1);
+  }
+  if (i < s.size()) out += "...";
+  return out;
+}
+
 std::string json_quoted(std::string_view s) {
   constexpr size_t kMax = 60;  // keep messages one readable line
-  std::string out = "\"";
-  for (size_t i = 0; i < s.size() && i < kMax; ++i) {
-    const char ch = s[i];
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (ch == '\n') {
-      out += "\\n";
-    } else if (ch == '\r') {
-      out += "\\r";
-    } else if (static_cast<unsigned char>(ch) < 0x20) {
-      out += '?';
-    } else {
-      out += ch;
-    }
+  size_t cut = std::min(s.size(), kMax);
+  while (cut > 0 && cut < s.size() && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80)
+    --cut;  // not half a character
+  std::string escaped;
+  for (const char ch : s.substr(0, cut)) {
+    if (ch == '"' || ch == '\\') escaped += '\\';
+    escaped += ch;
   }
-  if (s.size() > kMax) out += "...";
-  return out + "\"";
+  return "\"" + printable(escaped) + (cut < s.size() ? "..." : "") + "\"";
 }
 
 // What a JSON value is, for the "got" part of a message.
@@ -98,6 +205,21 @@ std::string fmt_double(double d) {
 std::string path_key(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : parent + "." + std::string(key);
 }
+// A field path as a message shows it: a key of 10,000 characters, or a value 100,000 arrays
+// deep, would make the message any length. The start and the end (the field itself) stay.
+std::string shown_path(const std::string& path) {
+  constexpr size_t kKeep = 100;
+  if (path.size() <= 2 * kKeep) return path;
+  size_t head = kKeep, tail = path.size() - kKeep;
+  const auto inside_character = [&](size_t i) {
+    return (static_cast<unsigned char>(path[i]) & 0xC0) == 0x80;
+  };
+  while (head > 0 && inside_character(head))
+    --head;
+  while (tail < path.size() && inside_character(tail))
+    ++tail;
+  return path.substr(0, head) + "..." + path.substr(tail);
+}
 std::string path_index(const std::string& parent, size_t i) {
   return parent + "[" + std::to_string(i) + "]";
 }
@@ -120,12 +242,10 @@ class Loader {
   [[noreturn]] void fail(const std::string& path, const std::string& expected,
                          const std::string& got) const {
     std::string msg = file_ + ": ";
-    if (!path.empty()) msg += path + ": ";
+    if (!path.empty()) msg += shown_path(path) + ": ";
     msg += "expected " + expected + ", got " + got;
-    // One line, always.
-    std::replace(msg.begin(), msg.end(), '\n', ' ');
-    std::replace(msg.begin(), msg.end(), '\r', ' ');
-    throw CaseError(msg);
+    // One line, always, whatever a file name or a key holds.
+    throw CaseError(printable(msg));
   }
 
   const json& require_object(const json& v, const std::string& path) const {
@@ -187,19 +307,45 @@ class Loader {
     return static_cast<float>(d);
   }
 
-  // A fixed count of numbers (counts.size() == 1), or one of several counts.
+  // A JSON number that number() takes as it is: the hot path of a large case, which must not
+  // build a field path per number.
+  static std::optional<float> plain_number(const json& v) {
+    double d;
+    if (v.is_number_float()) {
+      d = v.get_ref<const json::number_float_t&>();
+    } else if (v.is_number_integer() && !v.is_number_unsigned()) {
+      d = double(v.get_ref<const json::number_integer_t&>());
+    } else {
+      return std::nullopt;
+    }
+    if (!(std::fabs(d) <= double(std::numeric_limits<float>::max()))) return std::nullopt;
+    return static_cast<float>(d);
+  }
+
+  // A fixed count of numbers (counts.size() == 1), or one of several counts, appended to `out`.
+  // `path` makes the field's path, only for a message.
+  template <typename PathFn>
+  void numbers_into(const json& v, const PathFn& path, std::initializer_list<size_t> counts,
+                    std::vector<float>& out) const {
+    const auto what = [&] {
+      std::string w;
+      for (size_t n : counts)
+        w += (w.empty() ? "" : " or ") + std::to_string(n);
+      return w + " numbers";
+    };
+    if (!v.is_array()) fail(path(), what(), describe(v));
+    if (std::find(counts.begin(), counts.end(), v.size()) == counts.end())
+      fail(path(), what(), std::to_string(v.size()));
+    for (size_t i = 0; i < v.size(); ++i) {
+      const auto f = plain_number(v[i]);
+      out.push_back(f ? *f : number(v[i], path_index(path(), i)));
+    }
+  }
   std::vector<float> numbers(const json& v, const std::string& path,
                              std::initializer_list<size_t> counts) const {
-    std::string what;
-    for (size_t n : counts)
-      what += (what.empty() ? "" : " or ") + std::to_string(n);
-    what += " numbers";
-    if (!v.is_array()) fail(path, what, describe(v));
-    if (std::find(counts.begin(), counts.end(), v.size()) == counts.end())
-      fail(path, what, std::to_string(v.size()));
     std::vector<float> out;
-    for (size_t i = 0; i < v.size(); ++i)
-      out.push_back(number(v[i], path_index(path, i)));
+    numbers_into(
+        v, [&] { return path; }, counts, out);
     return out;
   }
 
@@ -529,9 +675,13 @@ void Loader::load_vertices(const json& list, const std::optional<Transform>& tra
   // Positions are transformed together once all are read, so that one matrix set serves all.
   std::vector<size_t> from_position;
   std::vector<std::array<double, 4>> positions;
+  c.vertices.reserve(list.size());
+  const size_t components = size_t(c.component_count());
   for (size_t i = 0; i < list.size(); ++i) {
-    const std::string path = path_index("vertices", i);
-    const json& v = require_object(list[i], path);
+    // Field paths are made only for a message: a large case has millions of fields.
+    const auto path = [&] { return path_index("vertices", i); };
+    const json& v = list[i];
+    if (!v.is_object()) require_object(v, path());
     // Allowed keys: clip, position, and the varyings' names.
     for (const auto& [key, value] : v.items()) {
       if (key == "clip" || key == "position") continue;
@@ -541,40 +691,48 @@ void Loader::load_vertices(const json& list, const std::optional<Transform>& tra
         std::string keys = "clip, position";
         for (const auto& var : c.varyings)
           keys += ", " + var.name;
-        fail(path_key(path, key), "one of the keys " + keys + " (varyings must be declared)",
+        fail(path_key(path(), key), "one of the keys " + keys + " (varyings must be declared)",
              "unknown key " + json_quoted(key));
       }
     }
     Vertex vertex;
     const json* clip = opt(v, "clip");
     const json* pos = opt(v, "position");
-    if (clip && pos) fail(path, "exactly one of clip, position", "both");
-    if (!clip && !pos) fail(path, "exactly one of clip, position", "neither");
+    if (clip && pos) fail(path(), "exactly one of clip, position", "both");
+    if (!clip && !pos) fail(path(), "exactly one of clip, position", "neither");
+    std::vector<float> f;
     if (clip) {
-      const auto f = numbers(*clip, path_key(path, "clip"), {4});
+      numbers_into(
+          *clip, [&] { return path_key(path(), "clip"); }, {4}, f);
       vertex.clip = {f[0], f[1], f[2], f[3]};
     } else {
       if (!transform)
-        fail(path_key(path, "position"),
+        fail(path_key(path(), "position"),
              "clip coordinates, or a \"transform\" in the case to use position", "no transform");
-      const auto f = numbers(*pos, path_key(path, "position"), {3, 4});
+      numbers_into(
+          *pos, [&] { return path_key(path(), "position"); }, {3, 4}, f);
       positions.push_back({f[0], f[1], f[2], f.size() == 4 ? double(f[3]) : 1.0});
       from_position.push_back(i);
     }
+    vertex.values.reserve(components);
     for (const auto& var : c.varyings) {
-      const std::string vp = path_key(path, var.name);
-      const std::string what =
-          var.size == 1 ? "a number (varying " + var.name + ")"
-                        : std::to_string(var.size) + " numbers (varying " + var.name + ")";
+      const auto vp = [&] { return path_key(path(), var.name); };
+      const auto what = [&] {
+        return var.size == 1 ? "a number (varying " + var.name + ")"
+                             : std::to_string(var.size) + " numbers (varying " + var.name + ")";
+      };
       const json* value = opt(v, var.name);
-      if (!value) fail(vp, what, "nothing (every vertex needs every varying)");
+      if (!value) fail(vp(), what(), "nothing (every vertex needs every varying)");
       if (var.size == 1 && !value->is_array()) {
-        vertex.values.push_back(number(*value, vp));
+        const auto x = plain_number(*value);
+        vertex.values.push_back(x ? *x : number(*value, vp()));
       } else {
-        if (!value->is_array()) fail(vp, what, describe(*value));
-        if (value->size() != size_t(var.size)) fail(vp, what, std::to_string(value->size()));
-        for (size_t k = 0; k < value->size(); ++k)
-          vertex.values.push_back(number((*value)[k], path_index(vp, k)));
+        if (!value->is_array()) fail(vp(), what(), describe(*value));
+        if (value->size() != size_t(var.size)) fail(vp(), what(), std::to_string(value->size()));
+        for (size_t k = 0; k < value->size(); ++k) {
+          const auto x = plain_number((*value)[k]);
+          vertex.values.push_back(x ? *x : number((*value)[k], path_index(vp(), k)));
+        }
       }
     }
     c.vertices.push_back(std::move(vertex));
@@ -688,121 +846,348 @@ Case Loader::load(const json& root) {
   return c;
 }
 
-// nlohmann::json keeps the last of two equal keys in an object without a word; a case file
-// with a key written twice is a mistake, so the parser callback tracks the path and notes the
-// first duplicate.
-class DuplicateKeyFinder {
+// Builds the document as nlohmann-json's own SAX DOM parser does, and stops at a key written
+// twice in one object (nlohmann-json would keep the last one without a word): an object is a
+// std::map, so the check is one lookup. The parser callback used before rescans the parent
+// array at the end of every object, which made loading quadratic in the number of vertices.
+// The open containers give the path of the value being read, for errors found while parsing.
+class DomBuilder final : public json::json_sax_t {
  public:
-  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-        stack_.push_back({false});
-        break;
-      case json::parse_event_t::array_start:
-        stack_.push_back({true});
-        break;
-      case json::parse_event_t::key:
-        if (!stack_.empty()) {
-          Level& top = stack_.back();
-          top.key = parsed.get<std::string>();
-          if (!top.keys.insert(top.key).second && !duplicate_) duplicate_ = path();
-        }
-        break;
-      case json::parse_event_t::value:
-        element_done();
-        break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        if (!stack_.empty()) stack_.pop_back();
-        element_done();
-        break;
+  explicit DomBuilder(json& root) : root_(root) {}
+
+  bool null() override { return add(nullptr); }
+  bool boolean(bool b) override { return add(b); }
+  bool number_integer(json::number_integer_t v) override { return add(v); }
+  bool number_unsigned(json::number_unsigned_t v) override { return add(v); }
+  bool number_float(json::number_float_t v, const std::string& /*text*/) override { return add(v); }
+  bool string(std::string& s) override { return add(std::move(s)); }
+  bool binary(json::binary_t& b) override { return add(std::move(b)); }
+  bool start_object(size_t /*size*/) override { return open(json::object()); }
+  bool start_array(size_t /*size*/) override {
+    // Most arrays of a case hold 3 or 4 numbers: one allocation instead of three.
+    json array = json::array();
+    array.get_ref<json::array_t&>().reserve(4);
+    return open(std::move(array));
+  }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(std::string& k) override {
+    Level& top = stack_.back();
+    auto [it, inserted] = top.node->get_ref<json::object_t&>().emplace(std::move(k), nullptr);
+    if (!inserted) {
+      top.slot = nullptr;  // the path of the object, not of its previous key
+      duplicate_ = path_key(path(), it->first);
+      return false;
     }
+    top.key = &it->first;
+    top.slot = &it->second;
     return true;
   }
-  const std::optional<std::string>& duplicate() const { return duplicate_; }
-  // The path of the value being read.
-  std::string path() const {
-    std::string p;
-    for (const Level& l : stack_)
-      p = l.array ? path_index(p, l.index) : path_key(p, l.key);
-    return p;
+  bool parse_error(size_t position, const std::string& last_token,
+                   const nlohmann::detail::exception& ex) override {
+    error_ = Error{position, last_token, ex.id, ex.what(), path()};
+    return false;
   }
+
+  struct Error {
+    size_t position;         // bytes read
+    std::string last_token;  // as the message quotes it
+    int id;                  // nlohmann-json's exception id: 101 syntax, 406 number overflow
+    std::string message;
+    std::string path;  // of the value being read
+  };
+  const std::optional<Error>& error() const { return error_; }
+  const std::optional<std::string>& duplicate() const { return duplicate_; }
 
  private:
   struct Level {
-    bool array;
-    size_t index = 0;
-    std::string key;
-    std::set<std::string> keys;
+    json* node;
+    const std::string* key = nullptr;  // objects: the key being read (a node of the map)
+    json* slot = nullptr;              // objects: where its value goes
   };
-  void element_done() {
-    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+
+  json* place(json&& v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Level& top = stack_.back();
+    if (top.node->is_array()) {
+      // Only the last element is ever open, so a reallocation moves no pointer held here.
+      top.node->push_back(std::move(v));
+      return &top.node->back();
+    }
+    *top.slot = std::move(v);
+    return top.slot;
   }
+  bool add(json&& v) {
+    place(std::move(v));
+    return true;
+  }
+  bool open(json&& container) {
+    stack_.push_back({place(std::move(container))});
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+  // An open array's element being read is its last one if that is itself open, else the next.
+  std::string path() const {
+    std::string p;
+    for (size_t k = 0; k < stack_.size(); ++k) {
+      const Level& l = stack_[k];
+      // Appended in place: a path 100,000 levels deep must not be copied at every level.
+      if (l.node->is_array()) {
+        const size_t n = l.node->size();
+        p += "[" + std::to_string(k + 1 < stack_.size() ? n - 1 : n) + "]";
+      } else if (l.slot) {
+        p += (p.empty() ? "" : ".") + *l.key;
+      } else {
+        break;
+      }
+    }
+    return p;
+  }
+
+  json& root_;
   std::vector<Level> stack_;
+  std::optional<Error> error_;
   std::optional<std::string> duplicate_;
 };
+
+// What a field holds, for a number that overflows a double, which the parser meets before the
+// loader sees the field.
+std::string expected_number_at(const std::string& path) {
+  const auto ends_with = [&](std::string_view tail) {
+    return path.size() >= tail.size() &&
+           path.compare(path.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  if (path == "framebuffer.width" || path == "framebuffer.height" || path == "viewport.width" ||
+      path == "viewport.height")
+    return "an integer in 1.." + std::to_string(kMaxSize);
+  if (path == "viewport.x" || path == "viewport.y")
+    return "an integer in 0.." + std::to_string(kMaxSize - 1);
+  if (path.rfind("varyings[", 0) == 0 && ends_with(".size")) return "an integer in 1..4";
+  if (path.rfind("triangles[", 0) == 0) return "a vertex index (an integer)";
+  if (path.rfind("tolerance.", 0) == 0) return "a finite number >= 0";
+  return "a number within float32 range";
+}
+
+std::string file_kind(const fs::file_status& st);
+
+// Where byte `offset` of `text` is, as JSON parsers say it: "line L, column C" (1-based).
+std::string line_and_column(std::string_view text, size_t offset) {
+  const std::string_view before = text.substr(0, offset);
+  const size_t line = size_t(std::count(before.begin(), before.end(), '\n')) + 1;
+  const size_t start = before.rfind('\n');
+  const size_t column = offset - (start == std::string_view::npos ? 0 : start + 1) + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// Bytes no JSON text may hold, found before parsing so that the message says what and where:
+// nlohmann-json takes a NUL for the end of the input (silently ignoring what follows), and its
+// message for a byte that is not UTF-8 gives no offset.
+void check_bytes(const Loader& loader, std::string_view text) {
+  for (size_t i = 0; i < text.size();) {
+    // Eight ASCII bytes without a NUL at a time: a 50 MB case is mostly that.
+    if (i + 8 <= text.size()) {
+      uint64_t w;
+      std::memcpy(&w, text.data() + i, 8);
+      constexpr uint64_t kHigh = 0x8080808080808080ull, kLow = 0x0101010101010101ull;
+      if ((w & kHigh) == 0 && ((w - kLow) & ~w & kHigh) == 0) {
+        i += 8;
+        continue;
+      }
+    }
+    if (text[i] == '\0')
+      loader.fail(line_and_column(text, i), "a JSON text without NUL bytes",
+                  "a NUL byte at offset " + std::to_string(i));
+    if (static_cast<unsigned char>(text[i]) < 0x80) {
+      ++i;
+      continue;
+    }
+    const size_t n = utf8_length(text, i);
+    if (n == 0) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[i]));
+      loader.fail(
+          line_and_column(text, i), "UTF-8 text",
+          std::string("the byte ") + byte + ", which is not UTF-8, at offset " + std::to_string(i));
+    }
+    i += n;
+  }
+}
+
+// nlohmann-json's message, without its "[json.exception...] parse error at line L, column C: "
+// prefix (the line and column become the field) and with the text it quotes cut short: a
+// malformed 50 MB line would otherwise be quoted whole.
+std::pair<std::string, std::string> parse_message(const DomBuilder::Error& e) {
+  std::string msg = e.message;
+  std::string where;
+  const size_t at = msg.find("at line ");
+  if (at != std::string::npos) {
+    const size_t colon = msg.find(": ", at);
+    where = msg.substr(at + 3, colon == std::string::npos ? std::string::npos : colon - at - 3);
+    msg = colon == std::string::npos ? "" : msg.substr(colon + 2);
+  } else if (const size_t close = msg.find("] "); close != std::string::npos) {
+    msg = msg.substr(close + 2);
+  }
+  constexpr size_t kQuoted = 80;
+  if (e.last_token.size() > kQuoted) {
+    const std::string quoted = "'" + e.last_token + "'";
+    if (const size_t q = msg.find(quoted); q != std::string::npos)
+      msg.replace(q, quoted.size(), "'" + printable(e.last_token, kQuoted) + "'");
+  }
+  return {where, msg};
+}
 
 }  // namespace
 
 Case load(const fs::path& file) {
   const std::string name = file.string();
   Loader loader(name);
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  if (ec || !fs::exists(st)) loader.fail("", "a readable case file", "none at this path");
+  // Opening a FIFO would wait for a writer, forever.
+  if (!fs::is_regular_file(st)) loader.fail("", "a regular case file", file_kind(st));
   std::ifstream in(file, std::ios::binary);
-  if (!in) loader.fail("", "a readable case file", "none at this path");
+  if (!in) loader.fail("", "a readable case file", "one that cannot be opened");
+  std::string text;
+  text.resize(size_t(fs::file_size(file, ec)));
+  in.read(text.data(), std::streamsize(text.size()));
+  text.resize(size_t(in.gcount()));
+  if (in.bad() || ec) loader.fail("", "a readable case file", "a read error");
+  // A file that grew since its size was taken: read the rest.
+  if (in) text.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  check_bytes(loader, text);
+
+  const ArenaScope arena;  // before the document: outlives it
   json root;
-  // The callback's state must outlive parse(), which takes the callback by value.
-  auto finder = std::make_shared<DuplicateKeyFinder>();
-  try {
-    root = json::parse(
-        in, [finder](int d, json::parse_event_t e, json& p) { return (*finder)(d, e, p); });
-  } catch (const json::parse_error& e) {
-    // what(): "[json.exception.parse_error.101] parse error at line 3, column 5: syntax ...".
-    std::string msg = e.what();
-    std::string where;
-    const size_t at = msg.find("at line ");
-    if (at != std::string::npos) {
-      const size_t colon = msg.find(": ", at);
-      where = msg.substr(at + 3, colon == std::string::npos ? std::string::npos : colon - at - 3);
-      msg = colon == std::string::npos ? "" : msg.substr(colon + 2);
-    } else if (const size_t close = msg.find("] "); close != std::string::npos) {
-      msg = msg.substr(close + 2);
+  DomBuilder builder(root);
+  json::sax_parse(text, &builder, json::input_format_t::json, /*strict=*/true);
+  if (const auto& e = builder.error()) {
+    if (e->id == 406) {
+      // "number overflow parsing '1e400'": a number beyond double range, in the field the
+      // builder's path names.
+      loader.fail(e->path, expected_number_at(e->path),
+                  printable(e->last_token, 80) + " (beyond the range of a double)");
     }
+    const auto [where, msg] = parse_message(*e);
     loader.fail(where, "valid JSON", msg);
-  } catch (const json::exception& e) {
-    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": a number beyond
-    // double range. The callback's path still points at the value being read.
-    std::string msg = e.what();
-    if (const size_t close = msg.find("] "); close != std::string::npos)
-      msg = msg.substr(close + 2);
-    loader.fail(finder->path(), "a number within float32 range", msg);
   }
-  if (finder->duplicate())
-    loader.fail(*finder->duplicate(), "each key once in its object", "it twice");
+  if (builder.duplicate())
+    loader.fail(*builder.duplicate(), "each key once in its object", "it twice");
+  text = std::string();  // the document holds it all now
   Case c = loader.load(root);
   c.name = file.stem().string();
   return c;
 }
 
-std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs) {
+namespace {
+
+// What a path that is not a regular file is, for messages.
+std::string file_kind(const fs::file_status& st) {
+  switch (st.type()) {
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::not_found:
+      return "a broken symbolic link";
+    default:
+      return "something other than a regular file";
+  }
+}
+
+// Case names become JSON strings in results.json and reports, which must be UTF-8: a path that
+// is not is refused here, before any work, rather than by the JSON library mid-run.
+void require_utf8(const fs::path& p) {
+  const std::string& s = p.native();
+  for (size_t i = 0; i < s.size();) {
+    const size_t n = utf8_length(s, i);
+    if (n == 0) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(s[i]));
+      throw CaseError(printable(s) + ": expected a path in UTF-8 (case names go into JSON), got " +
+                      "the byte " + byte + " at offset " + std::to_string(i));
+    }
+    i += n;
+  }
+}
+
+}  // namespace
+
+std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
+                              const std::function<void(const std::string&)>& note) {
+  const auto say = [&](const std::string& line) {
+    if (note) {
+      note(line);
+    } else {
+      std::fprintf(stderr, "%s\n", line.c_str());
+    }
+  };
   std::vector<fs::path> out;
+  // Folders searched, by device and inode: a symbolic link back to a folder already searched
+  // (a loop, or two links to one folder) is not searched again, which would otherwise never end
+  // or grow exponentially.
+  std::set<std::pair<dev_t, ino_t>> searched;
   for (const std::string& arg : files_or_dirs) {
     const fs::path p(arg);
+    require_utf8(p);
     std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
     if (ec || !fs::exists(st))
-      throw CaseError(arg + ": expected a case file or a directory of them, got no such path");
-    if (fs::is_directory(st)) {
+      throw CaseError(printable(arg) +
+                      ": expected a case file or a directory of them, got no such path");
+    if (fs::is_regular_file(st)) {
+      out.push_back(p.lexically_normal());  // a file named explicitly is taken as it is
+      continue;
+    }
+    if (!fs::is_directory(st)) {
+      // Reading a FIFO would wait for a writer; a device is no case either.
+      say("glrefcheck: ignored " + printable(arg) + ": " + file_kind(st) + ", not a regular file");
+      continue;
+    }
+    std::vector<fs::path> pending = {p};
+    while (!pending.empty()) {
+      const fs::path dir = pending.back();
+      pending.pop_back();
+      struct stat sb {};
+      if (stat(dir.c_str(), &sb) != 0 || !searched.insert({sb.st_dev, sb.st_ino}).second) {
+        if (dir != p)
+          say("glrefcheck: ignored " + printable(dir.string()) +
+              ": a symbolic link to a folder searched already");
+        continue;
+      }
       try {
-        for (const auto& entry :
-             fs::recursive_directory_iterator(p, fs::directory_options::follow_directory_symlink)) {
-          if (entry.path().extension() == ".json" && entry.is_regular_file())
-            out.push_back(entry.path().lexically_normal());
+        for (const auto& entry : fs::directory_iterator(dir)) {
+          const fs::path& e = entry.path();
+          require_utf8(e);
+          std::error_code sec;
+          const fs::file_status est = entry.status(sec);  // follows symbolic links
+          if (fs::is_directory(est)) {
+            pending.push_back(e);
+          } else if (e.extension() == ".json") {
+            if (fs::is_regular_file(est)) {
+              out.push_back(e.lexically_normal());
+            } else {
+              say("glrefcheck: ignored " + printable(e.string()) + ": " + file_kind(est) +
+                  ", not a regular file");
+            }
+          }
         }
       } catch (const fs::filesystem_error& e) {
-        throw CaseError(arg + ": expected a readable directory, got " + e.code().message());
+        throw CaseError(printable(dir.string()) + ": expected a readable directory, got " +
+                        e.code().message());
       }
-    } else {
-      out.push_back(p.lexically_normal());  // a file named explicitly is taken as it is
     }
   }
   std::sort(out.begin(), out.end());
@@ -812,8 +1197,9 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs) {
   for (const fs::path& p : out) {
     auto [it, inserted] = names.emplace(p.stem().string(), p);
     if (!inserted)
-      throw CaseError(p.string() + ": name: expected a case name used once, got " +
-                      json_quoted(p.stem().string()) + ", also the name of " + it->second.string());
+      throw CaseError(printable(p.string()) + ": name: expected a case name used once, got " +
+                      json_quoted(p.stem().string()) + ", also the name of " +
+                      printable(it->second.string()));
   }
   return out;
 }

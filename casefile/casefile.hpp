@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,7 +20,12 @@ struct CaseError : std::runtime_error {
 Case load(const std::filesystem::path& file);
 
 // Case files named by the arguments: files as given, directories searched recursively for
-// *.json; sorted by path, duplicates removed. Throws CaseError for a path that does not exist.
-std::vector<std::filesystem::path> collect(const std::vector<std::string>& files_or_dirs);
+// *.json (following symbolic links, each folder once, so that a link loop ends); sorted by path,
+// duplicates removed. A FIFO, socket or device (named, or found as *.json) is ignored with one
+// line to `note` (default: stderr). Throws CaseError for a path that does not exist, a path that
+// is not UTF-8, an unreadable folder, or two cases of one name.
+std::vector<std::filesystem::path> collect(
+    const std::vector<std::string>& files_or_dirs,
+    const std::function<void(const std::string&)>& note = nullptr);
 
 }  // namespace glrc::casefile

@@ -6,9 +6,27 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <re2/re2.h>
+
 namespace glrc::cli {
 
 namespace {
+// A pattern for a one-line message: control characters and bytes above 0x7E as \xXX.
+std::string shown(const std::string& s) {
+  std::string out;
+  for (const char ch : s.substr(0, 200)) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7F) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return s.size() > 200 ? out + "..." : out;
+}
+
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
   const auto e = s.find_last_not_of(" \t\r");
@@ -85,9 +103,33 @@ void apply(const Baseline& b, CaseResult& r) {
   }
 }
 
+struct Regex::Compiled {
+  re2::RE2 re;
+  explicit Compiled(const std::string& pattern, const re2::RE2::Options& o) : re(pattern, o) {}
+};
+
+Regex::Regex(const std::string& pattern) {
+  re2::RE2::Options o;
+  o.set_log_errors(false);  // the error comes back as one line, not on stderr
+  re_ = std::make_unique<Compiled>(pattern, o);
+  if (!re_->re.ok())
+    throw std::runtime_error("expected a regular expression (RE2 syntax), got \"" + shown(pattern) +
+                             "\" (" + re_->re.error() + ")");
+}
+Regex::~Regex() = default;
+Regex::Regex(Regex&&) noexcept = default;
+Regex& Regex::operator=(Regex&&) noexcept = default;
+
+bool Regex::search(const std::string& text) const {
+  return re2::RE2::PartialMatch(text, re_->re);
+}
+bool Regex::full_match(const std::string& text) const {
+  return re2::RE2::FullMatch(text, re_->re);
+}
+
 const std::string* Patterns::match(const std::string& name) const {
   for (const auto& [text, re] : list)
-    if (std::regex_match(name, re)) return &text;
+    if (re.full_match(name)) return &text;
   return nullptr;
 }
 
@@ -105,11 +147,9 @@ Patterns read_patterns(const std::filesystem::path& file) {
     line = trim(line);
     if (line.empty() || line[0] == '#') continue;
     try {
-      p.list.emplace_back(line, std::regex(line, std::regex::ECMAScript));
-    } catch (const std::regex_error& e) {
-      throw std::runtime_error(file.string() + ":" + std::to_string(n) +
-                               ": expected a regular expression, got \"" + line + "\" (" +
-                               e.what() + ")");
+      p.list.emplace_back(line, Regex(line));
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(file.string() + ":" + std::to_string(n) + ": " + e.what());
     }
   }
   return p;

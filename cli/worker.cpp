@@ -4,12 +4,13 @@
 #include <cerrno>
 #include <cstdlib>
 #include <iostream>
-#include <regex>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "casefile/casefile.hpp"
+#include "casefile/wire.hpp"
+#include "cli/expectations.hpp"
 #include "cli/identify.hpp"
 #include "cli/model_cache.hpp"
 #include "cli/workers.hpp"
@@ -52,7 +53,7 @@ class Channel {
 // as a hung driver would, so a test can kill it (crash) or let the timeout strike.
 void stall_if_asked(const std::string& name) {
   const char* pattern = std::getenv("GLRC_TEST_STALL_CASE");
-  if (!pattern || !std::regex_match(name, std::regex(pattern))) return;
+  if (!pattern || !Regex(pattern).full_match(name)) return;
   if (const char* pidfile = std::getenv("GLRC_TEST_STALL_PIDFILE")) {
     const std::string tmp = std::string(pidfile) + ".tmp";
     if (FILE* f = std::fopen(tmp.c_str(), "w")) {
@@ -66,10 +67,13 @@ void stall_if_asked(const std::string& name) {
 }
 
 CaseResult check_one(const nlohmann::json& job, const Options& o, gl::Renderer& renderer) {
-  const std::string file = job.at("file"), name = job.at("name");
+  const std::string name = job.at("name");
   Case c;
   try {
-    c = casefile::load(file);
+    // The runner has read and validated the case already and sends it whole: a case file is
+    // parsed once per run. A job naming only a file is read here.
+    c = job.contains("case") ? casefile::from_wire(job["case"])
+                             : casefile::load(job.at("file").get<std::string>());
   } catch (const std::exception& e) {
     CaseResult r;
     r.name = name, r.status = r.outcome = Status::error, r.message = e.what();

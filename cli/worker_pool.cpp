@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "casefile/wire.hpp"
 #include "cli/model_cache.hpp"
 #include "cli/workers.hpp"
 #include "report/report.hpp"
@@ -190,6 +191,7 @@ class Pool {
                                  std::chrono::duration<double>(s_.timeout));
     const nlohmann::json job = {{"index", k},
                                 {"file", cases_[k]->source_path},
+                                {"case", casefile::to_wire(*cases_[k])},
                                 {"name", cases_[k]->name},
                                 {"images", s_.images(*cases_[k])},
                                 {"model", model_json(model_->model)}};

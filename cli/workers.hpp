@@ -5,7 +5,8 @@
 // either way a fresh worker takes the next case.
 //
 // Protocol, one JSON document per line. On the worker's stdin: the options (options_json), then
-// {"index": k, "file": path, "name": case name, "images": bool, "model": {"subpixel_bits",
+// {"index": k, "file": path, "case": the loaded case (casefile/wire.hpp, so that the worker
+// does not parse the file again), "name": case name, "images": bool, "model": {"subpixel_bits",
 // "planes", "tie_break"}} per case, or {"identify": true}; end of input means stop. On its
 // stdout: {"hello": {gl info, "driver_files": [paths]}} (GL strings, subpixel bits, whether
 // gl_PrimitiveID comes from a geometry shader, and warnings: what the implementation got wrong

@@ -2,6 +2,7 @@
 #include "gl_harness/egl_context.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 
@@ -99,9 +100,19 @@ class EglContext final : public Context {
   EglContext(const EglLibrary& egl, EGLDisplay display, std::string platform)
       : egl_(egl), display_(display), platform_(std::move(platform)) {
     EGLint major = 0, minor = 0;
-    if (!egl_.Initialize(display_, &major, &minor))
-      throw Unavailable("eglInitialize failed on " + platform_ + ": " +
-                        egl_error_name(egl_.GetError()));
+    if (!egl_.Initialize(display_, &major, &minor)) {
+      const std::string error = egl_error_name(egl_.GetError());
+      // Mesa starts the driver GALLIUM_DRIVER names (select_driver sets it from --driver) in
+      // eglInitialize: a driver this Mesa lacks is the usual cause, so name it.
+      const char* driver = std::getenv("GALLIUM_DRIVER");
+      if (driver && *driver)
+        throw Unavailable("eglInitialize failed on " + platform_ + ": driver \"" +
+                          std::string(driver) + "\" (GALLIUM_DRIVER) could not start (" + error +
+                          "); is it a gallium driver of this Mesa? Mesa's CPU drivers are "
+                          "llvmpipe, softpipe and zink");
+      throw Unavailable("eglInitialize failed on " + platform_ +
+                        " with the platform's default driver: " + error);
+    }
     {
       std::lock_guard lock(display_mutex);
       ++display_users[display_];

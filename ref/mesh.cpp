@@ -48,17 +48,27 @@ std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& 
       by_edge[{{wa[0], wa[1], 1}, {wb[0], wb[1], 1}}].push_back({t, i});
     }
   }
+  // Within one edge's users, side(t, i, p) is the sign of the exact edge function of t through
+  // the edge's two ends (the same two window points for every user), oriented so that t's own
+  // third vertex is positive: sign(orient(P, Q, p)) times t's orientation sign. So for two users
+  // u, k: side(u, v_k) = o_u·o_k = side(k, v_u), and the two lie on opposite sides exactly when
+  // side(r, v_u) and side(r, v_k) differ, r being any one user. One exact evaluation per user
+  // decides every pair: linear in the users, where comparing all pairs was quadratic (10,000
+  // copies of one triangle took minutes).
   for (const auto& [key, users] : by_edge) {
+    if (users.size() < 2) continue;
+    const auto [tr, ir] = users.front();
+    std::vector<int> rel(users.size());
+    bool positive = false, negative = false;
     for (size_t u = 0; u < users.size(); ++u) {
-      for (size_t k = u + 1; k < users.size(); ++k) {
-        const auto [t1, i1] = users[u];
-        const auto [t2, i2] = users[k];
-        // Opposite sides: each triangle's third vertex lies outside the other one's edge.
-        if (side(triangles[t1], i1, triangles[t2].v[size_t(i2)]) < 0 &&
-            side(triangles[t2], i2, triangles[t1].v[size_t(i1)]) < 0)
-          shared[t1][size_t(i1)] = shared[t2][size_t(i2)] = true;
-      }
+      const auto [t, i] = users[u];
+      rel[u] = u == 0 ? 1 : side(triangles[tr], ir, triangles[t].v[size_t(i)]);
+      positive = positive || rel[u] > 0;
+      negative = negative || rel[u] < 0;
     }
+    if (!positive || !negative) continue;
+    for (size_t u = 0; u < users.size(); ++u)
+      if (rel[u] != 0) shared[users[u].first][size_t(users[u].second)] = true;
   }
   return shared;
 }

@@ -9,7 +9,7 @@ packages=(
   # lavapipe, Mesa's CPU Vulkan driver: what --driver zink (GL on Vulkan) runs on.
   mesa-vulkan-drivers
   libglm-dev libopenimageio-dev openimageio-tools
-  nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev libre2-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core
   # libFuzzer targets and sanitizer builds (scripts/fuzz.sh, scripts/sanitize.sh).
   clang libclang-rt-14-dev

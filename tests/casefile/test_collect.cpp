@@ -1,4 +1,6 @@
 // collect(): which files a command line names.
+#include <sys/stat.h>
+
 #include "tests/casefile/test_helpers.hpp"
 
 namespace glrc::casefile::test {
@@ -55,6 +57,62 @@ TEST_F(CaseFileTest, CollectRejectsTwoCasesWithOneName) {
 
 TEST_F(CaseFileTest, CollectOfEmptyDirectoryIsEmpty) {
   EXPECT_TRUE(collect({dir_.string()}).empty());
+}
+
+// Two links to their own folder made the search exponential (and a loop never ends): each
+// folder is searched once, by device and inode.
+TEST_F(CaseFileTest, CollectSearchesAFolderReachedByLinksOnce) {
+  write("d/x.json", "{}");
+  fs::create_directory_symlink(".", dir_ / "d/a");
+  fs::create_directory_symlink(".", dir_ / "d/b");
+  fs::create_directory_symlink("..", dir_ / "d/up");
+  std::vector<std::string> notes;
+  const auto got =
+      collect({(dir_ / "d").string()}, [&](const std::string& n) { notes.push_back(n); });
+  EXPECT_EQ(strings(got), (std::vector<std::string>{(dir_ / "d/x.json").string()}));
+  ASSERT_EQ(notes.size(), 3u);
+  for (const std::string& n : notes)
+    EXPECT_NE(n.find(": a symbolic link to a folder searched already"), std::string::npos) << n;
+  EXPECT_EQ(notes[0].rfind("glrefcheck: ignored " + (dir_ / "d").string() + "/", 0), 0u)
+      << notes[0];
+}
+
+// A FIFO named as a case blocked forever; sockets and devices are no cases either. Ignored with
+// one line each, not an error.
+TEST_F(CaseFileTest, CollectIgnoresFifosAndDevicesWithOneLine) {
+  write("d/x.json", "{}");
+  ASSERT_EQ(mkfifo((dir_ / "d/pipe.json").c_str(), 0600), 0);
+  ASSERT_EQ(mkfifo((dir_ / "named.json").c_str(), 0600), 0);
+  std::vector<std::string> notes;
+  const auto note = [&](const std::string& n) { notes.push_back(n); };
+  const auto got =
+      collect({(dir_ / "d").string(), (dir_ / "named.json").string(), "/dev/null"}, note);
+  EXPECT_EQ(strings(got), (std::vector<std::string>{(dir_ / "d/x.json").string()}));
+  EXPECT_EQ(
+      notes,
+      (std::vector<std::string>{
+          "glrefcheck: ignored " + (dir_ / "d/pipe.json").string() + ": a FIFO, not a regular file",
+          "glrefcheck: ignored " + (dir_ / "named.json").string() + ": a FIFO, not a regular file",
+          "glrefcheck: ignored /dev/null: a character device, not a regular file"}));
+}
+
+// A name that is not UTF-8 cannot go into results.json: refused before any work, not by the
+// JSON library mid-run.
+TEST_F(CaseFileTest, CollectRefusesPathsThatAreNotUtf8) {
+  write("d/ok.json", "{}");
+  write("d/x\xff.json", "{}");
+  for (const std::string& arg : {(dir_ / "d").string(), (dir_ / "d/x\xff.json").string()}) {
+    try {
+      collect({arg}, [](const std::string&) {});
+      FAIL() << "no error for " << arg;
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                (dir_ / "d").string() +
+                    "/x\\xFF.json: expected a path in UTF-8 (case names go into "
+                    "JSON), got the byte 0xFF at offset " +
+                    std::to_string((dir_ / "d").string().size() + 2));
+    }
+  }
 }
 
 }  // namespace

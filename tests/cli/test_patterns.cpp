@@ -1,0 +1,132 @@
+// Users' regular expressions (--filter, --flakes, --skips) through RE2: linear time, no stack
+// overflow, and one line naming the file and line or the option for a bad one (issue 11).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli/expectations.hpp"
+#include "cli/session.hpp"
+#include "tests/support/glrefcheck_process.hpp"
+
+namespace glrc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("glrc_patterns_" + std::to_string(getpid()) + "_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+const char* kCase = R"({"description": "d", "vertices": [{"clip": [-1, -1, 0, 1]},
+  {"clip": [1, -1, 0, 1]}, {"clip": [0, 1, 0, 1]}]})";
+
+TEST(Patterns, FilterSearchesAndFlakesMatchTheWholeName) {
+  EXPECT_TRUE(Regex("on").search("face_on"));
+  EXPECT_FALSE(Regex("on").full_match("face_on"));
+  EXPECT_TRUE(Regex("face.*").full_match("face_on"));
+  EXPECT_TRUE(Regex(R"(^face_\w+$)").search("face_on"));
+  const fs::path d = temp_dir("match");
+  std::ofstream(d / "flakes.txt") << "# comment\n\nface\nattr_.*\n";
+  const Patterns p = read_patterns(d / "flakes.txt");
+  EXPECT_EQ(p.match("face_on"), nullptr);
+  ASSERT_NE(p.match("attr_huge"), nullptr);
+  EXPECT_EQ(*p.match("attr_huge"), "attr_.*");
+  fs::remove_all(d);
+}
+
+// std::regex backtracked: `^(a|aa)*b$` over a 100-letter name ran for longer than the universe.
+TEST(Patterns, BacktrackingPatternReturnsAtOnce) {
+  const std::string name(100, 'a');
+  EXPECT_FALSE(Regex("^(a|aa)*b$").search(name));
+  EXPECT_TRUE(Regex("^(a|aa)*$").full_match(name));
+  const fs::path d = temp_dir("backtrack");
+  std::ofstream(d / (name + ".json")) << kCase;
+  Options o;
+  o.paths = {d.string()};
+  o.filter = "^(a|aa)*b$";
+  try {
+    load_cases(o);
+    FAIL() << "a case matched";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "no case matches: nothing to run");
+  }
+  o.filter = "^(a|aa)*$";
+  EXPECT_EQ(load_cases(o).size(), 1u);
+  fs::remove_all(d);
+}
+
+// 24,000 nested groups overflowed std::regex's stack (SIGSEGV). RE2 parses without recursion
+// and takes it; were it over RE2's memory limit it would be one line and exit 2.
+TEST(Patterns, DeeplyNestedGroupsAreNoCrash) {
+  const std::string nested = std::string(24000, '(') + "a" + std::string(24000, ')');
+  EXPECT_TRUE(Regex(nested).search("xay"));
+  EXPECT_FALSE(Regex(nested).search("xyz"));
+  Options o;
+  o.paths = {GLRC_SOURCE_DIR "/cases"};
+  o.filter = "a";
+  const size_t with_a = load_cases(o).size();
+  o.filter = nested;
+  EXPECT_EQ(load_cases(o).size(), with_a);
+  // A pattern beyond RE2's memory budget is refused with one line, not a crash.
+  try {
+    Regex(std::string(50, '(') + "a{1000}" + std::string(50, ')') + "{1000}");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(
+        std::string(e.what()).rfind("expected a regular expression (RE2 syntax), got \"(((", 0), 0u)
+        << e.what();
+  }
+}
+
+TEST(Patterns, BadPatternInAFileNamesFileAndLine) {
+  const fs::path d = temp_dir("bad");
+  std::ofstream(d / "skips.txt") << "face_on\n# fine\n(a\n";
+  try {
+    read_patterns(d / "skips.txt");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (d / "skips.txt").string() +
+                  ":3: expected a regular expression (RE2 syntax), got \"(a\" (missing ): (a)");
+  }
+  // Through the command line: one line, exit 2.
+  const auto o = test::glrefcheck("run cases/face_on.json --skips '" + (d / "skips.txt").string() +
+                                  "' --out '" + (d / "out").string() + "'");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err, "glrefcheck: --skips: " + (d / "skips.txt").string() +
+                       ":3: expected a regular expression (RE2 syntax), got \"(a\" (missing ): "
+                       "(a)\n");
+  fs::remove_all(d);
+}
+
+TEST(Patterns, BadFilterOnTheCommandLineIsOneLine) {
+  const auto o = test::glrefcheck("list --filter '(?<name>x)'");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err.rfind("glrefcheck: --filter: expected a regular expression (RE2 syntax), got "
+                        "\"(?<name>x)\" (",
+                        0),
+            0u)
+      << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1);
+}
+
+// `--backend egl --driver bogus` said only that eglInitialize failed.
+TEST(EglDriver, AnUnknownDriverIsNamed) {
+  const auto o =
+      test::glrefcheck("run cases/face_on.json --backend egl --driver bogus --jobs 1 --out '" +
+                       temp_dir("bogus").string() + "'");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.err.find("driver \"bogus\" (GALLIUM_DRIVER) could not start"), std::string::npos)
+      << o.err;
+  fs::remove_all(temp_dir("bogus"));
+}
+
+}  // namespace
+}  // namespace glrc::cli
