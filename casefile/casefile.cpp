@@ -685,8 +685,10 @@ void Loader::load_vertices(const json& list, const std::optional<Transform>& tra
     // Allowed keys: clip, position, and the varyings' names.
     for (const auto& [key, value] : v.items()) {
       if (key == "clip" || key == "position") continue;
+      // A named reference: Clang before 16 cannot capture a structured binding.
+      const std::string& name = key;
       const bool varying = std::any_of(c.varyings.begin(), c.varyings.end(),
-                                       [&](const Varying& var) { return var.name == key; });
+                                       [&](const Varying& var) { return var.name == name; });
       if (!varying) {
         std::string keys = "clip, position";
         for (const auto& var : c.varyings)

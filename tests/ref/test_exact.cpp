@@ -35,7 +35,7 @@ TEST(RoundToFloat, KnownValues) {
   EXPECT_EQ(round_to_float(pow2(-150) + pow2(-200)), std::ldexp(1.0f, -149));
   EXPECT_EQ(bits(round_to_float(-pow2(-151))), 0x80000000u);              // -0
   // Overflow: FLT_MAX + half an ulp is a tie that rounds to even, i.e. to 2^128 = infinity.
-  const mpq_class flt_max(double(std::numeric_limits<float>::max()));
+  const mpq_class flt_max = mpq_class(double(std::numeric_limits<float>::max()));
   EXPECT_EQ(round_to_float(flt_max), std::numeric_limits<float>::max());
   EXPECT_EQ(round_to_float(flt_max + pow2(102)), std::numeric_limits<float>::max());
   EXPECT_TRUE(std::isinf(round_to_float(flt_max + pow2(103))));
