@@ -942,9 +942,13 @@ class DomBuilder final : public json::json_sax_t {
       // Appended in place: a path 100,000 levels deep must not be copied at every level.
       if (l.node->is_array()) {
         const size_t n = l.node->size();
-        p += "[" + std::to_string(k + 1 < stack_.size() ? n - 1 : n) + "]";
+        // Three appends, not "[" + ...: GCC 12 at -O3 reports a false -Wrestrict in operator+.
+        p += '[';
+        p += std::to_string(k + 1 < stack_.size() ? n - 1 : n);
+        p += ']';
       } else if (l.slot) {
-        p += (p.empty() ? "" : ".") + *l.key;
+        if (!p.empty()) p += '.';
+        p += *l.key;
       } else {
         break;
       }
