@@ -131,7 +131,8 @@ void check_case_names(const std::vector<Case>& cases) {
                        "\": expected a path in UTF-8 (results.json and the run journal record "
                        "it): rename the file");
     if (const char* what = csv_breaking(c.name))
-      throw InputError(c.source_path + ": expected a case name fit for results.csv, got \"" +
+      throw InputError(printable(c.source_path) +
+                       ": expected a case name fit for results.csv, got \"" +
                        printable(c.name) + "\", which holds " + what + ": rename the file");
   }
 }
@@ -229,6 +230,8 @@ int cmd_run(const Options& given) {
   const Baseline baseline = load_baseline(expectations);
   const Patterns flakes = load_patterns(expectations.flakes, "--flakes");
   const Patterns skips = load_patterns(expectations.skips, "--skips");
+  std::optional<MesaPrefix> prefix;
+  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, o.backend);
   const int interrupt_fd = catch_interrupts();
   if (!earlier) {
     Inputs inputs;
@@ -268,11 +271,7 @@ int cmd_run(const Options& given) {
   if (earlier && earlier->model) s.model = earlier->model;
   // Known failures get their heatmaps only for the HTML report: triage needs the new ones.
   s.images = [&](const Case& c) { return o.html || !baseline.expected.count(c.name); };
-  std::optional<MesaPrefix> prefix;
-  if (!o.mesa.empty()) {
-    prefix = find_mesa_prefix(o.mesa, o.backend);
-    s.environment = mesa_environment(*prefix, out);
-  }
+  if (prefix) s.environment = mesa_environment(*prefix, out);
 
   // What the run knows before GL (enough when every case is skipped), and again once a worker
   // has told the GL strings.

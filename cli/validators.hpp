@@ -61,7 +61,7 @@ inline CLI::Validator whole_number(int lower) {
           v = std::stoll(s, &used);
           if (used != s.size()) return expected + ", got \"" + s + "\"";
         } catch (const std::out_of_range&) {
-          return expected + " (at most " + std::to_string(INT_MAX) + "), got \"" + s + "\"";
+          return expected + " (at most " + std::to_string(INT_MAX) + "), got " + s;
         } catch (const std::exception&) {
           return expected + ", got \"" + s + "\"";
         }
