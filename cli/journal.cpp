@@ -69,8 +69,8 @@ Journal Journal::start(const fs::path& dir, const Options& o,
                        const std::vector<std::string>& files) {
   const fs::path file = dir / kJournalFile;
   Journal j(open_journal(file, O_CREAT | O_TRUNC), file);
-  j.append(json{{"glrefcheck_journal", 1}, {"options", all_options_json(o)}, {"files", files}}
-               .dump(-1, ' ', false, json::error_handler_t::replace));
+  j.append(json{{"glrefcheck_journal", 1}, {"options", all_options_json(o)}, {"files", files}}.dump(
+      -1, ' ', false, json::error_handler_t::replace));
   return j;
 }
 
@@ -119,8 +119,8 @@ JournalContents read_journal(const fs::path& dir) {
                      kJournalFile + ", got " +
                      (fs::is_directory(dir, ec) ? "none in it" : "no such folder"));
   if (!is_marked(dir))
-    throw InputError("--resume " + printable(dir.string()) + ": expected a folder glrefcheck made (with a " +
-                     kMarkerFile + " file)");
+    throw InputError("--resume " + printable(dir.string()) +
+                     ": expected a folder glrefcheck made (with a " + kMarkerFile + " file)");
   std::ifstream in(file, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   JournalContents c;

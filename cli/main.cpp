@@ -158,9 +158,10 @@ void check_resume_alone(const CLI::App& run) {
     const std::string name = opt->get_name();
     if (opt->count() == 0 || name == "--resume" || name == "--jobs" || name == "--jobs-force")
       continue;
-    throw InputError("--resume: expected no other option than --jobs and --jobs-force (the run "
-                     "goes on with the options and cases it began with), got " +
-                     (opt->get_positional() ? "case paths" : name));
+    throw InputError(
+        "--resume: expected no other option than --jobs and --jobs-force (the run "
+        "goes on with the options and cases it began with), got " +
+        (opt->get_positional() ? "case paths" : name));
   }
 }
 

@@ -40,9 +40,9 @@ bool earlier_glrefcheck_run(const fs::path& dir) {
 }  // namespace
 
 const std::vector<std::string>& run_output_names() {
-  static const std::vector<std::string> names = {
-      "results.json", "results.csv", "failures.csv", "junit.xml", "report.html",
-      kJournalFile,   "cases",       "logs",         kInputsFolder};
+  static const std::vector<std::string> names = {"results.json", "results.csv", "failures.csv",
+                                                 "junit.xml",    "report.html", kJournalFile,
+                                                 "cases",        "logs",        kInputsFolder};
   return names;
 }
 
@@ -86,12 +86,26 @@ fs::path output_folder(const std::string& out, const std::string& option) {
           entries.size() > 1 ? fmt::format(" and {} more", entries.size() - 1) : ""));
     }
   } else {
+    // The folders glrefcheck makes are its own: out/ of `--out out/llvmpipe` too, so that a later
+    // `run` with the default --out finds it marked.
+    std::vector<fs::path> made;
+    for (fs::path p = fs::absolute(dir, ec).lexically_normal(); !p.empty() && !fs::exists(p, ec);
+         p = p.parent_path()) {
+      made.push_back(p);
+      if (p == p.parent_path()) break;
+    }
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
       throw InputError(option + ": expected a folder that can be created, got \"" + shown + "\"" +
                        (ec ? " (" + ec.message() + ")" : " (not a folder)"));
     if (access(dir.c_str(), W_OK) != 0)
       throw InputError(option + ": expected a writable folder, got \"" + shown + "\"");
+    for (const fs::path& p : made)
+      if (p.lexically_normal() != fs::absolute(dir, ec).lexically_normal()) try {
+          report::write_file_atomically(p / kMarkerFile, kMarkerText);
+        } catch (const std::exception&) {
+          // The folder asked for is what matters; its parents are a convenience.
+        }
   }
   try {
     report::write_file_atomically(dir / kMarkerFile, kMarkerText);

@@ -132,22 +132,26 @@ void check_case_names(const std::vector<Case>& cases) {
                        "it): rename the file");
     if (const char* what = csv_breaking(c.name))
       throw InputError(printable(c.source_path) +
-                       ": expected a case name fit for results.csv, got \"" +
-                       printable(c.name) + "\", which holds " + what + ": rename the file");
+                       ": expected a case name fit for results.csv, got \"" + printable(c.name) +
+                       "\", which holds " + what + ": rename the file");
   }
 }
 
 // The options that name files: recorded in JSON (the journal), so UTF-8 only.
 void check_paths_utf8(const Options& o) {
-  for (const auto& [option, value] :
-       {std::pair{"--baseline", &o.baseline}, {"--flakes", &o.flakes}, {"--skips", &o.skips},
-        {"--mesa", &o.mesa}, {"--filter", &o.filter}, {"--out", &o.out}})
+  for (const auto& [option, value] : {std::pair{"--baseline", &o.baseline},
+                                      {"--flakes", &o.flakes},
+                                      {"--skips", &o.skips},
+                                      {"--mesa", &o.mesa},
+                                      {"--filter", &o.filter},
+                                      {"--out", &o.out}})
     if (!is_utf8(*value))
       throw InputError(std::string(option) + ": expected UTF-8 text, got \"" + printable(*value) +
                        "\"");
   for (const std::string& p : o.paths)
     if (!is_utf8(p))
-      throw InputError("\"" + printable(p) + "\": expected a case path in UTF-8 (results.json "
+      throw InputError("\"" + printable(p) +
+                       "\": expected a case path in UTF-8 (results.json "
                        "and the run journal record it)");
 }
 
@@ -220,9 +224,9 @@ int cmd_run(const Options& given) {
   } else {
     check_paths_utf8(o);
     if (o.fraction < 1 || o.fraction_start < 1 || o.fraction_start > o.fraction)
-      throw InputError(fmt::format(
-          "--fraction {} --fraction-start {}: expected 1 <= fraction-start <= fraction",
-          o.fraction, o.fraction_start));
+      throw InputError(
+          fmt::format("--fraction {} --fraction-start {}: expected 1 <= fraction-start <= fraction",
+                      o.fraction, o.fraction_start));
     all = load_cases(o);
     check_case_names(all);
   }
@@ -235,8 +239,8 @@ int cmd_run(const Options& given) {
   const int interrupt_fd = catch_interrupts();
   if (!earlier) {
     Inputs inputs;
-    for (const auto& [name, file] : {std::pair{"baseline", &o.baseline}, {"flakes", &o.flakes},
-                                     {"skips", &o.skips}})
+    for (const auto& [name, file] :
+         {std::pair{"baseline", &o.baseline}, {"flakes", &o.flakes}, {"skips", &o.skips}})
       if (!file->empty()) inputs.files.emplace_back(name, read_file(*file));
     out = output_folder(o.out);
     // The run replaces its own outputs; case files among them would go with them.
@@ -296,8 +300,8 @@ int cmd_run(const Options& given) {
             o.out, kJournalFile, index, printable(r.name)));
       results[index] = std::move(r);
     }
-    fmt::print("glrefcheck run --resume {}: {} of {} done before\n", o.out,
-               earlier->results.size(), report::count_text(cases.size(), "case", "cases"));
+    fmt::print("glrefcheck run --resume {}: {} of {} done before\n", o.out, earlier->results.size(),
+               report::count_text(cases.size(), "case", "cases"));
   }
   std::vector<const Case*> to_check;
   std::vector<size_t> checked_index;  // to_check[i] is cases[checked_index[i]]

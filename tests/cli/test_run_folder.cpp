@@ -123,8 +123,8 @@ TEST_F(RunFolder, OutDotInACheckoutIsRefusedAndNothingIsDeleted) {
   EXPECT_EQ(snapshot(checkout), before);
 
   // The same for merge, into a folder with a file of the user's called cases/.
-  const Outcome m = glrefcheck("merge '" + (dir_ / "no_shard").string() + "' --out '" +
-                               checkout.string() + "'");
+  const Outcome m =
+      glrefcheck("merge '" + (dir_ / "no_shard").string() + "' --out '" + checkout.string() + "'");
   EXPECT_EQ(m.exit_code, 2) << m.out << m.err;
   EXPECT_EQ(lines(m.err), 1u) << m.err;
   EXPECT_EQ(snapshot(checkout), before);
@@ -134,9 +134,10 @@ TEST_F(RunFolder, OutDotInACheckoutIsRefusedAndNothingIsDeleted) {
 // with --html would pass for this run's), the user's stay.
 TEST_F(RunFolder, MarkedFolderIsReusedCleanly) {
   const fs::path out = dir_ / "out";
-  const Outcome first = glrefcheck("run --filter '^(face_on|clip_noperspective_x_plane)$' --jobs 1 "
-                                   "--html --out '" +
-                                   out.string() + "'");
+  const Outcome first = glrefcheck(
+      "run --filter '^(face_on|clip_noperspective_x_plane)$' --jobs 1 "
+      "--html --out '" +
+      out.string() + "'");
   ASSERT_EQ(first.exit_code, 1) << first.out << first.err;  // the clipper's NaN fails
   ASSERT_TRUE(fs::exists(out / ".glrefcheck"));
   ASSERT_TRUE(fs::exists(out / "report.html"));
@@ -187,8 +188,7 @@ struct Moment {
   int signal;
 };
 
-class Interrupted : public glrc::test::TempDirTest, public ::testing::WithParamInterface<Moment> {
-};
+class Interrupted : public glrc::test::TempDirTest, public ::testing::WithParamInterface<Moment> {};
 
 // The run is stopped while a worker hangs on `stall`; what finished is on disk (results.json for
 // SIGINT and SIGTERM, marked interrupted; the journal for kill -9), the worker is gone, and
@@ -223,9 +223,10 @@ TEST_P(Interrupted, ResumeGivesTheUninterruptedResults) {
     EXPECT_FALSE(fs::exists(out / "results.json"));  // never an earlier run's
   } else {
     EXPECT_EQ(o.exit_code, 128 + m.signal) << o.out << o.err;
-    EXPECT_NE(o.out.find("interrupted by " + std::string(m.signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                         " after " + std::to_string(before) + " of 8 cases"),
-              std::string::npos)
+    EXPECT_NE(
+        o.out.find("interrupted by " + std::string(m.signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                   " after " + std::to_string(before) + " of 8 cases"),
+        std::string::npos)
         << o.out;
     const auto partial = results_of(out);
     EXPECT_EQ(partial["run"]["interrupted"], true);
@@ -236,8 +237,7 @@ TEST_P(Interrupted, ResumeGivesTheUninterruptedResults) {
 
   const Outcome resumed = glrefcheck("run --resume '" + out.string() + "'");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.out << resumed.err;
-  EXPECT_NE(resumed.out.find(std::to_string(before) + " of 8 cases done before"),
-            std::string::npos)
+  EXPECT_NE(resumed.out.find(std::to_string(before) + " of 8 cases done before"), std::string::npos)
       << resumed.out;
   EXPECT_EQ(comparable(results_of(out)), comparable(results_of(whole)));
   EXPECT_EQ(results_of(out)["run"]["interrupted"], false);
@@ -252,7 +252,7 @@ INSTANTIATE_TEST_SUITE_P(Moments, Interrupted,
                          [](const auto& p) {
                            return std::string(p.param.signal == SIGINT    ? "sigint_"
                                               : p.param.signal == SIGTERM ? "sigterm_"
-                                                                             : "sigkill_") +
+                                                                          : "sigkill_") +
                                   p.param.stall;
                          });
 
@@ -274,8 +274,8 @@ class RunOptions : public glrc::test::TempDirTest {};
 // `--timeout nan` was accepted and made every case a Timeout.
 TEST_F(RunOptions, TimeoutMustBeAFiniteNumberOfSeconds) {
   for (const char* t : {"nan", "inf", "-1", "0", "1e400", "5s"}) {
-    const Outcome o = glrefcheck(std::string("run cases/face_on.json --timeout ") + t +
-                                 " --out '" + (dir_ / "out").string() + "'");
+    const Outcome o = glrefcheck(std::string("run cases/face_on.json --timeout ") + t + " --out '" +
+                                 (dir_ / "out").string() + "'");
     EXPECT_EQ(o.exit_code, 2) << t << ": " << o.out << o.err;
     EXPECT_EQ(o.out, "") << t;
     EXPECT_EQ(lines(o.err), 1u) << t << ": " << o.err;
@@ -291,8 +291,9 @@ TEST_F(RunOptions, JobsArePlainAndCappedAtTheCores) {
        {std::pair{"--jobs 0", "glrefcheck: --jobs: expected a whole number >= 1, got 0"},
         {"--jobs -3", "glrefcheck: --jobs: expected a whole number >= 1, got -3"},
         {"--fraction 0", "glrefcheck: --fraction: expected a whole number >= 1, got 0"},
-        {"--jobs 99999999999", "glrefcheck: --jobs: expected a whole number >= 1 (at most "
-                               "2147483647), got 99999999999"},
+        {"--jobs 99999999999",
+         "glrefcheck: --jobs: expected a whole number >= 1 (at most "
+         "2147483647), got 99999999999"},
         {"--jobs 1e400", "glrefcheck: --jobs: expected a whole number >= 1, got \"1e400\""}}) {
     const Outcome o = glrefcheck(std::string("run cases/face_on.json ") + args);
     EXPECT_EQ(o.exit_code, 2) << args;
@@ -311,9 +312,8 @@ TEST_F(RunOptions, JobsArePlainAndCappedAtTheCores) {
     logs += e.path().filename().string().starts_with("worker-");
   EXPECT_LE(logs, 2u);
 
-  const Outcome forced =
-      glrefcheck(two + (dir_ / "forced").string() + "' --jobs " + std::to_string(cores() + 1) +
-                 " --jobs-force");
+  const Outcome forced = glrefcheck(two + (dir_ / "forced").string() + "' --jobs " +
+                                    std::to_string(cores() + 1) + " --jobs-force");
   ASSERT_EQ(forced.exit_code, 0) << forced.out << forced.err;
   EXPECT_EQ(forced.out.find("note: --jobs"), std::string::npos) << forced.out;
   EXPECT_EQ(results_of(dir_ / "forced")["run"]["jobs"], cores() + 1);
@@ -328,8 +328,8 @@ TEST_F(RunOptions, CaseNamesThatBreakTheCsvAreRefused) {
     fs::remove_all(cases);
     fs::create_directories(cases);
     fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases/face_on.json", cases / (name + ".json"));
-    const Outcome o = glrefcheck("run '" + cases.string() + "' --jobs 1 --out '" +
-                                 (dir_ / "out").string() + "'");
+    const Outcome o =
+        glrefcheck("run '" + cases.string() + "' --jobs 1 --out '" + (dir_ / "out").string() + "'");
     EXPECT_EQ(o.exit_code, 2) << name << ": " << o.out << o.err;
     EXPECT_EQ(o.out, "") << name;
     EXPECT_EQ(lines(o.err), 1u) << name << ": " << o.err;
@@ -339,8 +339,8 @@ TEST_F(RunOptions, CaseNamesThatBreakTheCsvAreRefused) {
   const fs::path cases = dir_ / "comma";
   fs::create_directories(cases);
   fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases/face_on.json", cases / "a,Fail.json");
-  const Outcome o = glrefcheck("run '" + cases.string() + "' --out '" + (dir_ / "out").string() +
-                               "'");
+  const Outcome o =
+      glrefcheck("run '" + cases.string() + "' --out '" + (dir_ / "out").string() + "'");
   EXPECT_NE(o.err.find("a,Fail.json: expected a case name fit for results.csv, got \"a,Fail\", "
                        "which holds a comma"),
             std::string::npos)
@@ -350,8 +350,8 @@ TEST_F(RunOptions, CaseNamesThatBreakTheCsvAreRefused) {
 // A path that is not UTF-8 aborted the run mid-way with a raw JSON library message; results.json
 // and the journal cannot hold it, so it is refused before the run starts.
 TEST_F(RunOptions, PathsThatAreNotUtf8AreRefusedUpFront) {
-  const Outcome out = glrefcheck("run cases/face_on.json --out '" + (dir_ / "o\xff").string() +
-                                 "'");
+  const Outcome out =
+      glrefcheck("run cases/face_on.json --out '" + (dir_ / "o\xff").string() + "'");
   EXPECT_EQ(out.exit_code, 2) << out.out << out.err;
   EXPECT_EQ(out.out, "");
   EXPECT_EQ(lines(out.err), 1u) << out.err;
@@ -363,8 +363,8 @@ TEST_F(RunOptions, PathsThatAreNotUtf8AreRefusedUpFront) {
   const fs::path cases = dir_ / "cases";
   fs::create_directories(cases);
   fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases/face_on.json", cases / "x\xff.json");
-  const Outcome c = glrefcheck("run '" + cases.string() + "' --out '" + (dir_ / "out").string() +
-                               "'");
+  const Outcome c =
+      glrefcheck("run '" + cases.string() + "' --out '" + (dir_ / "out").string() + "'");
   EXPECT_EQ(c.exit_code, 2) << c.out << c.err;
   EXPECT_EQ(c.out, "");  // nothing ran
   EXPECT_EQ(lines(c.err), 1u) << c.err;
