@@ -251,6 +251,7 @@ int cmd_run(const Options& given) {
                            " holds this run's case files (" + c.source_path +
                            "), and a run replaces it: name another --out");
     clear_run_outputs(out);
+    if (!inputs.files.empty()) std::filesystem::create_directories(out / kInputsFolder);
     for (const auto& [name, text] : inputs.files)
       report::write_file_atomically(out / kInputsFolder / name, text);
     std::vector<std::string> files;

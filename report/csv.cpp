@@ -16,6 +16,7 @@ void write_csv(const std::filesystem::path& file, const std::vector<CaseResult>&
   for (const auto& r : results)
     if (!failures_only || fails_run(r.status))
       text += fmt::format("{},{},{:.6f}\n", r.name, to_string(r.status), r.seconds);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   write_file_atomically(file, text);
 }
 

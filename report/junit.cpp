@@ -85,6 +85,7 @@ void write_junit(const std::filesystem::path& file, const RunInfo& run,
     xml += testcase_xml(r);
   xml += "  </testsuite>\n</testsuites>\n";
 
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   write_file_atomically(file, xml);
 }
 

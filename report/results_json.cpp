@@ -365,12 +365,11 @@ RunInfo run_info_from_json(const std::string& text, const std::string& source) {
 
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
   const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
-  std::filesystem::create_directories(dir);
   // Dot-named, so nobody takes a leftover for a result; the pid keeps two writers apart.
   const std::filesystem::path tmp =
       dir / ("." + file.filename().string() + ".tmp-" + std::to_string(getpid()));
   const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot write " + file.string() + ": " + strerror(errno));
+  if (fd < 0) throw std::runtime_error("cannot write " + file.string());
   bool ok = true;
   for (size_t done = 0; ok && done < text.size();) {
     const ssize_t n = write(fd, text.data() + done, text.size() - done);
@@ -386,7 +385,7 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
   if (!ok) {
     const int why = error ? error : errno;
     unlink(tmp.c_str());
-    throw std::runtime_error("cannot write " + file.string() + ": " + strerror(why));
+    throw std::runtime_error("cannot write " + file.string() + " (" + strerror(why) + ")");
   }
 }
 
@@ -443,6 +442,7 @@ void write_results_json(const std::filesystem::path& file, const RunInfo& run,
     cases.push_back(case_json(r));
   json doc = {{"run", run_json(run)}, {"summary", summary_json(results)}, {"cases", cases}};
 
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   // Case names and messages come from files and drivers; replace bad UTF-8 rather than throw.
   write_file_atomically(file, doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
 }

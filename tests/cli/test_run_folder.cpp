@@ -256,6 +256,37 @@ INSTANTIATE_TEST_SUITE_P(Moments, Interrupted,
                                   p.param.stall;
                          });
 
+// A common loop: the last run's failures.csv as the next run's --baseline, in the same folder.
+// The run replaces that file (an interrupted run writes an empty one here), so --resume judges
+// by the copy the run made when it began.
+TEST_F(RunFolder, ResumeJudgesByTheBaselineTheRunBeganWith) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  const std::string cases = "run --filter '^(clip_noperspective_x_plane|viewport_tiny)$' --jobs 1 ";
+  ASSERT_EQ(glrefcheck(cases + "--out '" + out.string() + "'").exit_code, 1);
+  ASSERT_EQ(read(out / "failures.csv").rfind("clip_noperspective_x_plane,Fail,", 0), 0u);
+
+  Outcome o;
+  std::thread run([&] {
+    o = glrefcheck(
+        cases + "--out '" + out.string() + "' --baseline '" + (out / "failures.csv").string() + "'",
+        "GLRC_TEST_STALL_CASE=clip_noperspective_x_plane GLRC_TEST_STALL_PIDFILE='" +
+            pidfile.string() + "'");
+  });
+  const pid_t worker = wait_for_pid(pidfile);
+  ASSERT_GT(worker, 0);
+  ASSERT_EQ(kill(parent_of(worker), SIGINT), 0);
+  run.join();
+  EXPECT_EQ(o.exit_code, 130) << o.out << o.err;
+  EXPECT_EQ(read(out / "failures.csv"), "");  // no case finished
+
+  const Outcome resumed = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.out << resumed.err;
+  const auto results = results_of(out);
+  ASSERT_EQ(results["cases"].size(), 2u);
+  EXPECT_EQ(results["cases"][0]["status"], "ExpectedFail");
+  EXPECT_EQ(results["cases"][1]["status"], "Pass");
+}
+
 TEST_F(RunFolder, ResumeTakesNoOtherOptions) {
   const Outcome cases = glrefcheck("run --resume '" + dir_.string() + "' cases/face_on.json");
   EXPECT_EQ(cases.exit_code, 2);
