@@ -21,20 +21,27 @@ constexpr const char* kMarkerText =
     "glrefcheck output folder: glrefcheck replaces its own files here (results.json, results.csv, "
     "failures.csv, junit.xml, report.html, journal.jsonl, cases/, logs/) and nothing else.\n";
 
-// A results.json that glrefcheck wrote before folders were marked: its "run" and "cases" are
-// evidence enough that the folder is glrefcheck's.
-bool earlier_glrefcheck_run(const fs::path& dir) {
-  std::error_code ec;
-  if (!fs::is_regular_file(dir / "results.json", ec)) return false;
-  try {
-    std::ifstream in(dir / "results.json");
-    const auto doc = nlohmann::json::parse(in);
-    return doc.is_object() && doc.contains("run") && doc["run"].is_object() &&
-           doc["run"].contains("backend") && doc["run"].contains("gl_renderer") &&
-           doc.contains("cases") && doc["cases"].is_array();
-  } catch (const std::exception&) {
-    return false;
-  }
+// A results.json (of `run`) or an identify.json (of `identify`) that glrefcheck wrote before
+// folders were marked: evidence enough that the folder is glrefcheck's.
+bool earlier_glrefcheck_output(const fs::path& dir) {
+  const auto parse = [&](const char* name) -> nlohmann::json {
+    std::error_code ec;
+    if (!fs::is_regular_file(dir / name, ec)) return nullptr;
+    try {
+      std::ifstream in(dir / name);
+      return nlohmann::json::parse(in);
+    } catch (const std::exception&) {
+      return nullptr;
+    }
+  };
+  const auto results = parse("results.json");
+  if (results.is_object() && results.contains("run") && results["run"].is_object() &&
+      results["run"].contains("gl_renderer") && results.contains("cases") &&
+      results["cases"].is_array())
+    return true;
+  const auto identify = parse("identify.json");
+  return identify.is_object() && identify.contains("depth24") && identify.contains("tie_break") &&
+         identify.contains("provoking_default");
 }
 
 }  // namespace
@@ -76,7 +83,7 @@ fs::path output_folder(const std::string& out, const std::string& option) {
     if (ec)
       throw InputError(option + ": cannot read the folder \"" + shown + "\" (" + ec.message() +
                        ")");
-    if (!entries.empty() && !earlier_glrefcheck_run(dir)) {
+    if (!entries.empty() && !earlier_glrefcheck_output(dir)) {
       std::sort(entries.begin(), entries.end());
       throw InputError(fmt::format(
           "{}: expected a new or empty folder, or one glrefcheck made (it holds a {} file), got "

@@ -101,6 +101,9 @@ int catch_interrupts() {
     throw std::runtime_error("cannot make a pipe for SIGINT and SIGTERM");
   struct sigaction sa = {};
   sa.sa_handler = on_interrupt;
+  // Restarted: a write to stdout or the journal must not fail because a signal came; the pool's
+  // poll() returns at once all the same (poll is never restarted, and it watches the pipe).
+  sa.sa_flags = SA_RESTART;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
@@ -485,6 +488,12 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
 
 int cmd_report(const std::string& dir, const std::string& file) {
   report::RunResults results;
+  std::error_code ec;
+  if (std::filesystem::is_directory(dir, ec) &&
+      !std::filesystem::exists(std::filesystem::path(dir) / "results.json", ec) &&
+      std::filesystem::exists(std::filesystem::path(dir) / kJournalFile, ec))
+    throw InputError("report: " + dir + " holds no results.json but a " + kJournalFile +
+                     ": the run was killed; `glrefcheck run --resume " + dir + "` finishes it");
   try {
     results = report::read_results_json(dir);
   } catch (const std::runtime_error& e) {

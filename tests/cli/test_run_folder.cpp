@@ -188,6 +188,11 @@ struct Moment {
   int signal;
 };
 
+// For the test's name in ctest's list: "SIGINT at attr_crossing_zero".
+void PrintTo(const Moment& m, std::ostream* os) {
+  *os << "SIG" << sigabbrev_np(m.signal) << " at " << m.stall;
+}
+
 class Interrupted : public glrc::test::TempDirTest, public ::testing::WithParamInterface<Moment> {};
 
 // The run is stopped while a worker hangs on `stall`; what finished is on disk (results.json for
