@@ -76,12 +76,17 @@ Journal Journal::start(const fs::path& dir, const Options& o,
 
 Journal Journal::reopen(const fs::path& dir) {
   const fs::path file = dir / kJournalFile;
-  // A line cut short by a kill would swallow the next one: end it first.
-  std::ifstream in(file, std::ios::binary | std::ios::ate);
-  const bool cut = in && in.tellg() > 0 && (in.seekg(-1, std::ios::end), in.get() != '\n');
-  Journal j(open_journal(file, 0), file);
-  if (cut) j.append("");
-  return j;
+  // A line cut short by a kill (its case runs again) goes, so the next line starts clean.
+  {
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t end = text.rfind('\n');
+    const size_t keep = end == std::string::npos ? 0 : end + 1;
+    std::error_code ec;
+    if (keep < text.size()) fs::resize_file(file, keep, ec);
+    if (ec) throw InputError("cannot write the run journal " + file.string() + ": " + ec.message());
+  }
+  return Journal(open_journal(file, 0), file);
 }
 
 Journal::~Journal() {

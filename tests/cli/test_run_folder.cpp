@@ -292,6 +292,26 @@ TEST_F(RunFolder, ResumeJudgesByTheBaselineTheRunBeganWith) {
   EXPECT_EQ(results["cases"][1]["status"], "Pass");
 }
 
+// A kill while the journal's last line was being written leaves it cut: that case runs again,
+// and the lines written after it on --resume are read as whole lines.
+TEST_F(RunFolder, JournalLineCutByAKillIsCheckedAgain) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(glrefcheck("run " + kCases + " --jobs 1 --out '" + out.string() + "'").exit_code, 0);
+  const auto whole = results_of(out);
+  const std::string journal = read(out / "journal.jsonl");
+  std::ofstream(out / "journal.jsonl", std::ios::binary) << journal.substr(0, journal.size() - 40);
+  fs::remove(out / "results.json");
+  const Outcome first = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(first.exit_code, 0) << first.out << first.err;
+  EXPECT_NE(first.out.find("7 of 8 cases done before"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("\nPass           viewport_tiny "), std::string::npos) << first.out;
+  // Resumed once more, the journal reads whole: nothing is left to check.
+  const Outcome again = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_NE(again.out.find("8 of 8 cases done before"), std::string::npos) << again.out;
+  EXPECT_EQ(comparable(results_of(out)), comparable(whole));
+}
+
 TEST_F(RunFolder, ResumeTakesNoOtherOptions) {
   const Outcome cases = glrefcheck("run --resume '" + dir_.string() + "' cases/face_on.json");
   EXPECT_EQ(cases.exit_code, 2);
