@@ -257,9 +257,10 @@ int cmd_run(const Options& given) {
     if (!inputs.files.empty()) std::filesystem::create_directories(out / kInputsFolder);
     for (const auto& [name, text] : inputs.files)
       report::write_file_atomically(out / kInputsFolder / name, text);
+    // Absolute, so that --resume finds them from any working folder.
     std::vector<std::string> files;
     for (const Case& c : all)
-      files.push_back(c.source_path);
+      files.push_back(std::filesystem::absolute(c.source_path).lexically_normal().string());
     journal.emplace(Journal::start(out, o, files));
   } else {
     journal.emplace(Journal::reopen(out));
