@@ -151,6 +151,20 @@ void add_gl_options(CLI::App& app, Options& o) {
                  "VERSION unpacks one into .mesa/VERSION)");
 }
 
+// `run --resume DIR` runs what DIR's journal recorded: any other option would be silently
+// overridden, so it is refused instead. --jobs only changes how fast.
+void check_resume_alone(const CLI::App& run) {
+  for (const CLI::Option* opt : run.get_options()) {
+    const std::string name = opt->get_name();
+    if (opt->count() == 0 || name == "--resume" || name == "--jobs" || name == "--jobs-force")
+      continue;
+    throw InputError(
+        "--resume: expected no other option than --jobs and --jobs-force (the run "
+        "goes on with the options and cases it began with), got " +
+        (opt->get_positional() ? "case paths" : name));
+  }
+}
+
 // Starts this program again with the prefix's environment, once (a marker variable says it is
 // done), so that the dynamic loader finds the prefix's libraries first.
 void reexec_with_mesa(const Options& o, char** argv) {
@@ -178,17 +192,23 @@ int main_impl(int argc, char** argv) {
                   "known flaky cases, one regular expression per line: their failures do not "
                   "fail the run (status Flake)");
   run->add_option("--skips", o.skips, "cases not to run, one regular expression per line");
-  run->add_option("--jobs,-j", o.jobs, "worker processes in parallel (default: one per core)")
-      ->check(CLI::PositiveNumber);
+  run->add_option("--jobs,-j", o.jobs,
+                  "worker processes in parallel (default and most: one per core; never more "
+                  "than cases)")
+      ->check(whole_number(1));
+  run->add_flag("--jobs-force", o.jobs_force, "allow --jobs beyond the number of cores");
   run->add_option("--timeout", o.timeout,
                   "seconds a case may take before its worker is killed (status Timeout)")
-      ->check(CLI::Range(0.001, 1e6));
+      ->check(finite_range(0.001, 1e6));
   run->add_option("--fraction", o.fraction, "run every N-th case (a shard, as deqp-runner)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1));
   run->add_option("--fraction-start", o.fraction_start,
                   "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number(1));
   run->add_flag("--html", o.html, "also write report.html, a self-contained page");
+  run->add_option("--resume", o.resume,
+                  "continue the interrupted or killed run in this folder, with the options and "
+                  "cases it began with (only --jobs and --jobs-force may be given with it)");
 
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);
@@ -242,6 +262,7 @@ int main_impl(int argc, char** argv) {
   }
   o.model_given = model_options_given(app);
   try {
+    if (*run && !o.resume.empty()) check_resume_alone(*run);
     if (*worker) return cmd_worker();
     // GL from a Mesa prefix needs the loader's environment at process start: the commands that
     // render in this process start it again with that environment (`run` gives it to its

@@ -158,18 +158,6 @@ Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
   return out;
 }
 
-std::filesystem::path output_folder(const std::string& out) {
-  const std::filesystem::path dir(out);
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
-    throw InputError("--out: expected a folder that can be created, got \"" + out + "\"" +
-                     (ec ? " (" + ec.message() + ")" : " (not a folder)"));
-  if (access(dir.c_str(), W_OK) != 0)
-    throw InputError("--out: expected a writable folder, got \"" + out + "\"");
-  return dir;
-}
-
 Expectation expectation_for(const Case& c, const Options& o, int reported_bits) {
   ref::Reference r = ref::render(c, model_of(o), freedom_bits(o, reported_bits));
   // The driver model replaces the frame only: the edge bits still name ties and bands.

@@ -61,11 +61,16 @@ struct Options {
   std::string mesa;
   // Worker processes: how many in parallel, and how long one case may take.
   int jobs = 0;  // 0: one per available core
+  // More workers than cores only when asked: each holds a GL context (25 MB and up) and they
+  // would only take turns on the cores.
+  bool jobs_force = false;
   double timeout = 60;
   // Sharding as deqp-runner does it: every `fraction`-th case, starting at `fraction_start`
   // (1-based, like GitLab's CI_NODE_INDEX).
   int fraction = 1, fraction_start = 1;
   bool html = false;
+  // run --resume DIR: continue the run recorded in DIR/journal.jsonl.
+  std::string resume;
 };
 
 // What a worker process needs of the options, as JSON (the options travel on its stdin).
@@ -133,8 +138,9 @@ class Progress {
   bool on_;
 };
 
-// Creates the output folder before any case runs, so that a folder that cannot be written is
-// one line and exit 2 at once, not a lost run.
-std::filesystem::path output_folder(const std::string& out);
+// Creates (or checks and claims) the output folder before any case runs, so that a folder that
+// cannot be written, or that holds what glrefcheck did not write, is one line and exit 2 at once,
+// not a lost run or lost files. In cli/output_dir.cpp.
+std::filesystem::path output_folder(const std::string& out, const std::string& option = "--out");
 
 }  // namespace glrc::cli

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
+#include <climits>
 #include <cmath>
 #include <string>
 
@@ -26,6 +27,49 @@ inline CLI::Validator finite_number(double lower, bool inclusive) {
         return ok ? "" : "expected a finite number " + bound + ", got " + s;
       },
       "NUMBER " + bound);
+}
+
+// A finite number in [lower, upper], said plainly: "expected seconds > 0, a finite number from
+// 0.001 to 1000000, got nan" rather than CLI11's range message.
+inline CLI::Validator finite_range(double lower, double upper) {
+  const std::string range = fmt::format("from {:.10g} to {:.10g}", lower, upper);
+  return CLI::Validator(
+      [=](std::string& s) -> std::string {
+        double v = 0;
+        try {
+          size_t used = 0;
+          v = std::stod(s, &used);
+          if (used != s.size()) return "expected a number " + range + ", got \"" + s + "\"";
+        } catch (const std::exception&) {
+          return "expected a number " + range + ", got \"" + s + "\"";
+        }
+        if (std::isfinite(v) && v >= lower && v <= upper) return "";
+        return "expected a finite number " + range + ", got " + s;
+      },
+      "NUMBER " + range);
+}
+
+// A whole number >= lower that fits an int: CLI11's PositiveNumber says "Value 0 not in range
+// 2.22507e-308 to 1.79769e+308", in as many digits as it likes.
+inline CLI::Validator whole_number(int lower) {
+  return CLI::Validator(
+      [=](std::string& s) -> std::string {
+        const std::string expected = fmt::format("expected a whole number >= {}", lower);
+        long long v = 0;
+        try {
+          size_t used = 0;
+          v = std::stoll(s, &used);
+          if (used != s.size()) return expected + ", got \"" + s + "\"";
+        } catch (const std::out_of_range&) {
+          return expected + " (at most " + std::to_string(INT_MAX) + "), got " + s;
+        } catch (const std::exception&) {
+          return expected + ", got \"" + s + "\"";
+        }
+        if (v < lower) return expected + ", got " + s;
+        if (v > INT_MAX) return expected + " (at most " + std::to_string(INT_MAX) + "), got " + s;
+        return "";
+      },
+      fmt::format("INT >= {}", lower));
 }
 
 }  // namespace glrc::cli

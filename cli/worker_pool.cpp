@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -99,6 +100,7 @@ class Pool {
   void run() {
     const size_t n = std::min<size_t>(size_t(std::max(s_.jobs, 1)), cases_.size());
     workers_.resize(n);
+    if (interrupted()) return;
     for (size_t k = 0; k < n; ++k)
       start(workers_[k], k);
     while (done_ < cases_.size()) {
@@ -110,16 +112,29 @@ class Pool {
           owner.push_back(k);
         }
       if (fds.empty()) throw std::runtime_error("no worker left with cases to check");
+      if (s_.interrupt_fd >= 0) fds.push_back({s_.interrupt_fd, POLLIN, 0});
       const int wait_ms = next_deadline_ms();
       const int ready = poll(fds.data(), fds.size(), wait_ms);
       if (ready < 0 && errno != EINTR) throw std::runtime_error("poll failed");
-      for (size_t i = 0; i < fds.size(); ++i)
+      // Stop before reading more: a result that comes in now is checked again on --resume.
+      if (interrupted()) {
+        for (auto& w : workers_)
+          stop(w, true);
+        return;
+      }
+      for (size_t i = 0; i < owner.size(); ++i)
         if (fds[i].revents) read_from(workers_[owner[i]], owner[i]);
       check_deadlines();
     }
   }
 
  private:
+  bool interrupted() const {
+    if (s_.interrupt_fd < 0) return false;
+    pollfd p{s_.interrupt_fd, POLLIN, 0};
+    return poll(&p, 1, 0) > 0;
+  }
+
   int next_deadline_ms() const {
     std::optional<Clock::time_point> next;
     for (const auto& w : workers_)
@@ -144,9 +159,18 @@ class Pool {
     envp.push_back(nullptr);
     std::string worker_arg = "worker";
     char* argv[] = {exe_.data(), worker_arg.data(), nullptr};
+    const pid_t parent = getpid();
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start a worker process (fork failed)");
     if (pid == 0) {
+      // A worker stuck in a hung driver must not outlive a runner killed with -9: the kernel
+      // kills it when the runner goes, and if that happened before this line, it goes now.
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (getppid() != parent) _exit(127);
+      // Its own process group: a terminal's Ctrl-C goes to the runner, which stops the run in
+      // order (results written, run marked interrupted), instead of killing workers mid-case
+      // and reporting them as Crash.
+      setpgid(0, 0);
       dup2(in_pipe[0], STDIN_FILENO);
       dup2(out_pipe[1], STDOUT_FILENO);
       dup2(log_fd, STDERR_FILENO);
@@ -256,6 +280,7 @@ class Pool {
   // The first worker said hello: the model comes from the command line, or the cache, or
   // that worker identifies the implementation while the others wait.
   void begin_model(Worker& w, const std::vector<std::string>& driver_files) {
+    if (s_.model) return model_chosen(*s_.model);
     if (auto chosen = model_from_command_line(o_)) return model_chosen(*chosen);
     cache_ = model_cache_slot(gl_.renderer, gl_.version, driver_files);
     if (const auto cached = cache_.load()) return model_chosen({*cached, "identify (cached)"});

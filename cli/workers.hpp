@@ -23,6 +23,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,12 +46,20 @@ struct WorkerSettings {
   // Whether a case, should it fail, gets its heatmaps (about 0.8 s per case): by default not
   // those the baseline already expects to fail.
   std::function<bool(const Case&)> images = [](const Case&) { return true; };
+  // The model that judges every case when it is already known (a resumed run keeps the model it
+  // started with); otherwise the runner chooses it as above.
+  std::optional<ModelChoice> model;
+  // Readable once the run is to stop (SIGINT, SIGTERM): no more cases are handed out and the
+  // workers are killed; run_in_workers returns with the cases finished so far reported.
+  int interrupt_fd = -1;
 };
 
 // Checks `cases` in worker processes. `on_start` gets the first worker's GL strings and the
 // model that judges every case before any result (throw from it to stop the run); `on_result`
 // gets each result as it arrives (in completion order), with its index into `cases`. Throws
-// InputError when no worker can make a GL context. An identification that fails (the worker
+// InputError when no worker can make a GL context. Workers die with the runner (a kill -9 of it
+// included: PR_SET_PDEATHSIG) and are not in its process group, so a Ctrl-C on the terminal
+// reaches the runner only, which then ends them itself. An identification that fails (the worker
 // dies, times out or cannot draw a probe) leaves the run to the fixed default model
 // (fallback_model), which the model's source says.
 using OnStart = std::function<void(const gl::GlInfo&, const ModelChoice&)>;

@@ -125,6 +125,9 @@ struct RunInfo {
   int fraction = 1, fraction_start = 1;
   size_t total_cases = 0;
   double seconds = 0;
+  // Stopped by SIGINT or SIGTERM before every case was checked: the results hold the cases that
+  // finished, and `glrefcheck run --resume` completes the run.
+  bool interrupted = false;
 };
 
 }  // namespace glrc

@@ -1,7 +1,6 @@
 // results.csv and failures.csv in deqp-runner's format, which Mesa CI's tooling reads: one
 // `case,Status,seconds` line per case, no header. A failures.csv can serve as the next run's
 // --baseline.
-#include <fstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -13,12 +12,12 @@ namespace {
 
 void write_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results,
                bool failures_only) {
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  std::ofstream out(file);
+  std::string text;
   for (const auto& r : results)
     if (!failures_only || fails_run(r.status))
-      out << fmt::format("{},{},{:.6f}\n", r.name, to_string(r.status), r.seconds);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+      text += fmt::format("{},{},{:.6f}\n", r.name, to_string(r.status), r.seconds);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  write_file_atomically(file, text);
 }
 
 }  // namespace

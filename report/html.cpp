@@ -99,11 +99,7 @@ void end_page(std::ostream& out) {
 // Written in one piece at the end, so a failed write never leaves half a report behind a
 // successful return.
 void write_file(const fs::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  write_file_atomically(file, text);
 }
 
 [[maybe_unused]] std::string read_binary(const fs::path& file) {
@@ -197,6 +193,10 @@ void run_summary(std::ostream& out, const RunResults& results) {
   row("tolerance", run.tolerance);
   row("jobs", std::to_string(run.jobs));
   row("wall time", seconds_text(run.seconds));
+  if (run.interrupted)
+    row("interrupted",
+        fmt::format("by a signal after {} cases; `glrefcheck run --resume` completes the run",
+                    results.cases.size()));
   out << "</table>\n<p class=\"counts\">";
   for (Status s : kStatusOrder) {
     const auto n = std::count_if(results.cases.begin(), results.cases.end(),

@@ -86,9 +86,7 @@ void write_junit(const std::filesystem::path& file, const RunInfo& run,
   xml += "  </testsuite>\n</testsuites>\n";
 
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  std::ofstream out(file);
-  out << xml;
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  write_file_atomically(file, xml);
 }
 
 }  // namespace glrc::report

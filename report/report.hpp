@@ -23,6 +23,13 @@ RunResults read_results_json(const std::filesystem::path& file_or_dir);
 // The run folder of such an argument (where its cases/<name>/ heatmaps are): the folder itself,
 // or the folder of the results.json.
 std::filesystem::path run_folder(const std::filesystem::path& file_or_dir);
+// The run's description alone, as one line of JSON (results.json's "run"), and back: the run
+// journal records it when GL is known, so a resumed run reports the same GL and model.
+std::string run_info_json(const RunInfo& run);
+RunInfo run_info_from_json(const std::string& text, const std::string& source);
+// Writes `text` to `file` so that a reader (or a kill at any moment) sees the old file or the
+// new one, never a part: a temporary file in the same folder, flushed to disk, then renamed.
+void write_file_atomically(const std::filesystem::path& file, const std::string& text);
 // One case as one line of JSON, the same fields as in results.json, and back (how worker
 // processes hand results to the runner).
 std::string case_result_json(const CaseResult& r);

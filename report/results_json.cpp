@@ -1,6 +1,11 @@
 // results.json: everything a CaseResult holds, for scripts and later comparison between runs.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -31,7 +36,8 @@ json run_json(const RunInfo& run) {
           {"fraction", run.fraction},
           {"fraction_start", run.fraction_start},
           {"total_cases", run.total_cases},
-          {"seconds", json_number(run.seconds)}};
+          {"seconds", json_number(run.seconds)},
+          {"interrupted", run.interrupted}};
 }
 
 json summary_json(const std::vector<CaseResult>& results) {
@@ -229,6 +235,7 @@ RunInfo read_run(const Reader& rd, const json& j) {
   run.fraction_start = rd.integer(j, "run", "fraction_start", 1);
   run.total_cases = j.contains("total_cases") ? rd.count(j, "run", "total_cases") : 0;
   run.seconds = rd.num(j, "run", "seconds");
+  if (j.contains("interrupted")) run.interrupted = rd.boolean(j, "run", "interrupted");
   return run;
 }
 
@@ -340,6 +347,48 @@ CaseResult read_case(const Reader& rd, const json& j, const std::string& where) 
 
 }  // namespace
 
+std::string run_info_json(const RunInfo& run) {
+  return run_json(run).dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+RunInfo run_info_from_json(const std::string& text, const std::string& source) {
+  const std::filesystem::path file(source);
+  const Reader rd{file};
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(source + ": expected a run description in JSON (" + e.what() + ")");
+  }
+  return read_run(rd, j);
+}
+
+void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
+  const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
+  // Dot-named, so nobody takes a leftover for a result; the pid keeps two writers apart.
+  const std::filesystem::path tmp =
+      dir / ("." + file.filename().string() + ".tmp-" + std::to_string(getpid()));
+  const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot write " + file.string());
+  bool ok = true;
+  for (size_t done = 0; ok && done < text.size();) {
+    const ssize_t n = write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    ok = n > 0;
+    if (ok) done += size_t(n);
+  }
+  const int error = ok ? 0 : errno;
+  // fsync before rename: after a crash of the machine the name never points at a hole.
+  ok = ok && fsync(fd) == 0;
+  ok = close(fd) == 0 && ok;
+  ok = ok && rename(tmp.c_str(), file.c_str()) == 0;
+  if (!ok) {
+    const int why = error ? error : errno;
+    unlink(tmp.c_str());
+    throw std::runtime_error("cannot write " + file.string() + " (" + strerror(why) + ")");
+  }
+}
+
 std::string case_result_json(const CaseResult& r) {
   return case_json(r).dump(-1, ' ', false, json::error_handler_t::replace);
 }
@@ -394,11 +443,8 @@ void write_results_json(const std::filesystem::path& file, const RunInfo& run,
   json doc = {{"run", run_json(run)}, {"summary", summary_json(results)}, {"cases", cases}};
 
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file.string());
   // Case names and messages come from files and drivers; replace bad UTF-8 rather than throw.
-  out << doc.dump(2, ' ', false, json::error_handler_t::replace) << '\n';
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  write_file_atomically(file, doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace glrc::report

@@ -1,0 +1,169 @@
+#include "cli/journal.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <fmt/core.h>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/model_cache.hpp"
+#include "cli/output_dir.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// Every option of `run`: the worker's (options_json) and the runner's own.
+json all_options_json(const Options& o) {
+  json j = json::parse(options_json(o));
+  j["paths"] = o.paths;
+  j["filter"] = o.filter;
+  j["baseline"] = o.baseline;
+  j["flakes"] = o.flakes;
+  j["skips"] = o.skips;
+  j["mesa"] = o.mesa;
+  j["jobs"] = o.jobs;
+  j["jobs_force"] = o.jobs_force;
+  j["timeout"] = o.timeout;
+  j["fraction"] = o.fraction;
+  j["fraction_start"] = o.fraction_start;
+  j["html"] = o.html;
+  return j;
+}
+
+Options all_options_from_json(const json& j) {
+  Options o = options_from_json(j.dump());
+  o.paths = j.at("paths").get<std::vector<std::string>>();
+  o.filter = j.at("filter");
+  o.baseline = j.at("baseline");
+  o.flakes = j.at("flakes");
+  o.skips = j.at("skips");
+  o.mesa = j.at("mesa");
+  o.jobs = j.at("jobs");
+  o.jobs_force = j.at("jobs_force");
+  o.timeout = j.at("timeout");
+  o.fraction = j.at("fraction");
+  o.fraction_start = j.at("fraction_start");
+  o.html = j.at("html");
+  return o;
+}
+
+int open_journal(const fs::path& file, int flags) {
+  const int fd = open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC | flags, 0644);
+  if (fd < 0)
+    throw InputError("cannot write the run journal " + file.string() + ": " + strerror(errno));
+  return fd;
+}
+
+}  // namespace
+
+Journal Journal::start(const fs::path& dir, const Options& o,
+                       const std::vector<std::string>& files) {
+  const fs::path file = dir / kJournalFile;
+  Journal j(open_journal(file, O_CREAT | O_TRUNC), file);
+  j.append(json{{"glrefcheck_journal", 1}, {"options", all_options_json(o)}, {"files", files}}.dump(
+      -1, ' ', false, json::error_handler_t::replace));
+  return j;
+}
+
+Journal Journal::reopen(const fs::path& dir) {
+  const fs::path file = dir / kJournalFile;
+  // A line cut short by a kill (its case runs again) goes, so the next line starts clean.
+  {
+    std::ifstream in(file, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t end = text.rfind('\n');
+    const size_t keep = end == std::string::npos ? 0 : end + 1;
+    std::error_code ec;
+    if (keep < text.size()) fs::resize_file(file, keep, ec);
+    if (ec) throw InputError("cannot write the run journal " + file.string() + ": " + ec.message());
+  }
+  return Journal(open_journal(file, 0), file);
+}
+
+Journal::~Journal() {
+  if (fd_ >= 0) close(fd_);
+}
+
+void Journal::record_start(const RunInfo& info, const ModelChoice& model) {
+  append("{\"run\":" + report::run_info_json(info) +
+         ",\"model\":" + model_json(model.model).dump() + ",\"model_source\":" +
+         json(model.source).dump(-1, ' ', false, json::error_handler_t::replace) + "}");
+}
+
+void Journal::record_result(size_t index, const CaseResult& r, double at) {
+  append(fmt::format("{{\"index\":{},\"at\":{},\"result\":{}}}", index, json(at).dump(),
+                     report::case_result_json(r)));
+}
+
+void Journal::append(std::string line) {
+  line += '\n';
+  // One write per line (O_APPEND): a kill leaves whole lines, and at worst the last one cut.
+  for (size_t done = 0; done < line.size();) {
+    const ssize_t n = write(fd_, line.data() + done, line.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw std::runtime_error("cannot write " + file_.string() + ": " + strerror(errno));
+    done += size_t(n);
+  }
+}
+
+JournalContents read_journal(const fs::path& dir) {
+  const fs::path file = dir / kJournalFile;
+  const std::string name = printable(file.string());
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    throw InputError("--resume " + printable(dir.string()) + ": expected a run folder with a " +
+                     kJournalFile + ", got " +
+                     (fs::is_directory(dir, ec) ? "none in it" : "no such folder"));
+  if (!is_marked(dir))
+    throw InputError("--resume " + printable(dir.string()) +
+                     ": expected a folder glrefcheck made (with a " + kMarkerFile + " file)");
+  std::ifstream in(file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  JournalContents c;
+  size_t at = 0;
+  for (int n = 1; at < text.size(); ++n) {
+    const size_t eol = text.find('\n', at);
+    if (eol == std::string::npos) break;  // cut short by a kill: that case runs again
+    const std::string line = text.substr(at, eol - at);
+    at = eol + 1;
+    if (line.empty()) continue;  // where a reopened journal ended a cut line
+    const std::string where = fmt::format("{}:{}", name, n);
+    try {
+      const json j = json::parse(line);
+      if (n == 1) {
+        if (!j.is_object() || j.value("glrefcheck_journal", 0) != 1)
+          throw InputError(where + ": expected a glrefcheck run journal (version 1)");
+        c.options = all_options_from_json(j.at("options"));
+        c.files = j.at("files").get<std::vector<std::string>>();
+      } else if (j.contains("run")) {
+        c.run = report::run_info_from_json(j["run"].dump(), where);
+        const auto model = model_from_json(j.at("model"));
+        if (!model) throw InputError(where + ": expected a model");
+        c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
+      } else {
+        const size_t index = j.at("index");
+        c.results[index] = report::case_result_from_json(j.at("result").dump(), where);
+        c.elapsed = std::max(c.elapsed, j.at("at").get<double>());
+      }
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      std::string why = e.what();
+      if (why.size() > 200) why = why.substr(0, 200) + "...";
+      throw InputError(where + ": expected a journal line of glrefcheck's (" + why + ")");
+    }
+  }
+  if (c.files.empty()) throw InputError(name + ": expected the run's first line, got none");
+  return c;
+}
+
+}  // namespace glrc::cli

@@ -1,0 +1,59 @@
+// The run journal, <out>/journal.jsonl: what `run` has done so far, one JSON document per line,
+// each line handed to the kernel with one write(2) as it happens, so that a run killed at any
+// moment (kill -9 included) leaves every finished case on disk and `run --resume` can go on.
+//
+// Line 1: {"glrefcheck_journal": 1, "options": {every option of the run}, "files": [the case
+// files, after --filter, before sharding, in order]}. Once GL is known: {"run": results.json's
+// "run", "model": {...}, "model_source": "..."}, so a resumed run is judged by the same model.
+// Per case: {"index": k (into the run's cases, after sharding), "at": seconds since the run
+// began, "result": the CaseResult as in results.json}. A last line cut short by a kill is
+// ignored.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/session.hpp"
+#include "core/result.hpp"
+
+namespace glrc::cli {
+
+struct JournalContents {
+  Options options;
+  std::vector<std::string> files;
+  std::optional<RunInfo> run;
+  std::optional<ModelChoice> model;
+  std::map<size_t, CaseResult> results;
+  double elapsed = 0;  // the latest "at": how long the run had been going when it stopped
+};
+
+class Journal {
+ public:
+  // Starts a new journal (replacing any) with its first line.
+  static Journal start(const std::filesystem::path& dir, const Options& o,
+                       const std::vector<std::string>& files);
+  // Appends to an existing one.
+  static Journal reopen(const std::filesystem::path& dir);
+  Journal(Journal&& other) noexcept : fd_(other.fd_), file_(std::move(other.file_)) {
+    other.fd_ = -1;
+  }
+  Journal(const Journal&) = delete;
+  ~Journal();
+
+  void record_start(const RunInfo& info, const ModelChoice& model);
+  void record_result(size_t index, const CaseResult& r, double at);
+
+ private:
+  Journal(int fd, std::filesystem::path file) : fd_(fd), file_(std::move(file)) {}
+  void append(std::string line);
+  int fd_;
+  std::filesystem::path file_;
+};
+
+// InputError naming the file and line for a journal that is missing or malformed.
+JournalContents read_journal(const std::filesystem::path& dir);
+
+}  // namespace glrc::cli
