@@ -28,7 +28,7 @@ for target in "${targets[@]}"; do
   log="$build/$target.log"
   # -timeout: an input taking 10 s is a hang, a finding; -rss_limit_mb: so is 2 GB of memory.
   if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    "$build/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+    "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
     -print_final_stats=1 -artifact_prefix="$build/findings/$target-" "$corpus" "${seeds[@]}" \
     >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
