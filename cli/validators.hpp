@@ -5,9 +5,21 @@
 #include <CLI/CLI.hpp>
 #include <climits>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace glrc::cli {
+
+// The whole of `s` as a number (std::stod's syntax, so "nan" and "inf" too), or nothing.
+inline std::optional<double> parsed_number(const std::string& s) {
+  try {
+    size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used == s.size()) return v;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
 
 // A finite number above `lower` (or at it, when `inclusive`): NaN would compare false everywhere
 // and an infinite tolerance or factor would say nothing.
@@ -15,14 +27,9 @@ inline CLI::Validator finite_number(double lower, bool inclusive) {
   const std::string bound = fmt::format("{} {:g}", inclusive ? ">=" : ">", lower);
   return CLI::Validator(
       [=](std::string& s) -> std::string {
-        double v = 0;
-        try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) return "expected a number, got \"" + s + "\"";
-        } catch (const std::exception&) {
-          return "expected a number, got \"" + s + "\"";
-        }
+        const std::optional<double> n = parsed_number(s);
+        if (!n) return "expected a number, got \"" + s + "\"";
+        const double v = *n;
         const bool ok = std::isfinite(v) && (inclusive ? v >= lower : v > lower);
         return ok ? "" : "expected a finite number " + bound + ", got " + s;
       },
@@ -35,14 +42,9 @@ inline CLI::Validator finite_range(double lower, double upper) {
   const std::string range = fmt::format("from {:.10g} to {:.10g}", lower, upper);
   return CLI::Validator(
       [=](std::string& s) -> std::string {
-        double v = 0;
-        try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) return "expected a number " + range + ", got \"" + s + "\"";
-        } catch (const std::exception&) {
-          return "expected a number " + range + ", got \"" + s + "\"";
-        }
+        const std::optional<double> n = parsed_number(s);
+        if (!n) return "expected a number " + range + ", got \"" + s + "\"";
+        const double v = *n;
         if (std::isfinite(v) && v >= lower && v <= upper) return "";
         return "expected a finite number " + range + ", got " + s;
       },

@@ -347,20 +347,25 @@ CaseResult read_case(const Reader& rd, const json& j, const std::string& where) 
 
 }  // namespace
 
+namespace {
+
+// `text` as JSON, or one line naming `source` and what it should have been.
+json parsed(const std::string& text, const std::string& source, const char* what) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(source + ": expected " + what + " in JSON (" + e.what() + ")");
+  }
+}
+
+}  // namespace
+
 std::string run_info_json(const RunInfo& run) {
   return run_json(run).dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
 RunInfo run_info_from_json(const std::string& text, const std::string& source) {
-  const std::filesystem::path file(source);
-  const Reader rd{file};
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw std::runtime_error(source + ": expected a run description in JSON (" + e.what() + ")");
-  }
-  return read_run(rd, j);
+  return read_run(Reader{std::filesystem::path(source)}, parsed(text, source, "a run description"));
 }
 
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
@@ -394,15 +399,8 @@ std::string case_result_json(const CaseResult& r) {
 }
 
 CaseResult case_result_from_json(const std::string& text, const std::string& source) {
-  const std::filesystem::path file(source);
-  const Reader rd{file};
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw std::runtime_error(source + ": expected a case result in JSON (" + e.what() + ")");
-  }
-  return read_case(rd, j, "case");
+  return read_case(Reader{std::filesystem::path(source)}, parsed(text, source, "a case result"),
+                   "case");
 }
 
 std::filesystem::path run_folder(const std::filesystem::path& file_or_dir) {

@@ -123,6 +123,25 @@ TEST(DriverModelDeterminism, SameCaseSameBits) {
   }
 }
 
+// The largest share of the allowance any smooth value or depth of the driver's frame uses,
+// over the pixels both draw with the case's first triangle; `compared` counts them.
+double worst_share(const Case& c, Driver d, long& compared) {
+  const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
+  const Frame f = render(c, d);
+  double worst = 0;
+  for (size_t i = 0; i < f.pixel_count(); ++i) {
+    if (r.frame.primitive[i] != 0 || f.primitive[i] != 0) continue;
+    ++compared;
+    auto share = [&](float ref, float got, float allowed) {
+      worst = std::max(worst, std::fabs(double(got) - double(ref)) / double(allowed));
+    };
+    share(r.frame.depth[i], f.depth[i], r.allowed.depth[i]);
+    for (size_t k = 0; k < r.frame.components.size(); ++k)
+      share(r.frame.components[k][i], f.components[k][i], r.allowed.components[k][i]);
+  }
+  return worst;
+}
+
 // Mesa's own clipper and setup, bit for bit, on random clip-heavy triangles (x, y within
 // ±3·w_c, z within ±1.2·w_c, some w_c <= 0): every smooth value and depth stays within the
 // specification's allowance the reference derives from the clipped polygon (ref/freedom.hpp).
@@ -144,41 +163,11 @@ TEST(DriverModelAllowance, ClippedTrianglesStayWithinTheAllowance) {
                               {float(unit(rng)), float(unit(rng))}});
       }
       c.triangles = {{0, 1, 2}};
-      const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
-      const Frame f = render(c, d);
-      for (size_t i = 0; i < f.pixel_count(); ++i) {
-        if (r.frame.primitive[i] != 0 || f.primitive[i] != 0) continue;
-        ++compared;
-        auto share = [&](float ref, float got, float allowed) {
-          worst = std::max(worst, std::fabs(double(got) - double(ref)) / double(allowed));
-        };
-        share(r.frame.depth[i], f.depth[i], r.allowed.depth[i]);
-        for (size_t k = 0; k < 2; ++k)
-          share(r.frame.components[k][i], f.components[k][i], r.allowed.components[k][i]);
-      }
+      worst = std::max(worst, worst_share(c, d, compared));
     }
     EXPECT_GT(compared, 50000) << to_string(d);
     EXPECT_LE(worst, 1.0) << to_string(d);
   }
-}
-
-// The largest share of the allowance any smooth value or depth of the driver's frame uses,
-// over the pixels both draw with the case's first triangle; `compared` counts them.
-double worst_share(const Case& c, Driver d, long& compared) {
-  const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
-  const Frame f = render(c, d);
-  double worst = 0;
-  for (size_t i = 0; i < f.pixel_count(); ++i) {
-    if (r.frame.primitive[i] != 0 || f.primitive[i] != 0) continue;
-    ++compared;
-    auto share = [&](float ref, float got, float allowed) {
-      worst = std::max(worst, std::fabs(double(got) - double(ref)) / double(allowed));
-    };
-    share(r.frame.depth[i], f.depth[i], r.allowed.depth[i]);
-    for (size_t k = 0; k < r.frame.components.size(); ++k)
-      share(r.frame.components[k][i], f.components[k][i], r.allowed.components[k][i]);
-  }
-  return worst;
 }
 
 // A vertex with w_c between 1e-7 and 1e-2 (either sign): clipping leaves polygons whose fan
