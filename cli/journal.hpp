@@ -6,8 +6,9 @@
 // files, after --filter, before sharding, in order]}. Once GL is known: {"run": results.json's
 // "run", "model": {...}, "model_source": "..."}, so a resumed run is judged by the same model.
 // Per case: {"index": k (into the run's cases, after sharding), "at": seconds since the run
-// began, "result": the CaseResult as in results.json}. A last line cut short by a kill is
-// ignored.
+// began, "result": the CaseResult as in results.json}; a case whose heatmaps are then lost is
+// recorded again, its message saying so, and the later line counts. A last line cut short by a
+// kill is ignored.
 #pragma once
 
 #include <filesystem>

@@ -376,6 +376,16 @@ int cmd_run(const Options& given) {
     progress.show(done++, cases.size(), r.name);
     results[checked_index[i]] = std::move(r);
   };
+  // A case whose verdict came but whose heatmaps did not keeps its verdict, and says so.
+  s.images_lost = [&](size_t i, const std::string& why) {
+    auto& r = results[checked_index[i]];
+    if (!r) return;
+    r->message += (r->message.empty() ? "" : "; ") + why;
+    journal->record_result(checked_index[i], *r, elapsed());
+    progress.clear();
+    fmt::print("{}: {}\n", r->name, why);
+    std::fflush(stdout);
+  };
   run_in_workers(to_check, o, s, on_start, on_result);
   progress.clear();
 

@@ -28,10 +28,11 @@ class Channel {
   void send(const nlohmann::json& j) const {
     send_line(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
-  void send_raw_result(size_t index, const std::string& result_json) const {
+  void send_raw_result(size_t index, const std::string& result_json, bool images) const {
     // The CaseResult is already JSON: splice it rather than parse it again.
-    const std::string line =
-        "{\"index\":" + std::to_string(index) + ",\"result\":" + result_json + "}";
+    const std::string line = "{\"index\":" + std::to_string(index) +
+                             (images ? ",\"images\":true" : "") + ",\"result\":" + result_json +
+                             "}";
     send_line(line);
   }
 
@@ -48,11 +49,12 @@ class Channel {
   int fd_;
 };
 
-// For the tests of crash and timeout handling only: a case whose name matches
-// GLRC_TEST_STALL_CASE makes the worker write its pid to GLRC_TEST_STALL_PIDFILE and stop there,
+// For the tests of crash and timeout handling only: a case whose name matches the pattern in
+// `variable` (GLRC_TEST_STALL_CASE: before the check; GLRC_TEST_STALL_IMAGES: after the verdict,
+// before the heatmaps) makes the worker write its pid to GLRC_TEST_STALL_PIDFILE and stop there,
 // as a hung driver would, so a test can kill it (crash) or let the timeout strike.
-void stall_if_asked(const std::string& name) {
-  const char* pattern = std::getenv("GLRC_TEST_STALL_CASE");
+void stall_if_asked(const std::string& name, const char* variable) {
+  const char* pattern = std::getenv(variable);
   if (!pattern || !Regex(pattern).full_match(name)) return;
   if (const char* pidfile = std::getenv("GLRC_TEST_STALL_PIDFILE")) {
     const std::string tmp = std::string(pidfile) + ".tmp";
@@ -66,32 +68,41 @@ void stall_if_asked(const std::string& name) {
     pause();
 }
 
-CaseResult check_one(const nlohmann::json& job, const Options& o, gl::Renderer& renderer) {
-  const std::string name = job.at("name");
+// A checked case, with its frames kept for the heatmaps that follow the verdict.
+struct Outcome {
   Case c;
+  Checked checked;
+};
+
+Outcome check_one(const nlohmann::json& job, const Options& o, gl::Renderer& renderer) {
+  Outcome out;
   try {
     // The runner has read and validated the case already and sends it whole: a case file is
     // parsed once per run. A job naming only a file is read here.
-    c = job.contains("case") ? casefile::from_wire(job["case"])
-                             : casefile::load(job.at("file").get<std::string>());
+    out.c = job.contains("case") ? casefile::from_wire(job["case"])
+                                 : casefile::load(job.at("file").get<std::string>());
   } catch (const std::exception& e) {
-    CaseResult r;
-    r.name = name, r.status = r.outcome = Status::error, r.message = e.what();
-    return r;
+    CaseResult& r = out.checked.result;
+    r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
+    return out;
   }
-  stall_if_asked(c.name);
-  Checked checked = check(c, o, renderer);
-  // A failing case gets its heatmaps now, while its frames exist: the HTML report and anyone
-  // triaging the run find them in <out>/cases/<case>/.
-  if (checked.result.outcome == Status::fail && job.value("images", true)) {
-    try {
-      report::write_diff_images(std::filesystem::path(o.out) / "cases" / c.name, c,
-                                checked.reference, checked.gl, checked.result);
-    } catch (const std::exception& e) {
-      std::cerr << "glrefcheck worker: " << c.name << ": no heatmaps: " << e.what() << '\n';
-    }
+  stall_if_asked(out.c.name, "GLRC_TEST_STALL_CASE");
+  out.checked = check(out.c, o, renderer);
+  return out;
+}
+
+// A failing case's heatmaps, in <out>/cases/<case>/ for the HTML report and anyone triaging
+// the run. Returns why there are none, or "".
+std::string write_images(const Outcome& done, const Options& o) {
+  stall_if_asked(done.c.name, "GLRC_TEST_STALL_IMAGES");
+  try {
+    report::write_diff_images(std::filesystem::path(o.out) / "cases" / done.c.name, done.c,
+                              done.checked.reference, done.checked.gl, done.checked.result);
+    return "";
+  } catch (const std::exception& e) {
+    std::cerr << "glrefcheck worker: " << done.c.name << ": no heatmaps: " << e.what() << '\n';
+    return e.what();
   }
-  return std::move(checked.result);
 }
 
 }  // namespace
@@ -133,18 +144,28 @@ int cmd_worker() {
       continue;
     }
     const size_t index = job.at("index");
-    CaseResult r;
+    Outcome done;
     try {
       // Every case of the run is judged by the run's model, which the runner chose.
       Options judged = o;
       const auto model = model_from_json(job.at("model"));
       if (!model) throw std::runtime_error("a job without a valid model: " + line);
       set_model(judged, *model);
-      r = check_one(job, judged, *renderer);
+      done = check_one(job, judged, *renderer);
     } catch (const std::exception& e) {
+      done.checked = Checked{};
+      CaseResult& r = done.checked.result;
       r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
     }
-    channel.send_raw_result(index, report::case_result_json(r));
+    // The verdict first: heatmaps of a large frame take long and much memory, and a worker
+    // killed while writing them must not take the verdict with it.
+    const bool images = done.checked.result.outcome == Status::fail && job.value("images", true);
+    channel.send_raw_result(index, report::case_result_json(done.checked.result), images);
+    if (!images) continue;
+    const std::string error = write_images(done, o);
+    nlohmann::json note = {{"images_done", index}};
+    if (!error.empty()) note["images_error"] = error;
+    channel.send(note);
   }
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <fmt/core.h>
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -65,6 +66,7 @@ struct Worker {
   bool ready = false;         // said hello
   bool identifying = false;   // asked to identify the implementation
   std::optional<size_t> job;  // index into cases of the case it is checking
+  std::optional<size_t> imaging;  // the case whose verdict came and whose heatmaps it writes
   Clock::time_point deadline;
   Clock::time_point started;
   std::filesystem::path log;
@@ -103,7 +105,8 @@ class Pool {
     if (interrupted()) return;
     for (size_t k = 0; k < n; ++k)
       start(workers_[k], k);
-    while (done_ < cases_.size()) {
+    // Until every verdict is in and every heatmap written.
+    while (done_ < cases_.size() || imaging()) {
       std::vector<pollfd> fds;
       std::vector<size_t> owner;
       for (size_t k = 0; k < workers_.size(); ++k)
@@ -129,6 +132,14 @@ class Pool {
   }
 
  private:
+  bool imaging() const {
+    return std::any_of(workers_.begin(), workers_.end(),
+                       [](const Worker& w) { return w.pid > 0 && w.imaging; });
+  }
+
+  // Busy: a case, heatmaps, identification or its start-up, each under a deadline.
+  static bool busy(const Worker& w) { return w.job || w.imaging || !w.ready || w.identifying; }
+
   bool interrupted() const {
     if (s_.interrupt_fd < 0) return false;
     pollfd p{s_.interrupt_fd, POLLIN, 0};
@@ -138,7 +149,7 @@ class Pool {
   int next_deadline_ms() const {
     std::optional<Clock::time_point> next;
     for (const auto& w : workers_)
-      if (w.pid > 0 && (w.job || !w.ready || w.identifying) && (!next || w.deadline < *next))
+      if (w.pid > 0 && busy(w) && (!next || w.deadline < *next))
         next = w.deadline;
     if (!next) return -1;
     const double ms = std::chrono::duration<double, std::milli>(*next - Clock::now()).count();
@@ -261,6 +272,13 @@ class Pool {
       }
       return assign(w);
     }
+    if (msg.contains("images_done")) {
+      const size_t k = msg.at("images_done");
+      w.imaging.reset();
+      if (msg.contains("images_error"))
+        images_lost(k, "heatmaps not written: " + msg["images_error"].get<std::string>());
+      return assign(w);
+    }
     if (msg.contains("identified") || msg.contains("identify_error")) {
       w.identifying = false;
       if (msg.contains("identify_error"))
@@ -273,8 +291,19 @@ class Pool {
     const size_t k = msg.at("index");
     CaseResult r = report::case_result_from_json(msg.at("result").dump(), "worker result");
     w.job.reset();
+    // The verdict is in and recorded; the heatmaps follow, under a deadline of their own, and
+    // the worker gets no case until they are written.
+    const bool images = msg.value("images", false);
     finish(k, std::move(r));
-    assign(w);
+    if (!images) return assign(w);
+    w.imaging = k;
+    w.started = Clock::now();
+    w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>(s_.timeout));
+  }
+
+  void images_lost(size_t k, const std::string& why) const {
+    if (s_.images_lost) s_.images_lost(k, why);
   }
 
   // The first worker said hello: the model comes from the command line, or the cache, or
@@ -320,10 +349,15 @@ class Pool {
     const std::string how = describe_exit(status);
     const std::string tail = log_tail(w.log, w.log_start);
     const auto job = w.job;
+    const auto imaging = w.imaging;
     const bool was_ready = w.ready, was_identifying = w.identifying;
     close(w.to), close(w.from);
     w.pid = -1;
     w.identifying = false;
+    w.imaging.reset();
+    if (imaging)
+      images_lost(*imaging, "heatmaps not written: the worker " + how + " writing them" +
+                                (tail.empty() ? "" : "; its log ends: " + tail));
     if (was_identifying) model_chosen(fallback_model(o_, "its worker " + how));
     if (job) {
       finish(*job, lost(*job, Status::crash,
@@ -342,11 +376,20 @@ class Pool {
     const auto now = Clock::now();
     for (size_t k = 0; k < workers_.size(); ++k) {
       Worker& w = workers_[k];
-      if (w.pid <= 0 || now < w.deadline || (w.ready && !w.job && !w.identifying)) continue;
+      if (w.pid <= 0 || now < w.deadline || !busy(w)) continue;
       kill(w.pid, SIGKILL);
       waitpid(w.pid, nullptr, 0);
       close(w.to), close(w.from);
       w.pid = -1;
+      if (w.imaging) {
+        images_lost(*w.imaging,
+                    fmt::format("heatmaps not written: not done after {} s (--timeout); worker "
+                                "killed",
+                                s_.timeout));
+        w.imaging.reset();
+        if (!queue_.empty()) start(w, k);
+        continue;
+      }
       if (w.identifying) {
         w.identifying = false;
         model_chosen(fallback_model(

@@ -2,7 +2,8 @@
 // run: `run` starts worker processes (`glrefcheck worker`, the same binary), each making one GL
 // context and checking many cases with it, since a context costs 20 to 170 ms here. A case whose
 // worker dies is `Crash`, one that runs past the timeout is `Timeout` (its worker is killed);
-// either way a fresh worker takes the next case.
+// either way a fresh worker takes the next case. A failing case's verdict comes before its
+// heatmaps, so a worker that dies or times out writing them costs the heatmaps, not the verdict.
 //
 // Protocol, one JSON document per line. On the worker's stdin: the options (options_json), then
 // {"index": k, "file": path, "case": the loaded case (casefile/wire.hpp, so that the worker
@@ -11,7 +12,9 @@
 // stdout: {"hello": {gl info, "driver_files": [paths]}} (GL strings, subpixel bits, whether
 // gl_PrimitiveID comes from a geometry shader, and warnings: what the implementation got wrong
 // while the context set up) or {"error": "one line"} once the context exists, then
-// {"index": k, "result": CaseResult} per case and {"identified": model} or
+// {"index": k, "result": CaseResult, "images": true when heatmaps follow} per case (the verdict
+// comes first), then for a case with heatmaps {"images_done": k} or {"images_done": k,
+// "images_error": "one line"} once they are written, and {"identified": model} or
 // {"identify_error": "one line"} per identify. The worker's own stdout and stderr (and the
 // driver's messages) go to a log file: a crash report quotes its last lines.
 //
@@ -46,6 +49,9 @@ struct WorkerSettings {
   // Whether a case, should it fail, gets its heatmaps (about 0.8 s per case): by default not
   // those the baseline already expects to fail.
   std::function<bool(const Case&)> images = [](const Case&) { return true; };
+  // Called when a case's verdict came but its heatmaps did not (the worker failed to write them,
+  // died, or took longer than `timeout` for them), with its index and one line saying why.
+  std::function<void(size_t, const std::string&)> images_lost;
   // The model that judges every case when it is already known (a resumed run keeps the model it
   // started with); otherwise the runner chooses it as above.
   std::optional<ModelChoice> model;

@@ -104,6 +104,69 @@ TEST_F(Workers, HungCaseIsATimeout) {
   EXPECT_EQ(statuses(out / "results.csv").at("attr_huge"), "ExpectedFail");
 }
 
+// A failing case's verdict comes before its heatmaps: a worker that hangs or dies writing them
+// (as one writing ~200 maps of a 4096x4096 frame did, ending as Timeout) costs the maps, not the
+// verdict. GLRC_TEST_STALL_IMAGES stalls the worker after it sent the verdict.
+const std::string kFailingCase =
+    "--filter '^(viewport_tiny|clip_noperspective_x_plane|viewport_offset)$' --backend osmesa "
+    "--driver llvmpipe";
+
+TEST_F(Workers, HeatmapsThatHangCostTheHeatmapsNotTheVerdict) {
+  const fs::path out = dir_ / "out";
+  const Outcome o = glrefcheck("run " + kFailingCase + " --jobs 1 --timeout 5 --out '" +
+                                   out.string() + "'",
+                               "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane");
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  const auto s = statuses(out / "results.csv");
+  ASSERT_EQ(s.size(), 3u) << read(out / "results.csv");
+  EXPECT_EQ(s.at("clip_noperspective_x_plane"), "Fail");  // not Timeout
+  EXPECT_EQ(s.at("viewport_tiny"), "Pass");
+  EXPECT_EQ(s.at("viewport_offset"), "Pass");
+  const auto results = nlohmann::json::parse(read(out / "results.json"));
+  for (const auto& c : results["cases"])
+    if (c["name"] == "clip_noperspective_x_plane") {
+      EXPECT_NE(c["message"].get<std::string>().find(
+                    "heatmaps not written: not done after 5 s (--timeout); worker killed"),
+                std::string::npos)
+          << c;
+      int non_finite = 0;  // the real verdict: NaN in the noperspective varying
+      for (const auto& channel : c["channels"])
+        if (channel["name"] == "n.x") non_finite = channel["non_finite"];
+      EXPECT_GT(non_finite, 0) << c;
+    }
+  EXPECT_NE(o.out.find("clip_noperspective_x_plane: heatmaps not written"), std::string::npos)
+      << o.out;
+  // The journal's later line, with the note, is the one a resumed run reads.
+  const std::string journal = read(out / "journal.jsonl");
+  EXPECT_NE(journal.rfind("heatmaps not written"), std::string::npos);
+}
+
+TEST_F(Workers, AWorkerKilledWritingHeatmapsKeepsTheVerdict) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  Outcome o;
+  std::thread run([&] {
+    o = glrefcheck("run " + kFailingCase + " --jobs 1 --out '" + out.string() + "'",
+                   "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane GLRC_TEST_STALL_PIDFILE='" +
+                       pidfile.string() + "'");
+  });
+  pid_t pid = 0;
+  for (int k = 0; k < 600 && !pid; ++k) {
+    std::ifstream in(pidfile);
+    if (!(in >> pid)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_GT(pid, 0) << "no worker reached the stalled heatmaps";
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  run.join();
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  const auto s = statuses(out / "results.csv");
+  ASSERT_EQ(s.size(), 3u) << read(out / "results.csv");
+  EXPECT_EQ(s.at("clip_noperspective_x_plane"), "Fail");  // not Crash
+  EXPECT_EQ(s.at("viewport_tiny"), "Pass");
+  EXPECT_EQ(s.at("viewport_offset"), "Pass");
+  EXPECT_NE(o.out.find("heatmaps not written: the worker killed by signal 9"), std::string::npos)
+      << o.out;
+}
+
 // Everything but the timings and the sharding fields, which differ by design.
 nlohmann::json comparable(nlohmann::json results) {
   for (const char* key : {"seconds", "jobs", "fraction", "fraction_start"})
