@@ -61,11 +61,11 @@ std::string describe_exit(int status) {
 
 struct Worker {
   pid_t pid = -1;
-  int to = -1, from = -1;     // its stdin, its stdout
-  std::string buffer;         // what it sent that is not yet a whole line
-  bool ready = false;         // said hello
-  bool identifying = false;   // asked to identify the implementation
-  std::optional<size_t> job;  // index into cases of the case it is checking
+  int to = -1, from = -1;         // its stdin, its stdout
+  std::string buffer;             // what it sent that is not yet a whole line
+  bool ready = false;             // said hello
+  bool identifying = false;       // asked to identify the implementation
+  std::optional<size_t> job;      // index into cases of the case it is checking
   std::optional<size_t> imaging;  // the case whose verdict came and whose heatmaps it writes
   Clock::time_point deadline;
   Clock::time_point started;
@@ -149,8 +149,7 @@ class Pool {
   int next_deadline_ms() const {
     std::optional<Clock::time_point> next;
     for (const auto& w : workers_)
-      if (w.pid > 0 && busy(w) && (!next || w.deadline < *next))
-        next = w.deadline;
+      if (w.pid > 0 && busy(w) && (!next || w.deadline < *next)) next = w.deadline;
     if (!next) return -1;
     const double ms = std::chrono::duration<double, std::milli>(*next - Clock::now()).count();
     return int(std::clamp(std::ceil(ms), 0.0, 3.6e6));

@@ -113,9 +113,9 @@ const std::string kFailingCase =
 
 TEST_F(Workers, HeatmapsThatHangCostTheHeatmapsNotTheVerdict) {
   const fs::path out = dir_ / "out";
-  const Outcome o = glrefcheck("run " + kFailingCase + " --jobs 1 --timeout 5 --out '" +
-                                   out.string() + "'",
-                               "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane");
+  const Outcome o =
+      glrefcheck("run " + kFailingCase + " --jobs 1 --timeout 5 --out '" + out.string() + "'",
+                 "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane");
   EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
   const auto s = statuses(out / "results.csv");
   ASSERT_EQ(s.size(), 3u) << read(out / "results.csv");
