@@ -87,6 +87,30 @@ TEST(Freedom, LargeClipCoordinatesGiveAWideFreedom) {
   EXPECT_GT(f.generations(), 0);
 }
 
+// An edge between clip x -1e16 and 1e16, cut by both x planes: the new vertices are computed
+// from magnitudes of 1e16, a freedom of ~1e10 pixels, beyond int. The margin around the
+// triangle's box was converted to int unclamped (undefined behaviour; INT_MIN on x86, so no
+// pixel got an edge band). Now the bands are those of the same picture at 1e14 (~1e8 pixels).
+TEST(Freedom, AFreedomBeyondIntRangeStillGetsItsEdgeBands) {
+  const auto bands = [](float far) {
+    Case c = one_triangle({0, -0.5f, 0, 1}, {far, 0.3f, 0, 1}, {-far, 0.2f, 0, 1});
+    c.fb_width = c.fb_height = 16;
+    c.viewport = {0, 0, 16, 16};
+    EXPECT_GT(PositionFreedom(c, setup_triangle(c, Model{}, 0), 8).largest(),
+              far == 1e16f ? 3e9 : 1e7);
+    const Reference r = render(c, Model{}, 8);
+    size_t marked = 0;
+    for (uint8_t bits : r.edges)
+      marked += (bits & edge::snapping) != 0;
+    for (float a : r.allowed.components[0])
+      EXPECT_FALSE(std::isnan(a)) << "clip x " << far;
+    return marked;
+  };
+  const size_t at_1e14 = bands(1e14f);
+  EXPECT_GT(at_1e14, 100u);
+  EXPECT_EQ(bands(1e16f), at_1e14);
+}
+
 TEST(Freedom, AnUnclippedTriangleWeighsEachVertexByItsBarycentric) {
   // One vertex far out in a 4096-wide framebuffer: its float32 position is less precise, and
   // only pixels near it feel that.
