@@ -65,8 +65,10 @@ std::vector<std::pair<std::string, std::string>> mesa_environment(
     const MesaPrefix& m, const std::filesystem::path& scratch) {
   std::vector<std::pair<std::string, std::string>> env;
   const char* old = std::getenv("LD_LIBRARY_PATH");
-  env.emplace_back("LD_LIBRARY_PATH",
-                   m.libdir.string() + (old && *old ? ":" + std::string(old) : ""));
+  // Appended, not `":" + string`: GCC 12's Release inlining reports a false -Wrestrict there.
+  std::string library_path = m.libdir.string();
+  if (old && *old) library_path.append(":").append(old);
+  env.emplace_back("LD_LIBRARY_PATH", library_path);
   if (m.has_egl) {
     const auto json = scratch / "mesa_egl_vendor.json";
     std::ofstream out(json);

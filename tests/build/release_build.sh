@@ -3,7 +3,7 @@
 # and the code is clean of the false positives GCC 12 reports only with Release's inlining (a
 # -Wrestrict inside std::string in report/run_compare.cpp and casefile/ once broke
 # `cmake -DCMAKE_BUILD_TYPE=Release`). Configures SOURCE into BUILD twice: with the defaults
-# (GLRC_WERROR must be OFF), then with -Werror, and builds the libraries that held the warnings.
+# (GLRC_WERROR must be OFF), then with -Werror, and builds glrefcheck (every library and the CLI).
 #   release_build.sh SOURCE BUILD CXX
 set -euo pipefail
 source=$1 build=$2 cxx=$3
@@ -17,6 +17,6 @@ configure
 werror=$(sed -n 's/^GLRC_WERROR:BOOL=//p' "$build/CMakeCache.txt")
 [ "$werror" = OFF ] || { echo "GLRC_WERROR defaults to '$werror', expected OFF"; exit 1; }
 configure -DGLRC_WERROR=ON
-cmake --build "$build" --target glrc_report glrc_casefile -j "$(nproc)" >"$build.build.log" 2>&1 ||
+cmake --build "$build" --target glrefcheck -j "$(nproc)" >"$build.build.log" 2>&1 ||
   { grep -E "error|warning" "$build.build.log" | head -20; exit 1; }
-echo "Release build of glrc_report and glrc_casefile with -Werror: clean"
+echo "Release build of glrefcheck with -Werror: clean"
