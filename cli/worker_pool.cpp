@@ -132,6 +132,12 @@ class Pool {
   }
 
  private:
+  // `seconds` after `from`: a deadline.
+  static Clock::time_point after(Clock::time_point from, double seconds) {
+    return from +
+           std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  }
+
   bool imaging() const {
     return std::any_of(workers_.begin(), workers_.end(),
                        [](const Worker& w) { return w.pid > 0 && w.imaging; });
@@ -197,8 +203,7 @@ class Pool {
     w.started = Clock::now();
     // A driver can hang making its context too; that gets at least 30 s, since starting a
     // process and JIT-compiling shaders on a loaded CI machine takes a while.
-    w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>(std::max(s_.timeout, 30.0)));
+    w.deadline = after(w.started, std::max(s_.timeout, 30.0));
     send(w, options_line_);
   }
 
@@ -221,8 +226,7 @@ class Pool {
     queue_.pop_front();
     w.job = k;
     w.started = Clock::now();
-    w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>(s_.timeout));
+    w.deadline = after(w.started, s_.timeout);
     const nlohmann::json job = {{"index", k},
                                 {"file", cases_[k]->source_path},
                                 {"case", casefile::to_wire(*cases_[k])},
@@ -297,8 +301,7 @@ class Pool {
     if (!images) return assign(w);
     w.imaging = k;
     w.started = Clock::now();
-    w.deadline = w.started + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>(s_.timeout));
+    w.deadline = after(w.started, s_.timeout);
   }
 
   void images_lost(size_t k, const std::string& why) const {
@@ -313,8 +316,7 @@ class Pool {
     cache_ = model_cache_slot(gl_.renderer, gl_.version, driver_files);
     if (const auto cached = cache_.load()) return model_chosen({*cached, "identify (cached)"});
     w.identifying = true;
-    w.deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                    std::chrono::duration<double>(std::max(s_.timeout, 30.0)));
+    w.deadline = after(Clock::now(), std::max(s_.timeout, 30.0));
     send(w, "{\"identify\":true}\n");
   }
 

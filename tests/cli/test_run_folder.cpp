@@ -23,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
+using glrc::test::wait_for_pid;
 
 // Eight quick cases, in this order: attr_crossing_zero, attr_huge, attr_mixed_magnitudes,
 // attr_offset_small_gradient, attr_tiny, viewport_guard_band, viewport_offset, viewport_tiny.
@@ -58,16 +59,6 @@ nlohmann::json comparable(nlohmann::json results) {
 
 nlohmann::json results_of(const fs::path& dir) {
   return nlohmann::json::parse(read(dir / "results.json"));
-}
-
-// The pid a stalled worker wrote (GLRC_TEST_STALL_PIDFILE), once it has.
-pid_t wait_for_pid(const fs::path& pidfile) {
-  pid_t pid = 0;
-  for (int k = 0; k < 1200 && !pid; ++k) {
-    std::ifstream in(pidfile);
-    if (!(in >> pid)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return pid;
 }
 
 pid_t parent_of(pid_t pid) {

@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
+using glrc::test::wait_for_pid;
 
 // Eight quick cases on llvmpipe through OSMesa.
 const std::string kCases = "--filter '^(viewport|attr)' --backend osmesa --driver llvmpipe";
@@ -56,11 +57,7 @@ TEST_F(Workers, KilledWorkerIsACrashAndTheRunCompletes) {
         "GLRC_TEST_STALL_CASE=viewport_tiny GLRC_TEST_STALL_PIDFILE='" + pidfile.string() + "'");
   });
   // The worker holding viewport_tiny writes its pid there and waits, as a hung driver would.
-  pid_t pid = 0;
-  for (int k = 0; k < 600 && !pid; ++k) {
-    std::ifstream in(pidfile);
-    if (!(in >> pid)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  const pid_t pid = wait_for_pid(pidfile);
   ASSERT_GT(pid, 0) << "no worker reached the stalled case";
   ASSERT_EQ(kill(pid, SIGKILL), 0);
   run.join();
@@ -149,11 +146,7 @@ TEST_F(Workers, AWorkerKilledWritingHeatmapsKeepsTheVerdict) {
                    "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane GLRC_TEST_STALL_PIDFILE='" +
                        pidfile.string() + "'");
   });
-  pid_t pid = 0;
-  for (int k = 0; k < 600 && !pid; ++k) {
-    std::ifstream in(pidfile);
-    if (!(in >> pid)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  const pid_t pid = wait_for_pid(pidfile);
   ASSERT_GT(pid, 0) << "no worker reached the stalled heatmaps";
   ASSERT_EQ(kill(pid, SIGKILL), 0);
   run.join();

@@ -4,10 +4,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 namespace glrc::test {
 
@@ -35,6 +37,17 @@ inline Outcome glrefcheck(const std::string& args, const std::string& env = "") 
   std::ifstream e(err_file);
   o.err.assign(std::istreambuf_iterator<char>(e), {});
   return o;
+}
+
+// The pid a worker stalled by GLRC_TEST_STALL_CASE or GLRC_TEST_STALL_IMAGES wrote to
+// GLRC_TEST_STALL_PIDFILE, once it has; 0 if none did within 60 s.
+inline pid_t wait_for_pid(const std::filesystem::path& pidfile) {
+  pid_t pid = 0;
+  for (int k = 0; k < 1200 && !pid; ++k) {
+    std::ifstream in(pidfile);
+    if (!(in >> pid)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return pid;
 }
 
 }  // namespace glrc::test
