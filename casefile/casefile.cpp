@@ -119,30 +119,33 @@ size_t utf8_length(std::string_view s, size_t i) {
 
 // `s` fit for one line of a UTF-8 terminal: control characters as \n, \r, \t or \u00XX (a
 // NUL would also end a C string, cutting the message), bytes that are not UTF-8 as \xXX; at most
-// `max` bytes of `s` (never half a character), then "...".
+// `max` bytes of output (never half a character or half an escape), then "...". The bound is on
+// the output: 100 DEL bytes are 600 characters escaped.
 std::string printable(std::string_view s, size_t max = std::string::npos) {
   std::string out;
   size_t i = 0;
   while (i < s.size()) {
     const size_t n = utf8_length(s, i);
-    if (i + std::max<size_t>(n, 1) > max) break;
     const auto c = static_cast<unsigned char>(s[i]);
     char buf[8];
+    std::string_view piece;
     if (n == 0) {
       std::snprintf(buf, sizeof buf, "\\x%02X", c);
-      out += buf;
+      piece = buf;
     } else if (c == '\n') {
-      out += "\\n";
+      piece = "\\n";
     } else if (c == '\r') {
-      out += "\\r";
+      piece = "\\r";
     } else if (c == '\t') {
-      out += "\\t";
+      piece = "\\t";
     } else if (c < 0x20 || c == 0x7F) {
       std::snprintf(buf, sizeof buf, "\\u%04X", c);
-      out += buf;
+      piece = buf;
     } else {
-      out.append(s.substr(i, n));
+      piece = s.substr(i, n);
     }
+    if (out.size() + piece.size() > max) break;
+    out.append(piece);
     i += std::max<size_t>(n, 1);
   }
   if (i < s.size()) out += "...";
@@ -151,15 +154,14 @@ std::string printable(std::string_view s, size_t max = std::string::npos) {
 
 std::string json_quoted(std::string_view s) {
   constexpr size_t kMax = 60;  // keep messages one readable line
-  size_t cut = std::min(s.size(), kMax);
-  while (cut > 0 && cut < s.size() && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80)
-    --cut;  // not half a character
   std::string escaped;
-  for (const char ch : s.substr(0, cut)) {
+  for (const char ch : s.substr(0, 4 * kMax)) {  // enough for kMax characters shown
     if (ch == '"' || ch == '\\') escaped += '\\';
     escaped += ch;
   }
-  return "\"" + printable(escaped) + (cut < s.size() ? "..." : "") + "\"";
+  std::string shown = printable(escaped, kMax);
+  if (s.size() > 4 * kMax && !shown.ends_with("...")) shown += "...";
+  return "\"" + shown + "\"";
 }
 
 // What a JSON value is, for the "got" part of a message.
@@ -207,8 +209,10 @@ std::string path_key(const std::string& parent, std::string_view key) {
 }
 // A field path as a message shows it: a key of 10,000 characters, or a value 100,000 arrays
 // deep, would make the message any length. The start and the end (the field itself) stay.
-std::string shown_path(const std::string& path) {
+std::string shown_path(const std::string& raw) {
   constexpr size_t kKeep = 100;
+  // Cut as shown, escapes and all: a key of DEL bytes is six times as long on screen.
+  const std::string path = printable(raw);
   if (path.size() <= 2 * kKeep) return path;
   size_t head = kKeep, tail = path.size() - kKeep;
   const auto inside_character = [&](size_t i) {
@@ -218,6 +222,10 @@ std::string shown_path(const std::string& path) {
     --head;
   while (tail < path.size() && inside_character(tail))
     ++tail;
+  // Nor half an escape (\u007F, \xFF, \n): a backslash close before a cut starts one.
+  if (const size_t b = path.rfind('\\', head); b != std::string::npos && head - b < 6) head = b;
+  if (const size_t b = path.rfind('\\', tail); b != std::string::npos && tail - b < 6 && b > head)
+    tail = b;
   return path.substr(0, head) + "..." + path.substr(tail);
 }
 std::string path_index(const std::string& parent, size_t i) {
@@ -831,9 +839,13 @@ Case Loader::load(const json& root) {
               "transform", "vertices", "triangles", "tolerance"});
 
   const json& desc = required(root, "", "description", "a one-line string");
+  // Printed on terminals by list, diff and run: a control character (a line break, an escape
+  // sequence, a NUL) would break the line or drive the terminal.
   if (!desc.is_string() || desc.get_ref<const std::string&>().empty() ||
-      desc.get_ref<const std::string&>().find_first_of("\r\n") != std::string::npos)
-    fail("description", "a non-empty one-line string", describe(desc));
+      std::any_of(desc.get_ref<const std::string&>().begin(),
+                  desc.get_ref<const std::string&>().end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+    fail("description", "a non-empty one-line string without control characters", describe(desc));
   c.description = desc.get<std::string>();
 
   load_geometry(root, c);
@@ -1157,11 +1169,11 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
       out.push_back(p.lexically_normal());  // a file named explicitly is taken as it is
       continue;
     }
-    if (!fs::is_directory(st)) {
-      // Reading a FIFO would wait for a writer; a device is no case either.
-      say("glrefcheck: ignored " + printable(arg) + ": " + file_kind(st) + ", not a regular file");
-      continue;
-    }
+    if (!fs::is_directory(st))
+      // Reading a FIFO would wait for a writer; a device is no case either. Named outright, it is
+      // a mistake to say so (found in a folder, it is only passed over).
+      throw CaseError(printable(arg) + ": expected a case file or a directory of them, got " +
+                      file_kind(st) + " (not read)");
     std::vector<fs::path> pending = {p};
     while (!pending.empty()) {
       const fs::path dir = pending.back();
@@ -1184,6 +1196,10 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
           } else if (e.extension() == ".json") {
             if (fs::is_regular_file(est)) {
               out.push_back(e.lexically_normal());
+            } else if (sec && sec != std::errc::no_such_file_or_directory) {
+              // A link to itself, or through too many links: following it fails (ELOOP).
+              say("glrefcheck: ignored " + printable(e.string()) +
+                  ": a symbolic link that cannot be followed (" + sec.message() + ")");
             } else {
               say("glrefcheck: ignored " + printable(e.string()) + ": " + file_kind(est) +
                   ", not a regular file");
@@ -1201,6 +1217,12 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
   // A case's name is its file's stem, and names key results and reports.
   std::map<std::string, fs::path> names;
   for (const fs::path& p : out) {
+    // A tab or line break in a name would split the lines that list, digest and diff print.
+    for (const char ch : p.stem().string())
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f)
+        throw CaseError(printable(p.string()) +
+                        ": name: expected a case name without control characters, got " +
+                        json_quoted(p.stem().string()) + ": rename the file");
     auto [it, inserted] = names.emplace(p.stem().string(), p);
     if (!inserted)
       throw CaseError(printable(p.string()) + ": name: expected a case name used once, got " +

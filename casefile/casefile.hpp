@@ -21,9 +21,10 @@ Case load(const std::filesystem::path& file);
 
 // Case files named by the arguments: files as given, directories searched recursively for
 // *.json (following symbolic links, each folder once, so that a link loop ends); sorted by path,
-// duplicates removed. A FIFO, socket or device (named, or found as *.json) is ignored with one
-// line to `note` (default: stderr). Throws CaseError for a path that does not exist, a path that
-// is not UTF-8, an unreadable folder, or two cases of one name.
+// duplicates removed. A FIFO, socket, device or unfollowable link found as *.json in a folder is
+// ignored with one line to `note` (default: stderr). Throws CaseError for a path that does not
+// exist or is neither a regular file nor a folder (never read), a path that is not UTF-8, an
+// unreadable folder, a case name (file stem) with a control character, or two cases of one name.
 std::vector<std::filesystem::path> collect(
     const std::vector<std::string>& files_or_dirs,
     const std::function<void(const std::string&)>& note = nullptr);

@@ -8,23 +8,15 @@
 
 #include <re2/re2.h>
 
+#include "cli/text.hpp"
+
 namespace glrc::cli {
 
 namespace {
-// A pattern for a one-line message: control characters and bytes above 0x7E as \xXX.
+// Text from a file or the command line, for a one-line message: control characters escaped,
+// at most 80 characters (a 100 KB line is not echoed whole).
 std::string shown(const std::string& s) {
-  std::string out;
-  for (const char ch : s.substr(0, 200)) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c == 0x7F) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02X", c);
-      out += buf;
-    } else {
-      out += ch;
-    }
-  }
-  return s.size() > 200 ? out + "..." : out;
+  return printable(s, 80);
 }
 
 std::string trim(const std::string& s) {
@@ -58,15 +50,15 @@ Baseline read_baseline(const std::filesystem::path& file) {
     const auto where = file.string() + ":" + std::to_string(n) + ": ";
     if (fields.size() < 2 || fields.size() > 3 || fields[0].empty() || fields[1].empty())
       throw std::runtime_error(where + "expected `case,Status` (or `case,Status,seconds`), got \"" +
-                               line + "\"");
+                               shown(line) + "\"");
     const std::string& name = fields[0];
     const std::string& status = fields[1];
     if (fields.size() == 3) {
       char* end = nullptr;
       std::strtod(fields[2].c_str(), &end);
       if (fields[2].empty() || *end != '\0')
-        throw std::runtime_error(where + "expected seconds as the third field, got \"" + fields[2] +
-                                 "\"");
+        throw std::runtime_error(where + "expected seconds as the third field, got \"" +
+                                 shown(fields[2]) + "\"");
     }
     // The failing statuses of Mesa CI's fails files; Crash and Timeout come from worker processes,
     // Error from a case the GL side could not render.
@@ -77,12 +69,13 @@ Baseline read_baseline(const std::filesystem::path& file) {
       continue;
     if (std::find(kExpectations.begin(), kExpectations.end(), status) == kExpectations.end())
       throw std::runtime_error(
-          where + "expected a status of Fail, Crash, Timeout or Error, got \"" + status + "\"" +
+          where + "expected a status of Fail, Crash, Timeout or Error, got \"" + shown(status) +
+          "\"" +
           (status == "ExpectedFail" ? " (ExpectedFail says that a case failed, not how: write "
                                       "its outcome)"
                                     : ""));
     if (!b.expected.emplace(name, status).second)
-      throw std::runtime_error(where + "expected each case once, got " + name + " again");
+      throw std::runtime_error(where + "expected each case once, got " + shown(name) + " again");
   }
   if (in.bad()) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   return b;
@@ -114,7 +107,7 @@ Regex::Regex(const std::string& pattern) {
   re_ = std::make_unique<Compiled>(pattern, o);
   if (!re_->re.ok())
     throw std::runtime_error("expected a regular expression (RE2 syntax), got \"" + shown(pattern) +
-                             "\" (" + re_->re.error() + ")");
+                             "\" (" + shown(re_->re.error()) + ")");
 }
 Regex::~Regex() = default;
 Regex::Regex(Regex&&) noexcept = default;

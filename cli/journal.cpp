@@ -5,13 +5,17 @@
 
 #include <fmt/core.h>
 #include <cerrno>
+#include <climits>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/model_cache.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/text.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
@@ -39,20 +43,101 @@ json all_options_json(const Options& o) {
   return j;
 }
 
-Options all_options_from_json(const json& j) {
-  Options o = options_from_json(j.dump());
-  o.paths = j.at("paths").get<std::vector<std::string>>();
-  o.filter = j.at("filter");
-  o.baseline = j.at("baseline");
-  o.flakes = j.at("flakes");
-  o.skips = j.at("skips");
-  o.mesa = j.at("mesa");
-  o.jobs = j.at("jobs");
-  o.jobs_force = j.at("jobs_force");
-  o.timeout = j.at("timeout");
-  o.fraction = j.at("fraction");
-  o.fraction_start = j.at("fraction_start");
-  o.html = j.at("html");
+// The journal's options, each checked as the command line checks it: a damaged or hand-edited
+// journal is one line naming the field, never a run with --fraction 0 or --timeout -5.
+class OptionsReader {
+ public:
+  OptionsReader(const json& j, std::string where) : j_(j), where_(std::move(where)) {
+    if (!j_.is_object()) bad("options", "an object");
+  }
+  std::string text(const char* key, std::initializer_list<const char*> allowed = {}) const {
+    const json& v = at(key);
+    if (!v.is_string()) bad(key, "a string");
+    const auto s = v.get<std::string>();
+    if (allowed.size() == 0) return s;
+    std::string names;
+    for (const char* a : allowed) {
+      if (s == a) return s;
+      names += names.empty() ? a : std::string(", ") + a;
+    }
+    bad(key, "one of " + names + ", got \"" + printable(s, 80) + "\"");
+  }
+  bool flag(const char* key) const {
+    const json& v = at(key);
+    if (!v.is_boolean()) bad(key, "true or false");
+    return v.get<bool>();
+  }
+  int whole(const char* key, int lo, int hi = INT_MAX) const {
+    const json& v = at(key);
+    // Parsed, a number >= 0 is unsigned, and may be beyond int64_t.
+    const bool ok = v.is_number_integer() &&
+                    (v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(hi) &&
+                                                  (lo <= 0 || v.get<uint64_t>() >= uint64_t(lo))
+                                            : v.get<int64_t>() >= lo && v.get<int64_t>() <= hi);
+    if (!ok)
+      bad(key,
+          fmt::format("a whole number from {} to {}, got {}", lo, hi, printable(v.dump(), 80)));
+    return v.get<int>();
+  }
+  double number(const char* key, double lo, double hi) const {
+    const json& v = at(key);
+    if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
+      bad(key, fmt::format("a number from {:g} to {:g}, got {}", lo, hi, printable(v.dump(), 80)));
+    return v.get<double>();
+  }
+  std::vector<std::string> texts(const char* key) const {
+    const json& v = at(key);
+    std::vector<std::string> out;
+    if (!v.is_array()) bad(key, "an array of strings");
+    for (const json& e : v) {
+      if (!e.is_string()) bad(key, "an array of strings");
+      out.push_back(e.get<std::string>());
+    }
+    return out;
+  }
+  bool has(const char* key) const { return j_.contains(key); }
+
+ private:
+  const json& at(const char* key) const {
+    if (!j_.contains(key)) bad(key, "a field \"" + std::string(key) + "\"");
+    return j_[key];
+  }
+  [[noreturn]] void bad(const std::string& key, const std::string& expected) const {
+    throw InputError(where_ + ": options." + key + ": expected " + expected);
+  }
+  const json& j_;
+  std::string where_;
+};
+
+Options all_options_from_json(const json& j, const std::string& where) {
+  const OptionsReader r(j, where);
+  Options o;
+  o.model = r.text("model", {"identified", "ideal", "llvmpipe", "softpipe"});
+  o.subpixel_bits = r.whole("subpixel_bits", 0, 16);
+  o.planes = r.text("planes", {"snapped", "unsnapped"});
+  o.tie_break = r.text("tie_break", {"bottom-left", "top-left", "bottom-right", "top-right"});
+  o.model_given = r.flag("model_given");
+  o.backend = r.text("backend", {"osmesa", "egl", "egl-device"});
+  o.driver = r.text("driver");
+  o.device = r.whole("device", 0);
+  o.tolerance = r.text("tolerance", {"spec", "exact"});
+  o.strict_coverage = r.flag("strict_coverage");
+  o.out = r.text("out");
+  if (r.has("spec_subpixel_bits")) o.spec_subpixel_bits = r.whole("spec_subpixel_bits", 4, 16);
+  if (r.has("varying_ulps")) o.varying_ulps = r.number("varying_ulps", 0, 1e300);
+  if (r.has("depth_ulps")) o.depth_ulps = r.number("depth_ulps", 0, 1e300);
+  o.paths = r.texts("paths");
+  o.filter = r.text("filter");
+  o.baseline = r.text("baseline");
+  o.flakes = r.text("flakes");
+  o.skips = r.text("skips");
+  o.mesa = r.text("mesa");
+  o.jobs = r.whole("jobs", 0);
+  o.jobs_force = r.flag("jobs_force");
+  o.timeout = r.number("timeout", 0.001, 1e6);  // --timeout's own range
+  o.fraction = r.whole("fraction", 1);
+  o.fraction_start = r.whole("fraction_start", 1, o.fraction);
+  o.html = r.flag("html");
   return o;
 }
 
@@ -138,12 +223,22 @@ JournalContents read_journal(const fs::path& dir) {
     if (line.empty()) continue;  // where a reopened journal ended a cut line
     const std::string where = fmt::format("{}:{}", name, n);
     try {
-      const json j = json::parse(line);
+      json j;
+      try {
+        j = json::parse(line);
+      } catch (const json::parse_error& e) {
+        throw InputError(where +
+                         ": expected a journal line of glrefcheck's, got invalid JSON at "
+                         "byte " +
+                         std::to_string(e.byte));
+      }
+      if (!j.is_object()) throw InputError(where + ": expected a journal line of glrefcheck's");
       if (n == 1) {
-        if (!j.is_object() || j.value("glrefcheck_journal", 0) != 1)
+        if (j.value("glrefcheck_journal", 0) != 1)
           throw InputError(where + ": expected a glrefcheck run journal (version 1)");
-        c.options = all_options_from_json(j.at("options"));
-        c.files = j.at("files").get<std::vector<std::string>>();
+        if (!j.contains("options")) throw InputError(where + ": expected the run's options");
+        c.options = all_options_from_json(j["options"], where);
+        c.files = OptionsReader(j, where).texts("files");
       } else if (j.contains("run")) {
         c.run = report::run_info_from_json(j["run"].dump(), where);
         const auto model = model_from_json(j.at("model"));
@@ -156,10 +251,15 @@ JournalContents read_journal(const fs::path& dir) {
       }
     } catch (const InputError&) {
       throw;
+    } catch (const json::exception& e) {
+      // A field of the wrong type past the checks above: say which kind, not nlohmann's words.
+      throw InputError(where +
+                       ": expected a journal line of glrefcheck's (a field of the wrong "
+                       "type or missing, error " +
+                       std::to_string(e.id) + ")");
     } catch (const std::exception& e) {
-      std::string why = e.what();
-      if (why.size() > 200) why = why.substr(0, 200) + "...";
-      throw InputError(where + ": expected a journal line of glrefcheck's (" + why + ")");
+      throw InputError(where + ": expected a journal line of glrefcheck's (" +
+                       printable(e.what(), 200) + ")");
     }
   }
   if (c.files.empty()) throw InputError(name + ": expected the run's first line, got none");

@@ -21,6 +21,7 @@
 #include "cli/run.hpp"
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
+#include "cli/text.hpp"
 #include "cli/validators.hpp"
 #include "cli/workers.hpp"
 #include "compare/compare.hpp"
@@ -249,6 +250,20 @@ int main_impl(int argc, char** argv) {
   selftest->add_option("--baseline", o.baseline,
                        "known failures, `case,Status` lines: they cannot catch a fault");
 
+  // CLI11 says "A subcommand is required" for a misspelt one, without naming it.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      known = known || sub->get_name() == argv[1];
+      if (sub->get_name() != "worker") names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      fmt::print(stderr, "glrefcheck: expected a command ({}), got \"{}\" (see --help)\n", names,
+                 printable(argv[1], 80));
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -256,8 +271,9 @@ int main_impl(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    // One line, like every other input error.
-    fmt::print(stderr, "glrefcheck: {} (see --help)\n", e.what());
+    // One line, like every other input error; CLI11 quotes what was typed, which may be long
+    // or hold control characters.
+    fmt::print(stderr, "glrefcheck: {} (see --help)\n", printable(e.what(), 300));
     return 2;
   }
   o.model_given = model_options_given(app);

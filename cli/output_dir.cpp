@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/session.hpp"
+#include "cli/text.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
@@ -21,9 +22,10 @@ constexpr const char* kMarkerText =
     "glrefcheck output folder: glrefcheck replaces its own files here (results.json, results.csv, "
     "failures.csv, junit.xml, report.html, journal.jsonl, cases/, logs/) and nothing else.\n";
 
-// A results.json (of `run`) or an identify.json (of `identify`) that glrefcheck wrote before
-// folders were marked: evidence enough that the folder is glrefcheck's.
-bool earlier_glrefcheck_output(const fs::path& dir) {
+// A results.json (of `run`) or an identify.json (of `identify`) as glrefcheck writes them. Such
+// a folder without the marker is still refused (its results.json proves nothing: anyone can
+// write one, and cases/ beside it would be deleted), but the message says what to do.
+bool looks_like_glrefcheck_output(const fs::path& dir) {
   const auto parse = [&](const char* name) -> nlohmann::json {
     std::error_code ec;
     if (!fs::is_regular_file(dir / name, ec)) return nullptr;
@@ -83,13 +85,21 @@ fs::path output_folder(const std::string& out, const std::string& option) {
     if (ec)
       throw InputError(option + ": cannot read the folder \"" + shown + "\" (" + ec.message() +
                        ")");
-    if (!entries.empty() && !earlier_glrefcheck_output(dir)) {
+    if (!entries.empty()) {
       std::sort(entries.begin(), entries.end());
-      throw InputError(fmt::format(
+      const std::string expected = fmt::format(
           "{}: expected a new or empty folder, or one glrefcheck made (it holds a {} file), got "
-          "\"{}\", which holds \"{}\"{}: glrefcheck replaces nothing it did not write; name "
-          "another folder",
-          option, kMarkerFile, shown, printable(entries.front()),
+          "\"{}\"",
+          option, kMarkerFile, shown);
+      if (looks_like_glrefcheck_output(dir))
+        throw InputError(expected +
+                         ", which holds glrefcheck's results but no marker (an older glrefcheck's, "
+                         "or copied): glrefcheck replaces nothing it did not mark; delete the "
+                         "folder or name another");
+      throw InputError(fmt::format(
+          "{}, which holds \"{}\"{}: glrefcheck replaces nothing it did not write; name another "
+          "folder",
+          expected, printable(entries.front(), 80),
           entries.size() > 1 ? fmt::format(" and {} more", entries.size() - 1) : ""));
     }
   } else {
@@ -133,59 +143,6 @@ void clear_run_outputs(const fs::path& dir) {
       throw InputError("--out: cannot remove the earlier run's " + (dir / name).string() + " (" +
                        ec.message() + ")");
   }
-}
-
-bool is_utf8(std::string_view s) {
-  size_t k = 0;
-  while (k < s.size()) {
-    const auto c = static_cast<unsigned char>(s[k]);
-    size_t n = 0;
-    uint32_t cp = 0;
-    if (c < 0x80) {
-      ++k;
-      continue;
-    } else if (c >= 0xC2 && c <= 0xDF) {
-      n = 1, cp = c & 0x1F;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-      n = 2, cp = c & 0x0F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-      n = 3, cp = c & 0x07;
-    } else {
-      return false;
-    }
-    for (size_t j = 1; j <= n; ++j) {
-      if (k + j >= s.size()) return false;
-      const auto d = static_cast<unsigned char>(s[k + j]);
-      if ((d & 0xC0) != 0x80) return false;
-      cp = (cp << 6) | (d & 0x3F);
-    }
-    // Overlong forms, UTF-16 surrogates and code points past U+10FFFF are not UTF-8.
-    if ((n == 2 && cp < 0x800) || (n == 3 && (cp < 0x10000 || cp > 0x10FFFF)) ||
-        (cp >= 0xD800 && cp <= 0xDFFF))
-      return false;
-    k += n + 1;
-  }
-  return true;
-}
-
-std::string printable(std::string_view s) {
-  std::string out;
-  for (size_t k = 0; k < s.size();) {
-    const auto c = static_cast<unsigned char>(s[k]);
-    // The longest valid UTF-8 sequence starting here, if any, is kept as it is.
-    size_t len = c < 0x80 ? 1 : c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : 2;
-    if (c >= 0x80 && k + len <= s.size() && is_utf8(s.substr(k, len))) {
-      out.append(s.substr(k, len));
-      k += len;
-      continue;
-    }
-    if (c < 0x20 || c == 0x7F || c >= 0x80)
-      out += fmt::format("\\x{:02x}", c);
-    else
-      out += char(c);
-    ++k;
-  }
-  return out;
 }
 
 }  // namespace glrc::cli

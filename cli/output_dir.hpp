@@ -1,7 +1,8 @@
 // Output folders. glrefcheck writes, replaces and deletes only in a folder it owns: one it made,
 // or one given to it empty, which it marks with a `.glrefcheck` file (so `run --out .` in a
-// checkout is refused instead of replacing the suite's cases/). A folder written by a glrefcheck
-// from before the marker (it holds a results.json of glrefcheck's) is taken as its own and marked.
+// checkout is refused instead of replacing the suite's cases/). Anything else is refused, a
+// folder holding a results.json of glrefcheck's but no marker too: a file anyone can write is no
+// proof, and the cases/ beside it would be deleted.
 #pragma once
 
 #include <filesystem>
@@ -18,7 +19,7 @@ inline constexpr const char* kJournalFile = "journal.jsonl";
 inline constexpr const char* kInputsFolder = ".glrefcheck-inputs";
 
 // `option` (--out) names the folder in messages. Creates and marks the folder, or checks that it
-// is marked, empty or an earlier glrefcheck's; InputError otherwise, and for a path that is not
+// is marked or empty; InputError otherwise, and for a path that is not
 // UTF-8, a file, or a folder that cannot be written. (Declared with its default in session.hpp.)
 std::filesystem::path output_folder(const std::string& out, const std::string& option);
 
@@ -32,10 +33,5 @@ void clear_run_outputs(const std::filesystem::path& dir);
 
 // The run's own files and folders in a run folder, relative to it.
 const std::vector<std::string>& run_output_names();
-
-// Whether `s` is valid UTF-8 (JSON, which results.json and the journal are, holds only that).
-bool is_utf8(std::string_view s);
-// `s` for a one-line message: control characters and bytes that are not UTF-8 as \xNN.
-std::string printable(std::string_view s);
 
 }  // namespace glrc::cli

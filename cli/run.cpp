@@ -17,6 +17,7 @@
 #include "cli/journal.hpp"
 #include "cli/mesa_prefix.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/text.hpp"
 #include "cli/workers.hpp"
 #include "report/format.hpp"
 #include "report/html.hpp"
@@ -417,7 +418,9 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
   // Every shard of one fraction, each once, from the same GL and options.
   const RunInfo& first = shards.front().run;
   const int n = first.fraction;
-  std::vector<int> seen(size_t(n) + 1, -1);
+  // Read back, 1 <= fraction_start <= fraction holds (report::read_results_json checks it). The
+  // shards seen are a map, not a table of `fraction` entries: that number comes from a file.
+  std::map<int, size_t> seen;
   for (size_t k = 0; k < shards.size(); ++k) {
     const RunInfo& r = shards[k].run;
     if (r.interrupted)
@@ -435,17 +438,30 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
       throw InputError(fmt::format(
           "merge: {}: expected the same GL and options as {} ({}, {}), got {}, {}", dirs[k],
           dirs[0], first.gl_renderer, first.gl_version, r.gl_renderer, r.gl_version));
-    if (seen[size_t(r.fraction_start)] >= 0)
-      throw InputError(fmt::format("merge: {} and {} are both shard {} of {}",
-                                   dirs[size_t(seen[size_t(r.fraction_start)])], dirs[k],
-                                   r.fraction_start, n));
-    seen[size_t(r.fraction_start)] = int(k);
+    if (const auto [it, added] = seen.emplace(r.fraction_start, k); !added)
+      throw InputError(fmt::format("merge: {} and {} are both shard {} of {}", dirs[it->second],
+                                   dirs[k], r.fraction_start, n));
   }
+  // N distinct shards among the folders are all of them; the first gap is at most one past the
+  // number of folders.
   for (int start = 1; start <= n; ++start)
-    if (seen[size_t(start)] < 0)
+    if (!seen.contains(start))
       throw InputError(fmt::format("merge: shard {} of {} is missing", start, n));
 
-  // Case j of shard K is case K - 1 + j * N of the whole suite.
+  // Case j of shard K is case K - 1 + j * N of the whole suite: shard K holds
+  // ceil((total - K + 1) / N) cases. Checked before the table is made, so that a forged
+  // total_cases is a line, not 2^62 elements.
+  for (size_t k = 0; k < shards.size(); ++k) {
+    const RunInfo& r = shards[k].run;
+    const uint64_t start = uint64_t(r.fraction_start);
+    const uint64_t holds =
+        first.total_cases >= start ? (first.total_cases - start) / uint64_t(n) + 1 : 0;
+    if (shards[k].cases.size() != holds)
+      throw InputError(fmt::format(
+          "merge: {}: shard {} of {} of a {}-case suite: expected {} "
+          "cases, got {}",
+          dirs[k], r.fraction_start, n, first.total_cases, holds, shards[k].cases.size()));
+  }
   std::vector<std::optional<CaseResult>> merged(first.total_cases);
   RunInfo info = first;
   info.fraction = info.fraction_start = 1;

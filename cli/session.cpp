@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "casefile/casefile.hpp"
+#include "cli/text.hpp"
 #include "compare/compare.hpp"
 #include "driver_models/driver_models.hpp"
 
@@ -87,8 +88,14 @@ std::vector<Case> load_cases(const Options& o) {
     }
   }
   std::vector<Case> cases;
+  // Notes on what a folder search passed over wait until the cases have loaded: an error stays
+  // the one line it should be, and "no case matches" can say what was passed over.
+  std::vector<std::string> notes;
+  size_t files = 0;
   try {
-    for (const auto& file : casefile::collect(paths)) {
+    for (const auto& file :
+         casefile::collect(paths, [&](const std::string& n) { notes.push_back(n); })) {
+      ++files;
       // A case's name is its file's stem: a case the filter leaves out is not even read.
       if (filter && !filter->search(file.stem().string())) continue;
       cases.push_back(casefile::load(file));
@@ -96,7 +103,21 @@ std::vector<Case> load_cases(const Options& o) {
   } catch (const casefile::CaseError& e) {
     throw InputError(e.what());
   }
-  if (cases.empty()) throw InputError("no case matches: nothing to run");
+  if (cases.empty()) {
+    std::string where;
+    for (size_t k = 0; k < paths.size() && k < 3; ++k)
+      where += (k ? ", " : "") + printable(paths[k]);
+    if (paths.size() > 3) where += " and " + std::to_string(paths.size() - 3) + " more";
+    std::string why = files > 0 ? std::to_string(files) + " case file" + (files > 1 ? "s" : "") +
+                                      ", none matching --filter " + printable(o.filter, 80)
+                                : "no *.json case file found";
+    if (!notes.empty())
+      why += "; " + std::to_string(notes.size()) + " passed over, the first " +
+             notes.front().substr(notes.front().find("ignored ") + 8);
+    throw InputError("no case matches in " + where + ": " + why);
+  }
+  for (const std::string& n : notes)
+    std::fprintf(stderr, "%s\n", n.c_str());
   return cases;
 }
 

@@ -1,10 +1,13 @@
 // The EGL code both EGL backends share: libEGL, and a surfaceless GL 3.3 core context.
 #include "gl_harness/egl_context.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <mutex>
+#include <string>
 
 namespace glrc::gl {
 
@@ -95,12 +98,51 @@ namespace {
 std::mutex display_mutex;
 std::map<EGLDisplay, int> display_users;
 
+// Runs `f` with stderr going to a temporary file. If `f` succeeds, what it wrote is passed on to
+// stderr as it was; if not, it stays out of stderr and its first line comes back in `said`, for
+// the one-line error (Mesa's libEGL prints "libEGL warning: egl: failed to create dri2 screen"
+// before eglInitialize fails, which made a second line ahead of glrefcheck's own).
+template <typename F>
+bool with_stderr_kept(std::string& said, F&& f) {
+  std::fflush(stderr);
+  FILE* tmp = std::tmpfile();
+  const int saved = tmp ? dup(STDERR_FILENO) : -1;
+  if (saved < 0 || dup2(fileno(tmp), STDERR_FILENO) < 0) {
+    if (saved >= 0) close(saved);
+    if (tmp) std::fclose(tmp);
+    return f();  // no temporary file: Mesa's lines go where they always went
+  }
+  const bool ok = f();
+  std::fflush(stderr);
+  dup2(saved, STDERR_FILENO);
+  close(saved);
+  std::string text;
+  std::rewind(tmp);
+  char buf[4096];
+  for (size_t n; (n = std::fread(buf, 1, sizeof buf, tmp)) > 0 && text.size() < (1u << 20);)
+    text.append(buf, n);
+  std::fclose(tmp);
+  if (ok) {
+    if (!text.empty()) std::fwrite(text.data(), 1, text.size(), stderr);
+    return ok;
+  }
+  std::string line = text.substr(0, text.find('\n'));
+  if (line.rfind("libEGL warning: ", 0) == 0) line = line.substr(16);
+  for (char& c : line)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  said = line.size() > 160 ? line.substr(0, 160) + "..." : line;
+  return ok;
+}
+
 class EglContext final : public Context {
  public:
   EglContext(const EglLibrary& egl, EGLDisplay display, std::string platform)
       : egl_(egl), display_(display), platform_(std::move(platform)) {
     EGLint major = 0, minor = 0;
-    if (!egl_.Initialize(display_, &major, &minor)) {
+    std::string said;
+    const bool initialized = with_stderr_kept(
+        said, [&] { return egl_.Initialize(display_, &major, &minor) == EGL_TRUE; });
+    if (!initialized) {
       const std::string error = egl_error_name(egl_.GetError());
       // Mesa starts the driver GALLIUM_DRIVER names (select_driver sets it from --driver) in
       // eglInitialize: a driver this Mesa lacks is the usual cause, so name it.
@@ -108,6 +150,7 @@ class EglContext final : public Context {
       if (driver && *driver)
         throw Unavailable("eglInitialize failed on " + platform_ + ": driver \"" +
                           std::string(driver) + "\" (GALLIUM_DRIVER) could not start (" + error +
+                          (said.empty() ? "" : "; Mesa said \"" + said + "\"") +
                           "); is it a gallium driver of this Mesa? Mesa's CPU drivers are "
                           "llvmpipe, softpipe and zink");
       throw Unavailable("eglInitialize failed on " + platform_ +

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -184,10 +185,25 @@ struct Reader {
     if (!v.is_number_unsigned()) bad(where + "." + key, "a count (an integer >= 0)");
     return v.get<uint64_t>();
   }
-  int integer(const json& j, const std::string& where, const char* key, int fallback) const {
+  // An integer in [lo, hi]: a forged or damaged file must not reach the code that indexes by it
+  // (merge's shard table) or read 2^32 + 1 as 1.
+  int integer(const json& j, const std::string& where, const char* key, int fallback,
+              int lo = std::numeric_limits<int>::min(),
+              int hi = std::numeric_limits<int>::max()) const {
     if (!j.contains(key)) return fallback;  // fields added later than the first results.json
     const json& v = field(j, where, key);
-    if (!v.is_number_integer()) bad(where + "." + key, "an integer");
+    const std::string range =
+        hi == std::numeric_limits<int>::max()
+            ? "an integer >= " + std::to_string(lo)
+            : "an integer from " + std::to_string(lo) + " to " + std::to_string(hi);
+    if (!v.is_number_integer())
+      bad(where + "." + key, lo == std::numeric_limits<int>::min() ? "an integer" : range);
+    // Parsed, a number >= 0 is unsigned, and may be beyond int64_t.
+    const bool in_range =
+        v.is_number_unsigned()
+            ? v.get<uint64_t>() <= uint64_t(hi) && (lo <= 0 || v.get<uint64_t>() >= uint64_t(lo))
+            : v.get<int64_t>() >= lo && v.get<int64_t>() <= hi;
+    if (!in_range) bad(where + "." + key, range + ", got " + v.dump());
     return v.get<int>();
   }
   std::string str(const json& j, const std::string& where, const char* key,
@@ -230,9 +246,10 @@ RunInfo read_run(const Reader& rd, const json& j) {
       run.gl_warnings.push_back(w[k].get<std::string>());
     }
   }
-  run.jobs = rd.integer(j, "run", "jobs", 1);
-  run.fraction = rd.integer(j, "run", "fraction", 1);
-  run.fraction_start = rd.integer(j, "run", "fraction_start", 1);
+  run.jobs = rd.integer(j, "run", "jobs", 1, 0);  // a merged run of no shards would say 0
+  // The command line's own limits on --fraction and --fraction-start.
+  run.fraction = rd.integer(j, "run", "fraction", 1, 1);
+  run.fraction_start = rd.integer(j, "run", "fraction_start", 1, 1, run.fraction);
   run.total_cases = j.contains("total_cases") ? rd.count(j, "run", "total_cases") : 0;
   run.seconds = rd.num(j, "run", "seconds");
   if (j.contains("interrupted")) run.interrupted = rd.boolean(j, "run", "interrupted");
@@ -350,11 +367,26 @@ CaseResult read_case(const Reader& rd, const json& j, const std::string& where) 
 namespace {
 
 // `text` as JSON, or one line naming `source` and what it should have been.
+// nlohmann's parse error for a one-line message: without its "[json.exception...]" tag, cut to
+// 120 characters (it quotes what it read last, which can be anything).
+std::string parse_error_text(const json::parse_error& e) {
+  std::string t = e.what();
+  if (const auto tag = t.find("] "); t.rfind("[json.exception", 0) == 0 && tag != t.npos)
+    t = t.substr(tag + 2);
+  std::string out;
+  for (const char ch : t.substr(0, 120)) {
+    const auto c = static_cast<unsigned char>(ch);
+    out += c < 0x20 || c == 0x7f ? '?' : ch;
+  }
+  return "invalid JSON (" + out + (t.size() > 120 ? "...)" : ")");
+}
+
 json parsed(const std::string& text, const std::string& source, const char* what) {
   try {
     return json::parse(text);
   } catch (const json::parse_error& e) {
-    throw std::runtime_error(source + ": expected " + what + " in JSON (" + e.what() + ")");
+    throw std::runtime_error(source + ": expected " + what + " in JSON, got " +
+                             parse_error_text(e));
   }
 }
 
@@ -416,7 +448,13 @@ std::filesystem::path run_folder(const std::filesystem::path& file_or_dir) {
 
 RunResults read_results_json(const std::filesystem::path& file) {
   std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) return read_results_json(file / "results.json");
+  const auto st = std::filesystem::status(file, ec);
+  if (std::filesystem::is_directory(st)) return read_results_json(file / "results.json");
+  // Opening a FIFO would wait for a writer forever; a device is no results.json either.
+  if (std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    throw std::runtime_error(file.string() +
+                             ": expected a results.json (or a folder holding one), got something "
+                             "other than a regular file (not read)");
   std::ifstream in(file);
   if (!in)
     throw std::runtime_error(
@@ -426,7 +464,7 @@ RunResults read_results_json(const std::filesystem::path& file) {
   try {
     doc = json::parse(in);
   } catch (const json::parse_error& e) {
-    throw std::runtime_error(file.string() + ": expected JSON (" + e.what() + ")");
+    throw std::runtime_error(file.string() + ": expected JSON, got " + parse_error_text(e));
   }
   const Reader rd{file};
   RunResults out;

@@ -127,13 +127,43 @@ TEST_F(CaseFileTest, ControlCharactersInKeysAndValuesAreEscaped) {
                      R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
                      R"(viewport, depth_range, state, varyings, transform, vertices, triangles, )"
                      R"(tolerance, got unknown key "a\u0000b\u001Fc")");
-  EXPECT_EQ(
-      error_of(R"({"description": "two\nlines\u0007"})"),
-      file + R"(: description: expected a non-empty one-line string, got "two\nlines\u0007")");
+  EXPECT_EQ(error_of(R"({"description": "two\nlines\u0007"})"),
+            file + R"(: description: expected a non-empty one-line string without control )"
+                   R"(characters, got "two\nlines\u0007")");
+  // A description is printed by list, diff and run: an escape sequence or a NUL in it was
+  // accepted and reached the terminal raw.
+  EXPECT_EQ(error_of(R"({"description": "\u001b[2J\u001b[31mcleared"})"),
+            file + R"(: description: expected a non-empty one-line string without control )"
+                   R"(characters, got "\u001B[2J\u001B[31mcleared")");
+  EXPECT_EQ(error_of(R"({"description": "a\u0000b"})"),
+            file + R"(: description: expected a non-empty one-line string without control )"
+                   R"(characters, got "a\u0000b")");
+  EXPECT_EQ(error_of(R"({"description": "tab\there"})"),
+            file + R"(: description: expected a non-empty one-line string without control )"
+                   R"(characters, got "tab\there")");
   // A file name with a newline stays one line too.
   EXPECT_EQ(error_of("[]", "new\nline.json"),
             (dir_ / "new").string() +
                 R"(\nline.json: expected a JSON object at the top level, got an empty array)");
+}
+
+// Found by fuzz_casefile (30 minutes): a key of 150 DEL bytes made a message of over 1,000
+// characters, since the key was cut to 200 bytes and only then escaped, six characters a byte.
+// Keys and values are now cut as shown.
+TEST_F(CaseFileTest, KeysOfControlCharactersAreCutAsShown) {
+  const std::string file = (dir_ / "case.json").string();
+  const std::string del(150, '\x7f');
+  const std::string msg = error_of("{\"$des1, 0, 1]0!!!varyiyings!!,80!!!var" + del +
+                                   "yiyings89:8888~ie ns\": [[0, 1, 3]]}\n");
+  EXPECT_LT(msg.size(), file.size() + 500) << msg;
+  std::string shown_key = "$des1, 0, 1]0!!!varyiyings!!,80!!!var";
+  while (shown_key.size() + 6 <= 100)
+    shown_key += "\\u007F";
+  EXPECT_EQ(msg.rfind(file + ": " + shown_key + "...", 0), 0u) << msg;
+  EXPECT_NE(msg.find("got unknown key \"$des1, 0, 1]0!!!varyiyings!!,80!!!var\\u007F"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(msg.find('\x7f'), std::string::npos);
 }
 
 // Parse errors quoted the text read so far, unbounded (a 52 MB line in one message).

@@ -55,7 +55,8 @@ TEST(Patterns, BacktrackingPatternReturnsAtOnce) {
     load_cases(o);
     FAIL() << "a case matched";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "no case matches: nothing to run");
+    EXPECT_EQ(std::string(e.what()), "no case matches in " + d.string() +
+                                         ": 1 case file, none matching --filter ^(a|aa)*b$");
   }
   o.filter = "^(a|aa)*$";
   EXPECT_EQ(load_cases(o).size(), 1u);
@@ -117,6 +118,32 @@ TEST(Patterns, BadFilterOnTheCommandLineIsOneLine) {
   EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1);
 }
 
+// A bad 100 KB --filter was echoed whole, twice (RE2's error repeats the pattern); a baseline's
+// 100 KB line whole: every quoted text is cut to 80 characters.
+TEST(Patterns, QuotedTextIsCutToEightyCharacters) {
+  try {
+    Regex(std::string(100000, 'a') + "(");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string a80(80, 'a');
+    EXPECT_EQ(std::string(e.what()), "expected a regular expression (RE2 syntax), got \"" + a80 +
+                                         "... (100001 bytes)\" (missing ): " +
+                                         std::string(69, 'a') + "... (100012 bytes))");
+  }
+  const fs::path d = temp_dir("long");
+  std::ofstream(d / "fails.txt") << std::string(100000, 'x') << "\x1b[2J\n";
+  try {
+    read_baseline(d / "fails.txt");
+    FAIL() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), (d / "fails.txt").string() +
+                                         ":1: expected `case,Status` (or `case,Status,seconds`), "
+                                         "got \"" +
+                                         std::string(80, 'x') + "... (100004 bytes)\"");
+  }
+  fs::remove_all(d);
+}
+
 // `--backend egl --driver bogus` said only that eglInitialize failed.
 TEST(EglDriver, AnUnknownDriverIsNamed) {
   const auto o =
@@ -125,6 +152,9 @@ TEST(EglDriver, AnUnknownDriverIsNamed) {
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.err.find("driver \"bogus\" (GALLIUM_DRIVER) could not start"), std::string::npos)
       << o.err;
+  // Mesa's own "libEGL warning: ..." line came first: now it is inside glrefcheck's one line.
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  EXPECT_EQ(o.err.find("libEGL warning"), std::string::npos) << o.err;
   fs::remove_all(temp_dir("bogus"));
 }
 

@@ -148,11 +148,23 @@ TEST_F(RunFolder, MarkedFolderIsReusedCleanly) {
   for (const auto& e : fs::directory_iterator(out))  // atomic writes leave no temporary files
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
 
-  // A folder from a glrefcheck before the marker (its results.json says so) is taken as its own.
+  // Without the marker, a folder holding glrefcheck's results.json is refused all the same: the
+  // results.json may be copied or forged, and the user's files in cases/ were deleted.
   fs::remove(out / ".glrefcheck");
-  EXPECT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + out.string() + "'").exit_code,
-            0);
-  EXPECT_TRUE(fs::exists(out / ".glrefcheck"));
+  fs::create_directories(out / "cases");
+  std::ofstream(out / "cases/precious.txt") << "mine\n";
+  const Outcome unmarked =
+      glrefcheck("run cases/face_on.json --jobs 1 --out '" + out.string() + "'");
+  EXPECT_EQ(unmarked.exit_code, 2) << unmarked.out << unmarked.err;
+  EXPECT_EQ(unmarked.err,
+            "glrefcheck: --out: expected a new or empty folder, or one glrefcheck "
+            "made (it holds a .glrefcheck file), got \"" +
+                out.string() +
+                "\", which holds glrefcheck's results but no marker (an older "
+                "glrefcheck's, or copied): glrefcheck replaces nothing it did not "
+                "mark; delete the folder or name another\n");
+  EXPECT_FALSE(fs::exists(out / ".glrefcheck"));
+  EXPECT_EQ(read(out / "cases/precious.txt"), "mine\n");
   EXPECT_EQ(read(out / "notes.txt"), "mine\n");
 }
 

@@ -1,0 +1,63 @@
+#include "cli/text.hpp"
+
+#include <fmt/core.h>
+#include <cstdint>
+#include <string>
+
+namespace glrc::cli {
+
+bool is_utf8(std::string_view s) {
+  size_t k = 0;
+  while (k < s.size()) {
+    const auto c = static_cast<unsigned char>(s[k]);
+    size_t n = 0;
+    uint32_t cp = 0;
+    if (c < 0x80) {
+      ++k;
+      continue;
+    } else if (c >= 0xC2 && c <= 0xDF) {
+      n = 1, cp = c & 0x1F;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+      n = 2, cp = c & 0x0F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+      n = 3, cp = c & 0x07;
+    } else {
+      return false;
+    }
+    for (size_t j = 1; j <= n; ++j) {
+      if (k + j >= s.size()) return false;
+      const auto d = static_cast<unsigned char>(s[k + j]);
+      if ((d & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (d & 0x3F);
+    }
+    // Overlong forms, UTF-16 surrogates and code points past U+10FFFF are not UTF-8.
+    if ((n == 2 && cp < 0x800) || (n == 3 && (cp < 0x10000 || cp > 0x10FFFF)) ||
+        (cp >= 0xD800 && cp <= 0xDFFF))
+      return false;
+    k += n + 1;
+  }
+  return true;
+}
+
+std::string printable(std::string_view s, size_t max) {
+  std::string out;
+  for (size_t k = 0; k < s.size();) {
+    if (k >= max) return out + "... (" + std::to_string(s.size()) + " bytes)";
+    const auto c = static_cast<unsigned char>(s[k]);
+    // The longest valid UTF-8 sequence starting here, if any, is kept as it is.
+    size_t len = c < 0x80 ? 1 : c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : 2;
+    if (c >= 0x80 && k + len <= s.size() && is_utf8(s.substr(k, len))) {
+      out.append(s.substr(k, len));
+      k += len;
+      continue;
+    }
+    if (c < 0x20 || c == 0x7F || c >= 0x80)
+      out += fmt::format("\\x{:02x}", c);
+    else
+      out += char(c);
+    ++k;
+  }
+  return out;
+}
+
+}  // namespace glrc::cli

@@ -1,0 +1,238 @@
+// What glrefcheck reads back from its own files (results.json for merge, compare and report; the
+// journal for run --resume) may be damaged, hand-edited or forged: each bad field is one line
+// and exit 2, never a crash, a hang, a raw library message or a run with impossible options
+// (issue 11, the hostile-user campaign).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/glrefcheck_process.hpp"
+
+namespace glrc::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::glrefcheck;
+using test::Outcome;
+
+size_t lines(const std::string& s) {
+  return size_t(std::count(s.begin(), s.end(), '\n'));
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// One run of face_on, made once for all the tests here: the thing to forge.
+class Forged : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = fs::temp_directory_path() / ("glrc_forged_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    const Outcome o =
+        glrefcheck("run cases/face_on.json --jobs 1 --out '" + (dir_ / "run").string() + "'");
+    ASSERT_EQ(o.exit_code, 0) << o.out << o.err;
+  }
+  static void TearDownTestSuite() { fs::remove_all(dir_); }
+
+  // A copy of the run folder with `edit` applied to its results.json.
+  static fs::path forged_results(const std::string& name, const std::function<void(json&)>& edit) {
+    const fs::path d = dir_ / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    json j = json::parse(read(dir_ / "run/results.json"));
+    edit(j);
+    std::ofstream(d / "results.json") << j.dump(2);
+    return d;
+  }
+
+  // A copy of the run folder with `edit` applied to the options on its journal's first line.
+  static fs::path forged_journal(const std::string& name, const std::function<void(json&)>& edit) {
+    const fs::path d = dir_ / name;
+    fs::remove_all(d);
+    fs::copy(dir_ / "run", d, fs::copy_options::recursive);
+    std::string text = read(d / "journal.jsonl");
+    const size_t eol = text.find('\n');
+    json first = json::parse(text.substr(0, eol));
+    edit(first["options"]);
+    std::ofstream(d / "journal.jsonl") << first.dump() << text.substr(eol);
+    return d;
+  }
+
+  static void expect_one_line(const Outcome& o, const std::string& says) {
+    EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+    EXPECT_EQ(lines(o.err), 1u) << o.err;
+    EXPECT_NE(o.err.find(says), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find("json.exception"), std::string::npos) << o.err;
+    EXPECT_EQ(o.err.find("max_size"), std::string::npos) << o.err;
+  }
+
+  static fs::path dir_;
+};
+fs::path Forged::dir_;
+
+// fraction_start 2147483647 or fraction -1 indexed merge's shard table out of bounds (SIGSEGV);
+// fraction_start 3 of 2 read past it and claimed a duplicate shard; fraction 2^32 + 1 was read as
+// 1; total_cases 2^62 asked for a vector of that size.
+TEST_F(Forged, ShardFieldsOutOfRangeAreOneLineInMerge) {
+  const std::vector<std::tuple<std::string, std::function<void(json&)>, std::string>> forgeries = {
+      {"fs_huge", [](json& j) { j["run"]["fraction_start"] = 2147483647; },
+       "run.fraction_start: expected an integer from 1 to 1, got 2147483647"},
+      {"frac_neg", [](json& j) { j["run"]["fraction"] = -1; },
+       "run.fraction: expected an integer >= 1, got -1"},
+      {"frac_0", [](json& j) { j["run"]["fraction"] = 0; },
+       "run.fraction: expected an integer >= 1, got 0"},
+      {"fs_3_of_2",
+       [](json& j) {
+         j["run"]["fraction"] = 2;
+         j["run"]["fraction_start"] = 3;
+       },
+       "run.fraction_start: expected an integer from 1 to 2, got 3"},
+      {"frac_2p32p1", [](json& j) { j["run"]["fraction"] = 4294967297ull; },
+       "run.fraction: expected an integer >= 1, got 4294967297"},
+      {"total_huge", [](json& j) { j["run"]["total_cases"] = 1ull << 62; },
+       "shard 1 of 1 of a 4611686018427387904-case suite: expected 4611686018427387904 cases, "
+       "got 1"},
+      {"two_of_3",
+       [](json& j) {
+         j["run"]["fraction"] = 3;
+         j["run"]["fraction_start"] = 2;
+       },
+       "shard 1 of 3 is missing"},
+  };
+  for (const auto& [name, edit, says] : forgeries) {
+    SCOPED_TRACE(name);
+    const fs::path shard = forged_results(name, edit);
+    expect_one_line(glrefcheck("merge '" + shard.string() + "' --out '" +
+                               (dir_ / ("merged_" + name)).string() + "'"),
+                    says);
+    EXPECT_FALSE(fs::exists(dir_ / ("merged_" + name) / "results.json"));
+  }
+}
+
+// A truncated results.json quoted nlohmann's "[json.exception.parse_error.101] ..." whole.
+TEST_F(Forged, ATruncatedResultsJsonIsOneLineInTheToolsWords) {
+  const fs::path d = dir_ / "truncated";
+  fs::create_directories(d);
+  std::ofstream(d / "results.json") << "{\"run\": ";
+  const Outcome o = glrefcheck("compare '" + d.string() + "' '" + (dir_ / "run").string() + "'");
+  expect_one_line(o, (d / "results.json").string() + ": expected JSON, got invalid JSON (");
+}
+
+// Opening a FIFO named results.json waited for a writer forever: compare and report hung.
+TEST_F(Forged, AResultsJsonThatIsAFifoIsRefusedNotWaitedFor) {
+  const fs::path d = dir_ / "fifo";
+  fs::create_directories(d);
+  ASSERT_EQ(mkfifo((d / "results.json").c_str(), 0600), 0);
+  const std::string says = (d / "results.json").string() +
+                           ": expected a results.json (or a folder holding one), got something "
+                           "other than a regular file (not read)";
+  expect_one_line(
+      glrefcheck("compare '" + d.string() + "' '" + (dir_ / "run").string() + "'", "timeout 30"),
+      says);
+  expect_one_line(glrefcheck("report '" + d.string() + "'", "timeout 30"), says);
+}
+
+// The journal's options were taken as written: fraction 0 grew memory without bound, timeout -5
+// and subpixel bits 99 ran, a model of no name ran as the default, and a string for a number
+// quoted nlohmann's type_error.
+TEST_F(Forged, AResumedJournalsOptionsAreCheckedAsTheCommandLineChecksThem) {
+  const std::vector<std::tuple<std::string, std::function<void(json&)>, std::string>> forgeries = {
+      {"frac0", [](json& o) { o["fraction"] = 0; },
+       "options.fraction: expected a whole number from 1 to 2147483647, got 0"},
+      {"fstart9",
+       [](json& o) {
+         o["fraction"] = 2;
+         o["fraction_start"] = 9;
+       },
+       "options.fraction_start: expected a whole number from 1 to 2, got 9"},
+      {"tneg", [](json& o) { o["timeout"] = -5; },
+       "options.timeout: expected a number from 0.001 to 1e+06, got -5"},
+      {"spb99", [](json& o) { o["subpixel_bits"] = 99; },
+       "options.subpixel_bits: expected a whole number from 0 to 16, got 99"},
+      {"modelx", [](json& o) { o["model"] = "bogus"; },
+       "options.model: expected one of identified, ideal, llvmpipe, softpipe, got \"bogus\""},
+      {"jobsstr", [](json& o) { o["jobs"] = "four"; },
+       "options.jobs: expected a whole number from 0 to 2147483647, got \"four\""},
+      {"nopaths", [](json& o) { o.erase("paths"); }, "options.paths: expected a field \"paths\""},
+  };
+  for (const auto& [name, edit, says] : forgeries) {
+    SCOPED_TRACE(name);
+    const fs::path d = forged_journal(name, edit);
+    const std::string before = read(d / "results.json");
+    expect_one_line(glrefcheck("run --resume '" + d.string() + "'", "timeout 60"),
+                    (d / "journal.jsonl").string() + ":1: " + says);
+    EXPECT_EQ(read(d / "results.json"), before);
+  }
+  // A line that is not JSON at all.
+  const fs::path d = dir_ / "garbage";
+  fs::remove_all(d);
+  fs::copy(dir_ / "run", d, fs::copy_options::recursive);
+  std::ofstream(d / "journal.jsonl") << "this is not json\n";
+  expect_one_line(glrefcheck("run --resume '" + d.string() + "'"),
+                  (d / "journal.jsonl").string() +
+                      ":1: expected a journal line of glrefcheck's, got invalid JSON at byte 2");
+}
+
+// A misspelt command was "A subcommand is required", naming nothing.
+TEST(CommandLine, AnUnknownCommandIsNamed) {
+  const Outcome o = glrefcheck("bogus");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.err,
+            "glrefcheck: expected a command (run, compare, merge, report, diff, digest, list, "
+            "identify, selftest), got \"bogus\" (see --help)\n");
+  const Outcome bytes = glrefcheck("\"$(printf 'r\\377n')\"");
+  EXPECT_EQ(bytes.exit_code, 2);
+  EXPECT_NE(bytes.err.find("got \"r\\xffn\""), std::string::npos) << bytes.err;
+}
+
+// A folder with no case, or named case paths that are none, said "no case matches: nothing to
+// run" without a path; a FIFO named outright was a note and then that line.
+TEST(CommandLine, NoCaseFoundSaysWhereAndWhy) {
+  const fs::path d = fs::temp_directory_path() / ("glrc_nocase_" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d / "empty");
+  fs::create_directories(d / "x.json");
+  fs::create_directories(d / "loop");
+  fs::create_directory_symlink(".", d / "loop/self");
+  ASSERT_EQ(mkfifo((d / "loop/pipe.json").c_str(), 0600), 0);
+  for (const std::string cmd : {"list", "digest"}) {
+    const Outcome empty = glrefcheck(cmd + " '" + (d / "empty").string() + "'");
+    EXPECT_EQ(empty.exit_code, 2);
+    EXPECT_EQ(empty.err, "glrefcheck: no case matches in " + (d / "empty").string() +
+                             ": no *.json case file found\n");
+    const Outcome dir = glrefcheck(cmd + " '" + (d / "x.json").string() + "'");
+    EXPECT_EQ(dir.err, "glrefcheck: no case matches in " + (d / "x.json").string() +
+                           ": no *.json case file found\n");
+    const Outcome loop = glrefcheck(cmd + " '" + (d / "loop").string() + "'", "timeout 30");
+    EXPECT_EQ(loop.exit_code, 2);
+    EXPECT_EQ(lines(loop.err), 1u) << loop.err;
+    EXPECT_EQ(loop.err.rfind("glrefcheck: no case matches in " + (d / "loop").string() +
+                                 ": no *.json case file found; 2 passed over, the first ",
+                             0),
+              0u)
+        << loop.err;
+    const Outcome fifo =
+        glrefcheck(cmd + " '" + (d / "loop/pipe.json").string() + "'", "timeout 30");
+    EXPECT_EQ(fifo.exit_code, 2);
+    EXPECT_EQ(fifo.err, "glrefcheck: " + (d / "loop/pipe.json").string() +
+                            ": expected a case file or a directory of them, got a FIFO (not "
+                            "read)\n");
+  }
+  fs::remove_all(d);
+}
+
+}  // namespace
+}  // namespace glrc::cli
