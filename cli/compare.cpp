@@ -7,6 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "cli/output_dir.hpp"
 #include "cli/session.hpp"
 #include "report/html.hpp"
 #include "report/report.hpp"
@@ -71,6 +72,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
 int cmd_compare(const CompareOptions& o) {
   const report::RunResults base = read_run(o.base);
   const report::RunResults current = read_run(o.current);
+  // Each output replaces only a file it wrote before (the top of each format says glrefcheck).
+  if (!o.json.empty()) check_replaceable(o.json, "--json", "{\n  \"base\": {");
+  if (!o.markdown.empty()) check_replaceable(o.markdown, "--markdown", "## glrefcheck compare");
+  if (!o.html.empty()) check_replaceable(o.html, "--html", "<title>glrefcheck compare");
   const report::RunComparison c = report::compare_runs(base, current, o.factor, o.min_ulps);
   fmt::print("{}", report::comparison_text(c));
   if (!o.json.empty()) write_text(o.json, report::comparison_json(c));

@@ -132,6 +132,25 @@ fs::path output_folder(const std::string& out, const std::string& option) {
   return dir;
 }
 
+void check_replaceable(const fs::path& file, const std::string& option,
+                       std::string_view signature) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(file, ec);
+  if (!fs::exists(st)) return;
+  const std::string shown = printable(file.string(), 200);
+  const auto refuse = [&](const std::string& what) {
+    throw InputError(option + ": expected a new file or one glrefcheck wrote, got \"" + shown +
+                     "\", " + what +
+                     ": glrefcheck replaces nothing it did not write; name another " + "file");
+  };
+  if (!fs::is_regular_file(st)) refuse("which is not a regular file");
+  std::ifstream in(file, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  if (head.find(signature) == std::string::npos) refuse("which holds something else");
+}
+
 void clear_run_outputs(const fs::path& dir) {
   // Only ever inside a folder glrefcheck owns: anything else is the user's.
   if (!is_marked(dir))

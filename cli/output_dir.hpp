@@ -23,6 +23,13 @@ inline constexpr const char* kInputsFolder = ".glrefcheck-inputs";
 // UTF-8, a file, or a folder that cannot be written. (Declared with its default in session.hpp.)
 std::filesystem::path output_folder(const std::string& out, const std::string& option);
 
+// A file an option names for glrefcheck to write (`compare --json`, `report --out`): fine if it
+// does not exist, or if it is a regular file whose first 4 KiB hold `signature` (what glrefcheck
+// writes at the top of such a file). Anything else is the user's: InputError naming `option`,
+// before anything is written.
+void check_replaceable(const std::filesystem::path& file, const std::string& option,
+                       std::string_view signature);
+
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);
 

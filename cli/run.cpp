@@ -529,6 +529,7 @@ int cmd_report(const std::string& dir, const std::string& file) {
   const std::filesystem::path run_dir = report::run_folder(dir);
   const std::filesystem::path html =
       file.empty() ? run_dir / "report.html" : std::filesystem::path(file);
+  check_replaceable(html, file.empty() ? "report" : "--out", "<title>glrefcheck");
   report::write_run_html(html, results, run_dir);
   fmt::print("wrote {}\n", html.string());
   return 0;

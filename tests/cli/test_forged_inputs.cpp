@@ -186,6 +186,34 @@ TEST_F(Forged, AResumedJournalsOptionsAreCheckedAsTheCommandLineChecksThem) {
                       ":1: expected a journal line of glrefcheck's, got invalid JSON at byte 2");
 }
 
+// `compare --json FILE` and `report --out FILE` replaced whatever FILE held. A file glrefcheck
+// wrote is still replaced, so the same command can run again.
+TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
+  const fs::path mine = dir_ / "mine.txt";
+  const std::string run = "'" + (dir_ / "run").string() + "'";
+  for (const std::string option : {"--json", "--markdown", "--html"}) {
+    SCOPED_TRACE(option);
+    std::ofstream(mine) << "notes of mine\n";
+    const Outcome o =
+        glrefcheck("compare " + run + " " + run + " " + option + " '" + mine.string() + "'");
+    expect_one_line(o, option + ": expected a new file or one glrefcheck wrote, got \"" +
+                           mine.string() + "\", which holds something else");
+    EXPECT_EQ(read(mine), "notes of mine\n");
+    const fs::path ours = dir_ / ("compare" + option.substr(1));
+    for (int k = 0; k < 2; ++k)
+      EXPECT_EQ(glrefcheck("compare " + run + " " + run + " " + option + " '" + ours.string() + "'")
+                    .exit_code,
+                0);
+  }
+  std::ofstream(mine) << "notes of mine\n";
+  expect_one_line(glrefcheck("report " + run + " --out '" + mine.string() + "'"),
+                  "--out: expected a new file or one glrefcheck wrote");
+  EXPECT_EQ(read(mine), "notes of mine\n");
+  const fs::path page = dir_ / "page.html";
+  for (int k = 0; k < 2; ++k)
+    EXPECT_EQ(glrefcheck("report " + run + " --out '" + page.string() + "'").exit_code, 0);
+}
+
 // A misspelt command was "A subcommand is required", naming nothing.
 TEST(CommandLine, AnUnknownCommandIsNamed) {
   const Outcome o = glrefcheck("bogus");
