@@ -5,15 +5,13 @@
 
 #include <fmt/core.h>
 #include <cerrno>
-#include <climits>
-#include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <initializer_list>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/model_cache.hpp"
+#include "cli/options_reader.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/text.hpp"
 #include "report/report.hpp"
@@ -45,87 +43,9 @@ json all_options_json(const Options& o) {
 
 // The journal's options, each checked as the command line checks it: a damaged or hand-edited
 // journal is one line naming the field, never a run with --fraction 0 or --timeout -5.
-class OptionsReader {
- public:
-  OptionsReader(const json& j, std::string where) : j_(j), where_(std::move(where)) {
-    if (!j_.is_object()) bad("options", "an object");
-  }
-  std::string text(const char* key, std::initializer_list<const char*> allowed = {}) const {
-    const json& v = at(key);
-    if (!v.is_string()) bad(key, "a string");
-    const auto s = v.get<std::string>();
-    if (allowed.size() == 0) return s;
-    std::string names;
-    for (const char* a : allowed) {
-      if (s == a) return s;
-      names += names.empty() ? a : std::string(", ") + a;
-    }
-    bad(key, "one of " + names + ", got \"" + printable(s, 80) + "\"");
-  }
-  bool flag(const char* key) const {
-    const json& v = at(key);
-    if (!v.is_boolean()) bad(key, "true or false");
-    return v.get<bool>();
-  }
-  int whole(const char* key, int lo, int hi = INT_MAX) const {
-    const json& v = at(key);
-    // Parsed, a number >= 0 is unsigned, and may be beyond int64_t.
-    const bool ok = v.is_number_integer() &&
-                    (v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(hi) &&
-                                                  (lo <= 0 || v.get<uint64_t>() >= uint64_t(lo))
-                                            : v.get<int64_t>() >= lo && v.get<int64_t>() <= hi);
-    if (!ok)
-      bad(key,
-          fmt::format("a whole number from {} to {}, got {}", lo, hi, printable(v.dump(), 80)));
-    return v.get<int>();
-  }
-  double number(const char* key, double lo, double hi) const {
-    const json& v = at(key);
-    if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
-      bad(key, fmt::format("a number from {:g} to {:g}, got {}", lo, hi, printable(v.dump(), 80)));
-    return v.get<double>();
-  }
-  std::vector<std::string> texts(const char* key) const {
-    const json& v = at(key);
-    std::vector<std::string> out;
-    if (!v.is_array()) bad(key, "an array of strings");
-    for (const json& e : v) {
-      if (!e.is_string()) bad(key, "an array of strings");
-      out.push_back(e.get<std::string>());
-    }
-    return out;
-  }
-  bool has(const char* key) const { return j_.contains(key); }
-
- private:
-  const json& at(const char* key) const {
-    if (!j_.contains(key)) bad(key, "a field \"" + std::string(key) + "\"");
-    return j_[key];
-  }
-  [[noreturn]] void bad(const std::string& key, const std::string& expected) const {
-    throw InputError(where_ + ": options." + key + ": expected " + expected);
-  }
-  const json& j_;
-  std::string where_;
-};
-
 Options all_options_from_json(const json& j, const std::string& where) {
   const OptionsReader r(j, where);
-  Options o;
-  o.model = r.text("model", {"identified", "ideal", "llvmpipe", "softpipe"});
-  o.subpixel_bits = r.whole("subpixel_bits", 0, 16);
-  o.planes = r.text("planes", {"snapped", "unsnapped"});
-  o.tie_break = r.text("tie_break", {"bottom-left", "top-left", "bottom-right", "top-right"});
-  o.model_given = r.flag("model_given");
-  o.backend = r.text("backend", {"osmesa", "egl", "egl-device"});
-  o.driver = r.text("driver");
-  o.device = r.whole("device", 0);
-  o.tolerance = r.text("tolerance", {"spec", "exact"});
-  o.strict_coverage = r.flag("strict_coverage");
-  o.out = r.text("out");
-  if (r.has("spec_subpixel_bits")) o.spec_subpixel_bits = r.whole("spec_subpixel_bits", 4, 16);
-  if (r.has("varying_ulps")) o.varying_ulps = r.number("varying_ulps", 0, 1e300);
-  if (r.has("depth_ulps")) o.depth_ulps = r.number("depth_ulps", 0, 1e300);
+  Options o = options_from_json(r);
   o.paths = r.texts("paths");
   o.filter = r.text("filter");
   o.baseline = r.text("baseline");

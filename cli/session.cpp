@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "casefile/casefile.hpp"
+#include "cli/options_reader.hpp"
 #include "cli/text.hpp"
 #include "compare/compare.hpp"
 #include "driver_models/driver_models.hpp"
@@ -214,24 +215,27 @@ std::string options_json(const Options& o) {
   return j.dump();
 }
 
-Options options_from_json(const std::string& text) {
-  const auto j = nlohmann::json::parse(text);
+Options options_from_json(const OptionsReader& r) {
   Options o;
-  o.model = j.at("model");
-  o.subpixel_bits = j.at("subpixel_bits");
-  o.planes = j.at("planes");
-  o.tie_break = j.at("tie_break");
-  o.model_given = j.at("model_given");
-  o.backend = j.at("backend");
-  o.driver = j.at("driver");
-  o.device = j.at("device");
-  o.tolerance = j.at("tolerance");
-  o.strict_coverage = j.at("strict_coverage");
-  o.out = j.at("out");
-  if (j.contains("spec_subpixel_bits")) o.spec_subpixel_bits = j["spec_subpixel_bits"].get<int>();
-  if (j.contains("varying_ulps")) o.varying_ulps = j["varying_ulps"].get<double>();
-  if (j.contains("depth_ulps")) o.depth_ulps = j["depth_ulps"].get<double>();
+  o.model = r.text("model", {"identified", "ideal", "llvmpipe", "softpipe"});
+  o.subpixel_bits = r.whole("subpixel_bits", 0, 16);
+  o.planes = r.text("planes", {"snapped", "unsnapped"});
+  o.tie_break = r.text("tie_break", {"bottom-left", "top-left", "bottom-right", "top-right"});
+  o.model_given = r.flag("model_given");
+  o.backend = r.text("backend", {"osmesa", "egl", "egl-device"});
+  o.driver = r.text("driver");
+  o.device = r.whole("device", 0);
+  o.tolerance = r.text("tolerance", {"spec", "exact"});
+  o.strict_coverage = r.flag("strict_coverage");
+  o.out = r.text("out");
+  if (r.has("spec_subpixel_bits")) o.spec_subpixel_bits = r.whole("spec_subpixel_bits", 4, 16);
+  if (r.has("varying_ulps")) o.varying_ulps = r.number("varying_ulps", 0, 1e300);
+  if (r.has("depth_ulps")) o.depth_ulps = r.number("depth_ulps", 0, 1e300);
   return o;
+}
+
+Options options_from_json(const std::string& text) {
+  return options_from_json(OptionsReader(nlohmann::json::parse(text), "the worker's options"));
 }
 
 }  // namespace glrc::cli
