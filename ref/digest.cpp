@@ -22,14 +22,16 @@ std::string digest(const Frame& f) {
   for (size_t i = 0; i < f.pixel_count(); ++i) {
     feed(&f.primitive[i], 4);
     feed(&f.depth[i], 4);
-    for (const auto& comp : f.components) feed(&comp[i], 4);
+    for (const auto& comp : f.components)
+      feed(&comp[i], 4);
   }
   unsigned char md[EVP_MAX_MD_SIZE];
   unsigned int len = 0;
   EVP_DigestFinal_ex(ctx.get(), md, &len);
   static const char* kHex = "0123456789abcdef";
   std::string out;
-  for (unsigned i = 0; i < len; ++i) out += kHex[md[i] >> 4], out += kHex[md[i] & 15];
+  for (unsigned i = 0; i < len; ++i)
+    out += kHex[md[i] >> 4], out += kHex[md[i] & 15];
   return out;
 }
 

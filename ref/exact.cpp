@@ -109,8 +109,8 @@ RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& de
   // One common denominator for all six coefficients: the ratio is unchanged and the exact path
   // then needs integers only.
   mpz_class common = 1;
-  for (const mpq_class* q : {&numerator.a, &numerator.b, &numerator.c, &denominator.a,
-                             &denominator.b, &denominator.c})
+  for (const mpq_class* q :
+       {&numerator.a, &numerator.b, &numerator.c, &denominator.a, &denominator.b, &denominator.c})
     mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), q->get_den_mpz_t());
   auto scaled = [&](const mpq_class& q) { return mpz_class(q.get_num() * (common / q.get_den())); };
   an_ = scaled(numerator.a), bn_ = scaled(numerator.b), cn_ = scaled(numerator.c);

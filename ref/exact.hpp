@@ -46,7 +46,7 @@ class SignEvaluator {
 
  private:
   LinearForm form_;
-  double a_ = 0, b_ = 0, c_ = 0;          // range-checked copies for the fast sign
+  double a_ = 0, b_ = 0, c_ = 0;                    // range-checked copies for the fast sign
   double da_ = 0, db_ = 0, dc_ = 0, inv_norm_ = 0;  // unchecked copies for distance()
   bool fast_ = false;
 };

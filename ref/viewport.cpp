@@ -14,7 +14,8 @@ WindowVertex to_window(const Vertex& v, const Case& c) {
   out.z_c = z_c;
   out.w_c = w_c;
   out.wz_w = z_c * (f - n) / 2 + w_c * (n + f) / 2;
-  for (mpq_class* q : {&out.x_h, &out.y_h, &out.wz_w}) q->canonicalize();
+  for (mpq_class* q : {&out.x_h, &out.y_h, &out.wz_w})
+    q->canonicalize();
   return out;
 }
 

@@ -19,6 +19,8 @@ struct WindowVertex {
 WindowVertex to_window(const Vertex& v, const Case& c);
 
 // z_w of a vertex with w_c > 0: the depth-range mapping of its z_n.
-inline mpq_class z_w(const WindowVertex& v) { return v.wz_w / v.w_c; }
+inline mpq_class z_w(const WindowVertex& v) {
+  return v.wz_w / v.w_c;
+}
 
 }  // namespace glrc::ref

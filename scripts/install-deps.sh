@@ -13,6 +13,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core
   # libFuzzer targets and sanitizer builds (scripts/fuzz.sh, scripts/sanitize.sh).
   clang libclang-rt-14-dev
+  # scripts/format.sh: the tree is formatted by .clang-format, checked in CI.
+  clang-format
   # scripts/interrupt-test.sh compares results.json files.
   jq
   # The HTML report test opens the report in headless Chromium to check that it renders.

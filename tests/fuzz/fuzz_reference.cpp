@@ -63,7 +63,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   c.depth_far = std::clamp(c.depth_far, 0.0f, 1.0f);
   const int varyings = 1 + in.byte() % 2;
   for (int k = 0; k < varyings; ++k)
-    c.varyings.push_back({"v" + std::to_string(k), 1 + in.byte() % 2, Interpolation(in.byte() % 3)});
+    c.varyings.push_back(
+        {"v" + std::to_string(k), 1 + in.byte() % 2, Interpolation(in.byte() % 3)});
   const size_t vertices = 3 + in.byte() % 7;
   for (size_t i = 0; i < vertices; ++i) {
     Vertex v;

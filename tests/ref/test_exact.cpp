@@ -31,9 +31,9 @@ TEST(RoundToFloat, KnownValues) {
   EXPECT_EQ(round_to_float(mpq_class((1 << 24) + 3)), 16777220.0f);
   // Subnormals: 3·2^-150 is halfway between 2^-149 and 2^-148 -> 2^-148 (even).
   EXPECT_EQ(round_to_float(pow2(-150) * 3), std::ldexp(1.0f, -148));
-  EXPECT_EQ(round_to_float(pow2(-150)), 0.0f);                            // tie to even: 0
+  EXPECT_EQ(round_to_float(pow2(-150)), 0.0f);  // tie to even: 0
   EXPECT_EQ(round_to_float(pow2(-150) + pow2(-200)), std::ldexp(1.0f, -149));
-  EXPECT_EQ(bits(round_to_float(-pow2(-151))), 0x80000000u);              // -0
+  EXPECT_EQ(bits(round_to_float(-pow2(-151))), 0x80000000u);  // -0
   // Overflow: FLT_MAX + half an ulp is a tie that rounds to even, i.e. to 2^128 = infinity.
   const mpq_class flt_max = mpq_class(double(std::numeric_limits<float>::max()));
   EXPECT_EQ(round_to_float(flt_max), std::numeric_limits<float>::max());
@@ -64,7 +64,9 @@ TEST(RoundToFloat, AgreesWithHardwareConversionOfDoubles) {
 LinearForm random_form(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(-1, 1);
   std::uniform_int_distribution<int> e(-20, 20);
-  auto r = [&]() -> mpq_class { return mpq_class(std::ldexp(u(rng), e(rng))) / mpq_class(std::ldexp(u(rng), e(rng))); };
+  auto r = [&]() -> mpq_class {
+    return mpq_class(std::ldexp(u(rng), e(rng))) / mpq_class(std::ldexp(u(rng), e(rng)));
+  };
   return {r(), r(), r()};
 }
 
