@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/model_cache.hpp"
 #include "cli/options_reader.hpp"
 #include "cli/output_dir.hpp"
-#include "cli/text.hpp"
+#include "core/text.hpp"
+#include "identify/model_cache.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
@@ -100,7 +100,7 @@ Journal::~Journal() {
 
 void Journal::record_start(const RunInfo& info, const ModelChoice& model) {
   append("{\"run\":" + report::run_info_json(info) +
-         ",\"model\":" + model_json(model.model).dump() + ",\"model_source\":" +
+         ",\"model\":" + identify::model_json(model.model).dump() + ",\"model_source\":" +
          json(model.source).dump(-1, ' ', false, json::error_handler_t::replace) + "}");
 }
 
@@ -161,7 +161,7 @@ JournalContents read_journal(const fs::path& dir) {
         c.files = OptionsReader(j, where).texts("files");
       } else if (j.contains("run")) {
         c.run = report::run_info_from_json(j["run"].dump(), where);
-        const auto model = model_from_json(j.at("model"));
+        const auto model = identify::model_from_json(j.at("model"));
         if (!model) throw InputError(where + ": expected a model");
         c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
       } else {

@@ -14,17 +14,17 @@
 #include <regex>
 
 #include "casefile/casefile.hpp"
+#include "cli/case_commands.hpp"
 #include "cli/compare.hpp"
-#include "cli/expectations.hpp"
 #include "cli/identify.hpp"
 #include "cli/mesa_prefix.hpp"
 #include "cli/run.hpp"
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
-#include "cli/text.hpp"
 #include "cli/validators.hpp"
 #include "cli/workers.hpp"
 #include "compare/compare.hpp"
+#include "core/text.hpp"
 #include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
@@ -33,63 +33,6 @@
 
 namespace glrc::cli {
 namespace {
-int cmd_diff(const Options& o) {
-  const std::vector<Case> cases = load_cases(o);
-  if (cases.size() != 1)
-    throw InputError("diff: expected exactly one case, got " + std::to_string(cases.size()) +
-                     " (use --filter or name one file)");
-  const Case& c = cases[0];
-  const std::filesystem::path out = output_folder(o.out);
-  auto renderer = open_renderer(o);
-  const ModelChoice model = choose_model(o, *renderer);
-  Options judged = o;
-  set_model(judged, model.model);
-  const RunInfo info = run_info(o, renderer->info(), model);
-  const Checked checked = check(c, judged, *renderer);
-  const CaseResult& r = checked.result;
-  fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} from {} | tolerance {}\n\n",
-             c.name, c.description, info.gl_renderer, info.gl_version, info.subpixel_bits,
-             info.model, info.model_source, info.tolerance);
-  for (const std::string& w : info.gl_warnings)
-    fmt::print("warning: {}\n", w);
-  if (!info.gl_warnings.empty()) fmt::print("\n");
-  fmt::print("{}\n", report::case_line(r));
-  if (r.status == Status::error) return 1;
-  fmt::print("\n{}\n", report::stats_table(r));
-  // Coverage first: a pixel covered by the wrong triangle has no value error to show.
-  if (const std::string table =
-          report::coverage_failures_table(r, checked.reference.frame, checked.gl, 20);
-      !table.empty())
-    fmt::print("{}\n", table);
-  if (const std::string table = report::worst_pixels_table(r, 10); !table.empty())
-    fmt::print("{}\n", table);
-  const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r);
-  fmt::print("wrote {} to {}/\n", report::count_text(files.size(), "image", "images"), o.out);
-  return fails_run(r.status) ? 1 : 0;
-}
-
-// No GL here, so nothing to identify: --model identified (the default) and ideal both give the
-// fixed model of --subpixel-bits, --planes and --tie-break, which tests/digests.txt holds.
-int cmd_digest(const Options& o) {
-  const auto driver = driver_models::driver_from_string(o.model);
-  for (const Case& c : load_cases(o))
-    fmt::print(
-        "{}  {}\n",
-        ref::digest(driver ? driver_models::render(c, *driver) : ref::render(c, model_of(o)).frame),
-        c.name);
-  return 0;
-}
-
-int cmd_list(const Options& o) {
-  const std::vector<Case> cases = load_cases(o);
-  size_t width = 0;
-  for (const Case& c : cases)
-    width = std::max(width, c.name.size());
-  for (const Case& c : cases)
-    fmt::print("{:<{}}  {}\n", c.name, width, c.description);
-  return 0;
-}
-
 void add_case_options(CLI::App& app, Options& o) {
   app.add_option("cases", o.paths, "case files or folders (default: cases/)");
   app.add_option("--filter", o.filter, "only cases whose name matches this regular expression");

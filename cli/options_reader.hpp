@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/session.hpp"
-#include "cli/text.hpp"
+#include "core/text.hpp"
 
 namespace glrc::cli {
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/session.hpp"
-#include "cli/text.hpp"
+#include "core/text.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {

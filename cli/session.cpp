@@ -7,8 +7,7 @@
 
 #include "casefile/casefile.hpp"
 #include "cli/options_reader.hpp"
-#include "cli/text.hpp"
-#include "compare/compare.hpp"
+#include "core/text.hpp"
 #include "driver_models/driver_models.hpp"
 
 namespace glrc::cli {
@@ -40,27 +39,21 @@ std::optional<ModelChoice> model_from_command_line(const Options& o) {
 }
 
 ModelChoice fallback_model(const Options& o, const std::string& why) {
-  std::string reason = why;
-  std::replace(reason.begin(), reason.end(), '\n', ' ');
-  if (reason.size() > 200) reason = reason.substr(0, 197) + "...";
-  return {model_of(o), "default (identify failed: " + reason + ")"};
+  return identify::fallback_model(model_of(o), why);
 }
 
-int freedom_bits(const Options& o, int reported) {
-  return std::max(o.spec_subpixel_bits.value_or(reported), 4);
-}
-
-// Defaults, then the case file's tolerance, then the command line's: --tolerance exact wins,
-// a number of ULPs turns to fixed thresholds.
-Tolerance tolerance_for(const Case& c, const Options& o, int reported_bits) {
-  Tolerance t = c.tolerance.applied_to(Tolerance{});
-  t.subpixel_bits = freedom_bits(o, reported_bits);
-  if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
-  if (o.depth_ulps) t.depth_ulps = *o.depth_ulps;
-  if (o.varying_ulps || o.depth_ulps) t.mode = ToleranceMode::ulps;
-  if (o.tolerance == "exact") t.mode = ToleranceMode::exact;
-  if (o.strict_coverage) t.allow_boundary = false;
-  return t;
+check::CheckOptions check_options(const Options& o) {
+  check::CheckOptions c;
+  c.model = model_of(o);
+  c.driver_model = driver_models::driver_from_string(o.model);
+  c.tolerance = o.tolerance == "exact"           ? ToleranceMode::exact
+                : o.varying_ulps || o.depth_ulps ? ToleranceMode::ulps
+                                                 : ToleranceMode::spec;
+  c.varying_ulps = o.varying_ulps;
+  c.depth_ulps = o.depth_ulps;
+  c.spec_subpixel_bits = o.spec_subpixel_bits;
+  c.strict_coverage = o.strict_coverage;
+  return c;
 }
 
 std::vector<Case> load_cases(const Options& o) {
@@ -142,16 +135,12 @@ RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& mode
   RunInfo info;
   info.backend = o.backend;
   info.driver = o.driver;
-  info.model = driver_models::driver_from_string(o.model)
-                   ? o.model + " (bit-exact model of Mesa 22.3.6's driver)"
-                   : model.model.describe();
+  check::CheckOptions judged = check_options(o);
+  judged.model = model.model;
+  info.model = check::model_text(judged);
   info.model_source = model.source;
   info.subpixel_bits = gl.subpixel_bits;
-  info.tolerance =
-      o.tolerance == "exact" ? "exact"
-      : o.varying_ulps || o.depth_ulps
-          ? "ulps"
-          : "spec (subpixel bits " + std::to_string(freedom_bits(o, gl.subpixel_bits)) + ")";
+  info.tolerance = check::tolerance_text(judged, gl.subpixel_bits);
   info.gl_vendor = gl.vendor;
   info.gl_renderer = gl.renderer;
   info.gl_version = gl.version;
@@ -161,37 +150,10 @@ RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& mode
   return info;
 }
 
-Checked check(const Case& c, const Options& o, gl::Renderer& renderer) {
-  const auto start = Clock::now();
-  Checked out;
-  const int reported = renderer.info().subpixel_bits;
-  out.reference = expectation_for(c, o, reported);
-  try {
-    out.gl = renderer.render(c);
-    out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported));
-    out.result.gl_digest = ref::digest(out.gl);
-  } catch (const gl::RenderError& e) {
-    out.result.name = c.name;
-    out.result.description = c.description;
-    out.result.status = out.result.outcome = Status::error;
-    out.result.message = e.what();
-  }
-  out.result.seconds = seconds_since(start);
-  return out;
-}
-
-Expectation expectation_for(const Case& c, const Options& o, int reported_bits) {
-  ref::Reference r = ref::render(c, model_of(o), freedom_bits(o, reported_bits));
-  // The driver model replaces the frame only: the edge bits still name ties and bands.
-  if (const auto driver = driver_models::driver_from_string(o.model))
-    r.frame = driver_models::render(c, *driver);
-  return r;
-}
-
 Baseline load_baseline(const Options& o) {
   if (o.baseline.empty()) return {};
   try {
-    return read_baseline(o.baseline);
+    return report::read_baseline(o.baseline);
   } catch (const std::runtime_error& e) {
     throw InputError(e.what());
   }

@@ -15,14 +15,20 @@
 #include <string>
 #include <vector>
 
-#include "cli/expectations.hpp"
+#include "check/check.hpp"
 #include "core/case.hpp"
 #include "core/model.hpp"
 #include "core/result.hpp"
 #include "gl_harness/gl_harness.hpp"
-#include "ref/reference.hpp"
+#include "identify/identify.hpp"
+#include "report/expectations.hpp"
 
 namespace glrc::cli {
+
+using identify::ModelChoice;
+using report::Baseline;
+using report::Patterns;
+using report::Regex;
 
 // Bad input: one line on stderr, exit 2.
 struct InputError : std::runtime_error {
@@ -82,25 +88,15 @@ Model model_of(const Options& o);
 // Sets subpixel_bits, planes and tie_break to `m` (so that model_of(o) is m).
 void set_model(Options& o, const Model& m);
 
-// The model that judges a run and where it came from.
-struct ModelChoice {
-  Model model;
-  // "identify" (found now), "identify (cached)", "command line" (--subpixel-bits, --planes,
-  // --tie-break, or a driver model), "default" (--model ideal: the fixed default model); after a
-  // failed identification "default (identify failed: why)".
-  std::string source;
-};
 // The model when the command line decides it, nullopt when the implementation must be
 // identified (--model identified, the default, with no --subpixel-bits, --planes, --tie-break).
 // With a driver model (--model llvmpipe) the reference's model only labels ties and bands.
 std::optional<ModelChoice> model_from_command_line(const Options& o);
 // The fixed default model (the command line's choices), when identification failed: `why`.
 ModelChoice fallback_model(const Options& o, const std::string& why);
-// The position freedom of the specification's tolerance: the subpixel bits the implementation
-// reports (GL requires at least 4), unless the command line names others.
-int freedom_bits(const Options& o, int reported);
-// Defaults, then the case file's tolerance, then the command line's.
-Tolerance tolerance_for(const Case& c, const Options& o, int reported_bits);
+// How a case is judged, from the options: model_of(o) is the model (set_model sets the one that
+// judges), --model names a driver model, and the tolerance options.
+check::CheckOptions check_options(const Options& o);
 // The cases named on the command line (default cases/), filtered; InputError when none.
 std::vector<Case> load_cases(const Options& o);
 // --baseline, or an empty one; InputError for a bad file.
@@ -108,20 +104,6 @@ Baseline load_baseline(const Options& o);
 std::unique_ptr<gl::Renderer> open_renderer(const Options& o);
 // The run's description; `model` is what judged it (model_from_command_line or identified).
 RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& model);
-
-// One case, end to end: reference, GL, comparison.
-struct Checked {
-  CaseResult result;
-  ref::Reference reference;
-  Frame gl;
-};
-
-// `o` holds the model that judges the case (set_model), whatever its `model` says of where it
-// came from.
-Checked check(const Case& c, const Options& o, gl::Renderer& renderer);
-// What the case is compared against: the exact reference with the specification's allowance
-// (for an implementation reporting `reported_bits`), or with --model a driver model's frame.
-Expectation expectation_for(const Case& c, const Options& o, int reported_bits);
 
 // Progress on a terminal only: CI logs get the per-case lines and nothing else.
 class Progress {

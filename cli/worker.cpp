@@ -10,10 +10,10 @@
 
 #include "casefile/casefile.hpp"
 #include "casefile/wire.hpp"
-#include "cli/expectations.hpp"
 #include "cli/identify.hpp"
-#include "cli/model_cache.hpp"
 #include "cli/workers.hpp"
+#include "identify/model_cache.hpp"
+#include "report/expectations.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
@@ -55,7 +55,7 @@ class Channel {
 // as a hung driver would, so a test can kill it (crash) or let the timeout strike.
 void stall_if_asked(const std::string& name, const char* variable) {
   const char* pattern = std::getenv(variable);
-  if (!pattern || !Regex(pattern).full_match(name)) return;
+  if (!pattern || !report::Regex(pattern).full_match(name)) return;
   if (const char* pidfile = std::getenv("GLRC_TEST_STALL_PIDFILE")) {
     const std::string tmp = std::string(pidfile) + ".tmp";
     if (FILE* f = std::fopen(tmp.c_str(), "w")) {
@@ -71,10 +71,10 @@ void stall_if_asked(const std::string& name, const char* variable) {
 // A checked case, with its frames kept for the heatmaps that follow the verdict.
 struct Outcome {
   Case c;
-  Checked checked;
+  check::Checked checked;
 };
 
-Outcome check_one(const nlohmann::json& job, const Options& o, gl::Renderer& renderer) {
+Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::Renderer& renderer) {
   Outcome out;
   try {
     // The runner has read and validated the case already and sends it whole: a case file is
@@ -87,7 +87,7 @@ Outcome check_one(const nlohmann::json& job, const Options& o, gl::Renderer& ren
     return out;
   }
   stall_if_asked(out.c.name, "GLRC_TEST_STALL_CASE");
-  out.checked = check(out.c, o, renderer);
+  out.checked = check::check_with_frames(out.c, renderer, o);
   return out;
 }
 
@@ -130,14 +130,14 @@ int cmd_worker() {
                   {"subpixel_bits", gl.subpixel_bits},
                   {"primitive_id_from_geometry_shader", gl.primitive_id_from_geometry_shader},
                   {"warnings", gl.warnings},
-                  {"driver_files", driver_files(gl)}}}});
+                  {"driver_files", identify::driver_files(gl)}}}});
   while (std::getline(std::cin, line)) {
     const auto job = nlohmann::json::parse(line);
     if (job.contains("identify")) {
       // For the tests only: a driver that crashes on identify's probes.
       if (std::getenv("GLRC_TEST_CRASH_IDENTIFY")) std::abort();
       try {
-        channel.send({{"identified", model_json(identify_model(*renderer))}});
+        channel.send({{"identified", identify::model_json(identify::identify_model(*renderer))}});
       } catch (const std::exception& e) {
         channel.send({{"identify_error", e.what()}});
       }
@@ -147,13 +147,13 @@ int cmd_worker() {
     Outcome done;
     try {
       // Every case of the run is judged by the run's model, which the runner chose.
-      Options judged = o;
-      const auto model = model_from_json(job.at("model"));
+      check::CheckOptions judged = check_options(o);
+      const auto model = identify::model_from_json(job.at("model"));
       if (!model) throw std::runtime_error("a job without a valid model: " + line);
-      set_model(judged, *model);
+      judged.model = *model;
       done = check_one(job, judged, *renderer);
     } catch (const std::exception& e) {
-      done.checked = Checked{};
+      done.checked = check::Checked{};
       CaseResult& r = done.checked.result;
       r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
     }

@@ -3,8 +3,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/core.h>
@@ -14,14 +12,14 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
-#include <fstream>
 #include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "casefile/wire.hpp"
-#include "cli/model_cache.hpp"
+#include "cli/process.hpp"
 #include "cli/workers.hpp"
+#include "identify/model_cache.hpp"
 #include "report/report.hpp"
 
 extern char** environ;
@@ -37,31 +35,8 @@ std::string self_executable() {
   return std::string(buf, size_t(n));
 }
 
-// The last lines of a worker's log: what the driver said before it died.
-// A slot's log holds all its workers one after the other: read from where this one began.
-std::string log_tail(const std::filesystem::path& log, std::streamoff from,
-                     size_t max_chars = 600) {
-  std::ifstream in(log, std::ios::binary);
-  in.seekg(from);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  if (text.size() > max_chars) text = "..." + text.substr(text.size() - max_chars);
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-    text.pop_back();
-  for (char& ch : text)
-    if (ch == '\n') ch = '|';
-  return text;
-}
-
-std::string describe_exit(int status) {
-  if (WIFSIGNALED(status))
-    return fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
-  if (WIFEXITED(status)) return fmt::format("exited with code {}", WEXITSTATUS(status));
-  return "ended";
-}
-
 struct Worker {
-  pid_t pid = -1;
-  int to = -1, from = -1;         // its stdin, its stdout
+  ChildProcess process;
   std::string buffer;             // what it sent that is not yet a whole line
   bool ready = false;             // said hello
   bool identifying = false;       // asked to identify the implementation
@@ -69,8 +44,6 @@ struct Worker {
   std::optional<size_t> imaging;  // the case whose verdict came and whose heatmaps it writes
   Clock::time_point deadline;
   Clock::time_point started;
-  std::filesystem::path log;
-  std::streamoff log_start = 0;
 };
 
 class Pool {
@@ -110,8 +83,8 @@ class Pool {
       std::vector<pollfd> fds;
       std::vector<size_t> owner;
       for (size_t k = 0; k < workers_.size(); ++k)
-        if (workers_[k].pid > 0) {
-          fds.push_back({workers_[k].from, POLLIN, 0});
+        if (workers_[k].process.running()) {
+          fds.push_back({workers_[k].process.output_fd(), POLLIN, 0});
           owner.push_back(k);
         }
       if (fds.empty()) throw std::runtime_error("no worker left with cases to check");
@@ -140,7 +113,7 @@ class Pool {
 
   bool imaging() const {
     return std::any_of(workers_.begin(), workers_.end(),
-                       [](const Worker& w) { return w.pid > 0 && w.imaging; });
+                       [](const Worker& w) { return w.process.running() && w.imaging; });
   }
 
   // Busy: a case, heatmaps, identification or its start-up, each under a deadline.
@@ -155,51 +128,16 @@ class Pool {
   int next_deadline_ms() const {
     std::optional<Clock::time_point> next;
     for (const auto& w : workers_)
-      if (w.pid > 0 && busy(w) && (!next || w.deadline < *next)) next = w.deadline;
+      if (w.process.running() && busy(w) && (!next || w.deadline < *next)) next = w.deadline;
     if (!next) return -1;
     const double ms = std::chrono::duration<double, std::milli>(*next - Clock::now()).count();
     return int(std::clamp(std::ceil(ms), 0.0, 3.6e6));
   }
 
   void start(Worker& w, size_t slot) {
-    int in_pipe[2], out_pipe[2];
-    if (pipe2(in_pipe, O_CLOEXEC) != 0 || pipe2(out_pipe, O_CLOEXEC) != 0)
-      throw std::runtime_error("cannot make a pipe for a worker");
-    const auto log = s_.log_dir / fmt::format("worker-{}.log", slot + 1);
-    const int log_fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-    if (log_fd < 0) throw std::runtime_error("cannot write " + log.string());
-    const std::streamoff log_start = lseek(log_fd, 0, SEEK_END);
-    std::vector<char*> envp;
-    for (auto& e : env_)
-      envp.push_back(e.data());
-    envp.push_back(nullptr);
-    std::string worker_arg = "worker";
-    char* argv[] = {exe_.data(), worker_arg.data(), nullptr};
-    const pid_t parent = getpid();
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("cannot start a worker process (fork failed)");
-    if (pid == 0) {
-      // A worker stuck in a hung driver must not outlive a runner killed with -9: the kernel
-      // kills it when the runner goes, and if that happened before this line, it goes now.
-      prctl(PR_SET_PDEATHSIG, SIGKILL);
-      if (getppid() != parent) _exit(127);
-      // Its own process group: a terminal's Ctrl-C goes to the runner, which stops the run in
-      // order (results written, run marked interrupted), instead of killing workers mid-case
-      // and reporting them as Crash.
-      setpgid(0, 0);
-      dup2(in_pipe[0], STDIN_FILENO);
-      dup2(out_pipe[1], STDOUT_FILENO);
-      dup2(log_fd, STDERR_FILENO);
-      execve(argv[0], argv, envp.data());
-      _exit(127);
-    }
-    close(in_pipe[0]);
-    close(out_pipe[1]);
-    close(log_fd);
     w = Worker{};
-    w.pid = pid, w.to = in_pipe[1], w.from = out_pipe[0];
-    w.log = log;
-    w.log_start = log_start;
+    w.process =
+        ChildProcess({exe_, "worker"}, env_, s_.log_dir / fmt::format("worker-{}.log", slot + 1));
     w.started = Clock::now();
     // A driver can hang making its context too; that gets at least 30 s, since starting a
     // process and JIT-compiling shaders on a loaded CI machine takes a while.
@@ -207,14 +145,8 @@ class Pool {
     send(w, options_line_);
   }
 
-  void send(Worker& w, const std::string& line) {
-    for (size_t done = 0; done < line.size();) {
-      const ssize_t n = write(w.to, line.data() + done, line.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) return;  // it died; reading its end of the pipe will say so
-      done += size_t(n);
-    }
-  }
+  // A worker that died cannot be written to: reading its end of the pipe will say so.
+  static void send(Worker& w, const std::string& line) { (void)w.process.send(line); }
 
   void assign(Worker& w) {
     if (queue_.empty()) {
@@ -232,21 +164,19 @@ class Pool {
                                 {"case", casefile::to_wire(*cases_[k])},
                                 {"name", cases_[k]->name},
                                 {"images", s_.images(*cases_[k])},
-                                {"model", model_json(model_->model)}};
+                                {"model", identify::model_json(model_->model)}};
     send(w, job.dump() + "\n");
   }
 
   void read_from(Worker& w, size_t slot) {
-    char buf[65536];
-    const ssize_t n = read(w.from, buf, sizeof buf);
-    if (n < 0 && errno == EINTR) return;
-    if (n <= 0) return died(w, slot);
-    w.buffer.append(buf, size_t(n));
+    const long n = w.process.read_some(w.buffer);
+    if (n < 0) return;
+    if (n == 0) return died(w, slot);
     for (size_t eol; (eol = w.buffer.find('\n')) != std::string::npos;) {
       const std::string line = w.buffer.substr(0, eol);
       w.buffer.erase(0, eol + 1);
       handle(w, line);
-      if (w.pid <= 0) return;
+      if (!w.process.running()) return;
     }
   }
 
@@ -286,7 +216,7 @@ class Pool {
       w.identifying = false;
       if (msg.contains("identify_error"))
         return model_chosen(fallback_model(o_, msg["identify_error"].get<std::string>()));
-      const auto m = model_from_json(msg["identified"]);
+      const auto m = identify::model_from_json(msg["identified"]);
       if (!m) return model_chosen(fallback_model(o_, "a worker sent " + line.substr(0, 200)));
       cache_.save(*m);
       return model_chosen({*m, "identify"});
@@ -313,7 +243,7 @@ class Pool {
   void begin_model(Worker& w, const std::vector<std::string>& driver_files) {
     if (s_.model) return model_chosen(*s_.model);
     if (auto chosen = model_from_command_line(o_)) return model_chosen(*chosen);
-    cache_ = model_cache_slot(gl_.renderer, gl_.version, driver_files);
+    cache_ = identify::model_cache_slot(gl_.renderer, gl_.version, driver_files);
     if (const auto cached = cache_.load()) return model_chosen({*cached, "identify (cached)"});
     w.identifying = true;
     w.deadline = after(Clock::now(), std::max(s_.timeout, 30.0));
@@ -325,7 +255,7 @@ class Pool {
     model_ = chosen;
     on_start_(gl_, chosen);
     for (Worker& w : workers_)
-      if (w.pid > 0 && w.ready && !w.job && !w.identifying) assign(w);
+      if (w.process.running() && w.ready && !w.job && !w.identifying) assign(w);
   }
 
   void finish(size_t k, CaseResult r) {
@@ -345,15 +275,11 @@ class Pool {
   }
 
   void died(Worker& w, size_t slot) {
-    int status = 0;
-    waitpid(w.pid, &status, 0);
-    const std::string how = describe_exit(status);
-    const std::string tail = log_tail(w.log, w.log_start);
+    const std::string how = w.process.wait();
+    const std::string tail = w.process.log_tail();
     const auto job = w.job;
     const auto imaging = w.imaging;
     const bool was_ready = w.ready, was_identifying = w.identifying;
-    close(w.to), close(w.from);
-    w.pid = -1;
     w.identifying = false;
     w.imaging.reset();
     if (imaging)
@@ -377,11 +303,8 @@ class Pool {
     const auto now = Clock::now();
     for (size_t k = 0; k < workers_.size(); ++k) {
       Worker& w = workers_[k];
-      if (w.pid <= 0 || now < w.deadline || !busy(w)) continue;
-      kill(w.pid, SIGKILL);
-      waitpid(w.pid, nullptr, 0);
-      close(w.to), close(w.from);
-      w.pid = -1;
+      if (!w.process.running() || now < w.deadline || !busy(w)) continue;
+      w.process.kill_now();
       if (w.imaging) {
         images_lost(*w.imaging,
                     fmt::format("heatmaps not written: not done after {} s (--timeout); worker "
@@ -411,11 +334,11 @@ class Pool {
 
   // Ends a worker: closing its input makes it exit; `now` kills it instead.
   void stop(Worker& w, bool now) {
-    if (w.pid <= 0) return;
-    if (now) kill(w.pid, SIGKILL);
-    close(w.to), close(w.from);
-    waitpid(w.pid, nullptr, 0);
-    w.pid = -1;
+    if (!w.process.running()) return;
+    if (now)
+      w.process.kill_now();
+    else
+      w.process.finish();
   }
 
   const std::vector<const Case*>& cases_;
@@ -430,7 +353,7 @@ class Pool {
   size_t done_ = 0;
   bool started_ = false;  // the first worker said hello
   gl::GlInfo gl_;         // its GL strings
-  ModelCacheSlot cache_;
+  identify::ModelCacheSlot cache_;
   std::optional<ModelChoice> model_;  // what judges every case, once known
   int startup_deaths_ = 0;
 };

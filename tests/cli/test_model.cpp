@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "cli/model_cache.hpp"
 #include "cli/session.hpp"
+#include "identify/model_cache.hpp"
 #include "tests/support/glrefcheck_process.hpp"
 #include "tests/support/temp_dir_test.hpp"
 
@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 using glrc::Model;
 using glrc::Planes;
 using glrc::TieBreak;
-using glrc::cli::ModelCacheSlot;
 using glrc::cli::Options;
+using glrc::identify::ModelCacheSlot;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
 
@@ -45,7 +45,7 @@ class ModelCache : public glrc::test::TempDirTest {
   }
   ModelCacheSlot slot(const std::string& renderer = "softpipe",
                       const std::string& version = "3.3 (Core Profile) Mesa 22.3.6") const {
-    return glrc::cli::model_cache_slot(renderer, version, {lib_.string()}, file_);
+    return glrc::identify::model_cache_slot(renderer, version, {lib_.string()}, file_);
   }
   fs::path file_, lib_;
 };
@@ -114,27 +114,27 @@ TEST_F(ModelCache, CorruptFileIsIgnoredAndRewritten) {
 TEST_F(ModelCache, UnwritableOrUnknownMeansNoCache) {
   // A cache folder that cannot be made (its parent is a file): save does nothing, no throw.
   std::ofstream(dir_ / "a_file") << "x";
-  const auto blocked =
-      glrc::cli::model_cache_slot("softpipe", "3.3", {lib_.string()}, dir_ / "a_file" / "m.json");
+  const auto blocked = glrc::identify::model_cache_slot("softpipe", "3.3", {lib_.string()},
+                                                        dir_ / "a_file" / "m.json");
   EXPECT_TRUE(blocked.usable());
   blocked.save(softpipe_model());
   EXPECT_FALSE(blocked.load());
   // A library that cannot be read, or none known: no key, no cache.
   EXPECT_FALSE(
-      glrc::cli::model_cache_slot("softpipe", "3.3", {(dir_ / "missing.so").string()}, file_)
+      glrc::identify::model_cache_slot("softpipe", "3.3", {(dir_ / "missing.so").string()}, file_)
           .usable());
-  EXPECT_FALSE(glrc::cli::model_cache_slot("softpipe", "3.3", {}, file_).usable());
-  EXPECT_TRUE(glrc::cli::driver_files(glrc::gl::GlInfo{}).empty());
+  EXPECT_FALSE(glrc::identify::model_cache_slot("softpipe", "3.3", {}, file_).usable());
+  EXPECT_TRUE(glrc::identify::driver_files(glrc::gl::GlInfo{}).empty());
 }
 
 TEST_F(ModelCache, FileFollowsXdgCacheHome) {
   const char* old_xdg = std::getenv("XDG_CACHE_HOME");
   const std::string saved = old_xdg ? old_xdg : "";
   setenv("XDG_CACHE_HOME", dir_.c_str(), 1);
-  EXPECT_EQ(glrc::cli::model_cache_file(), dir_ / "glrefcheck" / "models.json");
+  EXPECT_EQ(glrc::identify::model_cache_file(), dir_ / "glrefcheck" / "models.json");
   setenv("XDG_CACHE_HOME", "relative/path", 1);  // invalid by the specification: ignored
   if (const char* home = std::getenv("HOME")) {
-    EXPECT_EQ(glrc::cli::model_cache_file(), fs::path(home) / ".cache/glrefcheck/models.json");
+    EXPECT_EQ(glrc::identify::model_cache_file(), fs::path(home) / ".cache/glrefcheck/models.json");
   }
   if (old_xdg)
     setenv("XDG_CACHE_HOME", saved.c_str(), 1);
@@ -143,14 +143,14 @@ TEST_F(ModelCache, FileFollowsXdgCacheHome) {
 }
 
 TEST(ModelJson, RoundTripsAndRejectsNonsense) {
-  const auto j = glrc::cli::model_json(softpipe_model());
+  const auto j = glrc::identify::model_json(softpipe_model());
   EXPECT_EQ(j.dump(), R"({"planes":"unsnapped","subpixel_bits":0,"tie_break":"bottom-right"})");
-  EXPECT_EQ(glrc::cli::model_from_json(j)->describe(), softpipe_model().describe());
-  EXPECT_FALSE(glrc::cli::model_from_json(nlohmann::json::parse(
+  EXPECT_EQ(glrc::identify::model_from_json(j)->describe(), softpipe_model().describe());
+  EXPECT_FALSE(glrc::identify::model_from_json(nlohmann::json::parse(
       R"({"planes":"unsnapped","subpixel_bits":17,"tie_break":"bottom-right"})")));
-  EXPECT_FALSE(glrc::cli::model_from_json(
+  EXPECT_FALSE(glrc::identify::model_from_json(
       nlohmann::json::parse(R"({"planes":"unsnapped","subpixel_bits":4,"tie_break":"left"})")));
-  EXPECT_FALSE(glrc::cli::model_from_json(nlohmann::json::parse(R"({"subpixel_bits":4})")));
+  EXPECT_FALSE(glrc::identify::model_from_json(nlohmann::json::parse(R"({"subpixel_bits":4})")));
 }
 
 // --- which model: the precedence ---------------------------------------------------------

@@ -14,8 +14,8 @@
 
 #include "casefile/casefile.hpp"
 #include "casefile/wire.hpp"
-#include "cli/model_cache.hpp"
 #include "cli/session.hpp"
+#include "identify/model_cache.hpp"
 
 namespace glrc::cli {
 namespace {
@@ -49,7 +49,7 @@ TEST(ParseOnce, TheWorkerChecksTheCaseItIsHandedNotTheFile) {
                               {"case", casefile::to_wire(c)},
                               {"name", c.name},
                               {"images", false},
-                              {"model", model_json(model_of(o))}};
+                              {"model", identify::model_json(model_of(o))}};
   const std::string out = run_worker(options_json(o) + "\n" + job.dump() + "\n");
   const size_t at = out.find("{\"index\":0,\"result\":");
   ASSERT_NE(at, std::string::npos) << out;

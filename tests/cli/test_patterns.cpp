@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "cli/expectations.hpp"
 #include "cli/session.hpp"
+#include "report/expectations.hpp"
 #include "tests/support/glrefcheck_process.hpp"
 
 namespace glrc::cli {
@@ -34,7 +34,7 @@ TEST(Patterns, FilterSearchesAndFlakesMatchTheWholeName) {
   EXPECT_TRUE(Regex(R"(^face_\w+$)").search("face_on"));
   const fs::path d = temp_dir("match");
   std::ofstream(d / "flakes.txt") << "# comment\n\nface\nattr_.*\n";
-  const Patterns p = read_patterns(d / "flakes.txt");
+  const Patterns p = report::read_patterns(d / "flakes.txt");
   EXPECT_EQ(p.match("face_on"), nullptr);
   ASSERT_NE(p.match("attr_huge"), nullptr);
   EXPECT_EQ(*p.match("attr_huge"), "attr_.*");
@@ -90,7 +90,7 @@ TEST(Patterns, BadPatternInAFileNamesFileAndLine) {
   const fs::path d = temp_dir("bad");
   std::ofstream(d / "skips.txt") << "face_on\n# fine\n(a\n";
   try {
-    read_patterns(d / "skips.txt");
+    report::read_patterns(d / "skips.txt");
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -133,7 +133,7 @@ TEST(Patterns, QuotedTextIsCutToEightyCharacters) {
   const fs::path d = temp_dir("long");
   std::ofstream(d / "fails.txt") << std::string(100000, 'x') << "\x1b[2J\n";
   try {
-    read_baseline(d / "fails.txt");
+    report::read_baseline(d / "fails.txt");
     FAIL() << "accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()), (d / "fails.txt").string() +

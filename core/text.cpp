@@ -1,10 +1,9 @@
-#include "cli/text.hpp"
+#include "core/text.hpp"
 
-#include <fmt/core.h>
 #include <cstdint>
 #include <string>
 
-namespace glrc::cli {
+namespace glrc {
 
 bool is_utf8(std::string_view s) {
   size_t k = 0;
@@ -51,8 +50,9 @@ std::string printable(std::string_view s, size_t max) {
       k += len;
       continue;
     }
+    static constexpr char kHex[] = "0123456789abcdef";
     if (c < 0x20 || c == 0x7F || c >= 0x80)
-      out += fmt::format("\\x{:02x}", c);
+      out += {'\\', 'x', kHex[c >> 4], kHex[c & 15]};
     else
       out += char(c);
     ++k;
@@ -60,4 +60,4 @@ std::string printable(std::string_view s, size_t max) {
   return out;
 }
 
-}  // namespace glrc::cli
+}  // namespace glrc

@@ -18,7 +18,7 @@
 #include "core/model.hpp"
 #include "gl_harness/gl_harness.hpp"
 
-namespace glrc::cli {
+namespace glrc::identify {
 
 // One implementation's entry in the cache.
 struct ModelCacheSlot {
@@ -57,4 +57,4 @@ std::vector<std::string> driver_files(const gl::GlInfo& gl);
 nlohmann::json model_json(const Model& m);
 std::optional<Model> model_from_json(const nlohmann::json& j);
 
-}  // namespace glrc::cli
+}  // namespace glrc::identify

@@ -1,4 +1,4 @@
-#include "cli/expectations.hpp"
+#include "report/expectations.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,9 +8,9 @@
 
 #include <re2/re2.h>
 
-#include "cli/text.hpp"
+#include "core/text.hpp"
 
-namespace glrc::cli {
+namespace glrc::report {
 
 namespace {
 // Text from a file or the command line, for a one-line message: control characters escaped,
@@ -148,4 +148,22 @@ Patterns read_patterns(const std::filesystem::path& file) {
   return p;
 }
 
-}  // namespace glrc::cli
+CaseResult skipped_result(const std::string& name, const std::string& description,
+                          const std::string& pattern, const std::string& file) {
+  CaseResult r;
+  r.name = name, r.description = description;
+  r.status = r.outcome = Status::skip;
+  r.message = "skipped: matches \"" + pattern + "\" in " + file;
+  return r;
+}
+
+void apply_flakes(const Patterns& flakes, const std::string& file, CaseResult& r) {
+  if (!fails_run(r.status)) return;
+  if (const std::string* pattern = flakes.match(r.name)) {
+    r.message = "known flake (\"" + *pattern + "\" in " + file + "), was " + to_string(r.status) +
+                ": " + r.message;
+    r.status = Status::flake;
+  }
+}
+
+}  // namespace glrc::report

@@ -14,7 +14,7 @@
 
 #include "core/result.hpp"
 
-namespace glrc::cli {
+namespace glrc::report {
 
 struct Baseline {
   std::map<std::string, std::string> expected;  // case name -> status as written ("Fail")
@@ -57,4 +57,11 @@ struct Patterns {
 // Throws std::runtime_error "<file>:<line>: expected a regular expression, got ..." on bad input.
 Patterns read_patterns(const std::filesystem::path& file);
 
-}  // namespace glrc::cli
+// The result of a case a skips file leaves out: Skip, naming the pattern and the file.
+CaseResult skipped_result(const std::string& name, const std::string& description,
+                          const std::string& pattern, const std::string& file);
+// A result that fails the run and matches a pattern of the flakes file `file` becomes Flake,
+// its message naming the pattern and the status it had; any other result is left as it is.
+void apply_flakes(const Patterns& flakes, const std::string& file, CaseResult& r);
+
+}  // namespace glrc::report

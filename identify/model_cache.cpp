@@ -1,4 +1,4 @@
-#include "cli/model_cache.hpp"
+#include "identify/model_cache.hpp"
 
 #include <fcntl.h>
 #include <link.h>
@@ -11,7 +11,7 @@
 #include <fstream>
 #include <memory>
 
-namespace glrc::cli {
+namespace glrc::identify {
 
 namespace {
 
@@ -195,4 +195,4 @@ void ModelCacheSlot::save(const Model& m) const {
   }
 }
 
-}  // namespace glrc::cli
+}  // namespace glrc::identify

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-namespace glrc::cli {
+namespace glrc {
 
 // Whether `s` is valid UTF-8 (JSON, which results.json and the journal are, holds only that).
 bool is_utf8(std::string_view s);
@@ -12,4 +12,4 @@ bool is_utf8(std::string_view s);
 // to at most `max` characters of `s` (then "..." and the full length in bytes).
 std::string printable(std::string_view s, size_t max = std::string_view::npos);
 
-}  // namespace glrc::cli
+}  // namespace glrc

@@ -1,0 +1,78 @@
+#include "check/check.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "compare/compare.hpp"
+#include "ref/reference.hpp"
+
+namespace glrc::check {
+
+int freedom_bits(const CheckOptions& o, int reported_bits) {
+  return std::max(o.spec_subpixel_bits.value_or(reported_bits), 4);
+}
+
+Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits) {
+  Tolerance t = c.tolerance.applied_to(Tolerance{});
+  t.subpixel_bits = freedom_bits(o, reported_bits);
+  if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
+  if (o.depth_ulps) t.depth_ulps = *o.depth_ulps;
+  if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps)
+    t.mode = ToleranceMode::ulps;
+  if (o.tolerance == ToleranceMode::exact) t.mode = ToleranceMode::exact;
+  if (o.strict_coverage) t.allow_boundary = false;
+  return t;
+}
+
+Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits) {
+  ref::Reference r = ref::render(c, o.model, freedom_bits(o, reported_bits));
+  // The driver model replaces the frame only: the edge bits still name ties and bands.
+  if (o.driver_model) r.frame = driver_models::render(c, *o.driver_model);
+  return r;
+}
+
+std::string tolerance_text(const CheckOptions& o, int reported_bits) {
+  if (o.tolerance == ToleranceMode::exact) return "exact";
+  if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps) return "ulps";
+  return "spec (subpixel bits " + std::to_string(freedom_bits(o, reported_bits)) + ")";
+}
+
+std::string model_text(const CheckOptions& o) {
+  if (o.driver_model)
+    return std::string(driver_models::to_string(*o.driver_model)) +
+           " (bit-exact model of Mesa 22.3.6's driver)";
+  return o.model.describe();
+}
+
+Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o) {
+  // A driver's frame under the specification's allowance would pass whatever the driver model
+  // gets wrong by less than the allowance: the model is there to be matched bit for bit.
+  if (o.driver_model && o.tolerance == ToleranceMode::spec && !o.varying_ulps && !o.depth_ulps)
+    throw std::invalid_argument(
+        "a driver model is judged bit for bit or by fixed ULPs, not by the specification's "
+        "allowance");
+  const auto start = std::chrono::steady_clock::now();
+  Checked out;
+  const int reported = renderer.info().subpixel_bits;
+  out.reference = expectation_for(c, o, reported);
+  try {
+    out.gl = renderer.render(c);
+    out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported));
+    out.result.gl_digest = ref::digest(out.gl);
+  } catch (const gl::RenderError& e) {
+    out.result.name = c.name;
+    out.result.description = c.description;
+    out.result.status = out.result.outcome = Status::error;
+    out.result.message = e.what();
+  }
+  out.result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+CaseResult check(const Case& c, gl::Renderer& renderer, const CheckOptions& o) {
+  return check_with_frames(c, renderer, o).result;
+}
+
+}  // namespace glrc::check

@@ -1,0 +1,74 @@
+// check: one case, end to end. The exact reference (ref/) or a bit-exact driver model's frame
+// (driver_models/) is what GL's frame (gl_harness/) is compared against (compare/), under the
+// tolerance the case file and the options give. `run`'s workers, `diff`, `selftest` and the
+// tests all judge a case through this, so a verdict is decided in one place.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/case.hpp"
+#include "core/frame.hpp"
+#include "core/model.hpp"
+#include "core/result.hpp"
+#include "driver_models/driver_models.hpp"
+#include "gl_harness/gl_harness.hpp"
+
+namespace glrc::check {
+
+// How a case is judged. The defaults judge by the specification's allowance for the exact
+// reference with the fixed default model.
+struct CheckOptions {
+  // The reference's choices where GL leaves them to the implementation (subpixel bits, attribute
+  // planes, tie rule): the model that judges the case, identified or given.
+  Model model;
+  // Compare against this driver model's frame instead of the reference's (`--model llvmpipe`).
+  // The reference still renders: its edge bits name ties and snapping bands. A driver model is
+  // judged bit for bit or by fixed ULPs, never by the specification's allowance (check()
+  // throws std::invalid_argument otherwise).
+  std::optional<driver_models::Driver> driver_model;
+  // spec: the case file's tolerance (the specification's allowance unless the case says
+  // otherwise); ulps: fixed thresholds (varying_ulps, depth_ulps; the case's for one not given);
+  // exact: bit for bit, whatever the case file says.
+  ToleranceMode tolerance = ToleranceMode::spec;
+  std::optional<double> varying_ulps, depth_ulps;  // ULPs of each attribute's scale; >= 0
+  // The position freedom of the specification's allowance, in subpixel bits, instead of the
+  // GL_SUBPIXEL_BITS the implementation reports.
+  std::optional<int> spec_subpixel_bits;
+  // Coverage differences within the snapping band fail too (GL allows them).
+  bool strict_coverage = false;
+};
+
+// The subpixel bits of the position freedom: spec_subpixel_bits, else what the implementation
+// reports, never below the 4 GL requires (OpenGL 4.6 section 14.6.1's minimum).
+int freedom_bits(const CheckOptions& o, int reported_bits);
+
+// The tolerance of case `c`: the defaults, then the case file's, then the options' (exact
+// wins; ULPs given turn to fixed thresholds; strict coverage drops the boundary allowance).
+Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits);
+
+// What the case is compared against: the exact reference under o.model with the allowance for
+// an implementation reporting `reported_bits`, its frame replaced by the driver model's when
+// o.driver_model is set.
+Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits);
+
+// RunInfo's words for the tolerance: "exact", "ulps" or "spec (subpixel bits N)".
+std::string tolerance_text(const CheckOptions& o, int reported_bits);
+// RunInfo's words for the model: o.model.describe(), or the driver model's name.
+std::string model_text(const CheckOptions& o);
+
+// One case checked, with the frames a heatmap needs.
+struct Checked {
+  CaseResult result;
+  Expectation reference;
+  Frame gl;
+};
+
+// Renders `c` on the reference and on `renderer`, and compares them. A GL error drawing this
+// case (gl::RenderError) is the result Error with its message, not an exception; seconds
+// counts everything. Throws std::invalid_argument for a driver model under ToleranceMode::spec.
+Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o);
+// The same, the verdict only.
+CaseResult check(const Case& c, gl::Renderer& renderer, const CheckOptions& o);
+
+}  // namespace glrc::check

@@ -1,0 +1,74 @@
+#include "cli/case_commands.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+
+#include "check/check.hpp"
+#include "cli/identify.hpp"
+#include "cli/output_dir.hpp"
+#include "driver_models/driver_models.hpp"
+#include "ref/reference.hpp"
+#include "report/format.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+
+int cmd_diff(const Options& o) {
+  const std::vector<Case> cases = load_cases(o);
+  if (cases.size() != 1)
+    throw InputError("diff: expected exactly one case, got " + std::to_string(cases.size()) +
+                     " (use --filter or name one file)");
+  const Case& c = cases[0];
+  const std::filesystem::path out = output_folder(o.out);
+  auto renderer = open_renderer(o);
+  const ModelChoice model = choose_model(o, *renderer);
+  check::CheckOptions judged = check_options(o);
+  judged.model = model.model;
+  const RunInfo info = run_info(o, renderer->info(), model);
+  const check::Checked checked = check::check_with_frames(c, *renderer, judged);
+  const CaseResult& r = checked.result;
+  fmt::print("{}: {}\nGL: {} | {} | GL_SUBPIXEL_BITS {} | model {} from {} | tolerance {}\n\n",
+             c.name, c.description, info.gl_renderer, info.gl_version, info.subpixel_bits,
+             info.model, info.model_source, info.tolerance);
+  for (const std::string& w : info.gl_warnings)
+    fmt::print("warning: {}\n", w);
+  if (!info.gl_warnings.empty()) fmt::print("\n");
+  fmt::print("{}\n", report::case_line(r));
+  if (r.status == Status::error) return 1;
+  fmt::print("\n{}\n", report::stats_table(r));
+  // Coverage first: a pixel covered by the wrong triangle has no value error to show.
+  if (const std::string table =
+          report::coverage_failures_table(r, checked.reference.frame, checked.gl, 20);
+      !table.empty())
+    fmt::print("{}\n", table);
+  if (const std::string table = report::worst_pixels_table(r, 10); !table.empty())
+    fmt::print("{}\n", table);
+  const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r);
+  fmt::print("wrote {} to {}/\n", report::count_text(files.size(), "image", "images"), o.out);
+  return fails_run(r.status) ? 1 : 0;
+}
+
+// No GL here, so nothing to identify: --model identified (the default) and ideal both give the
+// fixed model of --subpixel-bits, --planes and --tie-break, which tests/digests.txt holds.
+int cmd_digest(const Options& o) {
+  const auto driver = driver_models::driver_from_string(o.model);
+  for (const Case& c : load_cases(o))
+    fmt::print(
+        "{}  {}\n",
+        ref::digest(driver ? driver_models::render(c, *driver) : ref::render(c, model_of(o)).frame),
+        c.name);
+  return 0;
+}
+
+int cmd_list(const Options& o) {
+  const std::vector<Case> cases = load_cases(o);
+  size_t width = 0;
+  for (const Case& c : cases)
+    width = std::max(width, c.name.size());
+  for (const Case& c : cases)
+    fmt::print("{:<{}}  {}\n", c.name, width, c.description);
+  return 0;
+}
+
+}  // namespace glrc::cli

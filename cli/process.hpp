@@ -1,0 +1,62 @@
+// A child process on pipes: what the worker pool needs of fork, exec, poll and kill, in one
+// place. The child's stdin and stdout are pipes to us, its stderr is appended to a log file; it
+// runs in its own process group (a terminal's Ctrl-C reaches the parent only, which stops a run
+// in order) and the kernel kills it when the parent dies (PR_SET_PDEATHSIG), so a child stuck
+// in a hung driver never outlives a parent killed with -9.
+#pragma once
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace glrc::cli {
+
+class ChildProcess {
+ public:
+  ChildProcess() = default;
+  // Starts argv[0] (a path) with `argv` and the environment `env` (NAME=value each), stderr
+  // appended to `log`. Throws std::runtime_error when no pipe, log or process can be had.
+  ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& env,
+               const std::filesystem::path& log);
+  ChildProcess(ChildProcess&& other) noexcept;
+  ChildProcess& operator=(ChildProcess&& other) noexcept;
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+  // Kills a child still running, and waits for it: none is ever left behind.
+  ~ChildProcess();
+
+  bool running() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
+  // Its stdout, for poll().
+  int output_fd() const { return from_; }
+
+  // Writes all of `text` to its stdin. Returns false when it cannot (it died: reading its
+  // output then says so). SIGPIPE must be ignored by the caller's process.
+  bool send(const std::string& text);
+  // One read() of its stdout, appended to `into`: the bytes read, 0 at its end (it exited or
+  // closed stdout), -1 for an interrupted read to retry.
+  long read_some(std::string& into);
+
+  // After its output ended: waits for it and says how it ended ("exited with code 1",
+  // "killed by signal 11 (Segmentation fault)").
+  std::string wait();
+  // Ends it now: SIGKILL, then waits.
+  void kill_now();
+  // Closes its stdin (a worker then finishes and exits) and waits for it.
+  void finish();
+
+  // The last lines it wrote to its log since it started (several children may share one log,
+  // one after the other), newlines as '|', at most `max_chars`: what a driver said before dying.
+  std::string log_tail(size_t max_chars = 600) const;
+
+ private:
+  void close_pipes();
+  pid_t pid_ = -1;
+  int to_ = -1, from_ = -1;  // its stdin, its stdout
+  std::filesystem::path log_;
+  long long log_start_ = 0;
+};
+
+}  // namespace glrc::cli

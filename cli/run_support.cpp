@@ -1,0 +1,106 @@
+#include "cli/run_support.hpp"
+
+#include <sched.h>
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "core/text.hpp"
+#include "report/html.hpp"
+#include "report/merge.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+namespace {
+
+int available_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return 1;
+}
+
+}  // namespace
+
+Patterns load_patterns(const std::string& file, const char* option) {
+  if (file.empty()) return {};
+  try {
+    return report::read_patterns(file);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string(option) + ": " + e.what());
+  }
+}
+
+void write_outputs(const std::filesystem::path& out, const RunInfo& info,
+                   const std::vector<CaseResult>& results, bool html) {
+  report::write_run_files(out, info, results);
+  std::string files = "results.json, results.csv, failures.csv, junit.xml";
+  if (html) {
+    report::write_run_html(out / "report.html", {info, results}, out);
+    files += ", report.html";
+  }
+  fmt::print("wrote {} to {}/\n", files, out.string());
+}
+
+std::string shown_path(const std::string& path) {
+  std::error_code ec;
+  const auto rel = std::filesystem::relative(path, ec);
+  return !ec && !rel.empty() && *rel.begin() != ".." ? rel.string() : path;
+}
+
+void check_case_names(const std::vector<Case>& cases) {
+  for (const Case& c : cases) {
+    if (!is_utf8(c.source_path) || !is_utf8(c.name))
+      throw InputError("case file \"" + printable(c.source_path) +
+                       "\": expected a path in UTF-8 (results.json and the run journal record "
+                       "it): rename the file");
+    if (const char* what = report::csv_breaking(c.name))
+      throw InputError(printable(c.source_path) +
+                       ": expected a case name fit for results.csv, got \"" + printable(c.name) +
+                       "\", which holds " + what + ": rename the file");
+  }
+}
+
+void check_paths_utf8(const Options& o) {
+  for (const auto& [option, value] : {std::pair{"--baseline", &o.baseline},
+                                      {"--flakes", &o.flakes},
+                                      {"--skips", &o.skips},
+                                      {"--mesa", &o.mesa},
+                                      {"--filter", &o.filter},
+                                      {"--out", &o.out}})
+    if (!is_utf8(*value))
+      throw InputError(std::string(option) + ": expected UTF-8 text, got \"" + printable(*value) +
+                       "\"");
+  for (const std::string& p : o.paths)
+    if (!is_utf8(p))
+      throw InputError("\"" + printable(p) +
+                       "\": expected a case path in UTF-8 (results.json "
+                       "and the run journal record it)");
+}
+
+std::string read_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+bool inside(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+  std::error_code ec;
+  const auto a = std::filesystem::weakly_canonical(inner, ec);
+  const auto b = std::filesystem::weakly_canonical(outer, ec);
+  const auto rel = a.lexically_relative(b);
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+int workers_for(const Options& o) {
+  const int cores = available_cores();
+  if (o.jobs <= 0) return cores;
+  if (o.jobs > cores && !o.jobs_force) {
+    fmt::print("note: --jobs {}: {} worker{}, one per core (--jobs-force starts {})\n", o.jobs,
+               cores, cores == 1 ? "" : "s", o.jobs);
+    return cores;
+  }
+  return o.jobs;
+}
+
+}  // namespace glrc::cli

@@ -1,0 +1,49 @@
+// What `run` and `merge` need around the run itself: the inputs checked before any work (case
+// names, UTF-8 paths, expectation files), the number of workers, and the run files written at
+// the end.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli/session.hpp"
+#include "core/result.hpp"
+
+namespace glrc::cli {
+
+// --flakes or --skips: the patterns of `file` (none when empty); InputError naming `option`.
+Patterns load_patterns(const std::string& file, const char* option);
+
+// Every case of the run can be written into results.json, the journal and the CSVs as it is:
+// refused up front otherwise (InputError), never a half-written run.
+void check_case_names(const std::vector<Case>& cases);
+// The options that name files are recorded in JSON (the journal), so UTF-8 only: InputError.
+void check_paths_utf8(const Options& o);
+
+// A file's bytes; empty when it cannot be read.
+std::string read_file(const std::filesystem::path& file);
+// Whether `inner` is `outer` or lies inside it (both as they resolve now).
+bool inside(const std::filesystem::path& inner, const std::filesystem::path& outer);
+
+// The expectation files as this run read them: copied into the run folder, since --resume must
+// judge by the same ones (a --baseline may be this folder's failures.csv, which the run
+// replaces).
+struct Inputs {
+  std::vector<std::pair<std::string, std::string>> files;  // name in kInputsFolder, text
+};
+
+// --jobs, or one worker per available core; more than the cores only with --jobs-force (a
+// note says so otherwise).
+int workers_for(const Options& o);
+
+// results.json, results.csv, failures.csv, junit.xml (and report.html with `html`) in `out`,
+// and the line saying so.
+void write_outputs(const std::filesystem::path& out, const RunInfo& info,
+                   const std::vector<CaseResult>& results, bool html);
+
+// A path under the working folder as a relative one, so logs and READMEs stay short.
+std::string shown_path(const std::string& path);
+
+}  // namespace glrc::cli

@@ -1,0 +1,126 @@
+#include "report/merge.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <stdexcept>
+
+#include "core/text.hpp"
+#include "report/format.hpp"
+
+namespace glrc::report {
+
+RunResults merge_shards(const std::vector<RunResults>& shards,
+                        const std::vector<std::string>& names) {
+  if (shards.empty() || shards.size() != names.size())
+    throw std::invalid_argument("merge_shards: expected one name per shard, and a shard");
+  // Every shard of one fraction, each once, from the same GL and options.
+  const RunInfo& first = shards.front().run;
+  const int n = first.fraction;
+  // Read back, 1 <= fraction_start <= fraction holds (report::read_results_json checks it). The
+  // shards seen are a map, not a table of `fraction` entries: that number comes from a file.
+  std::map<int, size_t> seen;
+  for (size_t k = 0; k < shards.size(); ++k) {
+    const RunInfo& r = shards[k].run;
+    if (r.interrupted)
+      throw std::runtime_error("merge: " + names[k] + ": an interrupted run: `glrefcheck run --resume " +
+                               names[k] + "` completes it");
+    if (r.fraction != n)
+      throw std::runtime_error(
+          fmt::format("merge: {}: expected a shard of --fraction {}, got --fraction {}", names[k], n,
+                      r.fraction));
+    if (r.total_cases != first.total_cases)
+      throw std::runtime_error(fmt::format("merge: {}: expected a shard of a {}-case suite, got {} cases",
+                                   names[k], first.total_cases, r.total_cases));
+    if (r.gl_version != first.gl_version || r.gl_renderer != first.gl_renderer ||
+        r.backend != first.backend || r.model != first.model || r.tolerance != first.tolerance)
+      throw std::runtime_error(fmt::format(
+          "merge: {}: expected the same GL and options as {} ({}, {}), got {}, {}", names[k],
+          names[0], first.gl_renderer, first.gl_version, r.gl_renderer, r.gl_version));
+    if (const auto [it, added] = seen.emplace(r.fraction_start, k); !added)
+      throw std::runtime_error(fmt::format("merge: {} and {} are both shard {} of {}", names[it->second],
+                                   names[k], r.fraction_start, n));
+  }
+  // N distinct shards among the folders are all of them; the first gap is at most one past the
+  // number of folders.
+  for (int start = 1; start <= n; ++start)
+    if (!seen.contains(start))
+      throw std::runtime_error(fmt::format("merge: shard {} of {} is missing", start, n));
+
+  // Case j of shard K is case K - 1 + j * N of the whole suite: shard K holds
+  // ceil((total - K + 1) / N) cases. Checked before the table is made, so that a forged
+  // total_cases is a line, not 2^62 elements.
+  for (size_t k = 0; k < shards.size(); ++k) {
+    const RunInfo& r = shards[k].run;
+    const uint64_t start = uint64_t(r.fraction_start);
+    const uint64_t holds =
+        first.total_cases >= start ? (first.total_cases - start) / uint64_t(n) + 1 : 0;
+    if (shards[k].cases.size() != holds)
+      throw std::runtime_error(fmt::format(
+          "merge: {}: shard {} of {} of a {}-case suite: expected {} "
+          "cases, got {}",
+          names[k], r.fraction_start, n, first.total_cases, holds, shards[k].cases.size()));
+  }
+  std::vector<std::optional<CaseResult>> merged(first.total_cases);
+  RunInfo info = first;
+  info.fraction = info.fraction_start = 1;
+  info.seconds = 0;
+  info.jobs = 0;
+  for (const auto& shard : shards) {
+    info.seconds = std::max(info.seconds, shard.run.seconds);  // shards run side by side
+    info.jobs += shard.run.jobs;
+    for (size_t j = 0; j < shard.cases.size(); ++j) {
+      const size_t at = size_t(shard.run.fraction_start - 1) + j * size_t(n);
+      if (at >= merged.size())
+        throw std::runtime_error(fmt::format("merge: shard {} holds more cases than a {}-case suite has",
+                                     shard.run.fraction_start, merged.size()));
+      merged[at] = shard.cases[j];
+    }
+  }
+  std::vector<CaseResult> list;
+  for (size_t k = 0; k < merged.size(); ++k) {
+    if (!merged[k])
+      throw std::runtime_error(fmt::format("merge: case {} of {} is in no shard", k + 1, merged.size()));
+    list.push_back(std::move(*merged[k]));
+  }
+  for (const auto& r : list)
+    if (const char* what = csv_breaking(r.name))
+      throw std::runtime_error("merge: expected case names fit for results.csv, got \"" +
+                       printable(r.name) + "\", which holds " + what);
+  return {info, std::move(list)};
+}
+
+const char* csv_breaking(const std::string& name) {
+  for (const char ch : name) {
+    if (ch == ',') return "a comma";
+    if (ch == '"') return "a double quote";
+    if (ch == '\n' || ch == '\r') return "a line break";
+    if ((unsigned char)ch < 0x20 || ch == 0x7f) return "a control character";
+  }
+  if (!name.empty() && (name.front() == ' ' || name.back() == ' '))
+    return "a space at an end (baselines trim it)";
+  return nullptr;
+}
+
+std::string run_summary(const std::vector<CaseResult>& results, double seconds) {
+  std::map<Status, int> count;
+  for (const auto& r : results)
+    ++count[r.status];
+  std::string text = fmt::format("{}: {} pass, {} fail, {} expected fail, {} unexpected pass",
+                                 count_text(results.size(), "case", "cases"), count[Status::pass],
+                                 count[Status::fail], count[Status::expected_fail],
+                                 count[Status::unexpected_pass]);
+  for (Status s : {Status::crash, Status::timeout, Status::flake})
+    if (count[s]) text += fmt::format(", {} {}", count[s], to_string(s));
+  return text + fmt::format(", {} error, {} skip in {:.2f} s", count[Status::error],
+                            count[Status::skip], seconds);
+}
+
+bool any_fails_run(const std::vector<CaseResult>& results) {
+  return std::any_of(results.begin(), results.end(),
+                     [](const CaseResult& r) { return fails_run(r.status); });
+}
+
+}  // namespace glrc::report

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The modules' layering: a module includes headers of the modules below it only. Each line of
+# the table names a folder and what its sources may include (besides itself); a folder not in
+# the table, or an include outside its line, fails the test with the file and the include.
+# cli/ and tests/ sit on top and may include anything.
+set -euo pipefail
+root="${1:?usage: layering.sh SOURCE_DIR}"
+cd "$root"
+
+declare -A allowed=(
+  [core]=""
+  [casefile]="core"
+  [ref]="core"
+  [driver_models]="core"
+  [gl_harness]="core"
+  [image_io]="core"
+  [compare]="core"
+  [report]="core compare"
+  [check]="core ref compare driver_models gl_harness"
+  [identify]="core ref compare gl_harness"
+  [selftest]="core check compare driver_models gl_harness report"
+)
+
+status=0
+for dir in */; do
+  dir="${dir%/}"
+  case "$dir" in cli | tests | scripts | cases | build* | bundle | out | .*) continue ;; esac
+  compgen -G "$dir/*.[ch]pp" >/dev/null || compgen -G "$dir/*.h" >/dev/null || continue
+  if [[ ! -v "allowed[$dir]" ]]; then
+    echo "$dir/: a module not in tests/build/layering.sh's table: add it with what it may include"
+    status=1
+    continue
+  fi
+  while IFS=: read -r file include; do
+    module="${include%%/*}"
+    [ "$module" = "$dir" ] && continue
+    if [[ ! -v "allowed[$module]" ]] && [ "$module" != cli ]; then continue; fi  # a library's own
+    if [[ " ${allowed[$dir]} " != *" $module "* ]]; then
+      echo "$file includes \"$include\": $dir/ may include only ${allowed[$dir]:-nothing of ours}"
+      status=1
+    fi
+  done < <(grep -oE '^#include "[a-z_]+/[^"]+"' "$dir"/*.[ch]pp "$dir"/*.h 2>/dev/null |
+    sed -E 's/:#include "/:/; s/"$//')
+done
+exit $status
