@@ -380,16 +380,14 @@ class Loader {
     return static_cast<int>(i);
   }
 
+  // One of the enum's names (core/names.hpp's table), exactly.
   template <typename E>
-  E choice(const json& v, const std::string& path,
-           std::initializer_list<std::pair<std::string_view, E>> options) const {
+  E choice(const json& v, const std::string& path) const {
+    if (v.is_string())
+      if (const auto value = from_name<E>(v.get_ref<const std::string&>())) return *value;
     std::string names;
-    for (const auto& [name, value] : options)
-      names += (names.empty() ? "" : ", ") + std::string(name);
-    if (v.is_string()) {
-      for (const auto& [name, value] : options)
-        if (v.get_ref<const std::string&>() == name) return value;
-    }
+    for (const std::string& name : names_of<E>())
+      names += (names.empty() ? "" : ", ") + name;
     fail(path, "one of " + names, describe(v));
   }
 
@@ -481,22 +479,13 @@ void Loader::load_geometry(const json& root, Case& c) const {
 void Loader::load_state(const json& state, Case& c) const {
   require_object(state, "state");
   check_keys(state, "state", {"cull", "front_face", "provoking_vertex", "depth_func"});
-  if (const json* v = opt(state, "cull"))
-    c.cull = choice<CullFace>(*v, "state.cull",
-                              {{"none", CullFace::none},
-                               {"front", CullFace::front},
-                               {"back", CullFace::back},
-                               {"front_and_back", CullFace::front_and_back}});
+  if (const json* v = opt(state, "cull")) c.cull = choice<CullFace>(*v, "state.cull");
   if (const json* v = opt(state, "front_face"))
-    c.front_face =
-        choice<FrontFace>(*v, "state.front_face", {{"ccw", FrontFace::ccw}, {"cw", FrontFace::cw}});
+    c.front_face = choice<FrontFace>(*v, "state.front_face");
   if (const json* v = opt(state, "provoking_vertex"))
-    c.provoking = choice<ProvokingVertex>(
-        *v, "state.provoking_vertex",
-        {{"last", ProvokingVertex::last}, {"first", ProvokingVertex::first}});
+    c.provoking = choice<ProvokingVertex>(*v, "state.provoking_vertex");
   if (const json* v = opt(state, "depth_func"))
-    c.depth_func = choice<DepthFunc>(*v, "state.depth_func",
-                                     {{"always", DepthFunc::always}, {"less", DepthFunc::less}});
+    c.depth_func = choice<DepthFunc>(*v, "state.depth_func");
 }
 
 // GLSL keywords and reserved words (GLSL 4.60 section 3.6, plus a few type names): a varying
@@ -568,10 +557,7 @@ void Loader::load_varyings(const json& list, Case& c) const {
       fail(path_key(path, "name"), "a name not used by another varying", describe(name));
     if (const json* size = opt(v, "size")) var.size = int_in(*size, path_key(path, "size"), 1, 4);
     if (const json* interp = opt(v, "interpolation"))
-      var.interpolation = choice<Interpolation>(*interp, path_key(path, "interpolation"),
-                                                {{"smooth", Interpolation::smooth},
-                                                 {"flat", Interpolation::flat},
-                                                 {"noperspective", Interpolation::noperspective}});
+      var.interpolation = choice<Interpolation>(*interp, path_key(path, "interpolation"));
     c.varyings.push_back(var);
   }
 }

@@ -147,7 +147,7 @@ void print_depth(const DepthFinding& f) {
 
 std::unique_ptr<gl::Renderer> open_raw_renderer(const Options& o) {
   gl::Target t;
-  t.backend = *gl::backend_from_string(o.backend);
+  t.backend = o.backend;
   t.driver = o.driver;
   t.device_index = o.device;
   t.set_provoking_vertex = false;
@@ -171,7 +171,8 @@ int cmd_identify(const Options& o) {
   auto renderer = open_renderer(o);
   auto raw = open_raw_renderer(o);
   const gl::GlInfo& info = renderer->info();
-  fmt::print("glrefcheck identify: {} ({}), GL {}\n\n", info.renderer, o.backend, info.version);
+  fmt::print("glrefcheck identify: {} ({}), GL {}\n\n", info.renderer, gl::to_string(o.backend),
+             info.version);
   std::fflush(stdout);
 
   Identification id;
@@ -188,8 +189,8 @@ int cmd_identify(const Options& o) {
   print_depth(id.depth);
   fmt::print("{}\n", id.summary());
 
-  nlohmann::json j =
-      identification_json(id, info, raw->info().initial_provoking_vertex, o.backend, o.driver);
+  nlohmann::json j = identification_json(id, info, raw->info().initial_provoking_vertex,
+                                         gl::to_string(o.backend), o.driver);
   j["seconds"] = seconds_since(start);
   const std::filesystem::path file = out / "identify.json";
   std::ofstream stream(file);

@@ -45,17 +45,15 @@ void add_model_options(CLI::App& app, Options& o) {
                  "reference with the fixed model subpixel_bits=8 planes=unsnapped "
                  "tie=bottom-left, or what --subpixel-bits, --planes, --tie-break say; llvmpipe, "
                  "softpipe: bit-exact models of those drivers, for --tolerance exact")
-      ->check(CLI::IsMember({"identified", "ideal", "llvmpipe", "softpipe"}));
+      ->check(CLI::IsMember(model_choices()));
   app.add_option("--subpixel-bits", o.subpixel_bits,
                  "reference snapping: 0 (none) to 16; takes the model from the command line")
       ->check(CLI::Range(0, 16));
-  app.add_option("--planes", o.planes,
-                 "attribute planes from snapped or unsnapped positions; takes the model from the "
-                 "command line")
-      ->check(CLI::IsMember({"snapped", "unsnapped"}));
-  app.add_option("--tie-break", o.tie_break,
-                 "pixel centres on an edge; takes the model from the command line")
-      ->check(CLI::IsMember({"bottom-left", "top-left", "bottom-right", "top-right"}));
+  add_enum_option(app, "--planes", o.planes,
+                  "attribute planes from snapped or unsnapped positions; takes the model from "
+                  "the command line");
+  add_enum_option(app, "--tie-break", o.tie_break,
+                  "pixel centres on an edge; takes the model from the command line");
 }
 
 // Whether the subcommand that ran was given any of the model's own options.
@@ -70,8 +68,7 @@ bool model_options_given(const CLI::App& app) {
 }
 
 void add_gl_options(CLI::App& app, Options& o) {
-  app.add_option("--backend", o.backend, "osmesa, egl (Mesa surfaceless) or egl-device")
-      ->check(CLI::IsMember({"osmesa", "egl", "egl-device"}));
+  add_enum_option(app, "--backend", o.backend, "osmesa, egl (Mesa surfaceless) or egl-device");
   app.add_option(
       "--driver", o.driver,
       "Mesa gallium driver: llvmpipe, softpipe, zink (egl: GL on lavapipe); \"\" for a GPU");
@@ -81,9 +78,9 @@ void add_gl_options(CLI::App& app, Options& o) {
       ->check(finite_number(0, true));
   app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0")
       ->check(finite_number(0, true));
-  app.add_option("--tolerance", o.tolerance,
-                 "spec: what the GL specification allows (default); exact: zero differing bits")
-      ->check(CLI::IsMember({"spec", "exact"}));
+  add_enum_option(app, "--tolerance", o.tolerance,
+                  "spec: what the GL specification allows (default); exact: zero differing bits",
+                  {"spec", "exact"});
   app.add_option("--spec-subpixel-bits", o.spec_subpixel_bits,
                  "position freedom of the spec tolerance (default: GL_SUBPIXEL_BITS as reported)")
       ->check(CLI::Range(4, 16));
@@ -112,7 +109,7 @@ void check_resume_alone(const CLI::App& run) {
 // Starts this program again with the prefix's environment, once (a marker variable says it is
 // done), so that the dynamic loader finds the prefix's libraries first.
 void reexec_with_mesa(const Options& o, char** argv) {
-  const MesaPrefix prefix = find_mesa_prefix(o.mesa, o.backend);
+  const MesaPrefix prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const char* done = std::getenv("GLRC_MESA_PREFIX_APPLIED");
   if (done && prefix.root == done) return;
   for (const auto& [name, value] : mesa_environment(prefix, output_folder(o.out)))

@@ -22,17 +22,22 @@ class OptionsReader {
   OptionsReader(const nlohmann::json& j, std::string where) : j_(j), where_(std::move(where)) {
     if (!j_.is_object()) bad("options", "an object");
   }
-  std::string text(const char* key, std::initializer_list<const char*> allowed = {}) const {
+  std::string text(const char* key, const std::vector<std::string>& allowed = {}) const {
     const nlohmann::json& v = at(key);
     if (!v.is_string()) bad(key, "a string");
     const auto s = v.get<std::string>();
-    if (allowed.size() == 0) return s;
+    if (allowed.empty()) return s;
     std::string names;
-    for (const char* a : allowed) {
+    for (const std::string& a : allowed) {
       if (s == a) return s;
-      names += names.empty() ? a : std::string(", ") + a;
+      names += names.empty() ? a : ", " + a;
     }
     bad(key, "one of " + names + ", got \"" + printable(s, 80) + "\"");
+  }
+  // One of enum E's names (core/names.hpp), or of `allowed` among them when given.
+  template <class E>
+  E named(const char* key, const std::vector<std::string>& allowed = names_of<E>()) const {
+    return *from_name<E>(text(key, allowed));
   }
   bool flag(const char* key) const {
     const nlohmann::json& v = at(key);

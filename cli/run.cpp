@@ -67,7 +67,7 @@ int cmd_run(const Options& given) {
   const Patterns flakes = load_patterns(expectations.flakes, "--flakes");
   const Patterns skips = load_patterns(expectations.skips, "--skips");
   std::optional<MesaPrefix> prefix;
-  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, o.backend);
+  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
   if (!earlier) {
     Inputs inputs;
@@ -114,7 +114,7 @@ int cmd_run(const Options& given) {
   // What the run knows before GL (enough when every case is skipped), and again once a worker
   // has told the GL strings.
   const auto run_fields = [&](RunInfo& i) {
-    i.backend = o.backend, i.driver = o.driver;
+    i.backend = gl::to_string(o.backend), i.driver = o.driver;
     i.jobs = s.jobs;
     i.fraction = o.fraction, i.fraction_start = o.fraction_start;
     i.total_cases = all.size();
@@ -178,8 +178,8 @@ int cmd_run(const Options& given) {
     fmt::print(
         "glrefcheck run: {}{} on {} ({}), GL {} | model {} from {} | tolerance {} | {} "
         "worker{}\n",
-        report::count_text(cases.size(), "case", "cases"), shard, info.gl_renderer, o.backend,
-        info.gl_version, info.model, info.model_source, info.tolerance,
+        report::count_text(cases.size(), "case", "cases"), shard, info.gl_renderer,
+        gl::to_string(o.backend), info.gl_version, info.model, info.model_source, info.tolerance,
         std::min(size_t(s.jobs), to_check.size()),
         std::min(size_t(s.jobs), to_check.size()) == 1 ? "" : "s");
     if (prefix) fmt::print("Mesa from {}: {}\n", info.mesa_prefix, shown_path(info.gl_library));

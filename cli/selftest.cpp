@@ -22,8 +22,9 @@ int cmd_selftest(const Options& options) {
   judged.model = model.model;
   const RunInfo info = run_info(options, renderer->info(), model);
   fmt::print("glrefcheck selftest: {} on {} ({}), GL {} | model {} from {} | tolerance {}\n",
-             report::count_text(cases.size(), "case", "cases"), info.gl_renderer, options.backend,
-             info.gl_version, info.model, info.model_source, info.tolerance);
+             report::count_text(cases.size(), "case", "cases"), info.gl_renderer,
+             gl::to_string(options.backend), info.gl_version, info.model, info.model_source,
+             info.tolerance);
   for (const std::string& w : info.gl_warnings)
     fmt::print("warning: {}\n", w);
 

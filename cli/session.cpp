@@ -15,18 +15,15 @@ namespace glrc::cli {
 Model model_of(const Options& o) {
   Model m;
   m.subpixel_bits = o.subpixel_bits;
-  m.planes = o.planes == "snapped" ? Planes::snapped : Planes::unsnapped;
-  m.tie_break = o.tie_break == "top-left"       ? TieBreak::top_left
-                : o.tie_break == "bottom-right" ? TieBreak::bottom_right
-                : o.tie_break == "top-right"    ? TieBreak::top_right
-                                                : TieBreak::bottom_left;
+  m.planes = o.planes;
+  m.tie_break = o.tie_break;
   return m;
 }
 
 void set_model(Options& o, const Model& m) {
   o.subpixel_bits = m.subpixel_bits;
-  o.planes = m.planes == Planes::snapped ? "snapped" : "unsnapped";
-  o.tie_break = to_string(m.tie_break);
+  o.planes = m.planes;
+  o.tie_break = m.tie_break;
 }
 
 std::optional<ModelChoice> model_from_command_line(const Options& o) {
@@ -38,6 +35,13 @@ std::optional<ModelChoice> model_from_command_line(const Options& o) {
   return ModelChoice{model_of(o), "command line"};  // a driver model
 }
 
+std::vector<std::string> model_choices() {
+  std::vector<std::string> names = {"identified", "ideal"};
+  for (const std::string& d : names_of<driver_models::Driver>())
+    names.push_back(d);
+  return names;
+}
+
 ModelChoice fallback_model(const Options& o, const std::string& why) {
   return identify::fallback_model(model_of(o), why);
 }
@@ -46,9 +50,9 @@ check::CheckOptions check_options(const Options& o) {
   check::CheckOptions c;
   c.model = model_of(o);
   c.driver_model = driver_models::driver_from_string(o.model);
-  c.tolerance = o.tolerance == "exact"           ? ToleranceMode::exact
-                : o.varying_ulps || o.depth_ulps ? ToleranceMode::ulps
-                                                 : ToleranceMode::spec;
+  c.tolerance = o.tolerance == ToleranceMode::exact ? ToleranceMode::exact
+                : o.varying_ulps || o.depth_ulps    ? ToleranceMode::ulps
+                                                    : ToleranceMode::spec;
   c.varying_ulps = o.varying_ulps;
   c.depth_ulps = o.depth_ulps;
   c.spec_subpixel_bits = o.spec_subpixel_bits;
@@ -60,11 +64,11 @@ std::vector<Case> load_cases(const Options& o) {
   // Every command loads its cases first: options that cannot go together stop it here, before
   // any work.
   const bool fixed = o.varying_ulps || o.depth_ulps;
-  if (driver_models::driver_from_string(o.model) && o.tolerance == "spec" && !fixed)
+  if (driver_models::driver_from_string(o.model) && o.tolerance == ToleranceMode::spec && !fixed)
     throw InputError("--model " + o.model +
                      ": a driver model is judged bit for bit (--tolerance exact) or by fixed "
                      "ULPs (--tolerance-ulps), not by the specification's allowance");
-  if (o.tolerance == "exact" && fixed)
+  if (o.tolerance == ToleranceMode::exact && fixed)
     throw InputError(
         "--tolerance exact: expected no --tolerance-ulps/--depth-tolerance-ulps with it");
   std::vector<std::string> paths = o.paths;
@@ -117,7 +121,7 @@ std::vector<Case> load_cases(const Options& o) {
 
 gl::Target target_of(const Options& o) {
   gl::Target t;
-  t.backend = *gl::backend_from_string(o.backend);  // CLI11 has checked the name
+  t.backend = o.backend;
   t.driver = o.driver;
   t.device_index = o.device;
   return t;
@@ -133,7 +137,7 @@ std::unique_ptr<gl::Renderer> open_renderer(const Options& o) {
 
 RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& model) {
   RunInfo info;
-  info.backend = o.backend;
+  info.backend = gl::to_string(o.backend);
   info.driver = o.driver;
   check::CheckOptions judged = check_options(o);
   judged.model = model.model;
@@ -162,13 +166,13 @@ Baseline load_baseline(const Options& o) {
 std::string options_json(const Options& o) {
   nlohmann::json j = {{"model", o.model},
                       {"subpixel_bits", o.subpixel_bits},
-                      {"planes", o.planes},
-                      {"tie_break", o.tie_break},
+                      {"planes", to_string(o.planes)},
+                      {"tie_break", to_string(o.tie_break)},
                       {"model_given", o.model_given},
-                      {"backend", o.backend},
+                      {"backend", gl::to_string(o.backend)},
                       {"driver", o.driver},
                       {"device", o.device},
-                      {"tolerance", o.tolerance},
+                      {"tolerance", to_string(o.tolerance)},
                       {"strict_coverage", o.strict_coverage},
                       {"out", o.out}};
   if (o.spec_subpixel_bits) j["spec_subpixel_bits"] = *o.spec_subpixel_bits;
@@ -179,15 +183,15 @@ std::string options_json(const Options& o) {
 
 Options options_from_json(const OptionsReader& r) {
   Options o;
-  o.model = r.text("model", {"identified", "ideal", "llvmpipe", "softpipe"});
+  o.model = r.text("model", model_choices());
   o.subpixel_bits = r.whole("subpixel_bits", 0, 16);
-  o.planes = r.text("planes", {"snapped", "unsnapped"});
-  o.tie_break = r.text("tie_break", {"bottom-left", "top-left", "bottom-right", "top-right"});
+  o.planes = r.named<Planes>("planes");
+  o.tie_break = r.named<TieBreak>("tie_break");
   o.model_given = r.flag("model_given");
-  o.backend = r.text("backend", {"osmesa", "egl", "egl-device"});
+  o.backend = r.named<gl::Backend>("backend");
   o.driver = r.text("driver");
   o.device = r.whole("device", 0);
-  o.tolerance = r.text("tolerance", {"spec", "exact"});
+  o.tolerance = r.named<ToleranceMode>("tolerance", {"spec", "exact"});
   o.strict_coverage = r.flag("strict_coverage");
   o.out = r.text("out");
   if (r.has("spec_subpixel_bits")) o.spec_subpixel_bits = r.whole("spec_subpixel_bits", 4, 16);

@@ -48,16 +48,18 @@ struct Options {
   // "softpipe").
   std::string model = "identified";
   int subpixel_bits = 8;
-  std::string planes = "unsnapped", tie_break = "bottom-left";
+  Planes planes = Planes::unsnapped;
+  TieBreak tie_break = TieBreak::bottom_left;
   // Whether --subpixel-bits, --planes or --tie-break was on the command line: then the
   // reference's model is the command line's, whatever --model says.
   bool model_given = false;
   // GL
-  std::string backend = "osmesa", driver = "llvmpipe";
+  gl::Backend backend = gl::Backend::osmesa;
+  std::string driver = "llvmpipe";
   int device = 0;
   // Verdict
-  std::string tolerance = "spec";
-  std::optional<int> spec_subpixel_bits;  // overrides GL_SUBPIXEL_BITS as reported
+  ToleranceMode tolerance = ToleranceMode::spec;  // spec or exact (ulps: the numbers below)
+  std::optional<int> spec_subpixel_bits;          // overrides GL_SUBPIXEL_BITS as reported
   std::optional<double> varying_ulps, depth_ulps;
   bool strict_coverage = false;
   std::string baseline, out = "out";
@@ -82,6 +84,9 @@ struct Options {
 // What a worker process needs of the options, as JSON (the options travel on its stdin).
 std::string options_json(const Options& o);
 Options options_from_json(const std::string& text);
+
+// --model's choices: identified, ideal, and the driver models' names.
+std::vector<std::string> model_choices();
 
 // The exact reference's model from subpixel_bits, planes and tie_break.
 Model model_of(const Options& o);

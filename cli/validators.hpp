@@ -7,8 +7,23 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "core/names.hpp"
 
 namespace glrc::cli {
+
+// An option taking one of enum E's names (core/names.hpp; or of `allowed` among them), stored
+// in `value` as the enum. CLI11 checks the name first, so an unknown one is its usual message.
+template <class E>
+CLI::Option* add_enum_option(CLI::App& app, const std::string& name, E& value,
+                             const std::string& help,
+                             const std::vector<std::string>& allowed = names_of<E>()) {
+  return app
+      .add_option_function<std::string>(
+          name, [&value](const std::string& s) { value = *from_name<E>(s); }, help)
+      ->check(CLI::IsMember(allowed));
+}
 
 // The whole of `s` as a number (std::stod's syntax, so "nan" and "inf" too), or nothing.
 inline std::optional<double> parsed_number(const std::string& s) {

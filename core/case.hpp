@@ -8,9 +8,19 @@
 #include <string>
 #include <vector>
 
+#include "core/names.hpp"
+
 namespace glrc {
 
 enum class Interpolation { smooth, flat, noperspective };
+template <>
+struct Names<Interpolation> {
+  static constexpr std::array<std::pair<Interpolation, std::string_view>, 3> table{{
+      {Interpolation::smooth, "smooth"},
+      {Interpolation::flat, "flat"},
+      {Interpolation::noperspective, "noperspective"},
+  }};
+};
 
 struct Varying {
   std::string name;
@@ -29,6 +39,37 @@ enum class CullFace { none, front, back, front_and_back };
 enum class FrontFace { ccw, cw };
 enum class ProvokingVertex { last, first };  // glProvokingVertex; GL's default is last
 enum class DepthFunc { always, less };
+// The case file's names (cases/README.md).
+template <>
+struct Names<CullFace> {
+  static constexpr std::array<std::pair<CullFace, std::string_view>, 4> table{{
+      {CullFace::none, "none"},
+      {CullFace::front, "front"},
+      {CullFace::back, "back"},
+      {CullFace::front_and_back, "front_and_back"},
+  }};
+};
+template <>
+struct Names<FrontFace> {
+  static constexpr std::array<std::pair<FrontFace, std::string_view>, 2> table{{
+      {FrontFace::ccw, "ccw"},
+      {FrontFace::cw, "cw"},
+  }};
+};
+template <>
+struct Names<ProvokingVertex> {
+  static constexpr std::array<std::pair<ProvokingVertex, std::string_view>, 2> table{{
+      {ProvokingVertex::last, "last"},
+      {ProvokingVertex::first, "first"},
+  }};
+};
+template <>
+struct Names<DepthFunc> {
+  static constexpr std::array<std::pair<DepthFunc, std::string_view>, 2> table{{
+      {DepthFunc::always, "always"},
+      {DepthFunc::less, "less"},
+  }};
+};
 
 struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;
@@ -42,6 +83,14 @@ struct Viewport {
 //          ULPs of 1.0 (2^-23). Chosen when a case file or the command line names a number.
 //   exact: zero differing bits and identical coverage, for a bit-exact model of one driver.
 enum class ToleranceMode { spec, ulps, exact };
+template <>
+struct Names<ToleranceMode> {
+  static constexpr std::array<std::pair<ToleranceMode, std::string_view>, 3> table{{
+      {ToleranceMode::spec, "spec"},
+      {ToleranceMode::ulps, "ulps"},
+      {ToleranceMode::exact, "exact"},
+  }};
+};
 
 struct Tolerance {
   ToleranceMode mode = ToleranceMode::spec;

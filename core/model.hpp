@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "core/names.hpp"
+
 namespace glrc {
 
 // Which pixel centres exactly on an edge belong to the triangle. Named in GL window
@@ -18,8 +20,26 @@ enum class TieBreak { bottom_left, top_left, bottom_right, top_right };
 // positions; an NVIDIA GPU was measured using snapped ones.
 enum class Planes { unsnapped, snapped };
 
+template <>
+struct Names<TieBreak> {
+  static constexpr std::array<std::pair<TieBreak, std::string_view>, 4> table{{
+      {TieBreak::bottom_left, "bottom-left"},
+      {TieBreak::top_left, "top-left"},
+      {TieBreak::bottom_right, "bottom-right"},
+      {TieBreak::top_right, "top-right"},
+  }};
+};
+template <>
+struct Names<Planes> {
+  static constexpr std::array<std::pair<Planes, std::string_view>, 2> table{{
+      {Planes::unsnapped, "unsnapped"},
+      {Planes::snapped, "snapped"},
+  }};
+};
+
 // "bottom-left", "top-left", "bottom-right", "top-right": the names the command line takes.
 const char* to_string(TieBreak t);
+const char* to_string(Planes p);  // "unsnapped", "snapped"
 
 struct Model {
   int subpixel_bits = 8;  // 0: no snapping, coverage from exact positions

@@ -21,67 +21,30 @@ std::vector<int> component_varying(const Case& c) {
   return owner;
 }
 
+// The tables' names are string literals, so their data() ends in a NUL.
 const char* to_string(TieBreak t) {
-  switch (t) {
-    case TieBreak::bottom_left:
-      return "bottom-left";
-    case TieBreak::top_left:
-      return "top-left";
-    case TieBreak::bottom_right:
-      return "bottom-right";
-    case TieBreak::top_right:
-      return "top-right";
-  }
-  return "bottom-left";
+  return name_of(t).data();
+}
+
+const char* to_string(Planes p) {
+  return name_of(p).data();
 }
 
 std::string Model::describe() const {
-  return "subpixel_bits=" + std::to_string(subpixel_bits) +
-         " planes=" + (planes == Planes::snapped ? "snapped" : "unsnapped") +
+  return "subpixel_bits=" + std::to_string(subpixel_bits) + " planes=" + to_string(planes) +
          " tie=" + to_string(tie_break);
 }
 
 const char* to_string(ToleranceMode m) {
-  switch (m) {
-    case ToleranceMode::spec:
-      return "spec";
-    case ToleranceMode::ulps:
-      return "ulps";
-    case ToleranceMode::exact:
-      return "exact";
-  }
-  return "spec";
+  return name_of(m).data();
 }
 
 const char* to_string(Status s) {
-  switch (s) {
-    case Status::pass:
-      return "Pass";
-    case Status::fail:
-      return "Fail";
-    case Status::expected_fail:
-      return "ExpectedFail";
-    case Status::unexpected_pass:
-      return "UnexpectedPass";
-    case Status::skip:
-      return "Skip";
-    case Status::error:
-      return "Error";
-    case Status::crash:
-      return "Crash";
-    case Status::timeout:
-      return "Timeout";
-    case Status::flake:
-      return "Flake";
-  }
-  return "Error";
+  return name_of(s).data();
 }
 
 std::optional<Status> status_from_string(std::string_view s) {
-  for (Status st : {Status::pass, Status::fail, Status::expected_fail, Status::unexpected_pass,
-                    Status::skip, Status::error, Status::crash, Status::timeout, Status::flake})
-    if (s == to_string(st)) return st;
-  return std::nullopt;
+  return from_name<Status>(s);
 }
 
 }  // namespace glrc

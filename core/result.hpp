@@ -26,8 +26,22 @@ enum class Status {
   timeout,
   flake
 };
-const char* to_string(
-    Status s);  // "Pass", "Fail", "ExpectedFail", ..., "Crash", "Timeout", "Flake"
+template <>
+struct Names<Status> {
+  static constexpr std::array<std::pair<Status, std::string_view>, 9> table{{
+      {Status::pass, "Pass"},
+      {Status::fail, "Fail"},
+      {Status::expected_fail, "ExpectedFail"},
+      {Status::unexpected_pass, "UnexpectedPass"},
+      {Status::skip, "Skip"},
+      {Status::error, "Error"},
+      {Status::crash, "Crash"},
+      {Status::timeout, "Timeout"},
+      {Status::flake, "Flake"},
+  }};
+};
+// "Pass", "Fail", "ExpectedFail", ..., "Crash", "Timeout", "Flake"
+const char* to_string(Status s);
 // The inverse of to_string; nullopt for anything else.
 std::optional<Status> status_from_string(std::string_view s);
 // Whether a status fails the run (and goes to failures.csv): Fail, Crash, Timeout, Error, and

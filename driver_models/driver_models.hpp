@@ -10,10 +10,22 @@
 
 #include "core/case.hpp"
 #include "core/frame.hpp"
+#include "core/names.hpp"
 
 namespace glrc::driver_models {
 
 enum class Driver { llvmpipe, softpipe };
+}  // namespace glrc::driver_models
+namespace glrc {
+template <>
+struct Names<driver_models::Driver> {
+  static constexpr std::array<std::pair<driver_models::Driver, std::string_view>, 2> table{{
+      {driver_models::Driver::llvmpipe, "llvmpipe"},
+      {driver_models::Driver::softpipe, "softpipe"},
+  }};
+};
+}  // namespace glrc
+namespace glrc::driver_models {
 const char* to_string(Driver d);  // "llvmpipe", "softpipe"
 std::optional<Driver> driver_from_string(std::string_view s);
 

@@ -17,13 +17,11 @@
 namespace glrc::driver_models {
 
 const char* to_string(Driver d) {
-  return d == Driver::llvmpipe ? "llvmpipe" : "softpipe";
+  return name_of(d).data();
 }
 
 std::optional<Driver> driver_from_string(std::string_view s) {
-  if (s == "llvmpipe") return Driver::llvmpipe;
-  if (s == "softpipe") return Driver::softpipe;
-  return std::nullopt;
+  return from_name<Driver>(s);
 }
 
 // util_cpu_detect (src/util/u_cpu_detect.c): has_fma = CPUID.1:ECX.FMA && has_avx, has_avx =

@@ -14,21 +14,11 @@
 namespace glrc::gl {
 
 const char* to_string(Backend b) {
-  switch (b) {
-    case Backend::osmesa:
-      return "osmesa";
-    case Backend::egl:
-      return "egl";
-    case Backend::egl_device:
-      return "egl-device";
-  }
-  return "?";
+  return name_of(b).data();
 }
 
 std::optional<Backend> backend_from_string(std::string_view s) {
-  for (Backend b : {Backend::osmesa, Backend::egl, Backend::egl_device})
-    if (s == to_string(b)) return b;
-  return std::nullopt;
+  return from_name<Backend>(s);
 }
 
 std::string missing_library_message(std::initializer_list<const char*> tried,

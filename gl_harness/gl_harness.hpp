@@ -11,10 +11,23 @@
 
 #include "core/case.hpp"
 #include "core/frame.hpp"
+#include "core/names.hpp"
 
 namespace glrc::gl {
 
 enum class Backend { osmesa, egl, egl_device };
+}  // namespace glrc::gl
+namespace glrc {
+template <>
+struct Names<gl::Backend> {
+  static constexpr std::array<std::pair<gl::Backend, std::string_view>, 3> table{{
+      {gl::Backend::osmesa, "osmesa"},
+      {gl::Backend::egl, "egl"},
+      {gl::Backend::egl_device, "egl-device"},
+  }};
+};
+}  // namespace glrc
+namespace glrc::gl {
 const char* to_string(Backend b);                                // "osmesa", "egl", "egl-device"
 std::optional<Backend> backend_from_string(std::string_view s);  // inverse of to_string
 

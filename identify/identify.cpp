@@ -48,10 +48,10 @@ Model ModelFindings::model() const {
 }
 
 std::string Identification::summary() const {
-  return fmt::format(
-      "identify: subpixel_bits={} planes={} tie={} provoking_default={} depth24={}",
-      model.bits.identified, planes_name(model.planes.identified),
-      to_string(model.ties.identified), provoking_name(provoking.identified), depth.identified);
+  return fmt::format("identify: subpixel_bits={} planes={} tie={} provoking_default={} depth24={}",
+                     model.bits.identified, planes_name(model.planes.identified),
+                     to_string(model.ties.identified), provoking_name(provoking.identified),
+                     depth.identified);
 }
 
 ModelFindings find_model(gl::Renderer& renderer) {

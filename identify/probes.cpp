@@ -52,7 +52,6 @@ Frame render_gl(gl::Renderer& r, const Case& c) {
   }
 }
 
-
 std::vector<Probe> render_all(gl::Renderer& r, std::vector<Case> cases) {
   std::vector<Probe> probes;
   for (Case& c : cases) {

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <random>
+#include <stdexcept>
 #include "core/case.hpp"
 #include "core/frame.hpp"
 #include "core/model.hpp"
-#include <random>
-#include <stdexcept>
 
 #include "gl_harness/gl_harness.hpp"
 

@@ -1,6 +1,5 @@
 #include "identify/provoking_vertex.hpp"
 
-
 namespace glrc::identify {
 
 // Triangles of both windings with a flat varying that differs at each vertex.

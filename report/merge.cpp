@@ -25,23 +25,25 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
   for (size_t k = 0; k < shards.size(); ++k) {
     const RunInfo& r = shards[k].run;
     if (r.interrupted)
-      throw std::runtime_error("merge: " + names[k] + ": an interrupted run: `glrefcheck run --resume " +
-                               names[k] + "` completes it");
+      throw std::runtime_error("merge: " + names[k] +
+                               ": an interrupted run: `glrefcheck run --resume " + names[k] +
+                               "` completes it");
     if (r.fraction != n)
       throw std::runtime_error(
-          fmt::format("merge: {}: expected a shard of --fraction {}, got --fraction {}", names[k], n,
-                      r.fraction));
+          fmt::format("merge: {}: expected a shard of --fraction {}, got --fraction {}", names[k],
+                      n, r.fraction));
     if (r.total_cases != first.total_cases)
-      throw std::runtime_error(fmt::format("merge: {}: expected a shard of a {}-case suite, got {} cases",
-                                   names[k], first.total_cases, r.total_cases));
+      throw std::runtime_error(
+          fmt::format("merge: {}: expected a shard of a {}-case suite, got {} cases", names[k],
+                      first.total_cases, r.total_cases));
     if (r.gl_version != first.gl_version || r.gl_renderer != first.gl_renderer ||
         r.backend != first.backend || r.model != first.model || r.tolerance != first.tolerance)
       throw std::runtime_error(fmt::format(
           "merge: {}: expected the same GL and options as {} ({}, {}), got {}, {}", names[k],
           names[0], first.gl_renderer, first.gl_version, r.gl_renderer, r.gl_version));
     if (const auto [it, added] = seen.emplace(r.fraction_start, k); !added)
-      throw std::runtime_error(fmt::format("merge: {} and {} are both shard {} of {}", names[it->second],
-                                   names[k], r.fraction_start, n));
+      throw std::runtime_error(fmt::format("merge: {} and {} are both shard {} of {}",
+                                           names[it->second], names[k], r.fraction_start, n));
   }
   // N distinct shards among the folders are all of them; the first gap is at most one past the
   // number of folders.
@@ -74,21 +76,23 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
     for (size_t j = 0; j < shard.cases.size(); ++j) {
       const size_t at = size_t(shard.run.fraction_start - 1) + j * size_t(n);
       if (at >= merged.size())
-        throw std::runtime_error(fmt::format("merge: shard {} holds more cases than a {}-case suite has",
-                                     shard.run.fraction_start, merged.size()));
+        throw std::runtime_error(
+            fmt::format("merge: shard {} holds more cases than a {}-case suite has",
+                        shard.run.fraction_start, merged.size()));
       merged[at] = shard.cases[j];
     }
   }
   std::vector<CaseResult> list;
   for (size_t k = 0; k < merged.size(); ++k) {
     if (!merged[k])
-      throw std::runtime_error(fmt::format("merge: case {} of {} is in no shard", k + 1, merged.size()));
+      throw std::runtime_error(
+          fmt::format("merge: case {} of {} is in no shard", k + 1, merged.size()));
     list.push_back(std::move(*merged[k]));
   }
   for (const auto& r : list)
     if (const char* what = csv_breaking(r.name))
       throw std::runtime_error("merge: expected case names fit for results.csv, got \"" +
-                       printable(r.name) + "\", which holds " + what);
+                               printable(r.name) + "\", which holds " + what);
   return {info, std::move(list)};
 }
 

@@ -18,16 +18,16 @@ namespace glrc::selftest {
 
 struct FaultRow {
   std::string name, description;
-  int changed = 0;  // cases whose GL bits the fault changed
-  int caught = 0;   // of those, the cases that fail
-  int errors = 0;   // cases GL could not draw with the fault planted
+  int changed = 0;      // cases whose GL bits the fault changed
+  int caught = 0;       // of those, the cases that fail
+  int errors = 0;       // cases GL could not draw with the fault planted
   std::string example;  // the first catching case and why
 };
 
 struct SelftestResult {
   size_t cases = 0;
-  size_t passed_clean = 0;      // cases that pass without a fault: the ones faults are tried on
-  int expected_failures = 0;    // clean failures the baseline lists
+  size_t passed_clean = 0;    // cases that pass without a fault: the ones faults are tried on
+  int expected_failures = 0;  // clean failures the baseline lists
   std::vector<CaseResult> clean_failures;  // the others, which make the selftest fail
   std::vector<FaultRow> faults;            // in faults()'s order
   int missed() const;                      // faults no case caught

@@ -171,7 +171,7 @@ TEST(ModelChoice, IdentifiedUnlessTheCommandLineSaysOtherwise) {
   for (const char* model : {"identified", "ideal"}) {
     Options typed;
     typed.model = model;
-    typed.tie_break = "top-left";
+    typed.tie_break = TieBreak::top_left;
     typed.model_given = true;
     const auto chosen = glrc::cli::model_from_command_line(typed);
     ASSERT_TRUE(chosen) << model;
