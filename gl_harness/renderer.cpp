@@ -1,6 +1,5 @@
-// The GL rendering every backend shares: a Case drawn into an FBO with float attachments and
-// read back into a Frame. Only rasterization and interpolation are under test, so the shaders
-// do nothing else: clip coordinates in, varyings and gl_PrimitiveID out.
+// The GL rendering every backend shares: a Case drawn with the programs of shaders.hpp into an
+// FBO with float attachments and read back into a Frame.
 #include <algorithm>
 #include <cstring>
 #include <map>
@@ -13,6 +12,7 @@
 #include "gl_harness/first_draw.hpp"
 #include "gl_harness/gl_functions.hpp"
 #include "gl_harness/gl_harness.hpp"
+#include "gl_harness/shaders.hpp"
 
 namespace glrc::gl {
 namespace {
@@ -20,109 +20,6 @@ namespace {
 // One colour attachment per varying plus one for gl_PrimitiveID within GL 3.3's guaranteed 8
 // draw buffers.
 constexpr int kMaxVaryings = 7;
-
-const char* glsl_type(int size) {
-  static const char* const kTypes[] = {"float", "vec2", "vec3", "vec4"};
-  return kTypes[size - 1];
-}
-
-const char* glsl_qualifier(Interpolation i) {
-  switch (i) {
-    case Interpolation::smooth:
-      return "smooth";
-    case Interpolation::flat:
-      return "flat";
-    case Interpolation::noperspective:
-      return "noperspective";
-  }
-  return "smooth";
-}
-
-// Programs depend only on the varyings' sizes and qualifiers, so a run of many cases compiles
-// few programs: the key is e.g. "4smooth,1flat".
-std::string program_key(const Case& c) {
-  std::string key;
-  for (const Varying& v : c.varyings)
-    key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
-  return key;
-}
-
-// Generated names (a0/v0/o0, ...) rather than the case's: those are arbitrary strings and may
-// collide with GLSL keywords.
-std::string vertex_shader_source(const Case& c) {
-  std::string s =
-      "#version 330 core\n"
-      "layout(location = 0) in vec4 a_clip;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    const Varying& v = c.varyings[k];
-    std::string n = std::to_string(k);
-    s += "layout(location = " + std::to_string(k + 1) + ") in " + glsl_type(v.size) + " a" + n +
-         ";\n";
-    s += std::string(glsl_qualifier(v.interpolation)) + " out " + glsl_type(v.size) + " v" + n +
-         ";\n";
-  }
-  // Clip coordinates pass through untouched: the reference sees the very same bits.
-  s += "void main() {\n  gl_Position = a_clip;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k)
-    s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
-  return s + "}\n";
-}
-
-// Only where the driver needs it to supply gl_PrimitiveID (see GlRenderer::probe): copies
-// every vertex unchanged (v0 -> g0, ...) and forwards gl_PrimitiveIDIn. One triangle in, the
-// same triangle out, vertex order kept, so the provoking vertex is the same one.
-std::string geometry_shader_source(const Case& c) {
-  std::string s =
-      "#version 330 core\n"
-      "layout(triangles) in;\n"
-      "layout(triangle_strip, max_vertices = 3) out;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    const Varying& v = c.varyings[k];
-    std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
-    std::string n = std::to_string(k);
-    s += q + "in " + glsl_type(v.size) + " v" + n + "[];\n";
-    s += q + "out " + glsl_type(v.size) + " g" + n + ";\n";
-  }
-  s += "void main() {\n  for (int i = 0; i < 3; ++i) {\n";
-  s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k)
-    s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
-  return s + "    EmitVertex();\n  }\n  EndPrimitive();\n}\n";
-}
-
-// `input` is the prefix of the varyings arriving: "v" from the vertex shader, "g" from the
-// geometry shader.
-std::string fragment_shader_source(const Case& c, const char* input) {
-  static const char* const kPad[] = {", 0.0, 0.0, 0.0", ", 0.0, 0.0", ", 0.0", ""};
-  std::string s = "#version 330 core\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    const Varying& v = c.varyings[k];
-    std::string n = std::to_string(k);
-    s += std::string(glsl_qualifier(v.interpolation)) + " in " + glsl_type(v.size) + " " + input +
-         n + ";\n";
-    s += "layout(location = " + n + ") out vec4 o" + n + ";\n";
-  }
-  s += "layout(location = " + std::to_string(c.varyings.size()) + ") out int o_primitive;\n";
-  s += "void main() {\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    std::string n = std::to_string(k);
-    s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
-  }
-  // Without a geometry shader gl_PrimitiveID counts the draw's triangles from 0: the
-  // reference's primitive id. The pass-through one forwards that same count.
-  s += "  o_primitive = gl_PrimitiveID;\n}\n";
-  return s;
-}
-
-// The fragment-count pass: positions only, and every fragment adds 1 to a float attachment.
-const char* const kCountVertexShader =
-    "#version 330 core\n"
-    "layout(location = 0) in vec4 a_clip;\n"
-    "void main() { gl_Position = a_clip; }\n";
-const char* const kCountFragmentShader =
-    "#version 330 core\n"
-    "layout(location = 0) out float o_count;\n"
-    "void main() { o_count = 1.0; }\n";
 
 // One line: shader logs and messages go into RenderError::what().
 std::string one_line(std::string s) {
@@ -290,8 +187,8 @@ class GlRenderer final : public Renderer {
   // primitive id cannot tell (a shared edge drawn twice shows only its last triangle).
   void count_fragments(const Case& c, Frame& frame) {
     if (!count_program_) {
-      const GLuint vs = compile(GL_VERTEX_SHADER, kCountVertexShader, c);
-      const GLuint fs = compile(GL_FRAGMENT_SHADER, kCountFragmentShader, c);
+      const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
+      const GLuint fs = compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c);
       count_program_ = link({vs, fs}, c);
     }
     gl_.UseProgram(count_program_);
@@ -442,7 +339,7 @@ class GlRenderer final : public Renderer {
     try {
       shaders.push_back(compile(GL_VERTEX_SHADER, vertex_shader_source(c), c));
       if (gs) shaders.push_back(compile(GL_GEOMETRY_SHADER, geometry_shader_source(c), c));
-      shaders.push_back(compile(GL_FRAGMENT_SHADER, fragment_shader_source(c, gs ? "g" : "v"), c));
+      shaders.push_back(compile(GL_FRAGMENT_SHADER, fragment_shader_source(c, gs), c));
     } catch (...) {
       for (GLuint shader : shaders)
         gl_.DeleteShader(shader);
