@@ -1,4 +1,5 @@
-// The GLSL text gl_harness draws with (gl_harness/shaders.hpp), checked as text: no GL context, so
+// The GLSL text gl_harness draws with (gl_harness/shaders.hpp) and how its outputs meet the
+// framebuffer's attachments (gl_harness/framebuffer.hpp), checked as text: no GL context, so
 // these run on every machine, whatever GL it has. What the text does on a driver is
 // tests/gl's part.
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "gl_harness/framebuffer.hpp"
 #include "gl_harness/shaders.hpp"
 
 namespace glrc::gl {
@@ -191,6 +193,39 @@ TEST(ProgramKey, SizeOrQualifierOrOrderMakesAnotherProgram) {
     EXPECT_NE(program_key(a), program_key(*other));
     EXPECT_NE(vertex_shader_source(a), vertex_shader_source(*other));
   }
+}
+
+// Fragment output k must land in colour attachment k of case_colour_formats: RGBA32F for each
+// varying (any size, padded to vec4), R32I for gl_PrimitiveID after them, up to the most
+// varyings the harness takes.
+TEST(ShadersAndFramebuffer, OutputLocationsMatchTheAttachmentFormats) {
+  for (int n = 0; n <= kMaxVaryings; ++n) {
+    Case c;
+    for (int k = 0; k < n; ++k)
+      c.varyings.push_back({"v", 1 + k % 4, Interpolation::smooth});
+    const std::vector<GLenum> formats = case_colour_formats(n);
+    ASSERT_EQ(formats.size(), size_t(n) + 1);
+    const std::string fs = fragment_shader_source(c, false);
+    for (int k = 0; k < n; ++k) {
+      EXPECT_EQ(formats[size_t(k)], GLenum(GL_RGBA32F));
+      EXPECT_TRUE(has(fs, "layout(location = " + std::to_string(k) + ") out vec4 o" +
+                              std::to_string(k) + ";\n"))
+          << fs;
+    }
+    EXPECT_EQ(formats.back(), GLenum(GL_R32I));
+    EXPECT_TRUE(has(fs, "layout(location = " + std::to_string(n) + ") out int o_primitive;\n"))
+        << fs;
+  }
+  // Every attachment within GL 3.3's guaranteed 8 draw buffers.
+  EXPECT_LE(case_colour_formats(kMaxVaryings).size(), 8u);
+}
+
+TEST(FramebufferStatus, NamesAreTheSpecsEnumNames) {
+  EXPECT_STREQ(framebuffer_status_name(GL_FRAMEBUFFER_COMPLETE), "GL_FRAMEBUFFER_COMPLETE");
+  EXPECT_STREQ(framebuffer_status_name(GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT),
+               "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT");
+  EXPECT_STREQ(framebuffer_status_name(GL_FRAMEBUFFER_UNSUPPORTED), "GL_FRAMEBUFFER_UNSUPPORTED");
+  EXPECT_STREQ(framebuffer_status_name(0), "unknown framebuffer status");
 }
 
 }  // namespace
