@@ -1,6 +1,6 @@
-// The GL rendering every backend shares: a Case drawn into an FBO with float attachments and
-// read back into a Frame. Only rasterization and interpolation are under test, so the shaders
-// do nothing else: clip coordinates in, varyings and gl_PrimitiveID out.
+// The GL rendering every backend shares: a Case drawn with the programs of shaders.hpp into
+// the framebuffer of framebuffer.hpp and read back into a Frame; the state the case controls,
+// its vertex data, the fragment-count pass, the first draw, and create_renderer.
 #include <algorithm>
 #include <cstring>
 #include <map>
@@ -11,118 +11,13 @@
 
 #include "gl_harness/context.hpp"
 #include "gl_harness/first_draw.hpp"
+#include "gl_harness/framebuffer.hpp"
 #include "gl_harness/gl_functions.hpp"
 #include "gl_harness/gl_harness.hpp"
+#include "gl_harness/shaders.hpp"
 
 namespace glrc::gl {
 namespace {
-
-// One colour attachment per varying plus one for gl_PrimitiveID within GL 3.3's guaranteed 8
-// draw buffers.
-constexpr int kMaxVaryings = 7;
-
-const char* glsl_type(int size) {
-  static const char* const kTypes[] = {"float", "vec2", "vec3", "vec4"};
-  return kTypes[size - 1];
-}
-
-const char* glsl_qualifier(Interpolation i) {
-  switch (i) {
-    case Interpolation::smooth:
-      return "smooth";
-    case Interpolation::flat:
-      return "flat";
-    case Interpolation::noperspective:
-      return "noperspective";
-  }
-  return "smooth";
-}
-
-// Programs depend only on the varyings' sizes and qualifiers, so a run of many cases compiles
-// few programs: the key is e.g. "4smooth,1flat".
-std::string program_key(const Case& c) {
-  std::string key;
-  for (const Varying& v : c.varyings)
-    key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
-  return key;
-}
-
-// Generated names (a0/v0/o0, ...) rather than the case's: those are arbitrary strings and may
-// collide with GLSL keywords.
-std::string vertex_shader_source(const Case& c) {
-  std::string s =
-      "#version 330 core\n"
-      "layout(location = 0) in vec4 a_clip;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    const Varying& v = c.varyings[k];
-    std::string n = std::to_string(k);
-    s += "layout(location = " + std::to_string(k + 1) + ") in " + glsl_type(v.size) + " a" + n +
-         ";\n";
-    s += std::string(glsl_qualifier(v.interpolation)) + " out " + glsl_type(v.size) + " v" + n +
-         ";\n";
-  }
-  // Clip coordinates pass through untouched: the reference sees the very same bits.
-  s += "void main() {\n  gl_Position = a_clip;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k)
-    s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
-  return s + "}\n";
-}
-
-// Only where the driver needs it to supply gl_PrimitiveID (see GlRenderer::probe): copies
-// every vertex unchanged (v0 -> g0, ...) and forwards gl_PrimitiveIDIn. One triangle in, the
-// same triangle out, vertex order kept, so the provoking vertex is the same one.
-std::string geometry_shader_source(const Case& c) {
-  std::string s =
-      "#version 330 core\n"
-      "layout(triangles) in;\n"
-      "layout(triangle_strip, max_vertices = 3) out;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    const Varying& v = c.varyings[k];
-    std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
-    std::string n = std::to_string(k);
-    s += q + "in " + glsl_type(v.size) + " v" + n + "[];\n";
-    s += q + "out " + glsl_type(v.size) + " g" + n + ";\n";
-  }
-  s += "void main() {\n  for (int i = 0; i < 3; ++i) {\n";
-  s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k)
-    s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
-  return s + "    EmitVertex();\n  }\n  EndPrimitive();\n}\n";
-}
-
-// `input` is the prefix of the varyings arriving: "v" from the vertex shader, "g" from the
-// geometry shader.
-std::string fragment_shader_source(const Case& c, const char* input) {
-  static const char* const kPad[] = {", 0.0, 0.0, 0.0", ", 0.0, 0.0", ", 0.0", ""};
-  std::string s = "#version 330 core\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    const Varying& v = c.varyings[k];
-    std::string n = std::to_string(k);
-    s += std::string(glsl_qualifier(v.interpolation)) + " in " + glsl_type(v.size) + " " + input +
-         n + ";\n";
-    s += "layout(location = " + n + ") out vec4 o" + n + ";\n";
-  }
-  s += "layout(location = " + std::to_string(c.varyings.size()) + ") out int o_primitive;\n";
-  s += "void main() {\n";
-  for (size_t k = 0; k < c.varyings.size(); ++k) {
-    std::string n = std::to_string(k);
-    s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
-  }
-  // Without a geometry shader gl_PrimitiveID counts the draw's triangles from 0: the
-  // reference's primitive id. The pass-through one forwards that same count.
-  s += "  o_primitive = gl_PrimitiveID;\n}\n";
-  return s;
-}
-
-// The fragment-count pass: positions only, and every fragment adds 1 to a float attachment.
-const char* const kCountVertexShader =
-    "#version 330 core\n"
-    "layout(location = 0) in vec4 a_clip;\n"
-    "void main() { gl_Position = a_clip; }\n";
-const char* const kCountFragmentShader =
-    "#version 330 core\n"
-    "layout(location = 0) out float o_count;\n"
-    "void main() { o_count = 1.0; }\n";
 
 // One line: shader logs and messages go into RenderError::what().
 std::string one_line(std::string s) {
@@ -131,30 +26,6 @@ std::string one_line(std::string s) {
   for (char& ch : s)
     if (ch == '\n') ch = '|';
   return s;
-}
-
-const char* framebuffer_status_name(GLenum status) {
-  switch (status) {
-    case GL_FRAMEBUFFER_COMPLETE:
-      return "GL_FRAMEBUFFER_COMPLETE";
-    case GL_FRAMEBUFFER_UNDEFINED:
-      return "GL_FRAMEBUFFER_UNDEFINED";
-    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT:
-      return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
-      return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
-    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER:
-      return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
-    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER:
-      return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
-    case GL_FRAMEBUFFER_UNSUPPORTED:
-      return "GL_FRAMEBUFFER_UNSUPPORTED";
-    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE:
-      return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
-    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
-      return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
-  }
-  return "unknown framebuffer status";
 }
 
 // The vertex objects of one case, deleted when it is done (or throws): one context renders
@@ -178,24 +49,14 @@ struct CaseObjects {
   }
 };
 
-// The FBO and its renderbuffers, kept from one case to the next while the size and the number
-// of varyings stay the same: allocating them is most of the cost of a case (llvmpipe takes
-// ~50 ms per 1024x1024 RGBA32F renderbuffer here), and every case clears all of them first.
-// At most one is alive, so memory does not pile up either.
-struct Framebuffer {
-  GLuint framebuffer = 0;
-  std::vector<GLuint> renderbuffers;  // one per colour attachment, then depth
-  int width = 0, height = 0;
-  std::vector<GLenum> colour_formats;
-};
-
 class GlRenderer final : public Renderer {
  public:
   GlRenderer(const Target& t, std::unique_ptr<Context> context)
       : context_(std::move(context)),
         gl_(*context_),
-        set_provoking_vertex_(t.set_provoking_vertex),
-        depth_format_(t.depth_format) {
+        framebuffer_(gl_, t.depth_format),
+        count_framebuffer_(gl_, t.depth_format),
+        set_provoking_vertex_(t.set_provoking_vertex) {
     auto string = [this](GLenum name) {
       const GLubyte* s = gl_.GetString(name);
       return s ? std::string(reinterpret_cast<const char*>(s)) : std::string();
@@ -233,8 +94,8 @@ class GlRenderer final : public Renderer {
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
       if (count_program_) gl_.DeleteProgram(count_program_);
-      release_framebuffer(framebuffer_);
-      release_framebuffer(count_framebuffer_);
+      framebuffer_.release();
+      count_framebuffer_.release();
     } catch (...) {
       // Tearing down: the context goes anyway.
     }
@@ -252,33 +113,16 @@ class GlRenderer final : public Renderer {
     const int w = c.fb_width, h = c.fb_height;
     CaseObjects objects(gl_);
 
-    std::vector<GLenum> formats(size_t(n), GL_RGBA32F);
-    formats.push_back(GL_R32I);
     gl_.UseProgram(program_for(c));
-    bind_framebuffer(c, framebuffer_, formats);
+    framebuffer_.bind(c.name, w, h, case_colour_formats(n));
     set_state(c);
     clear(n);
     draw(c, objects);
     check_error(c, "drawing");
 
     Frame frame(w, h, c.component_count());
-    gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    if (readback_.size() < size_t(w) * h * 4) readback_.resize(size_t(w) * h * 4);
-    float* rgba = readback_.data();
-    int component = 0;
-    for (int k = 0; k < n; ++k) {
-      gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + k);
-      gl_.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
-      // Rows come bottom first, as Frame wants: no flip.
-      for (int i = 0; i < c.varyings[k].size; ++i, ++component) {
-        std::vector<float>& out = frame.components[size_t(component)];
-        for (size_t p = 0; p < out.size(); ++p)
-          out[p] = rgba[4 * p + size_t(i)];
-      }
-    }
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
-    gl_.ReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
-    read_depth(frame);
+    framebuffer_.read_varyings(c, frame);
+    framebuffer_.read_depth(frame);
     check_error(c, "reading back");
     count_fragments(c, frame);
     return frame;
@@ -290,12 +134,12 @@ class GlRenderer final : public Renderer {
   // primitive id cannot tell (a shared edge drawn twice shows only its last triangle).
   void count_fragments(const Case& c, Frame& frame) {
     if (!count_program_) {
-      const GLuint vs = compile(GL_VERTEX_SHADER, kCountVertexShader, c);
-      const GLuint fs = compile(GL_FRAGMENT_SHADER, kCountFragmentShader, c);
+      const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
+      const GLuint fs = compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c);
       count_program_ = link({vs, fs}, c);
     }
     gl_.UseProgram(count_program_);
-    bind_framebuffer(c, count_framebuffer_, {GL_R32F});
+    count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
     const GLfloat zero[4] = {0, 0, 0, 0}, far = 1.0f;
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
     gl_.ClearBufferfv(GL_DEPTH, 0, &far);
@@ -305,27 +149,8 @@ class GlRenderer final : public Renderer {
     gl_.DrawElements(GL_TRIANGLES, GLsizei(c.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
     gl_.Disable(GL_BLEND);
     check_error(c, "counting fragments");
-    std::vector<float> counts(frame.pixel_count());
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl_.ReadPixels(0, 0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
+    count_framebuffer_.read_fragment_counts(frame);
     check_error(c, "reading fragment counts");
-    frame.fragments.resize(counts.size());
-    for (size_t i = 0; i < counts.size(); ++i)
-      frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
-  }
-
-  // The depth attachment into Frame::depth: float z_w, or each 24-bit integer as stored (Mesa
-  // replicates the top bits below when widening to 32, so >> 8 gives the integer back).
-  void read_depth(Frame& frame) {
-    if (depth_format_ == DepthFormat::float32) {
-      gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_FLOAT,
-                     frame.depth.data());
-      return;
-    }
-    std::vector<GLuint> z(frame.pixel_count());
-    gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
-    for (size_t i = 0; i < z.size(); ++i)
-      frame.depth[i] = float(z[i] >> 8);
   }
 
   GLint integer(GLenum name) const {
@@ -442,7 +267,7 @@ class GlRenderer final : public Renderer {
     try {
       shaders.push_back(compile(GL_VERTEX_SHADER, vertex_shader_source(c), c));
       if (gs) shaders.push_back(compile(GL_GEOMETRY_SHADER, geometry_shader_source(c), c));
-      shaders.push_back(compile(GL_FRAGMENT_SHADER, fragment_shader_source(c, gs ? "g" : "v"), c));
+      shaders.push_back(compile(GL_FRAGMENT_SHADER, fragment_shader_source(c, gs), c));
     } catch (...) {
       for (GLuint shader : shaders)
         gl_.DeleteShader(shader);
@@ -470,58 +295,6 @@ class GlRenderer final : public Renderer {
       throw RenderError("case '" + c.name + "': program does not link: " + one_line(log.c_str()));
     }
     return program;
-  }
-
-  // The main framebuffer: RGBA32F per varying, R32I for gl_PrimitiveID, 32F depth (24-bit
-  // unorm with Target::depth_format), so every value is read back exactly as the fragment
-  // shader and the depth stage produced it. The count framebuffer: R32F and the same depth.
-  // Each is kept while size and formats stay the same.
-  void bind_framebuffer(const Case& c, Framebuffer& fb, const std::vector<GLenum>& formats) {
-    if (fb.framebuffer && fb.width == c.fb_width && fb.height == c.fb_height &&
-        fb.colour_formats == formats) {
-      gl_.BindFramebuffer(GL_FRAMEBUFFER, fb.framebuffer);  // draw buffers are FBO state
-      return;
-    }
-    release_framebuffer(fb);
-    gl_.GenFramebuffers(1, &fb.framebuffer);
-    gl_.BindFramebuffer(GL_FRAMEBUFFER, fb.framebuffer);
-    fb.renderbuffers.assign(formats.size() + 1, 0);
-    gl_.GenRenderbuffers(GLsizei(fb.renderbuffers.size()), fb.renderbuffers.data());
-    auto attach = [&](GLuint rb, GLenum format, GLenum attachment) {
-      gl_.BindRenderbuffer(GL_RENDERBUFFER, rb);
-      gl_.RenderbufferStorage(GL_RENDERBUFFER, format, c.fb_width, c.fb_height);
-      gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
-    };
-    std::vector<GLenum> draw_buffers;
-    for (size_t k = 0; k < formats.size(); ++k) {
-      attach(fb.renderbuffers[k], formats[k], GLenum(GL_COLOR_ATTACHMENT0 + k));
-      draw_buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + k));
-    }
-    attach(fb.renderbuffers.back(),
-           depth_format_ == DepthFormat::unorm24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F,
-           GL_DEPTH_ATTACHMENT);
-    gl_.DrawBuffers(GLsizei(draw_buffers.size()), draw_buffers.data());
-    GLenum error = gl_.GetError();
-    GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (error != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
-      release_framebuffer(fb);
-      throw RenderError(
-          "case '" + c.name + "': " +
-          (error != GL_NO_ERROR
-               ? std::string(gl_error_name(error)) + " while creating the framebuffer"
-               : std::string("framebuffer incomplete: ") + framebuffer_status_name(status)));
-    }
-    fb.width = c.fb_width;
-    fb.height = c.fb_height;
-    fb.colour_formats = formats;
-  }
-
-  void release_framebuffer(Framebuffer& fb) {
-    gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    if (fb.framebuffer) gl_.DeleteFramebuffers(1, &fb.framebuffer);
-    if (!fb.renderbuffers.empty())
-      gl_.DeleteRenderbuffers(GLsizei(fb.renderbuffers.size()), fb.renderbuffers.data());
-    fb = Framebuffer{};
   }
 
   // All state the case controls, set every time: the previous case may have changed it.
@@ -608,13 +381,12 @@ class GlRenderer final : public Renderer {
   GlFunctions gl_;
   GlInfo info_;
   std::map<std::string, GLuint> programs_;
+  // The case's (case_colour_formats) and the fragment-count pass's (R32F).
   Framebuffer framebuffer_, count_framebuffer_;
   GLuint count_program_ = 0;
-  std::vector<float> readback_;  // one colour attachment as RGBA, kept to spare reallocations
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
   bool set_provoking_vertex_ = true;  // Target::set_provoking_vertex
-  DepthFormat depth_format_ = DepthFormat::float32;
 };
 
 }  // namespace

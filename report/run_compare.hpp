@@ -1,6 +1,11 @@
 // Two runs side by side (`glrefcheck compare BASE CURRENT`): which cases regressed, which were
 // fixed, which were added or removed, and where the error against the reference grew by more
 // than a factor even though the case still passes. Knows nothing of GL: it reads results.
+//
+// One interface, one file per part: the classification (compare_runs, run_compare.cpp) and its
+// views, each a pure function of a RunComparison: text (comparison_text.cpp), Markdown
+// (comparison_markdown.cpp), JSON (comparison_json.cpp) and HTML (write_comparison_html,
+// html.hpp). The text and Markdown views share their sections (comparison_sections.hpp).
 #pragma once
 
 #include <optional>
@@ -65,16 +70,21 @@ struct RunComparison {
 RunComparison compare_runs(const RunResults& base, const RunResults& current, double factor = 2,
                            double min_ulps = 1);
 
-// "GL frames: all 45 bit-identical to base", or how many differ in their bits.
+// "GL frames: all 45 bit-identical to base", or how many differ in their bits; one line, no
+// newline, that every view prints.
 std::string bits_summary(const RunComparison& c);
 
-// The terminal text: both GL_VERSIONs, counts, then the regressions, fixes, changes,
-// added/removed cases and precision changes in a table (unchanged cases are counted only).
+// The terminal text (comparison_text.cpp): both GL_VERSIONs, counts, then the regressions,
+// fixes, changes, added/removed cases and precision changes in a table (unchanged cases are
+// counted only). Lines end in '\n'.
 std::string comparison_text(const RunComparison& c);
-// The same for CI comments (GitLab/GitHub Markdown).
+// The same for CI comments (GitLab/GitHub Markdown; comparison_markdown.cpp): `|` in cells
+// escaped, line breaks in cells replaced by spaces.
 std::string comparison_markdown(const RunComparison& c);
-// Everything, for scripts: {"base": run, "current": run, "factor", "min_ulps", "summary": counts
-// by kind, "cases": [...]} (non-finite numbers as "nan"/"inf" strings, as in results.json).
+// Everything, for scripts (comparison_json.cpp): {"base": run, "current": run, "factor",
+// "min_ulps", "summary": counts by kind, "regressions", "bits_compared", "bits_identical",
+// "cases": [...]} (non-finite numbers as "nan"/"inf" strings, as in results.json; bad UTF-8 in
+// names and messages replaced, never thrown).
 std::string comparison_json(const RunComparison& c);
 
 }  // namespace glrc::report

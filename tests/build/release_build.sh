@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # A user's Release build must not fail on warnings: -Werror is off unless asked for (CI asks),
 # and the code is clean of the false positives GCC 12 reports only with Release's inlining (a
-# -Wrestrict inside std::string in report/run_compare.cpp and casefile/ once broke
-# `cmake -DCMAKE_BUILD_TYPE=Release`). Configures SOURCE into BUILD twice: with the defaults
+# -Wrestrict inside std::string in report/ (growth_text, now in comparison_sections.cpp) and
+# casefile/ once broke `cmake -DCMAKE_BUILD_TYPE=Release`). Configures SOURCE into BUILD twice: with the defaults
 # (GLRC_WERROR must be OFF), then with -Werror, and builds glrefcheck (every library and the CLI).
 #   release_build.sh SOURCE BUILD CXX
 set -euo pipefail

@@ -1,0 +1,134 @@
+// The FBO every case is drawn into, and its readback into a Frame (framebuffer.hpp).
+#include "gl_harness/framebuffer.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace glrc::gl {
+
+std::vector<GLenum> case_colour_formats(int varying_count) {
+  std::vector<GLenum> formats(size_t(varying_count), GL_RGBA32F);
+  formats.push_back(GL_R32I);
+  return formats;
+}
+
+const char* framebuffer_status_name(GLenum status) {
+  switch (status) {
+    case GL_FRAMEBUFFER_COMPLETE:
+      return "GL_FRAMEBUFFER_COMPLETE";
+    case GL_FRAMEBUFFER_UNDEFINED:
+      return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT:
+      return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT:
+      return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER:
+      return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER:
+      return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED:
+      return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE:
+      return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS:
+      return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
+  }
+  return "unknown framebuffer status";
+}
+
+void Framebuffer::bind(const std::string& case_name, int width, int height,
+                       const std::vector<GLenum>& colour_formats) {
+  if (framebuffer_ && width_ == width && height_ == height && colour_formats_ == colour_formats) {
+    gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);  // draw buffers are FBO state
+    return;
+  }
+  release();
+  gl_.GenFramebuffers(1, &framebuffer_);
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  renderbuffers_.assign(colour_formats.size() + 1, 0);
+  gl_.GenRenderbuffers(GLsizei(renderbuffers_.size()), renderbuffers_.data());
+  auto attach = [&](GLuint rb, GLenum format, GLenum attachment) {
+    gl_.BindRenderbuffer(GL_RENDERBUFFER, rb);
+    gl_.RenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+    gl_.FramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
+  };
+  std::vector<GLenum> draw_buffers;
+  for (size_t k = 0; k < colour_formats.size(); ++k) {
+    attach(renderbuffers_[k], colour_formats[k], GLenum(GL_COLOR_ATTACHMENT0 + k));
+    draw_buffers.push_back(GLenum(GL_COLOR_ATTACHMENT0 + k));
+  }
+  attach(renderbuffers_.back(),
+         depth_format_ == DepthFormat::unorm24 ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F,
+         GL_DEPTH_ATTACHMENT);
+  gl_.DrawBuffers(GLsizei(draw_buffers.size()), draw_buffers.data());
+  GLenum error = gl_.GetError();
+  GLenum status = gl_.CheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (error != GL_NO_ERROR || status != GL_FRAMEBUFFER_COMPLETE) {
+    release();
+    throw RenderError(
+        "case '" + case_name + "': " +
+        (error != GL_NO_ERROR
+             ? std::string(gl_error_name(error)) + " while creating the framebuffer"
+             : std::string("framebuffer incomplete: ") + framebuffer_status_name(status)));
+  }
+  width_ = width;
+  height_ = height;
+  colour_formats_ = colour_formats;
+}
+
+void Framebuffer::release() {
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (framebuffer_) gl_.DeleteFramebuffers(1, &framebuffer_);
+  if (!renderbuffers_.empty())
+    gl_.DeleteRenderbuffers(GLsizei(renderbuffers_.size()), renderbuffers_.data());
+  framebuffer_ = 0;
+  renderbuffers_.clear();
+  width_ = height_ = 0;
+  colour_formats_.clear();
+}
+
+void Framebuffer::read_varyings(const Case& c, Frame& frame) {
+  const int n = int(c.varyings.size());
+  const int w = frame.width, h = frame.height;
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (rgba_.size() < size_t(w) * h * 4) rgba_.resize(size_t(w) * h * 4);
+  float* rgba = rgba_.data();
+  int component = 0;
+  for (int k = 0; k < n; ++k) {
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + k);
+    gl_.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+    // Rows come bottom first, as Frame wants: no flip.
+    for (int i = 0; i < c.varyings[k].size; ++i, ++component) {
+      std::vector<float>& out = frame.components[size_t(component)];
+      for (size_t p = 0; p < out.size(); ++p)
+        out[p] = rgba[4 * p + size_t(i)];
+    }
+  }
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
+  gl_.ReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
+}
+
+// Mesa replicates the top bits below when widening a 24-bit depth to 32, so >> 8 gives the
+// stored integer back.
+void Framebuffer::read_depth(Frame& frame) {
+  if (depth_format_ == DepthFormat::float32) {
+    gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_FLOAT,
+                   frame.depth.data());
+    return;
+  }
+  std::vector<GLuint> z(frame.pixel_count());
+  gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
+  for (size_t i = 0; i < z.size(); ++i)
+    frame.depth[i] = float(z[i] >> 8);
+}
+
+void Framebuffer::read_fragment_counts(Frame& frame) {
+  std::vector<float> counts(frame.pixel_count());
+  gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl_.ReadPixels(0, 0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
+  frame.fragments.resize(counts.size());
+  for (size_t i = 0; i < counts.size(); ++i)
+    frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
+}
+
+}  // namespace glrc::gl

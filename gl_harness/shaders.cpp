@@ -1,0 +1,114 @@
+// The GLSL text the renderer draws with (shaders.hpp). Only rasterization and interpolation
+// are under test, so the shaders do nothing else: clip coordinates in, varyings and
+// gl_PrimitiveID out.
+#include "gl_harness/shaders.hpp"
+
+#include <stdexcept>
+
+namespace glrc::gl {
+
+const char* glsl_type(int size) {
+  static const char* const kTypes[] = {"float", "vec2", "vec3", "vec4"};
+  // The index below would read past the table; the renderer validates sizes first, but these
+  // functions are called on their own too.
+  if (size < 1 || size > 4)
+    throw std::invalid_argument("varying size " + std::to_string(size) + " outside 1..4");
+  return kTypes[size - 1];
+}
+
+const char* glsl_qualifier(Interpolation i) {
+  switch (i) {
+    case Interpolation::smooth:
+      return "smooth";
+    case Interpolation::flat:
+      return "flat";
+    case Interpolation::noperspective:
+      return "noperspective";
+  }
+  return "smooth";
+}
+
+std::string program_key(const Case& c) {
+  std::string key;
+  for (const Varying& v : c.varyings)
+    key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
+  return key;
+}
+
+std::string vertex_shader_source(const Case& c) {
+  std::string s =
+      "#version 330 core\n"
+      "layout(location = 0) in vec4 a_clip;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    const Varying& v = c.varyings[k];
+    std::string n = std::to_string(k);
+    s += "layout(location = " + std::to_string(k + 1) + ") in " + glsl_type(v.size) + " a" + n +
+         ";\n";
+    s += std::string(glsl_qualifier(v.interpolation)) + " out " + glsl_type(v.size) + " v" + n +
+         ";\n";
+  }
+  // Clip coordinates pass through untouched: the reference sees the very same bits.
+  s += "void main() {\n  gl_Position = a_clip;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k)
+    s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
+  return s + "}\n";
+}
+
+// One triangle in, the same triangle out, vertex order kept: the provoking vertex of a flat
+// varying stays the one the reference takes.
+std::string geometry_shader_source(const Case& c) {
+  std::string s =
+      "#version 330 core\n"
+      "layout(triangles) in;\n"
+      "layout(triangle_strip, max_vertices = 3) out;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    const Varying& v = c.varyings[k];
+    std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
+    std::string n = std::to_string(k);
+    s += q + "in " + glsl_type(v.size) + " v" + n + "[];\n";
+    s += q + "out " + glsl_type(v.size) + " g" + n + ";\n";
+  }
+  s += "void main() {\n  for (int i = 0; i < 3; ++i) {\n";
+  s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k)
+    s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
+  return s + "    EmitVertex();\n  }\n  EndPrimitive();\n}\n";
+}
+
+std::string fragment_shader_source(const Case& c, bool after_geometry_shader) {
+  // Every attachment is RGBA32F, whatever the varying's size: the unused components are 0.
+  static const char* const kPad[] = {", 0.0, 0.0, 0.0", ", 0.0, 0.0", ", 0.0", ""};
+  const char* const input = after_geometry_shader ? "g" : "v";
+  std::string s = "#version 330 core\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    const Varying& v = c.varyings[k];
+    std::string n = std::to_string(k);
+    s += std::string(glsl_qualifier(v.interpolation)) + " in " + glsl_type(v.size) + " " + input +
+         n + ";\n";
+    s += "layout(location = " + n + ") out vec4 o" + n + ";\n";
+  }
+  s += "layout(location = " + std::to_string(c.varyings.size()) + ") out int o_primitive;\n";
+  s += "void main() {\n";
+  for (size_t k = 0; k < c.varyings.size(); ++k) {
+    std::string n = std::to_string(k);
+    s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
+  }
+  // Without a geometry shader gl_PrimitiveID counts the draw's triangles from 0: the
+  // reference's primitive id. The pass-through one forwards that same count.
+  s += "  o_primitive = gl_PrimitiveID;\n}\n";
+  return s;
+}
+
+std::string count_vertex_shader_source() {
+  return "#version 330 core\n"
+         "layout(location = 0) in vec4 a_clip;\n"
+         "void main() { gl_Position = a_clip; }\n";
+}
+
+std::string count_fragment_shader_source() {
+  return "#version 330 core\n"
+         "layout(location = 0) out float o_count;\n"
+         "void main() { o_count = 1.0; }\n";
+}
+
+}  // namespace glrc::gl

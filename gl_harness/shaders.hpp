@@ -1,0 +1,56 @@
+// Internal to gl_harness: the GLSL text of the programs the renderer draws a Case with. Pure
+// string functions of a Case's varyings, with no GL call, so the text is tested without a
+// context (tests/gl_shaders).
+//
+// The interface between the shaders, the vertex data and the framebuffer, which the renderer
+// relies on:
+//   vertex inputs:    location 0 `a_clip` (vec4, the case's clip coordinates, passed to
+//                     gl_Position untouched); location k + 1 `a<k>`, varying k's components;
+//   varyings:         `v<k>` (vertex shader out), `g<k>` (geometry shader out), with varying
+//                     k's qualifier (smooth, flat, noperspective) and type (float .. vec4);
+//   fragment outputs: location k `o<k>` (vec4: varying k padded with zeros) for k < n, and
+//                     location n `o_primitive` (int: gl_PrimitiveID), n = varyings.size().
+// Names are generated rather than the case's: those are arbitrary strings and may collide
+// with GLSL keywords. Every shader is `#version 330 core`.
+#pragma once
+
+#include <string>
+
+#include "core/case.hpp"
+
+namespace glrc::gl {
+
+// The GLSL type of a varying of `size` components: "float", "vec2", "vec3", "vec4". Throws
+// std::invalid_argument for a size outside 1..4 (the renderer rejects such a case first).
+const char* glsl_type(int size);
+
+// The GLSL interpolation qualifier: "smooth", "flat" or "noperspective".
+const char* glsl_qualifier(Interpolation i);
+
+// The key of the program cache: programs depend only on the varyings' sizes and qualifiers,
+// never on names or values, so a run of many cases compiles few programs. E.g. "4smooth,1flat,"
+// (every varying followed by a comma; "" for a case without varyings). Throws nothing.
+std::string program_key(const Case& c);
+
+// The vertex shader: a_clip to gl_Position, a<k> to v<k>. Throws std::invalid_argument for a
+// varying size outside 1..4.
+std::string vertex_shader_source(const Case& c);
+
+// The pass-through geometry shader, only for a driver that needs one to supply gl_PrimitiveID
+// (GlInfo::primitive_id_from_geometry_shader): each triangle's three vertices out unchanged, in
+// order (v<k>[i] to g<k>, so the provoking vertex is the same one), gl_PrimitiveIDIn forwarded.
+// Throws std::invalid_argument for a varying size outside 1..4.
+std::string geometry_shader_source(const Case& c);
+
+// The fragment shader: varying k to o<k>, gl_PrimitiveID to o_primitive. It reads g<k> when
+// `after_geometry_shader`, else v<k>. Throws std::invalid_argument for a varying size outside
+// 1..4.
+std::string fragment_shader_source(const Case& c, bool after_geometry_shader);
+
+// The fragment-count pass's program, the same for every case: positions only (location 0
+// `a_clip`), and every fragment writes 1.0 to location 0 `o_count`, which additive blending
+// sums per pixel.
+std::string count_vertex_shader_source();
+std::string count_fragment_shader_source();
+
+}  // namespace glrc::gl
