@@ -3,19 +3,10 @@
 #include <algorithm>
 #include <stdexcept>
 
-#if GLRC_IMAGES
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#endif
+#include "report/image_plugin.hpp"
 
 namespace glrc::report {
 namespace {
-
-#if GLRC_IMAGES
-OIIO::ImageSpec rgb_spec(const Canvas& canvas) {
-  return OIIO::ImageSpec(canvas.width, canvas.height, 3, OIIO::TypeDesc::FLOAT);
-}
-#endif
 
 std::string one_line(std::string s) {
   std::replace(s.begin(), s.end(), '\n', ' ');
@@ -58,63 +49,52 @@ void paint_frame(Canvas& canvas, int x0, int y0, int factor, int frame_width, in
                   colour_of(x, y));
 }
 
-#if GLRC_IMAGES
 std::optional<std::string> find_font() {
+  const glrc_images_api* api = nullptr;
+  try {
+    api = &image_plugin();
+  } catch (const std::exception&) {
+    return std::nullopt;  // write_png says why, once per image
+  }
   // DejaVu ships with most Linux desktops (Debian: fonts-dejavu-core); OIIO's own default font
-  // is often missing. text_size loads the face, so it tells whether drawing will work.
+  // is often missing.
   for (const char* name :
        {"DejaVuSans", "DejaVuSansMono", "LiberationSans-Regular", "FreeSans", "Arial"}) {
-    if (OIIO::ImageBufAlgo::text_size("0", 12, name).defined()) {
-      (void)OIIO::geterror();
-      return std::string(name);
-    }
+    if (api->font_loads(name)) return std::string(name);
   }
-  (void)OIIO::geterror();  // drop the lookup failures, which are not errors of ours
   return std::nullopt;
 }
 
 void draw_text(Canvas& canvas, const std::optional<std::string>& font, int x, int y,
                const std::string& text, int size, Rgb colour, Align align, int max_width) {
   if (!font || text.empty()) return;
+  // A font was found, so the plugin is loaded.
+  const glrc_images_api& api = image_plugin();
   if (max_width > 0) {
     constexpr int kSmallestReadable = 8;
-    const OIIO::ROI extent = OIIO::ImageBufAlgo::text_size(text, size, *font);
-    if (extent.defined() && extent.width() > max_width)
-      size = std::max(kSmallestReadable, size * max_width / extent.width());
+    int width = 0, height = 0;
+    if (api.text_size(text.c_str(), size, font->c_str(), &width, &height, nullptr, 0) &&
+        width > max_width)
+      size = std::max(kSmallestReadable, size * max_width / width);
   }
-  // Wraps the canvas pixels; render_text draws straight into them.
-  OIIO::ImageBuf buf(rgb_spec(canvas), canvas.rgb.data());
   const float c[3] = {colour.r, colour.g, colour.b};
-  const auto alignx = align == Align::left     ? OIIO::ImageBufAlgo::TextAlignX::Left
-                      : align == Align::centre ? OIIO::ImageBufAlgo::TextAlignX::Center
-                                               : OIIO::ImageBufAlgo::TextAlignX::Right;
-  if (!OIIO::ImageBufAlgo::render_text(buf, x, y, text, size, *font, c, alignx)) {
-    (void)buf.geterror();
-    (void)OIIO::geterror();
-  }
+  const int alignx = align == Align::left     ? GLRC_IMAGES_LEFT
+                     : align == Align::centre ? GLRC_IMAGES_CENTRE
+                                              : GLRC_IMAGES_RIGHT;
+  (void)api.render_text(canvas.rgb.data(), canvas.width, canvas.height, x, y, text.c_str(), size,
+                        font->c_str(), c, alignx, nullptr, 0);
 }
 
 void write_png(const Canvas& canvas, const std::filesystem::path& file) {
-  OIIO::ImageBuf buf(rgb_spec(canvas));
-  if (!buf.set_pixels(buf.roi(), OIIO::TypeDesc::FLOAT, canvas.rgb.data()) ||
-      !buf.write(file.string(), OIIO::TypeDesc::UINT8)) {
-    std::string why = buf.geterror();
-    if (why.empty()) why = OIIO::geterror();
-    throw std::runtime_error("cannot write " + file.string() + ": " + one_line(why));
+  try {
+    const glrc_images_api& api = image_plugin();
+    char why[512] = "";
+    if (!api.write_image(file.c_str(), canvas.width, canvas.height, 3, canvas.rgb.data(),
+                         GLRC_IMAGES_UINT8, nullptr, nullptr, why, sizeof why))
+      throw std::runtime_error(why);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("cannot write " + file.string() + ": " + one_line(e.what()));
   }
 }
-#else
-// Built without OpenImageIO (GLRC_IMAGES=OFF): a lean glrefcheck that checks and reports in
-// text, JSON and CSV, and refuses to write images.
-std::optional<std::string> find_font() {
-  return std::nullopt;
-}
-void draw_text(Canvas&, const std::optional<std::string>&, int, int, const std::string&, int, Rgb,
-               Align, int) {}
-void write_png(const Canvas&, const std::filesystem::path& file) {
-  throw std::runtime_error("cannot write " + file.string() +
-                           ": glrefcheck was built without OpenImageIO (GLRC_IMAGES=OFF)");
-}
-#endif
 
 }  // namespace glrc::report

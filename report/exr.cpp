@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#if GLRC_IMAGES
-#include <OpenImageIO/imagebuf.h>
-#endif
+#include "report/image_plugin.hpp"
 
 namespace glrc::report {
 
@@ -18,24 +16,17 @@ void write_exr(const std::filesystem::path& file, int width, int height,
     std::copy_n(values.begin() + ptrdiff_t(y) * width, width,
                 upright.begin() + ptrdiff_t(height - 1 - y) * width);
 
-#if GLRC_IMAGES
-  OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"Y"};
-  spec.attribute("ImageDescription", description);
-  spec.attribute("compression", "zip");
-  OIIO::ImageBuf buf(spec);
-  if (!buf.set_pixels(buf.roi(), OIIO::TypeDesc::FLOAT, upright.data()) ||
-      !buf.write(file.string(), OIIO::TypeDesc::FLOAT)) {
-    std::string why = buf.geterror();
-    if (why.empty()) why = OIIO::geterror();
+  try {
+    const glrc_images_api& api = image_plugin();
+    char why[512] = "";
+    if (!api.write_image(file.c_str(), width, height, 1, upright.data(), GLRC_IMAGES_FLOAT,
+                         description.c_str(), "zip", why, sizeof why))
+      throw std::runtime_error(why);
+  } catch (const std::exception& e) {
+    std::string why = e.what();
     std::replace(why.begin(), why.end(), '\n', ' ');
     throw std::runtime_error("cannot write " + file.string() + ": " + why);
   }
-#else
-  (void)description;
-  throw std::runtime_error("cannot write " + file.string() +
-                           ": glrefcheck was built without OpenImageIO (GLRC_IMAGES=OFF)");
-#endif
 }
 
 }  // namespace glrc::report

@@ -1,9 +1,5 @@
 #include "report/html.hpp"
 
-#if GLRC_IMAGES
-#include <OpenImageIO/strutil.h>
-#endif
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -19,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "report/base64.hpp"
 #include "report/format.hpp"
 
 namespace glrc::report {
@@ -102,7 +99,7 @@ void write_file(const fs::path& file, const std::string& text) {
   write_file_atomically(file, text);
 }
 
-[[maybe_unused]] std::string read_binary(const fs::path& file) {
+std::string read_binary(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
@@ -140,13 +137,8 @@ std::vector<std::string> png_names(const fs::path& dir, const std::vector<std::s
 }
 
 std::string img_tag(const fs::path& png, const std::string& alt) {
-#if GLRC_IMAGES
-  return "<img src=\"data:image/png;base64," + OIIO::Strutil::base64_encode(read_binary(png)) +
-         "\" alt=\"" + xml_escaped(alt) + "\">";
-#else
-  (void)png;  // no images are written without OpenImageIO, so none is ever found
-  return "<span>" + xml_escaped(alt) + "</span>";
-#endif
+  return "<img src=\"data:image/png;base64," + base64_encode(read_binary(png)) + "\" alt=\"" +
+         xml_escaped(alt) + "\">";
 }
 
 std::string figure(const fs::path& png) {
