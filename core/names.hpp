@@ -49,8 +49,10 @@ std::string choices_text() {
   std::string out;
   const auto& t = Names<E>::table;
   for (size_t k = 0; k < t.size(); ++k)
-    out += std::string(k == 0 ? "" : k + 1 == t.size() ? " or " : ", ") + "\"" +
-           std::string(t[k].second) + "\"";
+    out += std::string(k == 0              ? ""
+                       : k + 1 == t.size() ? " or "
+                                           : ", ") +
+           "\"" + std::string(t[k].second) + "\"";
   return out;
 }
 
