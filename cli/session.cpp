@@ -150,6 +150,7 @@ RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& mode
   info.gl_version = gl.version;
   info.gl_library = gl.library;
   info.gl_warnings = gl.warnings;
+  info.gl_primitive_id_from_geometry_shader = gl.primitive_id_from_geometry_shader;
   info.mesa_prefix = o.mesa;
   return info;
 }

@@ -101,6 +101,17 @@ struct CoverageStats {
   std::vector<Pixel> mismatches;  // first few, for the report
 };
 
+template <>
+struct Names<CoverageStats::Label> {
+  static constexpr std::array<std::pair<CoverageStats::Label, std::string_view>, 5> table{{
+      {CoverageStats::Label::exact_tie, "exact_tie"},
+      {CoverageStats::Label::within_snapping, "within_snapping"},
+      {CoverageStats::Label::fill_rule, "fill_rule"},
+      {CoverageStats::Label::gap, "gap"},
+      {CoverageStats::Label::double_hit, "double_hit"},
+  }};
+};
+
 struct CaseResult {
   std::string name;
   std::string description;
@@ -133,6 +144,9 @@ struct RunInfo {
   // What the implementation got wrong while the GL side set up (gl::GlInfo::warnings, e.g. a
   // wrong first draw), one line each. The run went on regardless.
   std::vector<std::string> gl_warnings;
+  // gl_PrimitiveID came from a pass-through geometry shader (gl::GlInfo's field of that name):
+  // without one the driver drew nothing when the fragment shader read it.
+  bool gl_primitive_id_from_geometry_shader = false;
   int jobs = 1;
   // Sharding: this run holds every `fraction`-th case starting at `fraction_start` (1-based) of
   // `total_cases`; fraction 1 is the whole suite.

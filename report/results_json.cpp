@@ -33,6 +33,7 @@ json run_json(const RunInfo& run) {
           {"mesa_prefix", run.mesa_prefix},
           {"gl_library", run.gl_library},
           {"gl_warnings", run.gl_warnings},
+          {"gl_primitive_id_from_geometry_shader", run.gl_primitive_id_from_geometry_shader},
           {"jobs", run.jobs},
           {"fraction", run.fraction},
           {"fraction_start", run.fraction_start},
@@ -65,20 +66,8 @@ json summary_json(const std::vector<CaseResult>& results) {
   return summary;
 }
 
-const char* label_name(CoverageStats::Label l) {
-  switch (l) {
-    case CoverageStats::Label::exact_tie:
-      return "exact_tie";
-    case CoverageStats::Label::within_snapping:
-      return "within_snapping";
-    case CoverageStats::Label::fill_rule:
-      return "fill_rule";
-    case CoverageStats::Label::gap:
-      return "gap";
-    case CoverageStats::Label::double_hit:
-      return "double_hit";
-  }
-  return "fill_rule";
+std::string label_name(CoverageStats::Label l) {
+  return std::string(name_of(l));
 }
 
 json coverage_json(const CoverageStats& cov) {
@@ -246,6 +235,9 @@ RunInfo read_run(const Reader& rd, const json& j) {
       run.gl_warnings.push_back(w[k].get<std::string>());
     }
   }
+  if (j.contains("gl_primitive_id_from_geometry_shader"))  // optional: added later
+    run.gl_primitive_id_from_geometry_shader =
+        rd.boolean(j, "run", "gl_primitive_id_from_geometry_shader");
   run.jobs = rd.integer(j, "run", "jobs", 1, 0);  // a merged run of no shards would say 0
   // The command line's own limits on --fraction and --fraction-start.
   run.fraction = rd.integer(j, "run", "fraction", 1, 1);
@@ -282,12 +274,9 @@ CoverageStats read_coverage(const Reader& rd, const json& j, const std::string& 
     p.gl = rd.integer(list[k], at, "gl", -1);
     p.boundary = rd.boolean(list[k], at, "boundary");
     const std::string label = rd.str(list[k], at, "label");
-    bool known = false;
-    for (auto l : {CoverageStats::Label::exact_tie, CoverageStats::Label::within_snapping,
-                   CoverageStats::Label::fill_rule, CoverageStats::Label::gap,
-                   CoverageStats::Label::double_hit})
-      if (label == label_name(l)) p.label = l, known = true;
+    const auto known = from_name<CoverageStats::Label>(label);
     if (!known) rd.bad(at + ".label", "exact_tie, within_snapping, fill_rule, gap or double_hit");
+    p.label = *known;
     c.mismatches.push_back(p);
   }
   return c;

@@ -15,8 +15,8 @@ packages=(
   clang libclang-rt-14-dev
   # scripts/format.sh: the tree is formatted by .clang-format, checked in CI.
   clang-format
-  # scripts/interrupt-test.sh compares results.json files.
-  jq
+  # scripts/interrupt-test.sh compares results.json files; the schema test validates them.
+  jq python3-jsonschema
   # The HTML report test opens the report in headless Chromium to check that it renders.
   chromium
 )
