@@ -9,10 +9,13 @@
 #include <fmt/core.h>
 
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <utility>
+
+extern char** environ;
 
 namespace glrc::cli {
 namespace {
@@ -25,6 +28,28 @@ std::string describe_exit(int status) {
 }
 
 }  // namespace
+
+std::string self_executable() {
+  char buf[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) throw std::runtime_error("cannot find this program's own file (/proc/self/exe)");
+  return std::string(buf, size_t(n));
+}
+
+std::vector<std::string> environment_with(
+    const std::vector<std::pair<std::string, std::string>>& overrides) {
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e) {
+    const std::string var(*e);
+    bool replaced = false;
+    for (const auto& [name, value] : overrides)
+      replaced = replaced || var.starts_with(name + "=");
+    if (!replaced) env.push_back(var);
+  }
+  for (const auto& [name, value] : overrides)
+    env.push_back(name + "=" + value);
+  return env;
+}
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv_text,
                            const std::vector<std::string>& env_text,

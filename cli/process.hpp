@@ -9,9 +9,18 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glrc::cli {
+
+// This program's own file (/proc/self/exe), to start a copy of it; std::runtime_error when it
+// cannot be found.
+std::string self_executable();
+// This process's environment with `overrides` (NAME, value) replacing or adding variables, as
+// NAME=value strings for a child.
+std::vector<std::string> environment_with(
+    const std::vector<std::pair<std::string, std::string>>& overrides);
 
 class ChildProcess {
  public:

@@ -11,6 +11,7 @@
 #include "casefile/casefile.hpp"
 #include "casefile/wire.hpp"
 #include "cli/identify.hpp"
+#include "cli/worker_protocol.hpp"
 #include "cli/workers.hpp"
 #include "identify/model_cache.hpp"
 #include "report/expectations.hpp"
@@ -121,16 +122,7 @@ int cmd_worker() {
     return 2;
   }
   const gl::GlInfo& gl = renderer->info();
-  channel.send({{"hello",
-                 {{"vendor", gl.vendor},
-                  {"renderer", gl.renderer},
-                  {"version", gl.version},
-                  {"library", gl.library},
-                  {"platform", gl.platform},
-                  {"subpixel_bits", gl.subpixel_bits},
-                  {"primitive_id_from_geometry_shader", gl.primitive_id_from_geometry_shader},
-                  {"warnings", gl.warnings},
-                  {"driver_files", identify::driver_files(gl)}}}});
+  channel.send(hello_message(gl, identify::driver_files(gl)));
   while (std::getline(std::cin, line)) {
     const auto job = nlohmann::json::parse(line);
     if (job.contains("identify")) {

@@ -1,6 +1,5 @@
 // The runner side of cli/workers.hpp: starts workers, hands out cases one at a time (so a slow
 // case never holds up a queue behind it), watches for deaths and timeouts with poll().
-#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
 #include <unistd.h>
@@ -8,32 +7,21 @@
 #include <fmt/core.h>
 #include <algorithm>
 #include <cerrno>
-#include <climits>
 #include <cmath>
-#include <cstring>
 #include <deque>
 #include <optional>
 
 #include <nlohmann/json.hpp>
 
-#include "casefile/wire.hpp"
 #include "cli/process.hpp"
+#include "cli/worker_protocol.hpp"
 #include "cli/workers.hpp"
 #include "identify/model_cache.hpp"
 #include "report/report.hpp"
 
-extern char** environ;
-
 namespace glrc::cli {
 
 namespace {
-
-std::string self_executable() {
-  char buf[PATH_MAX];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
-  if (n <= 0) throw std::runtime_error("cannot find this program's own file (/proc/self/exe)");
-  return std::string(buf, size_t(n));
-}
 
 struct Worker {
   ChildProcess process;
@@ -54,16 +42,7 @@ class Pool {
     for (size_t k = 0; k < cases.size(); ++k)
       queue_.push_back(k);
     options_line_ = options_json(o) + "\n";
-    // The environment of the children: ours, with the prefix's variables replaced.
-    for (char** e = environ; *e; ++e) {
-      const std::string var(*e);
-      bool replaced = false;
-      for (const auto& [name, value] : s.environment)
-        replaced = replaced || var.starts_with(name + "=");
-      if (!replaced) env_.push_back(var);
-    }
-    for (const auto& [name, value] : s.environment)
-      env_.push_back(name + "=" + value);
+    env_ = environment_with(s.environment);
     exe_ = self_executable();
   }
 
@@ -159,13 +138,7 @@ class Pool {
     w.job = k;
     w.started = Clock::now();
     w.deadline = after(w.started, s_.timeout);
-    const nlohmann::json job = {{"index", k},
-                                {"file", cases_[k]->source_path},
-                                {"case", casefile::to_wire(*cases_[k])},
-                                {"name", cases_[k]->name},
-                                {"images", s_.images(*cases_[k])},
-                                {"model", identify::model_json(model_->model)}};
-    send(w, job.dump() + "\n");
+    send(w, job_line(k, *cases_[k], s_.images(*cases_[k]), model_->model));
   }
 
   void read_from(Worker& w, size_t slot) {
@@ -195,11 +168,7 @@ class Pool {
       w.ready = true;
       if (!started_) {
         const auto& h = msg["hello"];
-        gl_.vendor = h.at("vendor"), gl_.renderer = h.at("renderer"), gl_.version = h.at("version");
-        gl_.library = h.at("library"), gl_.platform = h.at("platform");
-        gl_.subpixel_bits = h.at("subpixel_bits");
-        gl_.primitive_id_from_geometry_shader = h.value("primitive_id_from_geometry_shader", false);
-        gl_.warnings = h.value("warnings", std::vector<std::string>{});
+        gl_ = h.get<gl::GlInfo>();
         started_ = true;
         return begin_model(w, h.value("driver_files", std::vector<std::string>{}));
       }
@@ -265,13 +234,7 @@ class Pool {
 
   // A result the worker could not give: Crash or Timeout.
   CaseResult lost(size_t k, Status status, const std::string& message, double seconds) const {
-    CaseResult r;
-    r.name = cases_[k]->name;
-    r.description = cases_[k]->description;
-    r.status = r.outcome = status;
-    r.message = message;
-    r.seconds = seconds;
-    return r;
+    return unfinished_result(*cases_[k], status, message, seconds);
   }
 
   void died(Worker& w, size_t slot) {

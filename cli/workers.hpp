@@ -9,9 +9,10 @@
 // {"index": k, "file": path, "case": the loaded case (casefile/wire.hpp, so that the worker
 // does not parse the file again), "name": case name, "images": bool, "model": {"subpixel_bits",
 // "planes", "tie_break"}} per case, or {"identify": true}; end of input means stop. On its
-// stdout: {"hello": {gl info, "driver_files": [paths]}} (GL strings, subpixel bits, whether
-// gl_PrimitiveID comes from a geometry shader, and warnings: what the implementation got wrong
-// while the context set up) or {"error": "one line"} once the context exists, then
+// stdout: {"hello": {every gl::GlInfo field, "driver_files": [paths]}} (GL strings, subpixel
+// bits, the initial provoking vertex, whether gl_PrimitiveID comes from a geometry shader, and
+// warnings: what the implementation got wrong while the context set up; cli/worker_protocol.hpp) or
+// {"error": "one line"} once the context exists, then
 // {"index": k, "result": CaseResult, "images": true when heatmaps follow} per case (the verdict
 // comes first), then for a case with heatmaps {"images_done": k} or {"images_done": k,
 // "images_error": "one line"} once they are written, and {"identified": model} or
@@ -19,7 +20,7 @@
 // driver's messages) go to a log file: a crash report quotes its last lines.
 //
 // The model: the runner decides it once per run, from the command line, or from the model cache
-// (cli/model_cache.hpp) for the first worker's GL strings and driver files, or else by asking
+// (identify/model_cache.hpp) for the first worker's GL strings and driver files, or else by asking
 // the first worker to identify the implementation (about 0.5 s); the other workers wait for it.
 // Every case of the run then carries that one model.
 #pragma once

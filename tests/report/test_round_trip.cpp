@@ -105,8 +105,9 @@ TEST(RoundTrip, RunInfo) {
 }
 
 TEST(RoundTrip, ResultsJson) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("glrc_round_trip_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      ("glrc_round_trip_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   std::filesystem::create_directories(dir);
   const RunInfo i = every_run_field_set();
   std::vector<CaseResult> cases = {every_field_set(), every_field_set()};
