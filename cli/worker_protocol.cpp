@@ -23,7 +23,8 @@ void from_json(const nlohmann::json& j, GlInfo& info) {
   info.vendor = j.at("vendor"), info.renderer = j.at("renderer"), info.version = j.at("version");
   info.platform = j.at("platform"), info.library = j.at("library");
   info.subpixel_bits = j.at("subpixel_bits");
-  const auto provoking = from_name<ProvokingVertex>(j.at("initial_provoking_vertex").get<std::string>());
+  const auto provoking =
+      from_name<ProvokingVertex>(j.at("initial_provoking_vertex").get<std::string>());
   if (!provoking) throw std::runtime_error("initial_provoking_vertex: expected first or last");
   info.initial_provoking_vertex = *provoking;
   info.primitive_id_from_geometry_shader = j.at("primitive_id_from_geometry_shader");
@@ -41,12 +42,9 @@ nlohmann::json hello_message(const gl::GlInfo& info, const std::vector<std::stri
 }
 
 std::string job_line(size_t index, const Case& c, bool images, const Model& model) {
-  const nlohmann::json job = {{"index", index},
-                              {"file", c.source_path},
-                              {"case", casefile::to_wire(c)},
-                              {"name", c.name},
-                              {"images", images},
-                              {"model", identify::model_json(model)}};
+  const nlohmann::json job = {
+      {"index", index}, {"file", c.source_path}, {"case", casefile::to_wire(c)},
+      {"name", c.name}, {"images", images},      {"model", identify::model_json(model)}};
   return job.dump() + "\n";
 }
 

@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v clang-format >/dev/null || scripts/install-deps.sh
-mapfile -t files < <(git ls-files '*.cpp' '*.hpp' '*.h')
+# Tracked files and new ones not yet added (but not what .gitignore leaves out).
+mapfile -t files < <(git ls-files --cached --others --exclude-standard '*.cpp' '*.hpp' '*.h')
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${files[@]}"
   exit 0
