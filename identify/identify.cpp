@@ -157,11 +157,11 @@ std::string bits_name(int bits) {
 }
 
 const char* planes_name(Planes p) {
-  return p == Planes::snapped ? "snapped" : "unsnapped";
+  return to_string(p);
 }
 
 const char* provoking_name(ProvokingVertex p) {
-  return p == ProvokingVertex::first ? "first" : "last";
+  return name_of(p).data();  // the table's names are string literals, NUL-terminated
 }
 
 ModelChoice fallback_model(const Model& fallback, const std::string& why) {

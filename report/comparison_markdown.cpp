@@ -10,19 +10,8 @@ namespace glrc::report {
 namespace {
 
 using Kind = CaseChange::Kind;
-using sections::bits_changed;
-using sections::changes_status;
-using sections::counts_line;
-using sections::kKinds;
-using sections::listed_of;
-using sections::no_change;
-using sections::precision_note;
-using sections::section_title;
-using sections::setup_note;
-using sections::skipped_in_both_note;
-using sections::status_text;
-using sections::ulps_change;
-using sections::worst_change;
+// The section helpers both views share (comparison_sections.hpp).
+using namespace sections;
 
 // Markdown table cells: a `|` would end the cell and a newline the row.
 std::string md_cell(const std::string& s) {

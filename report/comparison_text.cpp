@@ -12,20 +12,8 @@ namespace glrc::report {
 namespace {
 
 using Kind = CaseChange::Kind;
-using sections::bits_changed;
-using sections::changes_status;
-using sections::counts_line;
-using sections::kKinds;
-using sections::listed;
-using sections::listed_of;
-using sections::no_change;
-using sections::precision_note;
-using sections::section_title;
-using sections::setup_note;
-using sections::skipped_in_both_note;
-using sections::status_text;
-using sections::ulps_change;
-using sections::worst_change;
+// The section helpers both views share (comparison_sections.hpp).
+using namespace sections;
 
 std::string driver_text(const RunInfo& r) {
   return r.driver.empty() ? r.backend : r.backend + ", " + r.driver;
