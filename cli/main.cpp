@@ -97,10 +97,12 @@ void add_gl_options(CLI::App& app, Options& o) {
 void check_resume_alone(const CLI::App& run) {
   for (const CLI::Option* opt : run.get_options()) {
     const std::string name = opt->get_name();
-    if (opt->count() == 0 || name == "--resume" || name == "--jobs" || name == "--jobs-force")
+    if (opt->count() == 0 || name == "--resume" || name == "--jobs" || name == "--jobs-force" ||
+        name == "--worker-wrapper")
       continue;
     throw InputError(
-        "--resume: expected no other option than --jobs and --jobs-force (the run "
+        "--resume: expected no other option than --jobs, --jobs-force and --worker-wrapper (the "
+        "run "
         "goes on with the options and cases it began with), got " +
         (opt->get_positional() ? "case paths" : name));
   }
@@ -146,10 +148,21 @@ int main_impl(int argc, char** argv) {
   run->add_option("--fraction-start", o.fraction_start,
                   "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
       ->check(whole_number(1));
+  run->add_option("--worker-wrapper", o.worker_wrapper,
+                  "run each worker under this command, as typed on a shell (\"valgrind -q\", "
+                  "\"taskset -c 2\", \"gdb -batch -ex run -ex bt --args\"); its processes are "
+                  "killed with the worker")
+      ->check(CLI::Validator(
+          [](const std::string& s) {
+            return s.find_first_not_of(" \t") == std::string::npos ? "expected a command"
+                                                                   : std::string();
+          },
+          "COMMAND"));
   run->add_flag("--html", o.html, "also write report.html, a self-contained page");
-  run->add_option("--resume", o.resume,
-                  "continue the interrupted or killed run in this folder, with the options and "
-                  "cases it began with (only --jobs and --jobs-force may be given with it)");
+  run->add_option(
+      "--resume", o.resume,
+      "continue the interrupted or killed run in this folder, with the options and "
+      "cases it began with (only --jobs, --jobs-force and --worker-wrapper may be given with it)");
 
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);

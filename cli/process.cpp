@@ -145,6 +145,10 @@ void ChildProcess::close_pipes() {
 }
 
 std::string ChildProcess::wait() {
+  // What it started and left behind (a wrapper's worker) goes with it. Before waitpid: until
+  // the child is reaped its pid cannot become another process group's id. A child that closed
+  // its output while exiting keeps its exit status: that was set before its files were closed.
+  kill(-pid_, SIGKILL);
   int status = 0;
   waitpid(pid_, &status, 0);
   close_pipes();
@@ -153,6 +157,9 @@ std::string ChildProcess::wait() {
 }
 
 void ChildProcess::kill_now() {
+  // Its whole process group: a wrapper (cli/workers.hpp) and the worker it started. The child
+  // itself too, should it be killed before its setpgid.
+  kill(-pid_, SIGKILL);
   kill(pid_, SIGKILL);
   waitpid(pid_, nullptr, 0);
   close_pipes();

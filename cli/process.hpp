@@ -49,9 +49,9 @@ class ChildProcess {
   long read_some(std::string& into);
 
   // After its output ended: waits for it and says how it ended ("exited with code 1",
-  // "killed by signal 11 (Segmentation fault)").
+  // "killed by signal 11 (Segmentation fault)"). What is left of its process group is killed.
   std::string wait();
-  // Ends it now: SIGKILL, then waits.
+  // Ends it now: SIGKILL to its process group (it and the processes it started), then waits.
   void kill_now();
   // Closes its stdin (a worker then finishes and exits) and waits for it.
   void finish();

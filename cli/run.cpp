@@ -39,6 +39,7 @@ int cmd_run(const Options& given) {
     o = earlier->options;
     o.out = given.resume;
     if (given.jobs > 0) o.jobs = given.jobs, o.jobs_force = given.jobs_force;
+    o.worker_wrapper = given.worker_wrapper;
     for (const std::string& file : earlier->files) {
       try {
         all.push_back(casefile::load(file));
@@ -106,6 +107,7 @@ int cmd_run(const Options& given) {
   s.timeout = o.timeout;
   s.log_dir = out / "logs";
   s.interrupt_fd = interrupt_fd;
+  s.wrapper = o.worker_wrapper;
   if (earlier && earlier->model) s.model = earlier->model;
   // Known failures get their heatmaps only for the HTML report: triage needs the new ones.
   s.images = [&](const Case& c) { return o.html || !baseline.expected.count(c.name); };

@@ -73,6 +73,9 @@ struct Options {
   // would only take turns on the cores.
   bool jobs_force = false;
   double timeout = 60;
+  // A command the workers run under (cli/workers.hpp WorkerSettings::wrapper); "" for none. How
+  // the run is carried out, not what it checks: --resume takes it from its own command line.
+  std::string worker_wrapper;
   // Sharding as deqp-runner does it: every `fraction`-th case, starting at `fraction_start`
   // (1-based, like GitLab's CI_NODE_INDEX).
   int fraction = 1, fraction_start = 1;

@@ -14,7 +14,6 @@
 #include "cli/worker_protocol.hpp"
 #include "cli/workers.hpp"
 #include "identify/model_cache.hpp"
-#include "report/expectations.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
@@ -50,25 +49,6 @@ class Channel {
   int fd_;
 };
 
-// For the tests of crash and timeout handling only: a case whose name matches the pattern in
-// `variable` (GLRC_TEST_STALL_CASE: before the check; GLRC_TEST_STALL_IMAGES: after the verdict,
-// before the heatmaps) makes the worker write its pid to GLRC_TEST_STALL_PIDFILE and stop there,
-// as a hung driver would, so a test can kill it (crash) or let the timeout strike.
-void stall_if_asked(const std::string& name, const char* variable) {
-  const char* pattern = std::getenv(variable);
-  if (!pattern || !report::Regex(pattern).full_match(name)) return;
-  if (const char* pidfile = std::getenv("GLRC_TEST_STALL_PIDFILE")) {
-    const std::string tmp = std::string(pidfile) + ".tmp";
-    if (FILE* f = std::fopen(tmp.c_str(), "w")) {
-      std::fprintf(f, "%d\n", int(getpid()));
-      std::fclose(f);
-      std::rename(tmp.c_str(), pidfile);
-    }
-  }
-  for (;;)
-    pause();
-}
-
 // A checked case, with its frames kept for the heatmaps that follow the verdict.
 struct Outcome {
   Case c;
@@ -87,7 +67,6 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
     r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
     return out;
   }
-  stall_if_asked(out.c.name, "GLRC_TEST_STALL_CASE");
   out.checked = check::check_with_frames(out.c, renderer, o);
   return out;
 }
@@ -95,7 +74,6 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
 // A failing case's heatmaps, in <out>/cases/<case>/ for the HTML report and anyone triaging
 // the run. Returns why there are none, or "".
 std::string write_images(const Outcome& done, const Options& o) {
-  stall_if_asked(done.c.name, "GLRC_TEST_STALL_IMAGES");
   try {
     report::write_diff_images(std::filesystem::path(o.out) / "cases" / done.c.name, done.c,
                               done.checked.reference, done.checked.gl, done.checked.result);
@@ -126,8 +104,6 @@ int cmd_worker() {
   while (std::getline(std::cin, line)) {
     const auto job = nlohmann::json::parse(line);
     if (job.contains("identify")) {
-      // For the tests only: a driver that crashes on identify's probes.
-      if (std::getenv("GLRC_TEST_CRASH_IDENTIFY")) std::abort();
       try {
         channel.send({{"identified", identify::model_json(identify::identify_model(*renderer))}});
       } catch (const std::exception& e) {

@@ -59,6 +59,13 @@ struct WorkerSettings {
   // Readable once the run is to stop (SIGINT, SIGTERM): no more cases are handed out and the
   // workers are killed; run_in_workers returns with the cases finished so far reported.
   int interrupt_fd = -1;
+  // The worker program and its arguments; empty: this program's `worker` subcommand. Anything
+  // that speaks the protocol above will do (the tests' fake workers do).
+  std::vector<std::string> command;
+  // A command the workers run under, as typed on a shell (`run --worker-wrapper`): a debugger,
+  // valgrind, taskset, rr. Its words come before the worker's command; "" for none. The
+  // wrapper's own processes are killed with the worker (the worker's process group).
+  std::string wrapper;
 };
 
 // Checks `cases` in worker processes. `on_start` gets the first worker's GL strings and the

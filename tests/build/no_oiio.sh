@@ -6,12 +6,16 @@
 #   no_oiio.sh GLREFCHECK PLUGIN
 set -euo pipefail
 glrefcheck=$1 plugin=$2
-if ldd "$glrefcheck" | grep -i openimageio; then
+# ldd's output is read whole before grep sees it: `ldd | grep -q` fails at random under
+# pipefail, since grep -q exits at its first match and ldd then dies of SIGPIPE.
+at_start=$(ldd "$glrefcheck")
+plugin_libs=$(ldd "$plugin")
+if grep -i openimageio <<<"$at_start"; then
   echo "$glrefcheck loads OpenImageIO at start (above); only $plugin may link it"
   exit 1
 fi
-if ! ldd "$plugin" | grep -qi openimageio; then
+if ! grep -qi openimageio <<<"$plugin_libs"; then
   echo "$plugin does not link OpenImageIO: the check above proves nothing"
   exit 1
 fi
-echo "$glrefcheck: $(ldd "$glrefcheck" | wc -l) shared libraries at start, none of OpenImageIO"
+echo "$glrefcheck: $(wc -l <<<"$at_start") shared libraries at start, none of OpenImageIO"

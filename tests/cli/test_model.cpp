@@ -25,6 +25,7 @@ using glrc::cli::Options;
 using glrc::identify::ModelCacheSlot;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
+using glrc::test::proxied_workers;
 
 // softpipe on Mesa 22.3.6, as `identify` finds it.
 Model softpipe_model() {
@@ -261,8 +262,9 @@ TEST_F(ModelCli, SoftpipeRunIsJudgedByItsIdentifiedModel) {
 // it, and says why.
 TEST_F(ModelCli, FailedIdentificationFallsBackToTheDefaultModel) {
   const Outcome o =
-      glrefcheck("run --filter '^face_on' --jobs 2 --out '" + (dir_ / "out").string() + "'",
-                 "GLRC_TEST_CRASH_IDENTIFY=1 XDG_CACHE_HOME='" + (dir_ / "cache").string() + "'");
+      glrefcheck("run --filter '^face_on' --jobs 2 --out '" + (dir_ / "out").string() + "'" +
+                     proxied_workers("--crash-on-identify"),
+                 "XDG_CACHE_HOME='" + (dir_ / "cache").string() + "'");
   EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
   const auto j = nlohmann::json::parse(std::ifstream(dir_ / "out" / "results.json"));
   EXPECT_EQ(j["run"]["model"], "subpixel_bits=8 planes=unsnapped tie=bottom-left");

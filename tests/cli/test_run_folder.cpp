@@ -23,6 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
+using glrc::test::proxied_workers;
 using glrc::test::wait_for_pid;
 
 // Eight quick cases, in this order: attr_crossing_zero, attr_huge, attr_mixed_magnitudes,
@@ -208,9 +209,9 @@ TEST_P(Interrupted, ResumeGivesTheUninterruptedResults) {
 
   Outcome o;
   std::thread run([&] {
-    o = glrefcheck("run " + kCases + " --jobs 1 --out '" + out.string() + "'",
-                   std::string("GLRC_TEST_STALL_CASE=") + m.stall + " GLRC_TEST_STALL_PIDFILE='" +
-                       pidfile.string() + "'");
+    o = glrefcheck("run " + kCases + " --jobs 1 --out '" + out.string() + "'" +
+                   proxied_workers(std::string("--stall-case ") + m.stall + " --pidfile '" +
+                                   pidfile.string() + "'"));
   });
   const pid_t worker = wait_for_pid(pidfile);
   ASSERT_GT(worker, 0) << "no worker reached " << m.stall;
@@ -275,10 +276,10 @@ TEST_F(RunFolder, ResumeJudgesByTheBaselineTheRunBeganWith) {
 
   Outcome o;
   std::thread run([&] {
-    o = glrefcheck(
-        cases + "--out '" + out.string() + "' --baseline '" + (out / "failures.csv").string() + "'",
-        "GLRC_TEST_STALL_CASE=clip_noperspective_x_plane GLRC_TEST_STALL_PIDFILE='" +
-            pidfile.string() + "'");
+    o = glrefcheck(cases + "--out '" + out.string() + "' --baseline '" +
+                   (out / "failures.csv").string() + "'" +
+                   proxied_workers("--stall-case clip_noperspective_x_plane --pidfile '" +
+                                   pidfile.string() + "'"));
   });
   const pid_t worker = wait_for_pid(pidfile);
   ASSERT_GT(worker, 0);

@@ -22,6 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
+using glrc::test::proxied_workers;
 using glrc::test::wait_for_pid;
 
 // Eight quick cases on llvmpipe through OSMesa.
@@ -53,8 +54,8 @@ TEST_F(Workers, KilledWorkerIsACrashAndTheRunCompletes) {
   Outcome o;
   std::thread run([&] {
     o = glrefcheck(
-        "run " + kCases + " --jobs 2 --out '" + out.string() + "'",
-        "GLRC_TEST_STALL_CASE=viewport_tiny GLRC_TEST_STALL_PIDFILE='" + pidfile.string() + "'");
+        "run " + kCases + " --jobs 2 --out '" + out.string() + "'" +
+        proxied_workers("--stall-case viewport_tiny --pidfile '" + pidfile.string() + "'"));
   });
   // The worker holding viewport_tiny writes its pid there and waits, as a hung driver would.
   const pid_t pid = wait_for_pid(pidfile);
@@ -79,9 +80,8 @@ TEST_F(Workers, KilledWorkerIsACrashAndTheRunCompletes) {
 
 TEST_F(Workers, HungCaseIsATimeout) {
   const fs::path out = dir_ / "out";
-  const Outcome o =
-      glrefcheck("run " + kCases + " --jobs 1 --timeout 5 --out '" + out.string() + "'",
-                 "GLRC_TEST_STALL_CASE=attr_huge");
+  const Outcome o = glrefcheck("run " + kCases + " --jobs 1 --timeout 5 --out '" + out.string() +
+                               "'" + proxied_workers("--stall-case attr_huge"));
   EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
   const auto s = statuses(out / "results.csv");
   ASSERT_EQ(s.size(), 8u);
@@ -94,8 +94,8 @@ TEST_F(Workers, HungCaseIsATimeout) {
   // A Mesa-style fails file that expects it makes the run pass.
   std::ofstream(dir_ / "fails.txt") << "# hangs (see the test)\nattr_huge,Timeout\n";
   EXPECT_EQ(glrefcheck("run " + kCases + " --jobs 1 --timeout 5 --out '" + out.string() +
-                           "' --baseline '" + (dir_ / "fails.txt").string() + "'",
-                       "GLRC_TEST_STALL_CASE=attr_huge")
+                       "' --baseline '" + (dir_ / "fails.txt").string() + "'" +
+                       proxied_workers("--stall-case attr_huge"))
                 .exit_code,
             0);
   EXPECT_EQ(statuses(out / "results.csv").at("attr_huge"), "ExpectedFail");
@@ -103,7 +103,7 @@ TEST_F(Workers, HungCaseIsATimeout) {
 
 // A failing case's verdict comes before its heatmaps: a worker that hangs or dies writing them
 // (as one writing ~200 maps of a 4096x4096 frame did, ending as Timeout) costs the maps, not the
-// verdict. GLRC_TEST_STALL_IMAGES stalls the worker after it sent the verdict.
+// verdict. worker_proxy.py --stall-images stalls the worker after it sent the verdict.
 const std::string kFailingCase =
     "--filter '^(viewport_tiny|clip_noperspective_x_plane|viewport_offset)$' --backend osmesa "
     "--driver llvmpipe";
@@ -111,8 +111,8 @@ const std::string kFailingCase =
 TEST_F(Workers, HeatmapsThatHangCostTheHeatmapsNotTheVerdict) {
   const fs::path out = dir_ / "out";
   const Outcome o =
-      glrefcheck("run " + kFailingCase + " --jobs 1 --timeout 5 --out '" + out.string() + "'",
-                 "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane");
+      glrefcheck("run " + kFailingCase + " --jobs 1 --timeout 5 --out '" + out.string() + "'" +
+                 proxied_workers("--stall-images clip_noperspective_x_plane"));
   EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
   const auto s = statuses(out / "results.csv");
   ASSERT_EQ(s.size(), 3u) << read(out / "results.csv");
@@ -142,9 +142,9 @@ TEST_F(Workers, AWorkerKilledWritingHeatmapsKeepsTheVerdict) {
   const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
   Outcome o;
   std::thread run([&] {
-    o = glrefcheck("run " + kFailingCase + " --jobs 1 --out '" + out.string() + "'",
-                   "GLRC_TEST_STALL_IMAGES=clip_noperspective_x_plane GLRC_TEST_STALL_PIDFILE='" +
-                       pidfile.string() + "'");
+    o = glrefcheck("run " + kFailingCase + " --jobs 1 --out '" + out.string() + "'" +
+                   proxied_workers("--stall-images clip_noperspective_x_plane --pidfile '" +
+                                   pidfile.string() + "'"));
   });
   const pid_t pid = wait_for_pid(pidfile);
   ASSERT_GT(pid, 0) << "no worker reached the stalled heatmaps";

@@ -19,7 +19,7 @@ struct Outcome {
 };
 
 // Runs glrefcheck with the given arguments in the source folder; stdout and stderr apart.
-// `env`: shell variable assignments for it, e.g. "GLRC_TEST_STALL_CASE=x".
+// `env`: shell variable assignments for it, e.g. "XDG_CACHE_HOME=/tmp/x".
 inline Outcome glrefcheck(const std::string& args, const std::string& env = "") {
   const std::filesystem::path err_file = std::filesystem::temp_directory_path() /
                                          ("glrc_cli_stderr_" + std::to_string(getpid()) + ".txt");
@@ -39,8 +39,16 @@ inline Outcome glrefcheck(const std::string& args, const std::string& env = "") 
   return o;
 }
 
-// The pid a worker stalled by GLRC_TEST_STALL_CASE or GLRC_TEST_STALL_IMAGES wrote to
-// GLRC_TEST_STALL_PIDFILE, once it has; 0 if none did within 60 s.
+// `run`'s option for workers under tests/tools/worker_proxy.py with `flags` (--stall-case RE,
+// --stall-images RE, --pidfile FILE, --crash-on-identify): real workers that hang or die where
+// a test wants them to, as a driver would.
+inline std::string proxied_workers(const std::string& flags) {
+  return std::string(" --worker-wrapper \"'") + GLRC_SOURCE_DIR + "/tests/tools/worker_proxy.py' " +
+         flags + "\"";
+}
+
+// The pid a worker stalled by worker_proxy.py (--stall-case, --stall-images) wrote to its
+// --pidfile, once it has; 0 if none did within 60 s.
 inline pid_t wait_for_pid(const std::filesystem::path& pidfile) {
   pid_t pid = 0;
   for (int k = 0; k < 1200 && !pid; ++k) {

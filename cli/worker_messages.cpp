@@ -1,0 +1,114 @@
+// The worker pool's side of the protocol (cli/workers.hpp): what each line a worker sends
+// means, what it gets next, and how the run's one model is chosen.
+#include <nlohmann/json.hpp>
+
+#include "cli/worker_pool.hpp"
+#include "cli/worker_protocol.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+
+namespace {
+
+// Line by line what a worker may send; anything else is a broken worker (or not a worker at
+// all: the wrong --worker-wrapper), which stops the run with the line it sent.
+[[noreturn]] void unexpected(const std::string& line, const std::string& why) {
+  throw std::runtime_error("a worker sent " + why + ": " + line.substr(0, 200));
+}
+
+}  // namespace
+
+void Pool::handle(Worker& w, const std::string& line) {
+  nlohmann::json msg;
+  try {
+    msg = nlohmann::json::parse(line);
+  } catch (const nlohmann::json::parse_error&) {
+    unexpected(line, "something that is not JSON");
+  }
+  if (!msg.is_object()) unexpected(line, "something that is not a JSON object");
+  try {
+    if (msg.contains("error")) {
+      // No GL context: the same for every worker, so the run cannot go on.
+      throw InputError(msg["error"].get<std::string>());
+    }
+    if (msg.contains("hello")) return hello(w, msg["hello"]);
+    if (msg.contains("images_done")) {
+      const size_t k = msg.at("images_done");
+      if (w.imaging != k) unexpected(line, "heatmaps it was not writing");
+      w.imaging.reset();
+      if (msg.contains("images_error"))
+        images_lost(k, "heatmaps not written: " + msg["images_error"].get<std::string>());
+      return assign(w);
+    }
+    if (msg.contains("identified") || msg.contains("identify_error")) {
+      if (!w.identifying) unexpected(line, "an identification nobody asked for");
+      w.identifying = false;
+      if (msg.contains("identify_error"))
+        return model_chosen(fallback_model(o_, msg["identify_error"].get<std::string>()));
+      const auto m = identify::model_from_json(msg["identified"]);
+      if (!m) return model_chosen(fallback_model(o_, "a worker sent " + line.substr(0, 200)));
+      cache_.save(*m);
+      return model_chosen({*m, "identify"});
+    }
+    const size_t k = msg.at("index");
+    if (w.job != k) unexpected(line, "a result for a case it was not given");
+    CaseResult r = report::case_result_from_json(msg.at("result").dump(), "worker result");
+    w.job.reset();
+    // The verdict is in and recorded; the heatmaps follow, under a deadline of their own, and
+    // the worker gets no case until they are written.
+    const bool images = msg.value("images", false);
+    finish(k, std::move(r));
+    if (!images) return assign(w);
+    w.imaging = k;
+    w.started = Clock::now();
+    w.deadline = after(w.started, s_.timeout);
+  } catch (const nlohmann::json::exception&) {
+    unexpected(line, "a message without the fields of the protocol");
+  }
+}
+
+void Pool::hello(Worker& w, const nlohmann::json& hello) {
+  if (w.ready)
+    throw std::runtime_error("a worker said hello twice: " + hello.dump().substr(0, 200));
+  w.ready = true;
+  if (started_) return assign(w);
+  gl_ = hello.get<gl::GlInfo>();
+  started_ = true;
+  begin_model(w, hello.value("driver_files", std::vector<std::string>{}));
+}
+
+void Pool::assign(Worker& w) {
+  if (queue_.empty()) {
+    stop(w, false);  // nothing left for it: end of input lets it exit
+    return;
+  }
+  if (!model_) return;  // it waits for the model
+  const size_t k = queue_.front();
+  queue_.pop_front();
+  w.job = k;
+  w.started = Clock::now();
+  w.deadline = after(w.started, s_.timeout);
+  (void)w.process.send(job_line(k, *cases_[k], s_.images(*cases_[k]), model_->model));
+}
+
+// The first worker said hello: the model comes from the command line, or the cache, or that
+// worker identifies the implementation while the others wait.
+void Pool::begin_model(Worker& w, const std::vector<std::string>& driver_files) {
+  if (s_.model) return model_chosen(*s_.model);
+  if (auto chosen = model_from_command_line(o_)) return model_chosen(*chosen);
+  cache_ = identify::model_cache_slot(gl_.renderer, gl_.version, driver_files);
+  if (const auto cached = cache_.load()) return model_chosen({*cached, "identify (cached)"});
+  w.identifying = true;
+  w.deadline = after(Clock::now(), std::max(s_.timeout, 30.0));
+  (void)w.process.send("{\"identify\":true}\n");
+}
+
+// Every case is judged by `chosen`: the run starts, and the workers waiting get cases.
+void Pool::model_chosen(const ModelChoice& chosen) {
+  model_ = chosen;
+  on_start_(gl_, chosen);
+  for (Worker& w : workers_)
+    if (w.process.running() && w.ready && !w.job && !w.identifying) assign(w);
+}
+
+}  // namespace glrc::cli

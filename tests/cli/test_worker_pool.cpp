@@ -1,0 +1,197 @@
+// The worker pool (cli/worker_pool.*) on fake workers: tests/tools/fake_worker.py speaks the
+// protocol without GL and fails where it is told to, so every way a worker can go wrong is
+// checked here in milliseconds, apart from any driver. The real workers' crash, timeout and
+// interrupt handling is tested end to end in test_workers.cpp and test_run_folder.cpp.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <stdexcept>
+
+#include "cli/worker_pool.hpp"
+#include "cli/workers.hpp"
+#include "tests/support/temp_dir_test.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using glrc::Case;
+using glrc::CaseResult;
+using glrc::Status;
+using glrc::cli::WorkerSettings;
+
+const std::string kFake = std::string(GLRC_SOURCE_DIR) + "/tests/tools/fake_worker.py";
+
+class WorkerPool : public glrc::test::TempDirTest {
+ protected:
+  void SetUp() override {
+    TempDirTest::SetUp();
+    for (const char* name : {"alpha", "beta", "gamma", "delta", "epsilon"}) {
+      Case c;
+      c.name = name;
+      cases_.push_back(c);
+    }
+    for (const Case& c : cases_)
+      pointers_.push_back(&c);
+    s_.jobs = 2;
+    s_.timeout = 2;
+    s_.log_dir = dir_ / "logs";
+    s_.model = glrc::cli::ModelChoice{glrc::Model{}, "test"};
+  }
+
+  // Runs the cases on fake workers started with `flags`; the results by case name.
+  std::map<std::string, CaseResult> run(const std::vector<std::string>& flags) {
+    s_.command = {kFake};
+    s_.command.insert(s_.command.end(), flags.begin(), flags.end());
+    std::map<std::string, CaseResult> results;
+    glrc::cli::run_in_workers(
+        pointers_, options_, s_,
+        [&](const glrc::gl::GlInfo& gl, const glrc::cli::ModelChoice& m) {
+          renderer_ = gl.renderer;
+          model_source_ = m.source;
+          model_ = m.model;
+        },
+        [&](size_t k, CaseResult r) {
+          EXPECT_EQ(r.name, cases_.at(k).name) << "a result reached the wrong case";
+          EXPECT_TRUE(results.emplace(r.name, r).second) << r.name << " twice";
+        });
+    return results;
+  }
+
+  std::vector<Case> cases_;
+  std::vector<const Case*> pointers_;
+  glrc::cli::Options options_;
+  WorkerSettings s_;
+  std::string renderer_, model_source_;
+  glrc::Model model_;
+};
+
+TEST_F(WorkerPool, EveryCaseGetsItsResult) {
+  const auto r = run({});
+  ASSERT_EQ(r.size(), 5u);
+  for (const auto& [name, result] : r)
+    EXPECT_EQ(result.status, Status::pass) << name;
+  EXPECT_EQ(renderer_, "fake renderer");  // from the first hello
+  EXPECT_EQ(model_source_, "test");
+}
+
+TEST_F(WorkerPool, ACrashIsThatCaseOnlyAndQuotesTheLog) {
+  const auto r = run({"--crash-at", "gamma"});
+  ASSERT_EQ(r.size(), 5u);
+  EXPECT_EQ(r.at("gamma").status, Status::crash);
+  EXPECT_EQ(r.at("gamma").outcome, Status::crash);
+  EXPECT_NE(r.at("gamma").message.find("worker killed by signal 6"), std::string::npos)
+      << r.at("gamma").message;
+  EXPECT_NE(r.at("gamma").message.find("its log ends: "), std::string::npos);
+  EXPECT_NE(r.at("gamma").message.find("fake worker: checking gamma"), std::string::npos)
+      << r.at("gamma").message;
+  for (const char* other : {"alpha", "beta", "delta", "epsilon"})
+    EXPECT_EQ(r.at(other).status, Status::pass) << other;
+}
+
+TEST_F(WorkerPool, AHangIsATimeoutAfterTimeoutSeconds) {
+  s_.timeout = 1;
+  const auto start = glrc::cli::Clock::now();
+  const auto r = run({"--hang-at", "beta"});
+  ASSERT_EQ(r.size(), 5u);
+  EXPECT_EQ(r.at("beta").status, Status::timeout);
+  EXPECT_EQ(r.at("beta").message, "no result after 1 s (--timeout); worker killed");
+  EXPECT_GE(r.at("beta").seconds, 1.0);
+  EXPECT_GE(glrc::cli::seconds_since(start), 1.0);
+  EXPECT_EQ(r.at("epsilon").status, Status::pass);
+}
+
+TEST_F(WorkerPool, NoContextStopsTheRunWithTheWorkersLine) {
+  try {
+    run({"--no-context"});
+    FAIL() << "no error";
+  } catch (const glrc::cli::InputError& e) {
+    EXPECT_STREQ(e.what(), "fake: no GL context here");
+  }
+}
+
+TEST_F(WorkerPool, AWorkerThatDiesStartingIsABrokenDriverNotACase) {
+  try {
+    run({"--die-at-start", "--log-at-start", "libEGL warning: no driver"});
+    FAIL() << "no error";
+  } catch (const glrc::cli::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "a GL worker exited with code 1 before it could make a GL context; its log ends: "
+              "libEGL warning: no driver");
+  }
+}
+
+TEST_F(WorkerPool, SomethingNotJsonStopsTheRunQuotingIt) {
+  try {
+    run({"--garbage-at", "alpha"});
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "a worker sent something that is not JSON: this is not JSON");
+  }
+}
+
+TEST_F(WorkerPool, AResultForACaseNotGivenIsRefused) {
+  try {
+    run({"--wrong-index-at", "delta"});
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(
+        std::string(e.what()).rfind("a worker sent a result for a case it was not given: ", 0), 0u)
+        << e.what();
+  }
+}
+
+TEST_F(WorkerPool, HeatmapsNotWrittenKeepTheVerdict) {
+  std::map<size_t, std::string> lost;
+  s_.images_lost = [&](size_t k, const std::string& why) { lost[k] = why; };
+  s_.images = [](const Case& c) { return c.name != "alpha"; };
+  const auto r = run({"--images-fail", "beta"});
+  EXPECT_EQ(r.at("beta").status, Status::fail);
+  ASSERT_EQ(lost.size(), 1u);
+  EXPECT_EQ(lost.at(1), "heatmaps not written: fake: disk full");
+  // A case whose heatmaps nobody wants is not asked for them.
+  lost.clear();
+  const auto again = run({"--images-fail", "alpha"});
+  EXPECT_EQ(again.at("alpha").status, Status::fail);
+  EXPECT_TRUE(lost.empty());
+}
+
+TEST_F(WorkerPool, TheFirstWorkerIdentifiesAndTheModelIsCached) {
+  s_.model.reset();
+  setenv("XDG_CACHE_HOME", (dir_ / "cache").c_str(), 1);
+  auto r = run({});
+  EXPECT_EQ(model_source_, "identify");
+  EXPECT_EQ(model_.subpixel_bits, 4);
+  EXPECT_EQ(model_.planes, glrc::Planes::snapped);
+  EXPECT_EQ(model_.tie_break, glrc::TieBreak::top_left);
+  EXPECT_EQ(r.size(), 5u);
+  r = run({"--identify-fails"});  // the cache answers: nobody is asked
+  EXPECT_EQ(model_source_, "identify (cached)");
+  EXPECT_EQ(model_.subpixel_bits, 4);
+  unsetenv("XDG_CACHE_HOME");
+}
+
+TEST_F(WorkerPool, AFailedIdentificationFallsBackAndSaysWhy) {
+  s_.model.reset();
+  setenv("XDG_CACHE_HOME", (dir_ / "cache").c_str(), 1);
+  const auto r = run({"--identify-fails"});
+  unsetenv("XDG_CACHE_HOME");
+  EXPECT_EQ(model_source_, "default (identify failed: fake: the probes drew nothing)");
+  EXPECT_EQ(r.size(), 5u);
+  EXPECT_FALSE(fs::exists(dir_ / "cache" / "glrefcheck" / "models.json"));
+}
+
+TEST_F(WorkerPool, AWrapperRunsTheWorkerAsTypedOnAShell) {
+  s_.wrapper = "env GLRC_UNUSED='a b'";
+  WorkerSettings wrapped;
+  wrapped.command = {"/bin/w", "x y"};
+  EXPECT_EQ(glrc::cli::worker_argv(wrapped), (std::vector<std::string>{"/bin/w", "x y"}));
+  wrapped.wrapper = "valgrind -q";
+  EXPECT_EQ(glrc::cli::worker_argv(wrapped),
+            (std::vector<std::string>{"/bin/sh", "-c", "exec valgrind -q \"$@\"",
+                                      "glrefcheck-worker", "/bin/w", "x y"}));
+  const auto r = run({"--crash-at", "alpha"});
+  EXPECT_EQ(r.at("alpha").status, Status::crash);
+  EXPECT_EQ(r.at("beta").status, Status::pass);
+}
+
+}  // namespace
