@@ -2,7 +2,7 @@
 # The modules' layering: a module includes headers of the modules below it only. Each line of
 # the table names a folder and what its sources may include (besides itself); a folder not in
 # the table, or an include outside its line, fails the test with the file and the include.
-# cli/ and tests/ sit on top and may include anything.
+# cli/, bench/ and tests/ sit on top and may include anything.
 set -euo pipefail
 root="${1:?usage: layering.sh SOURCE_DIR}"
 cd "$root"
@@ -24,7 +24,7 @@ declare -A allowed=(
 status=0
 for dir in */; do
   dir="${dir%/}"
-  case "$dir" in cli | tests | scripts | cases | build* | bundle | out | .*) continue ;; esac
+  case "$dir" in cli | bench | tests | scripts | cases | build* | bundle | out | .*) continue ;; esac
   compgen -G "$dir/*.[ch]pp" >/dev/null || compgen -G "$dir/*.h" >/dev/null || continue
   if [[ ! -v "allowed[$dir]" ]]; then
     echo "$dir/: a module not in tests/build/layering.sh's table: add it with what it may include"

@@ -1,0 +1,81 @@
+// Google Benchmark timings of one case's parts, on the same machine in the same run, so that
+// their ratios mean something (scripts/bench.sh prints them against issue 13's targets):
+//   gl/<case>         llvmpipe (OSMesa) drawing the case and reading the frame back, through
+//                     gl_harness as `run` does it (program, FBO, draw, glReadPixels), warm;
+//   reference/<case>  the exact reference with the specification's allowance, as `run` renders
+//                     it (check::expectation_for with llvmpipe's subpixel bits and default model);
+//   compare/<case>    the comparison of llvmpipe's frame with it;
+//   check/<case>      all three, as one case of `run` in a worker.
+// Usage: glrc_bench [--benchmark_* flags] CASE.json... (bench/scenes.py writes the scenes).
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "casefile/casefile.hpp"
+#include "check/check.hpp"
+#include "compare/compare.hpp"
+#include "gl_harness/gl_harness.hpp"
+
+namespace {
+
+using namespace glrc;
+
+gl::Renderer& llvmpipe() {
+  static const std::unique_ptr<gl::Renderer> renderer = gl::create_renderer(gl::Target{});
+  return *renderer;
+}
+
+void register_case(const Case& c) {
+  const check::CheckOptions options;
+  const auto ms = [](benchmark::internal::Benchmark* b) {
+    b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+  };
+  ms(benchmark::RegisterBenchmark(("gl/" + c.name).c_str(), [c](benchmark::State& state) {
+    benchmark::DoNotOptimize(llvmpipe().render(c));  // warm: the first draw compiles shaders
+    for (auto _ : state)
+      benchmark::DoNotOptimize(llvmpipe().render(c));
+  }));
+  ms(benchmark::RegisterBenchmark(
+      ("reference/" + c.name).c_str(), [c, options](benchmark::State& state) {
+        const int bits = llvmpipe().info().subpixel_bits;
+        for (auto _ : state)
+          benchmark::DoNotOptimize(check::expectation_for(c, options, bits));
+      }));
+  ms(benchmark::RegisterBenchmark(("compare/" + c.name).c_str(),
+                                  [c, options](benchmark::State& state) {
+                                    const int bits = llvmpipe().info().subpixel_bits;
+                                    const Expectation e = check::expectation_for(c, options, bits);
+                                    const Frame gl = llvmpipe().render(c);
+                                    const Tolerance t = check::tolerance_for(c, options, bits);
+                                    for (auto _ : state)
+                                      benchmark::DoNotOptimize(compare::compare(c, e, gl, t));
+                                  }));
+  ms(benchmark::RegisterBenchmark(
+      ("check/" + c.name).c_str(), [c, options](benchmark::State& state) {
+        for (auto _ : state)
+          benchmark::DoNotOptimize(check::check(c, llvmpipe(), options));
+      }));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: glrc_bench [--benchmark_* flags] CASE.json...\n");
+    return 2;
+  }
+  try {
+    for (int k = 1; k < argc; ++k)
+      register_case(casefile::load(argv[k]));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glrc_bench: %s\n", e.what());
+    return 2;
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
