@@ -26,6 +26,15 @@ class CoverageTest {
   // by the freedom; every centre inside it grown by the bands is marked edge::unstable.
   uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
                    bool unstable = false) const;
+  // The pixels [first, last] of row py within [x0, x1] whose centre may be within `reach`
+  // pixels of the exact triangle (inside every exact edge's line grown by `reach`), as a span
+  // that may hold more but never misses one (SignEvaluator::row_interval); first > last for
+  // none. With reach >= 1 + freedom·sqrt(2) for the largest freedom passed to classify, no pixel
+  // outside it is covered (a snapped vertex moves by at most half a pixel along x and y) or
+  // classified (every bit needs the centre inside the triangle grown by its bands): walking only
+  // the spans visits pixels in proportion to the triangle's area and perimeter, not to its
+  // bounding box, and changes no bit.
+  std::pair<int, int> row_span(int py, double reach, int x0, int x1) const;
 
  private:
   const TriangleSetup& t_;

@@ -1,5 +1,6 @@
 #include "ref/exact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -100,6 +101,32 @@ int SignEvaluator::sign(long px, long py) const {
 
 double SignEvaluator::distance(long px, long py) const {
   return (da_ * double(px) + db_ * double(py) + dc_) * inv_norm_;
+}
+
+std::pair<double, double> SignEvaluator::row_interval(long py, double grow, long x_lo,
+                                                      long x_hi) const {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  constexpr std::pair<double, double> every = {-inf, inf}, none = {inf, -inf};
+  if (!(inv_norm_ > 0) || !std::isfinite(inv_norm_) || !std::isfinite(da_) || !std::isfinite(db_) ||
+      !std::isfinite(dc_))
+    return every;
+  const double y = double(py);
+  const double x_max = std::max(std::fabs(double(x_lo)), std::fabs(double(x_hi)));
+  // distance() rounds three products and sums and a product: off by at most 8u·S·inv_norm_
+  // (S the sum of the terms' magnitudes). Beyond a quarter pixel the walk takes every pixel.
+  const double terms = std::fabs(da_) * x_max + std::fabs(db_ * y) + std::fabs(dc_);
+  if (8 * kU * terms * inv_norm_ > 0.25) return every;
+  // distance(x) >= -grow  <=>  da·x >= -grow/inv_norm - (db·y + dc) =: bound, up to rounding:
+  // `slack` (in the form's units) bounds the rounding of bound here, and the quarter pixel
+  // above that of distance(); both are covered by widening by their sum plus a pixel.
+  const double scale = 1 / inv_norm_;
+  const double bound = -grow * scale - (db_ * y + dc_);
+  const double slack = 8 * kU * (grow * scale + std::fabs(db_ * y) + std::fabs(dc_)) + 0.25 * scale;
+  if (da_ == 0) return bound - slack <= 0 ? every : none;
+  const double x = bound / da_;
+  const double widen = 1 + slack / std::fabs(da_) + 8 * kU * std::fabs(x);
+  if (!std::isfinite(x) || !std::isfinite(widen)) return every;
+  return da_ > 0 ? std::pair{x - widen, inf} : std::pair{-inf, x + widen};
 }
 
 RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator) {

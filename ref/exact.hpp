@@ -6,6 +6,7 @@
 #include <gmpxx.h>
 
 #include <cstdint>
+#include <utility>
 
 namespace glrc::ref {
 
@@ -43,6 +44,14 @@ class SignEvaluator {
   // The form divided by the length of its gradient: the signed distance in pixels of the pixel
   // centre from the line f = 0 (approximate, for classification only).
   double distance(long px, long py) const;
+  // The pixels of row py whose centre is at least -grow pixels from the line (distance() >=
+  // -grow), as an interval [lo, hi] of px that may hold more but never misses one: widened for
+  // the rounding of both this and distance(), by a pixel and more. lo = -infinity or hi =
+  // +infinity for an unbounded side, lo > hi for no pixel. Where distance() itself may be off by
+  // a quarter pixel or more over px in [x_lo, x_hi] (coefficients beyond 2^40 pixels), or the
+  // form has no gradient, every px: the caller then tests each pixel as before. For walking
+  // only the pixels a triangle can reach (render.cpp).
+  std::pair<double, double> row_interval(long py, double grow, long x_lo, long x_hi) const;
 
  private:
   LinearForm form_;

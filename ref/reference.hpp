@@ -26,5 +26,10 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits 
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.
 std::string digest(const Frame& f);
+// SHA-256 (hex) of everything render() gives: the frame's digest, then per pixel the edge bits
+// and the allowance's primitive, depth and components (when computed), then every candidate
+// (pixel, primitive, depth, allowed depth, values, allowed values). A faster reference must keep
+// it (tests/expectation_digests.txt), not only the frame's.
+std::string expectation_digest(const Reference& r);
 
 }  // namespace glrc::ref

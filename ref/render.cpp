@@ -66,10 +66,14 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
               bx1 = std::min(viewport.x1, t.box.x1 + margin);
     const int by0 = std::max(viewport.y0, t.box.y0 - margin),
               by1 = std::min(viewport.y1, t.box.y1 + margin);
-    for (int py = by0; py <= by1; ++py)
-      for (int px = bx0; px <= bx1; ++px)
+    // Only the pixels within `margin` of the triangle, row by row (CoverageTest::row_span):
+    // a thin triangle's bounding box holds a thousand times the pixels it reaches.
+    for (int py = by0; py <= by1; ++py) {
+      const auto [x0, x1] = coverage.row_span(py, margin, bx0, bx1);
+      for (int px = x0; px <= x1; ++px)
         r.edges[f.index(px, py)] |=
             coverage.classify(px, py, delta_at(px, py), shared[size_t(p)], unstable);
+    }
 
     if (!t.drawn || t.box.empty()) continue;
     const bool clipped = allowance && freedom.generations() > 0;
@@ -99,7 +103,8 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits)
                     freedom.polygon(), freedom.guard_band_triangle());
     }
     for (int py = t.box.y0; py <= t.box.y1; ++py) {
-      for (int px = t.box.x0; px <= t.box.x1; ++px) {
+      const auto [x0, x1] = coverage.row_span(py, margin, t.box.x0, t.box.x1);
+      for (int px = x0; px <= x1; ++px) {
         if (!coverage.covers(px, py)) continue;
         const size_t i = f.index(px, py);
         const float z = depth.at(px, py);
