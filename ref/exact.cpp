@@ -145,14 +145,17 @@ RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& de
 }
 
 float RatioEvaluator::exact_at(long px, long py) const {
-  n_ = an_ * px + bn_ * py + cn_;
-  d_ = ad_ * px + bd_ * py + cd_;
-  if (d_ < 0) {
-    n_ = -n_;
-    d_ = -d_;
+  // Scratch per thread: the reference's tiles evaluate one triangle's planes in parallel, and
+  // GMP integers allocated once per thread, not per call.
+  thread_local mpz_class n, d;
+  n = an_ * px + bn_ * py + cn_;
+  d = ad_ * px + bd_ * py + cd_;
+  if (d < 0) {
+    n = -n;
+    d = -d;
   }
-  if (d_ == 0) return std::numeric_limits<float>::quiet_NaN();  // never inside a triangle
-  return round_to_float(n_, d_);
+  if (d == 0) return std::numeric_limits<float>::quiet_NaN();  // never inside a triangle
+  return round_to_float(n, d);
 }
 
 float RatioEvaluator::at(long px, long py) const {

@@ -62,7 +62,7 @@ class SignEvaluator {
 
 // N(px,py) / D(px,py) rounded to float32, for two LinearForms. The exact path works on integer
 // coefficients over a common denominator; the fast path in double is used only when the
-// interval its error bound gives rounds to a single float.
+// interval its error bound gives rounds to a single float. Safe to call from several threads.
 class RatioEvaluator {
  public:
   RatioEvaluator() = default;
@@ -74,7 +74,6 @@ class RatioEvaluator {
   mpz_class an_, bn_, cn_, ad_, bd_, cd_;
   double fan_ = 0, fbn_ = 0, fcn_ = 0, fad_ = 0, fbd_ = 0, fcd_ = 0;
   bool fast_ = false;
-  mutable mpz_class n_, d_;  // scratch for the exact path
 };
 
 }  // namespace glrc::ref

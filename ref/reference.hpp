@@ -21,7 +21,10 @@ using Reference = Expectation;
 // reports, at least 4 taken), also the specification's allowance per pixel and channel
 // (allowance.hpp), and edge bands as wide as that position freedom; without, no allowance and
 // bands one model subpixel step wide. Neither is part of the digest.
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt);
+// `threads`: how many threads draw it (ref/tiles.hpp), 0 for every core this process may use;
+// every bit of the result is the same for any number.
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt,
+                 int threads = 1);
 
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.

@@ -4,7 +4,8 @@
 //                                              (-O0, -O3 -march=native -ffp-contract=fast);
 //   glrc_digest --expectation BITS PATH...    ref::expectation_digest with the allowance of
 //                                              BITS subpixel bits: every bit render() gives
-//                                              (tests/expectation_digests.txt).
+//                                              (tests/expectation_digests.txt);
+//   glrc_digest --threads N ...               either, drawn on N threads (default 1).
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -17,13 +18,14 @@ int main(int argc, char** argv) {
   try {
     std::vector<std::string> paths(argv + 1, argv + argc);
     std::optional<int> bits;
-    if (paths.size() >= 2 && paths[0] == "--expectation") {
-      bits = std::stoi(paths[1]);
+    int threads = 1;
+    while (paths.size() >= 2 && (paths[0] == "--expectation" || paths[0] == "--threads")) {
+      (paths[0] == "--threads" ? threads : bits.emplace()) = std::stoi(paths[1]);
       paths.erase(paths.begin(), paths.begin() + 2);
     }
     for (const auto& file : glrc::casefile::collect(paths)) {
       const glrc::Case c = glrc::casefile::load(file);
-      const glrc::ref::Reference r = glrc::ref::render(c, glrc::Model{}, bits);
+      const glrc::ref::Reference r = glrc::ref::render(c, glrc::Model{}, bits, threads);
       const std::string d = bits ? glrc::ref::expectation_digest(r) : glrc::ref::digest(r.frame);
       std::printf("%s  %s\n", d.c_str(), c.name.c_str());
     }
