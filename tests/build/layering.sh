@@ -9,6 +9,7 @@ cd "$root"
 
 declare -A allowed=(
   [core]=""
+  [typed_json]="core"
   [casefile]="core"
   [ref]="core"
   [driver_models]="core"
