@@ -10,7 +10,7 @@ cd "$root"
 declare -A allowed=(
   [core]=""
   [typed_json]="core"
-  [casefile]="core"
+  [casefile]="core typed_json"
   [ref]="core"
   [driver_models]="core"
   [gl_harness]="core"
