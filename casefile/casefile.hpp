@@ -4,19 +4,24 @@
 
 #include <filesystem>
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/case.hpp"
+#include "typed_json/error.hpp"
 
 namespace glrc::casefile {
 
-// what() is one line: "<file>: <field>: expected <what>, got <what>".
-struct CaseError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+// what() is one line: "<file>: <field>: expected <what>, got <what>". A typed_json::Error (the
+// case loader's reader throws it), and so a std::runtime_error.
+struct CaseError : typed_json::Error {
+  using typed_json::Error::Error;
 };
 
+// The case in `file`, validated (cases/README.md). Throws CaseError naming the file, the field
+// and what was expected: for a path that is no readable regular file, bytes no JSON text holds
+// (NUL, not UTF-8), invalid JSON, a key twice in one object, an unknown key, or any field out of
+// its type or range.
 Case load(const std::filesystem::path& file);
 
 // Case files named by the arguments: files as given, directories searched recursively for

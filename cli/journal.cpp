@@ -23,9 +23,9 @@ using nlohmann::json;
 
 namespace {
 
-// Every option of `run`: the worker's (options_json) and the runner's own.
+// Every option of `run`: the worker's (to_json of Options) and the runner's own.
 json all_options_json(const Options& o) {
-  json j = json::parse(options_json(o));
+  json j = o;
   j["paths"] = o.paths;
   j["filter"] = o.filter;
   j["baseline"] = o.baseline;
@@ -44,20 +44,23 @@ json all_options_json(const Options& o) {
 // The journal's options, each checked as the command line checks it: a damaged or hand-edited
 // journal is one line naming the field, never a run with --fraction 0 or --timeout -5.
 Options all_options_from_json(const json& j, const std::string& where) {
-  const OptionsReader r(j, where);
-  Options o = options_from_json(r);
-  o.paths = r.texts("paths");
-  o.filter = r.text("filter");
-  o.baseline = r.text("baseline");
-  o.flakes = r.text("flakes");
-  o.skips = r.text("skips");
-  o.mesa = r.text("mesa");
-  o.jobs = r.whole("jobs", 0);
-  o.jobs_force = r.flag("jobs_force");
-  o.timeout = r.number("timeout", 0.001, 1e6);  // --timeout's own range
-  o.fraction = r.whole("fraction", 1);
-  o.fraction_start = r.whole("fraction_start", 1, o.fraction);
-  o.html = r.flag("html");
+  namespace f = option_fields;
+  const typed_json::Reader r = f::reader(where);
+  const std::string path = "options";
+  Options o;
+  read(r, j, path, o);
+  o.paths = f::texts(r, j, path, "paths");
+  o.filter = f::text(r, j, path, "filter");
+  o.baseline = f::text(r, j, path, "baseline");
+  o.flakes = f::text(r, j, path, "flakes");
+  o.skips = f::text(r, j, path, "skips");
+  o.mesa = f::text(r, j, path, "mesa");
+  o.jobs = f::whole(r, j, path, "jobs", 0);
+  o.jobs_force = f::flag(r, j, path, "jobs_force");
+  o.timeout = f::number(r, j, path, "timeout", 0.001, 1e6);  // --timeout's own range
+  o.fraction = f::whole(r, j, path, "fraction", 1);
+  o.fraction_start = f::whole(r, j, path, "fraction_start", 1, o.fraction);
+  o.html = f::flag(r, j, path, "html");
   return o;
 }
 
@@ -158,7 +161,7 @@ JournalContents read_journal(const fs::path& dir) {
           throw InputError(where + ": expected a glrefcheck run journal (version 1)");
         if (!j.contains("options")) throw InputError(where + ": expected the run's options");
         c.options = all_options_from_json(j["options"], where);
-        c.files = OptionsReader(j, where).texts("files");
+        c.files = option_fields::texts(option_fields::reader(where), j, "", "files");
       } else if (j.contains("run")) {
         c.run = report::run_info_from_json(j["run"].dump(), where);
         const auto model = identify::model_from_json(j.at("model"));

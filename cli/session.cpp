@@ -164,45 +164,59 @@ Baseline load_baseline(const Options& o) {
   }
 }
 
-std::string options_json(const Options& o) {
-  nlohmann::json j = {{"model", o.model},
-                      {"subpixel_bits", o.subpixel_bits},
-                      {"planes", to_string(o.planes)},
-                      {"tie_break", to_string(o.tie_break)},
-                      {"model_given", o.model_given},
-                      {"backend", gl::to_string(o.backend)},
-                      {"driver", o.driver},
-                      {"device", o.device},
-                      {"tolerance", to_string(o.tolerance)},
-                      {"strict_coverage", o.strict_coverage},
-                      {"out", o.out}};
+void to_json(nlohmann::json& j, const Options& o) {
+  j = {{"model", o.model},
+       {"subpixel_bits", o.subpixel_bits},
+       {"planes", to_string(o.planes)},
+       {"tie_break", to_string(o.tie_break)},
+       {"model_given", o.model_given},
+       {"backend", gl::to_string(o.backend)},
+       {"driver", o.driver},
+       {"device", o.device},
+       {"tolerance", to_string(o.tolerance)},
+       {"strict_coverage", o.strict_coverage},
+       {"out", o.out}};
   if (o.spec_subpixel_bits) j["spec_subpixel_bits"] = *o.spec_subpixel_bits;
   if (o.varying_ulps) j["varying_ulps"] = *o.varying_ulps;
   if (o.depth_ulps) j["depth_ulps"] = *o.depth_ulps;
-  return j.dump();
 }
 
-Options options_from_json(const OptionsReader& r) {
-  Options o;
-  o.model = r.text("model", model_choices());
-  o.subpixel_bits = r.whole("subpixel_bits", 0, 16);
-  o.planes = r.named<Planes>("planes");
-  o.tie_break = r.named<TieBreak>("tie_break");
-  o.model_given = r.flag("model_given");
-  o.backend = r.named<gl::Backend>("backend");
-  o.driver = r.text("driver");
-  o.device = r.whole("device", 0);
-  o.tolerance = r.named<ToleranceMode>("tolerance", {"spec", "exact"});
-  o.strict_coverage = r.flag("strict_coverage");
-  o.out = r.text("out");
-  if (r.has("spec_subpixel_bits")) o.spec_subpixel_bits = r.whole("spec_subpixel_bits", 4, 16);
-  if (r.has("varying_ulps")) o.varying_ulps = r.number("varying_ulps", 0, 1e300);
-  if (r.has("depth_ulps")) o.depth_ulps = r.number("depth_ulps", 0, 1e300);
-  return o;
+void read(const typed_json::Reader& r, const nlohmann::json& j, const std::string& path,
+          Options& o) {
+  namespace f = option_fields;
+  f::object(r, j, path);
+  o.model = f::text(r, j, path, "model", model_choices());
+  o.subpixel_bits = f::whole(r, j, path, "subpixel_bits", 0, 16);
+  o.planes = f::named<Planes>(r, j, path, "planes");
+  o.tie_break = f::named<TieBreak>(r, j, path, "tie_break");
+  o.model_given = f::flag(r, j, path, "model_given");
+  o.backend = f::named<gl::Backend>(r, j, path, "backend");
+  o.driver = f::text(r, j, path, "driver");
+  o.device = f::whole(r, j, path, "device", 0);
+  o.tolerance = f::named<ToleranceMode>(r, j, path, "tolerance", {"spec", "exact"});
+  o.strict_coverage = f::flag(r, j, path, "strict_coverage");
+  o.out = f::text(r, j, path, "out");
+  o.spec_subpixel_bits.reset();
+  o.varying_ulps.reset();
+  o.depth_ulps.reset();
+  if (j.contains("spec_subpixel_bits"))
+    o.spec_subpixel_bits = f::whole(r, j, path, "spec_subpixel_bits", 4, 16);
+  if (j.contains("varying_ulps")) o.varying_ulps = f::number(r, j, path, "varying_ulps", 0, 1e300);
+  if (j.contains("depth_ulps")) o.depth_ulps = f::number(r, j, path, "depth_ulps", 0, 1e300);
+}
+
+void from_json(const nlohmann::json& j, Options& o) {
+  read(option_fields::reader(""), j, "options", o);
+}
+
+std::string options_json(const Options& o) {
+  return nlohmann::json(o).dump();
 }
 
 Options options_from_json(const std::string& text) {
-  return options_from_json(OptionsReader(nlohmann::json::parse(text), "the worker's options"));
+  Options o;
+  read(option_fields::reader("the worker's options"), nlohmann::json::parse(text), "options", o);
+  return o;
 }
 
 }  // namespace glrc::cli

@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -22,6 +23,10 @@
 #include "gl_harness/gl_harness.hpp"
 #include "identify/identify.hpp"
 #include "report/expectations.hpp"
+
+namespace glrc::typed_json {
+class Reader;
+}
 
 namespace glrc::cli {
 
@@ -84,7 +89,20 @@ struct Options {
   std::string resume;
 };
 
-// What a worker process needs of the options, as JSON (the options travel on its stdin).
+// What a worker process needs of the options, as JSON (the options travel on its stdin): the
+// model (model, subpixel_bits, planes, tie_break, model_given), GL (backend, driver, device),
+// the verdict (tolerance, strict_coverage, and spec_subpixel_bits, varying_ulps, depth_ulps
+// when set) and out; not the runner's own (paths, jobs, ...: cli/journal.cpp adds those).
+// nlohmann's ADL conversions; from_json checks each field as the command line checks it and
+// throws InputError ("options.subpixel_bits: expected a whole number from 0 to 16, got 99").
+void to_json(nlohmann::json& j, const Options& o);
+void from_json(const nlohmann::json& j, Options& o);
+// from_json with a source and path for the messages ("<r's source>: options.model: ..."):
+// sets the fields to_json writes, leaving the others as they are.
+void read(const typed_json::Reader& r, const nlohmann::json& j, const std::string& path,
+          Options& o);
+// to_json as one line, and back (the parse error of text that is no JSON is nlohmann's
+// json::parse_error; a bad field is InputError naming "the worker's options").
 std::string options_json(const Options& o);
 Options options_from_json(const std::string& text);
 

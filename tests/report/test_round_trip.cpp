@@ -10,6 +10,9 @@
 #include <limits>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
+#include "report/json_types.hpp"
 #include "report/report.hpp"
 
 namespace glrc::report {
@@ -119,6 +122,88 @@ TEST(RoundTrip, ResultsJson) {
   for (size_t k = 0; k < cases.size(); ++k)
     EXPECT_EQ(case_result_json(back.cases[k]), case_result_json(cases[k]));
   std::filesystem::remove_all(dir);
+}
+
+// nlohmann's ADL conversions, for every type: to JSON, back with get<T>(), and to JSON again
+// gives the same text (NaN and the infinities as "nan", "inf", "-inf").
+template <class T>
+void expect_json_round_trip(const T& value) {
+  const nlohmann::json j = value;
+  const T back = j.get<T>();
+  EXPECT_EQ(nlohmann::json(back).dump(), j.dump());
+}
+
+TEST(RoundTrip, EveryTypeThroughToJsonAndFromJson) {
+  const CaseResult r = every_field_set();
+  expect_json_round_trip(r);
+  expect_json_round_trip(r.tolerance);
+  expect_json_round_trip(r.coverage);
+  expect_json_round_trip(r.coverage.mismatches[0]);
+  expect_json_round_trip(r.channels[0]);
+  expect_json_round_trip(r.channels[0].worst[0]);
+  expect_json_round_trip(every_run_field_set());
+  // The values JSON makes hard, by value.
+  const CaseResult back = nlohmann::json(r).get<CaseResult>();
+  EXPECT_TRUE(std::isnan(back.channels[0].max_ulps));
+  EXPECT_TRUE(std::isinf(back.channels[0].max_abs) && back.channels[0].max_abs > 0);
+  EXPECT_TRUE(std::isinf(back.channels[0].max_ratio) && back.channels[0].max_ratio < 0);
+  EXPECT_TRUE(std::isnan(back.channels[0].worst[0].gl));
+  EXPECT_EQ(back.channels[0].worst[1].gl, 0.33333334f);
+  EXPECT_EQ(back.coverage.both, 4000000000ull);
+  const nlohmann::json written = r;
+  EXPECT_EQ(written["channels"][0]["max_ulps"], "nan");
+  EXPECT_EQ(written["channels"][0]["max_abs"], "inf");
+  EXPECT_EQ(written["channels"][0]["max_ratio"], "-inf");
+}
+
+// What results.json gained over time reads back as an old run meant it.
+TEST(RoundTrip, FieldsAddedLaterHaveTheirDefaults) {
+  nlohmann::json run = every_run_field_set();
+  for (const char* key : {"model_source", "mesa_prefix", "gl_library", "gl_warnings",
+                          "gl_primitive_id_from_geometry_shader", "jobs", "fraction",
+                          "fraction_start", "total_cases", "interrupted", "gl_subpixel_bits"})
+    run.erase(key);
+  const RunInfo i = run.get<RunInfo>();
+  EXPECT_EQ(i.model_source, "");
+  EXPECT_TRUE(i.gl_warnings.empty());
+  EXPECT_FALSE(i.gl_primitive_id_from_geometry_shader);
+  EXPECT_FALSE(i.interrupted);
+  EXPECT_EQ(i.jobs, 1);
+  EXPECT_EQ(i.fraction, 1);
+  EXPECT_EQ(i.fraction_start, 1);
+  EXPECT_EQ(i.total_cases, 0u);
+  EXPECT_EQ(i.subpixel_bits, 0);
+  nlohmann::json c = every_field_set();
+  c.erase("outcome");
+  c.erase("gl_digest");
+  c["tolerance"].erase("subpixel_bits");
+  const CaseResult r = c.get<CaseResult>();
+  EXPECT_EQ(r.outcome, Status::fail);  // from ExpectedFail
+  EXPECT_EQ(r.gl_digest, "");
+  EXPECT_EQ(r.tolerance.subpixel_bits, 4);
+}
+
+// A bad field is one line with its path: from read() with the source, from from_json without.
+TEST(RoundTrip, ABadFieldNamesItsSourceAndPath) {
+  nlohmann::json c = every_field_set();
+  c["coverage"]["mismatches"][1]["label"] = "edge";
+  CaseResult r;
+  try {
+    read(typed_json::Reader("shard/results.json", typed_json::Wording::brief), c, "cases[7]", r);
+    ADD_FAILURE() << "no error";
+  } catch (const typed_json::Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "shard/results.json: cases[7].coverage.mismatches[1].label: expected exact_tie, "
+                 "within_snapping, fill_rule, gap or double_hit");
+  }
+  nlohmann::json run = every_run_field_set();
+  run["fraction_start"] = 9;
+  try {
+    run.get<RunInfo>();
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "fraction_start: expected an integer from 1 to 4, got 9");
+  }
 }
 
 }  // namespace

@@ -1,0 +1,71 @@
+// The case schema: a parsed case file's document read into a Case, each field checked as
+// cases/README.md describes it (case_schema.cpp: the top level, geometry, state, varyings and
+// tolerance; case_vertices.cpp: the transform, vertices and triangles). Internal to casefile/:
+// casefile.cpp reads and parses the file (typed_json/document.hpp) and hands the document here.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "casefile/transform.hpp"
+#include "core/case.hpp"
+#include "typed_json/arena.hpp"
+#include "typed_json/reader.hpp"
+
+namespace glrc::casefile {
+
+// A case file's document: arena-allocated (typed_json/arena.hpp), since a large case is
+// millions of small containers.
+using CaseJson = typed_json::ArenaJson;
+
+inline constexpr int kMaxSize = 4096;      // framebuffer and viewport extent
+inline constexpr size_t kMaxVaryings = 7;  // 8 color attachments, one holds gl_PrimitiveID
+
+// What the case field at `path` holds, for a number beyond double range there, which the
+// parser meets before the schema sees the field ("an integer in 1..4096", "a vertex index (an
+// integer)", ...; "a number within float32 range" for the numbers of vertices and transforms).
+std::string expected_number_at(const std::string& path);
+
+// Reads `root` into a Case (its source_path the reader's source; its name is the caller's).
+// Every error goes through `r` (Wording::full): "<file>: <field path>: expected <what>, got
+// <what>"; unknown keys are errors everywhere.
+class Loader {
+ public:
+  explicit Loader(const typed_json::Reader& r) : r_(r) {}
+
+  Case load(const CaseJson& root) const;
+
+ private:
+  using Reader = typed_json::Reader;
+
+  void load_geometry(const CaseJson& root, Case& c) const;
+  void load_state(const CaseJson& state, Case& c) const;
+  void load_varyings(const CaseJson& list, Case& c) const;
+  std::optional<Transform> load_transform(const CaseJson& t) const;
+  std::vector<TransformOp> load_ops(const CaseJson& list, const std::string& path) const;
+  Projection load_projection(const CaseJson& p, const std::string& path) const;
+  void load_vertices(const CaseJson& list, const std::optional<Transform>& transform,
+                     Case& c) const;
+  void load_triangles(const CaseJson* list, Case& c) const;
+  void check_noperspective(const Case& c) const;
+  void load_tolerance(const CaseJson& t, Case& c) const;
+
+  // An integer in lo..hi ("an integer in 1..4096").
+  int int_in(const CaseJson& v, const std::string& path, long long lo, long long hi) const {
+    return static_cast<int>(r_.integer(
+        v, path, lo, hi, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi)));
+  }
+  // Exactly 3 numbers, each rounded to float32 once.
+  std::array<double, 3> vec3(const CaseJson& v, const std::string& path) const {
+    std::vector<float> f;
+    r_.float32s_into(
+        v, [&] { return path; }, {3}, f);
+    return {f[0], f[1], f[2]};
+  }
+
+  const Reader& r_;
+};
+
+}  // namespace glrc::casefile
