@@ -26,7 +26,7 @@ Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits)
 }
 
 Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits) {
-  ref::Reference r = ref::render(c, o.model, freedom_bits(o, reported_bits));
+  ref::Reference r = ref::render(c, o.model, freedom_bits(o, reported_bits), o.threads);
   // The driver model replaces the frame only: the edge bits still name ties and bands.
   if (o.driver_model) r.frame = driver_models::render(c, *o.driver_model);
   return r;

@@ -37,6 +37,9 @@ struct CheckOptions {
   std::optional<int> spec_subpixel_bits;
   // Coverage differences within the snapping band fail too (GL allows them).
   bool strict_coverage = false;
+  // Threads drawing the reference (ref::render; the same bits for any number); 0: every core
+  // this process may use.
+  int threads = 1;
 };
 
 // The subpixel bits of the position freedom: spec_subpixel_bits, else what the implementation

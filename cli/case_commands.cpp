@@ -54,10 +54,10 @@ int cmd_diff(const Options& o) {
 int cmd_digest(const Options& o) {
   const auto driver = driver_models::driver_from_string(o.model);
   for (const Case& c : load_cases(o))
-    fmt::print(
-        "{}  {}\n",
-        ref::digest(driver ? driver_models::render(c, *driver) : ref::render(c, model_of(o)).frame),
-        c.name);
+    fmt::print("{}  {}\n",
+               ref::digest(driver ? driver_models::render(c, *driver)
+                                  : ref::render(c, model_of(o), std::nullopt, o.threads).frame),
+               c.name);
   return 0;
 }
 

@@ -39,6 +39,11 @@ void add_case_options(CLI::App& app, Options& o) {
 }
 
 void add_model_options(CLI::App& app, Options& o) {
+  app.add_option("--threads", o.threads,
+                 "threads drawing the reference, the same bits for any number (default: every "
+                 "core; run: the cores shared among its workers)")
+      ->check(whole_number(1))
+      ->check(CLI::Range(1, 4096));
   app.add_option("--model", o.model,
                  "identified: the exact reference with the subpixel bits, planes and tie rule "
                  "`identify` finds for the implementation, cached (default); ideal: the exact "
@@ -98,12 +103,11 @@ void check_resume_alone(const CLI::App& run) {
   for (const CLI::Option* opt : run.get_options()) {
     const std::string name = opt->get_name();
     if (opt->count() == 0 || name == "--resume" || name == "--jobs" || name == "--jobs-force" ||
-        name == "--worker-wrapper")
+        name == "--worker-wrapper" || name == "--threads")
       continue;
     throw InputError(
-        "--resume: expected no other option than --jobs, --jobs-force and --worker-wrapper (the "
-        "run "
-        "goes on with the options and cases it began with), got " +
+        "--resume: expected no other option than --jobs, --jobs-force, --threads and "
+        "--worker-wrapper (the run goes on with the options and cases it began with), got " +
         (opt->get_positional() ? "case paths" : name));
   }
 }
@@ -159,10 +163,10 @@ int main_impl(int argc, char** argv) {
           },
           "COMMAND"));
   run->add_flag("--html", o.html, "also write report.html, a self-contained page");
-  run->add_option(
-      "--resume", o.resume,
-      "continue the interrupted or killed run in this folder, with the options and "
-      "cases it began with (only --jobs, --jobs-force and --worker-wrapper may be given with it)");
+  run->add_option("--resume", o.resume,
+                  "continue the interrupted or killed run in this folder, with the options and "
+                  "cases it began with (only --jobs, --jobs-force, --threads and --worker-wrapper "
+                  "may be given with it)");
 
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);

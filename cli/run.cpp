@@ -40,6 +40,7 @@ int cmd_run(const Options& given) {
     o.out = given.resume;
     if (given.jobs > 0) o.jobs = given.jobs, o.jobs_force = given.jobs_force;
     o.worker_wrapper = given.worker_wrapper;
+    o.threads = given.threads;
     for (const std::string& file : earlier->files) {
       try {
         all.push_back(casefile::load(file));
@@ -104,6 +105,9 @@ int cmd_run(const Options& given) {
 
   WorkerSettings s;
   s.jobs = workers_for(o);
+  // Each worker draws its references on its share of the cores: workers times threads never
+  // more than the cores.
+  if (o.threads == 0) o.threads = std::max(1, available_cores() / s.jobs);
   s.timeout = o.timeout;
   s.log_dir = out / "logs";
   s.interrupt_fd = interrupt_fd;

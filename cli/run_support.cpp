@@ -1,27 +1,21 @@
 #include "cli/run_support.hpp"
 
-#include <sched.h>
-
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <fstream>
 
 #include "core/text.hpp"
+#include "ref/tiles.hpp"
 #include "report/html.hpp"
 #include "report/merge.hpp"
 #include "report/report.hpp"
 
 namespace glrc::cli {
-namespace {
 
 int available_cores() {
-  cpu_set_t set;
-  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return 1;
+  return ref::thread_count(0);
 }
-
-}  // namespace
 
 Patterns load_patterns(const std::string& file, const char* option) {
   if (file.empty()) return {};

@@ -34,6 +34,8 @@ struct Inputs {
   std::vector<std::pair<std::string, std::string>> files;  // name in kInputsFolder, text
 };
 
+// The cores this process may run on (taskset, cgroups' cpusets).
+int available_cores();
 // --jobs, or one worker per available core; more than the cores only with --jobs-force (a
 // note says so otherwise).
 int workers_for(const Options& o);

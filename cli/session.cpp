@@ -57,6 +57,7 @@ check::CheckOptions check_options(const Options& o) {
   c.depth_ulps = o.depth_ulps;
   c.spec_subpixel_bits = o.spec_subpixel_bits;
   c.strict_coverage = o.strict_coverage;
+  c.threads = o.threads;
   return c;
 }
 
@@ -175,7 +176,8 @@ void to_json(nlohmann::json& j, const Options& o) {
        {"device", o.device},
        {"tolerance", to_string(o.tolerance)},
        {"strict_coverage", o.strict_coverage},
-       {"out", o.out}};
+       {"out", o.out},
+       {"threads", o.threads}};
   if (o.spec_subpixel_bits) j["spec_subpixel_bits"] = *o.spec_subpixel_bits;
   if (o.varying_ulps) j["varying_ulps"] = *o.varying_ulps;
   if (o.depth_ulps) j["depth_ulps"] = *o.depth_ulps;
@@ -203,6 +205,8 @@ void read(const typed_json::Reader& r, const nlohmann::json& j, const std::strin
     o.spec_subpixel_bits = f::whole(r, j, path, "spec_subpixel_bits", 4, 16);
   if (j.contains("varying_ulps")) o.varying_ulps = f::number(r, j, path, "varying_ulps", 0, 1e300);
   if (j.contains("depth_ulps")) o.depth_ulps = f::number(r, j, path, "depth_ulps", 0, 1e300);
+  // Absent from the journals of runs before --threads.
+  o.threads = j.contains("threads") ? f::whole(r, j, path, "threads", 0, 4096) : 0;
 }
 
 void from_json(const nlohmann::json& j, Options& o) {

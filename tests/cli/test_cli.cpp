@@ -46,6 +46,18 @@ TEST(Cli, DigestPrintsOneHashPerCase) {
   EXPECT_EQ(glrefcheck("digest --filter '^face_on'").out, o.out);  // deterministic
 }
 
+// --threads changes how fast, never a bit: the committed digests on 1 and 3 threads.
+TEST(Cli, DigestsAreTheSameOnAnyNumberOfThreads) {
+  const Outcome one = glrefcheck("digest cases --threads 1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  std::ifstream committed(std::string(GLRC_SOURCE_DIR) + "/tests/digests.txt");
+  EXPECT_EQ(one.out, std::string(std::istreambuf_iterator<char>(committed), {}));
+  EXPECT_EQ(glrefcheck("digest cases --threads 3").out, one.out);
+  const Outcome zero = glrefcheck("digest cases --threads 0");
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_EQ(zero.err, "glrefcheck: --threads: expected a whole number >= 1, got 0 (see --help)\n");
+}
+
 TEST(Cli, MalformedCaseIsOneLineAndExitTwo) {
   const fs::path d = temp_dir("malformed");
   std::ofstream(d / "broken.json") << R"({"description": "x", "vertices": [{"clip": [0, 0, 0]}]})";
