@@ -25,6 +25,7 @@ Options every_worker_field_set() {
   o.spec_subpixel_bits = 6;
   o.varying_ulps = 12.5;
   o.depth_ulps = 0.25;
+  o.threads = 3;
   return o;
 }
 
@@ -40,6 +41,7 @@ TEST(OptionsRoundTrip, EveryWorkerFieldThroughToJsonAndFromJson) {
   EXPECT_EQ(back.spec_subpixel_bits, 6);
   EXPECT_EQ(back.varying_ulps, 12.5);
   EXPECT_EQ(back.depth_ulps, 0.25);
+  EXPECT_EQ(back.threads, 3);
   // And as the worker gets them, one line of text.
   EXPECT_EQ(options_json(options_from_json(options_json(o))), options_json(o));
 }
