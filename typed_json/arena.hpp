@@ -22,7 +22,10 @@ class Arena {
     size_t at = (used_ + align - 1) & ~(align - 1);
     if (blocks_.empty() || at + n > size_) {
       size_ = std::max<size_t>(n, size_t(1) << 22);
-      blocks_.push_back(std::make_unique<std::byte[]>(size_));
+      // Not make_unique, which zeroes the block: 4 MiB written for a case of a few hundred
+      // bytes cost `list` and `digest` of one small case ~6 ms, a quarter of their start-up.
+      // Untouched, the pages are never even mapped.
+      blocks_.push_back(std::unique_ptr<std::byte[]>(new std::byte[size_]));
       at = 0;
     }
     used_ = at + n;
