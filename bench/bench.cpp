@@ -3,7 +3,8 @@
 //   gl/<case>         llvmpipe (OSMesa) drawing the case and reading the frame back, through
 //                     gl_harness as `run` does it (program, FBO, draw, glReadPixels), warm;
 //   reference/<case>  the exact reference with the specification's allowance, as `run` renders
-//                     it (check::expectation_for with llvmpipe's subpixel bits and default model);
+//                     it (check::expectation_for with llvmpipe's subpixel bits and default model),
+//                     on every core, as llvmpipe draws on every core;
 //   compare/<case>    the comparison of llvmpipe's frame with it;
 //   check/<case>      all three, as one case of `run` in a worker.
 // Usage: glrc_bench [--benchmark_* flags] CASE.json... (bench/scenes.py writes the scenes).
@@ -29,7 +30,9 @@ gl::Renderer& llvmpipe() {
 }
 
 void register_case(const Case& c) {
-  const check::CheckOptions options;
+  // Every core for the reference, as llvmpipe uses every core for its draw.
+  check::CheckOptions options;
+  options.threads = 0;
   const auto ms = [](benchmark::internal::Benchmark* b) {
     b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
   };
