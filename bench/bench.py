@@ -37,12 +37,10 @@ def bench_parts(build, scene, reps):
          "--benchmark_format=json"], check=True, capture_output=True, text=True).stdout
     times = {}
     for b in json.loads(out)["benchmarks"]:
-        runs = [b] if reps == 1 else []
-        if reps > 1 and b.get("aggregate_name") == "median":
-            runs = [b]
-        for r in runs:
-            assert r["time_unit"] == "ms"
-            times[r["run_name"].split("/")[0]] = r["real_time"] / 1000.0
+        # One repetition has no aggregates; several, the median among them.
+        if reps == 1 or b.get("aggregate_name") == "median":
+            assert b["time_unit"] == "ms"
+            times[b["run_name"].split("/")[0]] = b["real_time"] / 1000.0
     return times
 
 

@@ -104,92 +104,95 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
   const PositionFreedom& freedom = w.freedom;
   auto delta_at = [&](int px, int py) { return s.allowance ? freedom.at(px, py) : s.model_step; };
 
+  const auto& planes = w.planes;
+  // One fragment of the triangle at pixel (px, py), if it covers it: depth-tested, with its
+  // allowances and the candidates.
+  auto draw = [&](int px, int py) {
+    if (!w.coverage.covers(px, py)) return;
+    const size_t i = f.index(px, py);
+    const float z = w.depth.at(px, py);
+    auto value = [&](size_t k) {
+      return planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
+    };
+    if (!s.allowance) {
+      if (!depth_test(c.depth_func, z, f.depth[i])) return;
+      f.primitive[i] = p;
+      f.depth[i] = z;
+      ++f.fragments[i];
+      for (size_t k = 0; k < planes.size(); ++k)
+        f.components[k][i] = value(k);
+      return;
+    }
+    const double delta = freedom.at(px, py);
+    // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
+    // no pixel centre is; but they move with its vertices, inwards too.
+    if (w.clipped && viewport_side_distance(c.viewport, px, py) <= delta)
+      r.edges[i] |= edge::snapping;
+    // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
+    const double weight = w.clipped ? freedom.weight_at(px, py) : 0.0;
+    const double condition = w.fan.condition(px + 0.5, py + 0.5);
+    auto allowed_at = [&](size_t k, float v) {
+      return planes[k].flat
+                 ? 0.0f
+                 : round_up(w.allowed[k].at(px, py, v, delta,
+                                            s.component_smooth[k] ? weight * planes[k].spread : 0.0,
+                                            condition));
+    };
+    const float z_allowed =
+        round_up(w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition));
+    // Depths within each other's allowances: either fragment may win the depth test.
+    auto close = [&](float other, float other_allowed) {
+      return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
+    };
+    const bool ordered = c.depth_func != DepthFunc::always && f.fragments[i] > 0;
+    const bool contested = ordered && close(f.depth[i], r.allowed.depth[i]);
+    if (!depth_test(c.depth_func, z, f.depth[i])) {
+      if (!contested) return;
+      Candidate loser{i, p, z, z_allowed, {}, {}};
+      for (size_t k = 0; k < planes.size(); ++k) {
+        loser.values.push_back(value(k));
+        loser.allowed.push_back(allowed_at(k, loser.values.back()));
+      }
+      candidates[i].push_back(std::move(loser));
+      return;
+    }
+    // Keep the candidates that may still win against the new winner (looked up, not
+    // inserted: a pixel drawn over by a clear winner needs no entry).
+    if (const auto it = candidates.find(i); it != candidates.end())
+      std::erase_if(it->second,
+                    [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
+    // The old winner is one when it was close.
+    if (contested) {
+      Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
+      for (size_t k = 0; k < planes.size(); ++k) {
+        old.values.push_back(f.components[k][i]);
+        old.allowed.push_back(r.allowed.components[k][i]);
+      }
+      candidates[i].push_back(std::move(old));
+    }
+    f.primitive[i] = p;
+    f.depth[i] = z;
+    ++f.fragments[i];
+    r.allowed.primitive[i] = p;
+    r.allowed.depth[i] = z_allowed;
+    for (size_t k = 0; k < planes.size(); ++k) {
+      f.components[k][i] = value(k);
+      r.allowed.components[k][i] = allowed_at(k, f.components[k][i]);
+    }
+  };
+
   // Only the pixels within `margin` of the triangle, row by row (CoverageTest::row_span): a
-  // thin triangle's bounding box holds a thousand times the pixels it reaches.
+  // thin triangle's bounding box holds a thousand times the pixels it reaches. Classifying only
+  // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
+  const bool draws = t.drawn && !t.box.empty();
   for (int py = std::max(band.y0, w.reach.y0); py <= std::min(band.y1, w.reach.y1); ++py) {
     const auto [x0, x1] = w.coverage.row_span(py, w.margin, w.reach.x0, w.reach.x1);
     for (int px = x0; px <= x1; ++px)
       r.edges[f.index(px, py)] |=
           w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable);
-  }
-
-  if (!t.drawn || t.box.empty()) return;
-  const auto& planes = w.planes;
-  for (int py = std::max(band.y0, t.box.y0); py <= std::min(band.y1, t.box.y1); ++py) {
-    const auto [x0, x1] = w.coverage.row_span(py, w.margin, t.box.x0, t.box.x1);
-    for (int px = x0; px <= x1; ++px) {
-      if (!w.coverage.covers(px, py)) continue;
-      const size_t i = f.index(px, py);
-      const float z = w.depth.at(px, py);
-      auto value = [&](size_t k) {
-        return planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
-      };
-      if (!s.allowance) {
-        if (!depth_test(c.depth_func, z, f.depth[i])) continue;
-        f.primitive[i] = p;
-        f.depth[i] = z;
-        ++f.fragments[i];
-        for (size_t k = 0; k < planes.size(); ++k)
-          f.components[k][i] = value(k);
-        continue;
-      }
-      const double delta = freedom.at(px, py);
-      // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
-      // no pixel centre is; but they move with its vertices, inwards too.
-      if (w.clipped && viewport_side_distance(c.viewport, px, py) <= delta)
-        r.edges[i] |= edge::snapping;
-      // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
-      const double weight = w.clipped ? freedom.weight_at(px, py) : 0.0;
-      const double condition = w.fan.condition(px + 0.5, py + 0.5);
-      auto allowed_at = [&](size_t k, float v) {
-        return planes[k].flat
-                   ? 0.0f
-                   : round_up(w.allowed[k].at(
-                         px, py, v, delta, s.component_smooth[k] ? weight * planes[k].spread : 0.0,
-                         condition));
-      };
-      const float z_allowed =
-          round_up(w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition));
-      // Depths within each other's allowances: either fragment may win the depth test.
-      auto close = [&](float other, float other_allowed) {
-        return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
-      };
-      const bool ordered = c.depth_func != DepthFunc::always && f.fragments[i] > 0;
-      const bool contested = ordered && close(f.depth[i], r.allowed.depth[i]);
-      if (!depth_test(c.depth_func, z, f.depth[i])) {
-        if (!contested) continue;
-        Candidate loser{i, p, z, z_allowed, {}, {}};
-        for (size_t k = 0; k < planes.size(); ++k) {
-          loser.values.push_back(value(k));
-          loser.allowed.push_back(allowed_at(k, loser.values.back()));
-        }
-        candidates[i].push_back(std::move(loser));
-        continue;
-      }
-      // Keep the candidates that may still win against the new winner (looked up, not
-      // inserted: a pixel drawn over by a clear winner needs no entry).
-      if (const auto it = candidates.find(i); it != candidates.end())
-        std::erase_if(it->second,
-                      [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
-      // The old winner is one when it was close.
-      if (contested) {
-        Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
-        for (size_t k = 0; k < planes.size(); ++k) {
-          old.values.push_back(f.components[k][i]);
-          old.allowed.push_back(r.allowed.components[k][i]);
-        }
-        candidates[i].push_back(std::move(old));
-      }
-      f.primitive[i] = p;
-      f.depth[i] = z;
-      ++f.fragments[i];
-      r.allowed.primitive[i] = p;
-      r.allowed.depth[i] = z_allowed;
-      for (size_t k = 0; k < planes.size(); ++k) {
-        f.components[k][i] = value(k);
-        r.allowed.components[k][i] = allowed_at(k, f.components[k][i]);
-      }
-    }
+    if (!draws || py < t.box.y0 || py > t.box.y1) continue;
+    for (int px = std::max(x0, t.box.x0); px <= std::min(x1, t.box.x1); ++px)
+      draw(px, py);
   }
 }
 

@@ -20,7 +20,10 @@ int main(int argc, char** argv) {
     std::optional<int> bits;
     int threads = 1;
     while (paths.size() >= 2 && (paths[0] == "--expectation" || paths[0] == "--threads")) {
-      (paths[0] == "--threads" ? threads : bits.emplace()) = std::stoi(paths[1]);
+      if (paths[0] == "--threads")
+        threads = std::stoi(paths[1]);
+      else
+        bits = std::stoi(paths[1]);
       paths.erase(paths.begin(), paths.begin() + 2);
     }
     for (const auto& file : glrc::casefile::collect(paths)) {
