@@ -104,4 +104,9 @@ struct PixelError {
 };
 PixelError pixel_error(float reference, float gl, double ulp);
 
+// The nearest-rank 99th percentile of `values` (the ChannelStats p99s): the element of rank
+// ceil(0.99·n) - 1 in ascending order, NaN ordered above +infinity; 0 for no values. Reorders
+// `values`. Linear time: two counting passes over a large frame's values.
+double p99(std::vector<float>& values);
+
 }  // namespace glrc::compare

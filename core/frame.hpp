@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/large_buffer.hpp"
+
 namespace glrc {
 
 struct Frame {
@@ -24,11 +26,12 @@ struct Frame {
 
   Frame() = default;
   Frame(int w, int h, int component_count)
-      : width(w),
-        height(h),
-        primitive(size_t(w) * h, kNoPrimitive),
-        depth(size_t(w) * h, 1.0f),
-        components(component_count, std::vector<float>(size_t(w) * h, 0.0f)) {}
+      : width(w), height(h), components(size_t(std::max(component_count, 0))) {
+    assign_large(primitive, pixel_count(), kNoPrimitive);
+    assign_large(depth, pixel_count(), 1.0f);
+    for (std::vector<float>& c : components)
+      assign_large(c, pixel_count(), 0.0f);
+  }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
   size_t pixel_count() const { return size_t(width) * height; }

@@ -91,7 +91,7 @@ void Framebuffer::read_varyings(const Case& c, Frame& frame) {
   const int n = int(c.varyings.size());
   const int w = frame.width, h = frame.height;
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  if (rgba_.size() < size_t(w) * h * 4) rgba_.resize(size_t(w) * h * 4);
+  if (rgba_.size() < size_t(w) * h * 4) assign_large(rgba_, size_t(w) * h * 4, 0.0f);
   float* rgba = rgba_.data();
   int component = 0;
   for (int k = 0; k < n; ++k) {
@@ -116,17 +116,19 @@ void Framebuffer::read_depth(Frame& frame) {
                    frame.depth.data());
     return;
   }
-  std::vector<GLuint> z(frame.pixel_count());
+  std::vector<GLuint> z;
+  assign_large(z, frame.pixel_count(), GLuint(0));
   gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
   for (size_t i = 0; i < z.size(); ++i)
     frame.depth[i] = float(z[i] >> 8);
 }
 
 void Framebuffer::read_fragment_counts(Frame& frame) {
-  std::vector<float> counts(frame.pixel_count());
+  std::vector<float> counts;
+  assign_large(counts, frame.pixel_count(), 0.0f);
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
   gl_.ReadPixels(0, 0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
-  frame.fragments.resize(counts.size());
+  assign_large(frame.fragments, counts.size(), uint16_t(0));
   for (size_t i = 0; i < counts.size(); ++i)
     frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
 }

@@ -199,10 +199,10 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
 }  // namespace
 
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads) {
-  Reference r{Frame(c.fb_width, c.fb_height, c.component_count()),
-              std::vector<uint8_t>(size_t(c.fb_width) * c.fb_height, 0), Frame()};
+  Reference r{Frame(c.fb_width, c.fb_height, c.component_count()), {}, Frame()};
   Frame& f = r.frame;
-  f.fragments.assign(f.pixel_count(), 0);
+  assign_large(r.edges, f.pixel_count(), uint8_t(0));
+  assign_large(f.fragments, f.pixel_count(), uint16_t(0));
   const bool allowance = freedom_bits.has_value();
   if (allowance) r.allowed = Frame(c.fb_width, c.fb_height, c.component_count());
   // Without an allowance, coverage may legally differ within one model subpixel step of an

@@ -2,8 +2,11 @@
 // these tests check the comparator alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "compare/compare.hpp"
 
@@ -305,3 +308,31 @@ TEST(Compare, CoverageLabelsAndWatertightness) {
 
 }  // namespace
 }  // namespace glrc::compare
+
+// The counting p99 of a large channel is the element nth_element finds, on values spread over
+// many binades, with ties, zeros and infinities (a driver's NaN ulps are counted as infinite).
+TEST(Compare, P99OfALargeFrameIsTheNearestRankElement) {
+  std::mt19937 random(13);
+  for (const size_t n : {size_t(1) << 16, size_t(100003), size_t(1) << 20}) {
+    std::vector<float> values(n);
+    for (float& v : values) {
+      const uint32_t kind = random() % 16;
+      v = kind == 0   ? 0.0f
+          : kind == 1 ? std::numeric_limits<float>::infinity()
+          : kind == 2 ? 3.0f
+                      : std::ldexp(float(random() % 1000000) / 1e6f, int(random() % 60) - 30);
+    }
+    std::vector<float> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    const size_t rank = size_t(std::ceil(0.99 * double(n))) - 1;
+    EXPECT_EQ(glrc::compare::p99(values), double(sorted[rank])) << n;
+    // Below the rank everything is finite; a tail of infinities moves p99 to infinity.
+    std::fill(sorted.end() - ptrdiff_t(n / 50), sorted.end(),
+              std::numeric_limits<float>::infinity());
+    EXPECT_EQ(glrc::compare::p99(sorted), std::numeric_limits<double>::infinity()) << n;
+  }
+  std::vector<float> few = {5, 1, 4, 2, 3};
+  EXPECT_EQ(glrc::compare::p99(few), 5.0);
+  std::vector<float> none;
+  EXPECT_EQ(glrc::compare::p99(none), 0.0);
+}
