@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace glrc::ref {
 
@@ -29,11 +30,6 @@ void normalized_doubles(const LinearForm& n, const LinearForm& d, double out[6])
 }
 
 }  // namespace
-
-float round_up(double bound) {
-  const float f = float(bound);
-  return double(f) < bound ? std::nextafter(f, INFINITY) : f;
-}
 
 double value_freedom(const Case& c, const TriangleSetup& t, double scale, int generations) {
   double w = 1, m = 1 + std::max(c.fb_width, c.fb_height);
@@ -97,28 +93,68 @@ double FanTriangles::condition(double x, double y) const {
   return g;
 }
 
-Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-                     double values, const WindowPolygon& polygon, const WindowPolygon& guard_band)
-    : spread_(spread), values_(values) {
+Anchors::Anchors(const WindowPolygon& polygon, const WindowPolygon& guard_band) {
+  // A point given twice (an unclipped triangle is its own guard-band triangle) counts once,
+  // a fan anchor if either is: the largest terms over the anchors are the same.
+  auto add = [&](double x, double y, bool fan) {
+    for (size_t i = 0; i < count_; ++i)
+      if (points_[i][0] == x && points_[i][1] == y) {
+        fan_[i] = fan_[i] || fan;
+        return;
+      }
+    if (count_ == kMost) throw std::logic_error("Anchors: more than 13 anchors");
+    points_[count_] = {x, y}, fan_[count_] = fan, ++count_;
+  };
+  add(0, 0, false);
+  for (const WindowPolygon* p : {&polygon, &guard_band})
+    for (const auto& a : *p)
+      if (std::isfinite(a[0]) && std::isfinite(a[1])) add(a[0], a[1], p == &polygon);
+}
+
+void Anchors::distances(int px, int py, Distances& out) const {
+  const double x = px + 0.5, y = py + 0.5;  // window coordinates of the centre
+  for (size_t i = 0; i < count_; ++i) {
+    out.dx[i] = std::fabs(x - points_[i][0]), out.dy[i] = std::fabs(y - points_[i][1]);
+    out.most[i] = std::max(out.dx[i], out.dy[i]);
+  }
+}
+
+void Allowance::set_planes(const LinearForm& numerator, const LinearForm& denominator) {
   double c[6];
   normalized_doubles(numerator, denominator, c);
   an_ = c[0], bn_ = c[1], cn_ = c[2], ad_ = c[3], bd_ = c[4], cd_ = c[5];
-  // The forms take pixel coordinates px = x - 1/2.
-  auto at = [&](double x, double y, bool fan) {
-    return Anchor{x, y, std::fabs(an_ * (x - 0.5) + bn_ * (y - 0.5) + cn_),
-                  std::fabs(ad_ * (x - 0.5) + bd_ * (y - 0.5) + cd_), fan};
-  };
-  anchors_.push_back(at(0, 0, false));
-  for (const WindowPolygon* p : {&polygon, &guard_band})
-    for (const auto& a : *p)
-      if (std::isfinite(a[0]) && std::isfinite(a[1]))
-        anchors_.push_back(at(a[0], a[1], p == &polygon));
+  abs_an_ = std::fabs(an_), abs_bn_ = std::fabs(bn_), abs_ad_ = std::fabs(ad_),
+  abs_bd_ = std::fabs(bd_);
+  // The planes' values at the anchors; the forms take pixel coordinates px = x - 1/2.
+  const Anchors& a = anchors();
+  for (size_t i = 0; i < a.size(); ++i) {
+    n_[i] = std::fabs(an_ * (a.x(i) - 0.5) + bn_ * (a.y(i) - 0.5) + cn_);
+    d_[i] = std::fabs(ad_ * (a.x(i) - 0.5) + bd_ * (a.y(i) - 0.5) + cd_);
+  }
+}
+
+Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
+                     double values, const WindowPolygon& polygon, const WindowPolygon& guard_band)
+    : spread_(spread), values_(values), own_(polygon, guard_band) {
+  set_planes(numerator, denominator);
+}
+
+Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
+                     double values, const Anchors& anchors)
+    : spread_(spread), values_(values), shared_(&anchors) {
+  set_planes(numerator, denominator);
 }
 
 double Allowance::at(int px, int py, float value, double delta, double extra,
                      double condition) const {
+  Anchors::Distances distances;
+  anchors().distances(px, py, distances);
+  return at(px, py, value, delta, extra, condition, distances);
+}
+
+double Allowance::at(int px, int py, float value, double delta, double extra, double condition,
+                     const Anchors::Distances& distances) const {
   const double v = double(value);
-  const double x = px + 0.5, y = py + 0.5;  // window coordinates of the centre
   const double d = ad_ * px + bd_ * py + cd_;
   if (!(std::fabs(d) > 0) || !std::isfinite(v)) return std::numeric_limits<double>::infinity();
   // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
@@ -126,14 +162,17 @@ double Allowance::at(int px, int py, float value, double delta, double extra,
   const double position = std::min(1.5 * delta * (std::fabs(vx) + std::fabs(vy)), spread_);
   // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor;
   // and set up from a fan triangle anchored at a polygon vertex.
-  const double gn = std::fabs(an_) + std::fabs(bn_), gd = std::fabs(ad_) + std::fabs(bd_);
+  const double abs_v = std::fabs(v);
+  const double gn = abs_an_ + abs_bn_, gd = abs_ad_ + abs_bd_;
+  const double g = gn + abs_v * gd;
+  const Anchors& a = anchors();
   double terms = 0, setup = 0;
-  for (const Anchor& a : anchors_) {
-    const double dx = std::fabs(x - a.x), dy = std::fabs(y - a.y);
-    const double en = a.n + std::fabs(an_) * dx + std::fabs(bn_) * dy;
-    const double ed = a.d + std::fabs(ad_) * dx + std::fabs(bd_) * dy;
-    terms = std::max(terms, en + std::fabs(v) * ed);
-    if (a.fan) setup = std::max(setup, (gn + std::fabs(v) * gd) * std::max(dx, dy));
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double dx = distances.dx[i], dy = distances.dy[i];
+    const double en = n_[i] + abs_an_ * dx + abs_bn_ * dy;
+    const double ed = d_[i] + abs_ad_ * dx + abs_bd_ * dy;
+    terms = std::max(terms, en + abs_v * ed);
+    if (a.fan(i)) setup = std::max(setup, g * distances.most[i]);
   }
   const double evaluation = kEvaluationRoundings * kFloatUnitRoundoff * terms / std::fabs(d);
   const double set_up = kSetupRoundings * kFloatUnitRoundoff * condition * setup / std::fabs(d);

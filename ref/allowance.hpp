@@ -55,6 +55,10 @@
 #pragma once
 
 #include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/case.hpp"
@@ -70,8 +74,16 @@ inline constexpr double kDenormalFlushes = 8, kClippedValueRoundings = 5, kSetup
 // A polygon an implementation may rasterize: its vertices' window positions, pixels.
 using WindowPolygon = std::vector<std::array<double, 2>>;
 
-// A double bound as a float that is not smaller: stored allowances must stay bounds.
-float round_up(double bound);
+// A double bound as a float that is not smaller: stored allowances must stay bounds. Inline: it
+// runs once per pixel and channel.
+inline float round_up(double bound) {
+  const float f = float(bound);
+  if (!(double(f) < bound)) return f;  // exact, or rounded up already, or NaN
+  // The next float up; bound > f >= 0 in practice (an allowance), the general case otherwise.
+  if (f >= 0 && f < std::numeric_limits<float>::infinity())
+    return std::bit_cast<float>(std::bit_cast<uint32_t>(f) + 1);
+  return std::nextafter(f, std::numeric_limits<float>::infinity());
+}
 
 // The absolute freedom of a channel's values that does not depend on the pixel: c_v·u·s, the
 // values of clipped vertices (`generations` clip planes deep) and denormals flushed, for a
@@ -102,6 +114,34 @@ class FanTriangles {
   std::vector<Triangle> triangles_;
 };
 
+// Where the planes of one triangle's channels may be evaluated from: the window origin, the
+// polygon's vertices (where a fan triangle may be set up too) and the guard-band triangle's,
+// each point once. Shared by every channel's Allowance of the triangle, so that the distances
+// of a pixel to them are computed once per pixel, not once per channel.
+class Anchors {
+ public:
+  static constexpr size_t kMost = 1 + 9 + 3;  // the origin; a triangle clipped by 6 planes; 3
+
+  Anchors() = default;
+  // `polygon`, `guard_band`: as Allowance's below.
+  Anchors(const WindowPolygon& polygon, const WindowPolygon& guard_band);
+  size_t size() const { return count_; }
+  double x(size_t i) const { return points_[i][0]; }
+  double y(size_t i) const { return points_[i][1]; }
+  bool fan(size_t i) const { return fan_[i]; }
+
+  // |x - x_a|, |y - y_a| and their maximum for the centre of pixel (px, py) and every anchor a.
+  struct Distances {
+    std::array<double, kMost> dx, dy, most;
+  };
+  void distances(int px, int py, Distances& out) const;
+
+ private:
+  std::array<std::array<double, 2>, kMost> points_{};
+  std::array<bool, kMost> fan_{};
+  size_t count_ = 0;
+};
+
 // The allowance of one interpolated channel (a varying component or depth) over one triangle.
 class Allowance {
  public:
@@ -115,22 +155,32 @@ class Allowance {
   // the planes may be evaluated from.
   Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
             double values, const WindowPolygon& polygon = {}, const WindowPolygon& guard_band = {});
+  // The same, its anchors given as the triangle's shared Anchors (kept by pointer: they must
+  // outlive it).
+  Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
+            double values, const Anchors& anchors);
   // At pixel (px, py), whose value is `value`: `delta` is the position freedom there
   // (PositionFreedom::at, pixels), `extra` any further absolute freedom there (depth:
   // PositionFreedom::depth_at), `condition` the setup's G(p) (FanTriangles::condition).
   double at(int px, int py, float value, double delta, double extra = 0,
             double condition = 0) const;
+  // The same, with the pixel's distances to the anchors computed once for every channel
+  // (Anchors::distances of the Anchors this was built with).
+  double at(int px, int py, float value, double delta, double extra, double condition,
+            const Anchors::Distances& distances) const;
 
  private:
+  void set_planes(const LinearForm& numerator, const LinearForm& denominator);
+
   double an_ = 0, bn_ = 0, cn_ = 0, ad_ = 0, bd_ = 0, cd_ = 0;
+  double abs_an_ = 0, abs_bn_ = 0, abs_ad_ = 0, abs_bd_ = 0;
   double spread_ = 0, values_ = 0;
-  // Per anchor (the origin first): x, y, the planes' values there, |N(a)| and |D(a)|, and
-  // whether a fan triangle may be set up from it (a vertex of the polygon).
-  struct Anchor {
-    double x, y, n, d;
-    bool fan;
-  };
-  std::vector<Anchor> anchors_;
+  const Anchors& anchors() const { return shared_ ? *shared_ : own_; }
+
+  Anchors own_;                      // when built from the polygons
+  const Anchors* shared_ = nullptr;  // the triangle's, when given
+  // Per anchor: |N(a)| and |D(a)|, the planes' values there.
+  std::array<double, Anchors::kMost> n_{}, d_{};
 };
 
 }  // namespace glrc::ref

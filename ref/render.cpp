@@ -68,16 +68,16 @@ struct Prepared {
     // The implementation's possible fan triangles, shared by every channel; and where its
     // planes may be anchored.
     fan = FanTriangles(freedom.polygon(), freedom.largest());
+    anchors = Anchors(freedom.polygon(), freedom.guard_band_triangle());
     const int generations = freedom.generations();
     for (const ComponentPlane& cp : planes)
       allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
-                           value_freedom(c, t, cp.scale, generations), freedom.polygon(),
-                           freedom.guard_band_triangle());
+                           value_freedom(c, t, cp.scale, generations), anchors);
     const double n = c.depth_near, fa = c.depth_far;
     depth_allowed =
         Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
                   value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations),
-                  freedom.polygon(), freedom.guard_band_triangle());
+                  anchors);
   }
 
   const TriangleSetup& t;
@@ -89,6 +89,7 @@ struct Prepared {
   PixelBox reach;  // the pixels it may classify: its box grown by the margin, in the viewport
   RatioEvaluator depth;
   std::vector<ComponentPlane> planes;
+  Anchors anchors;  // before the allowances, which point to it
   std::vector<Allowance> allowed;
   Allowance depth_allowed;
   FanTriangles fan;
@@ -131,15 +132,17 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
     const double weight = w.clipped ? freedom.weight_at(px, py) : 0.0;
     const double condition = w.fan.condition(px + 0.5, py + 0.5);
+    Anchors::Distances distances;  // shared by every channel
+    w.anchors.distances(px, py, distances);
     auto allowed_at = [&](size_t k, float v) {
       return planes[k].flat
                  ? 0.0f
                  : round_up(w.allowed[k].at(px, py, v, delta,
                                             s.component_smooth[k] ? weight * planes[k].spread : 0.0,
-                                            condition));
+                                            condition, distances));
     };
-    const float z_allowed =
-        round_up(w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition));
+    const float z_allowed = round_up(
+        w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition, distances));
     // Depths within each other's allowances: either fragment may win the depth test.
     auto close = [&](float other, float other_allowed) {
       return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
