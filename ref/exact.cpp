@@ -158,6 +158,12 @@ float RatioEvaluator::exact_at(long px, long py) const {
   return round_to_float(n, d);
 }
 
+bool RatioEvaluator::fast_coefficients(double out[6]) const {
+  const double c[6] = {fan_, fbn_, fcn_, fad_, fbd_, fcd_};
+  std::copy(c, c + 6, out);
+  return fast_;
+}
+
 float RatioEvaluator::at(long px, long py) const {
   if (fast_) {
     const double x = double(px), y = double(py);

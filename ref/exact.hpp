@@ -69,6 +69,9 @@ class RatioEvaluator {
   RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator);
   float at(long px, long py) const;
   float exact_at(long px, long py) const;  // the exact path alone, for tests
+  // The double copies the fast path uses (N's a, b, c, then D's), each within a relative 2^-52
+  // of the exact coefficient; false when there is no fast path.
+  bool fast_coefficients(double out[6]) const;
 
  private:
   mpz_class an_, bn_, cn_, ad_, bd_, cd_;

@@ -1,7 +1,9 @@
 #include "ref/interpolation.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace glrc::ref {
 
@@ -66,6 +68,66 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
     planes.push_back(std::move(p));
   }
   return planes;
+}
+
+ComponentValues::ComponentValues(const std::vector<ComponentPlane>& planes) : planes_(&planes) {
+  for (size_t k = 0; k < planes.size(); ++k) {
+    if (planes[k].flat) continue;
+    double f[6];
+    if (!planes[k].ratio.fast_coefficients(f)) {
+      slow_.push_back(k);
+      continue;
+    }
+    auto same = std::find_if(shared_.begin(), shared_.end(), [&](const Denominator& d) {
+      return d.a == f[3] && d.b == f[4] && d.c == f[5];
+    });
+    if (same == shared_.end()) same = shared_.insert(shared_.end(), {f[3], f[4], f[5], {}});
+    same->numerators.push_back({k, f[0], f[1], f[2]});
+  }
+}
+
+void ComponentValues::values(long px, long py, float* out) const {
+  const std::vector<ComponentPlane>& planes = *planes_;
+  for (size_t k = 0; k < planes.size(); ++k)
+    if (planes[k].flat) out[k] = planes[k].flat_value;
+  for (size_t k : slow_)
+    out[k] = planes[k].ratio.exact_at(px, py);
+  // The fast path of RatioEvaluator::at, with the division by d shared. n and d are the forms
+  // in double, each coefficient within a relative 2u of the exact one (u = 2^-53): whatever
+  // the order of the products and sums, fused or not, |n - N| <= 5u·S (S the sum of the terms'
+  // magnitudes), which en = 8u·S̃ bounds with S̃ computed in double; likewise ed for d. Where
+  // |d| > 4·ed, |n/d - N/D| <= (en + |n/d|·ed)/(|d| - ed) =: E. q = n·(1/d) is within 2u|q| of
+  // n/d, and the endpoints q ± err are rounded once more (u(|q| + err)), so
+  //     err = ((en + |q|·ed)·(1/(|d| - ed)) + 6u|q|)·1.01 + 2^-1000
+  // keeps N/D within [q - err, q + err] as computed: the 1% covers the few roundings of err's
+  // own arithmetic and of |q| for |n/d| in E; 2^-1000 a q in double's subnormal range. Where
+  // both ends round to the same float, monotone rounding makes it the float nearest N/D, which
+  // is what the exact path gives; anywhere else the exact path decides.
+  constexpr double u = 0x1p-53;
+  const double x = double(px), y = double(py), ax = std::fabs(x), ay = std::fabs(y);
+  for (const Denominator& den : shared_) {
+    const double d = den.a * x + den.b * y + den.c;
+    const double ed = 8 * u * (std::fabs(den.a) * ax + std::fabs(den.b) * ay + std::fabs(den.c));
+    const double ad = std::fabs(d);
+    const bool fast = ad > 4 * ed;
+    const double inverse_d = 1 / d, inverse_margin = 1 / (ad - ed);
+    for (const Numerator& num : den.numerators) {
+      if (fast) {
+        const double n = num.a * x + num.b * y + num.c;
+        const double en =
+            8 * u * (std::fabs(num.a) * ax + std::fabs(num.b) * ay + std::fabs(num.c));
+        const double q = n * inverse_d;
+        const double err =
+            ((en + std::fabs(q) * ed) * inverse_margin + 6 * u * std::fabs(q)) * 1.01 + 0x1p-1000;
+        const float lo = float(q - err), hi = float(q + err);
+        if (std::bit_cast<uint32_t>(lo) == std::bit_cast<uint32_t>(hi) && std::isfinite(lo)) {
+          out[num.component] = lo;
+          continue;
+        }
+      }
+      out[num.component] = planes[num.component].ratio.exact_at(px, py);
+    }
+  }
 }
 
 }  // namespace glrc::ref

@@ -51,6 +51,33 @@ struct ComponentPlane {
 std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
                                              const Barycentrics& b);
 
+// Every component's value at a pixel at once, as ComponentPlane gives them, each the float
+// nearest its exact ratio. Components that share a denominator (every smooth one: sum L_i over
+// unsnapped planes; every noperspective one) share its evaluation, and the fast path divides
+// once per denominator, not once per component (the proof is at values()). Read only once
+// built: safe to use from several threads.
+class ComponentValues {
+ public:
+  ComponentValues() = default;
+  explicit ComponentValues(const std::vector<ComponentPlane>& planes);
+  // out[k] = component k's value at pixel (px, py), for every k of `planes` (which must
+  // outlive this).
+  void values(long px, long py, float* out) const;
+
+ private:
+  struct Numerator {
+    size_t component;
+    double a, b, c;
+  };
+  struct Denominator {
+    double a, b, c;
+    std::vector<Numerator> numerators;
+  };
+  const std::vector<ComponentPlane>* planes_ = nullptr;
+  std::vector<Denominator> shared_;  // the components with a fast path, by denominator
+  std::vector<size_t> slow_;         // the non-flat components without one
+};
+
 // Sum L_i alpha_i over sum L_i beta_i.
 Plane plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
             const std::array<mpq_class, 3>& beta);

@@ -64,6 +64,7 @@ struct Prepared {
     const Plane depth_forms = depth_plane(t, b);
     depth = depth_forms.evaluator();
     planes = component_planes(c, t, b);
+    values = ComponentValues(planes);
     if (!s.allowance) return;
     // The implementation's possible fan triangles, shared by every channel; and where its
     // planes may be anchored.
@@ -76,8 +77,7 @@ struct Prepared {
     const double n = c.depth_near, fa = c.depth_far;
     depth_allowed =
         Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
-                  value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations),
-                  anchors);
+                  value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations), anchors);
   }
 
   const TriangleSetup& t;
@@ -89,7 +89,8 @@ struct Prepared {
   PixelBox reach;  // the pixels it may classify: its box grown by the margin, in the viewport
   RatioEvaluator depth;
   std::vector<ComponentPlane> planes;
-  Anchors anchors;  // before the allowances, which point to it
+  ComponentValues values;  // of `planes`
+  Anchors anchors;         // before the allowances, which point to it
   std::vector<Allowance> allowed;
   Allowance depth_allowed;
   FanTriangles fan;
@@ -106,22 +107,21 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
   auto delta_at = [&](int px, int py) { return s.allowance ? freedom.at(px, py) : s.model_step; };
 
   const auto& planes = w.planes;
+  std::vector<float> value(planes.size());  // the fragment's components
   // One fragment of the triangle at pixel (px, py), if it covers it: depth-tested, with its
   // allowances and the candidates.
   auto draw = [&](int px, int py) {
     if (!w.coverage.covers(px, py)) return;
     const size_t i = f.index(px, py);
     const float z = w.depth.at(px, py);
-    auto value = [&](size_t k) {
-      return planes[k].flat ? planes[k].flat_value : planes[k].ratio.at(px, py);
-    };
     if (!s.allowance) {
       if (!depth_test(c.depth_func, z, f.depth[i])) return;
       f.primitive[i] = p;
       f.depth[i] = z;
       ++f.fragments[i];
+      w.values.values(px, py, value.data());
       for (size_t k = 0; k < planes.size(); ++k)
-        f.components[k][i] = value(k);
+        f.components[k][i] = value[k];
       return;
     }
     const double delta = freedom.at(px, py);
@@ -152,8 +152,9 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     if (!depth_test(c.depth_func, z, f.depth[i])) {
       if (!contested) return;
       Candidate loser{i, p, z, z_allowed, {}, {}};
+      w.values.values(px, py, value.data());
       for (size_t k = 0; k < planes.size(); ++k) {
-        loser.values.push_back(value(k));
+        loser.values.push_back(value[k]);
         loser.allowed.push_back(allowed_at(k, loser.values.back()));
       }
       candidates[i].push_back(std::move(loser));
@@ -178,9 +179,10 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     ++f.fragments[i];
     r.allowed.primitive[i] = p;
     r.allowed.depth[i] = z_allowed;
+    w.values.values(px, py, value.data());
     for (size_t k = 0; k < planes.size(); ++k) {
-      f.components[k][i] = value(k);
-      r.allowed.components[k][i] = allowed_at(k, f.components[k][i]);
+      f.components[k][i] = value[k];
+      r.allowed.components[k][i] = allowed_at(k, value[k]);
     }
   };
 

@@ -1,0 +1,106 @@
+// ComponentValues: every component's value at a pixel at once, the division shared by the
+// components of one denominator. Each must be the very float the exact path gives.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "ref/interpolation.hpp"
+
+namespace glrc::ref {
+namespace {
+
+mpq_class pow2(int e) {
+  return e >= 0 ? mpq_class(mpz_class(1) << e) : mpq_class(mpz_class(1), mpz_class(1) << -e);
+}
+
+ComponentPlane ratio_plane(const LinearForm& n, const LinearForm& d) {
+  ComponentPlane p;
+  p.plane = {n, d};
+  p.ratio = p.plane.evaluator();
+  return p;
+}
+
+ComponentPlane flat_plane(float v) {
+  ComponentPlane p;
+  p.flat = true;
+  p.flat_value = v;
+  return p;
+}
+
+LinearForm random_form(std::mt19937_64& rng, int spread) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> e(-spread, spread);
+  auto r = [&]() -> mpq_class {
+    return mpq_class(std::ldexp(u(rng), e(rng))) / mpq_class(std::ldexp(u(rng), e(rng)));
+  };
+  return {r(), r(), r()};
+}
+
+// Every component at every sampled pixel against RatioEvaluator::exact_at, bit for bit.
+int disagreements(const std::vector<ComponentPlane>& planes, long step) {
+  const ComponentValues values(planes);
+  std::vector<float> out(planes.size());
+  int wrong = 0;
+  for (long py = 0; py < 1000; py += step)
+    for (long px = 0; px < 1000; px += step + 4) {
+      values.values(px, py, out.data());
+      for (size_t k = 0; k < planes.size(); ++k) {
+        const float want = planes[k].flat ? planes[k].flat_value : planes[k].ratio.exact_at(px, py);
+        wrong += std::bit_cast<uint32_t>(out[k]) != std::bit_cast<uint32_t>(want);
+      }
+    }
+  return wrong;
+}
+
+TEST(ComponentValues, SharedDenominatorsGiveTheExactBits) {
+  std::mt19937_64 rng(13);
+  for (int t = 0; t < 60; ++t) {
+    // Two denominators shared by three numerators each (smooth and noperspective components),
+    // and a flat component between them.
+    LinearForm d1 = random_form(rng, 20), d2 = random_form(rng, 20);
+    d1.c = abs(d1.a) * 2000 + abs(d1.b) * 2000 + 1;
+    d2.c = -(abs(d2.a) * 2000 + abs(d2.b) * 2000 + pow2(-30));  // negative, nearly zero at 0,0
+    std::vector<ComponentPlane> planes;
+    for (int k = 0; k < 3; ++k) {
+      planes.push_back(ratio_plane(random_form(rng, 20), d1));
+      planes.push_back(ratio_plane(random_form(rng, 20), d2));
+    }
+    planes.insert(planes.begin() + 2, flat_plane(-7.25f));
+    ASSERT_EQ(disagreements(planes, 37), 0) << t;
+  }
+}
+
+TEST(ComponentValues, DenominatorsCrossingZeroAndWideMagnitudes) {
+  std::mt19937_64 rng(14);
+  for (int t = 0; t < 60; ++t) {
+    // D passes through zero inside the sampled pixels: near it only the exact path may answer
+    // (a pixel with D = 0 is NaN on both paths).
+    const LinearForm d = random_form(rng, 4);
+    std::vector<ComponentPlane> planes;
+    for (int k = 0; k < 4; ++k)
+      planes.push_back(ratio_plane(random_form(rng, 60), d));
+    ASSERT_EQ(disagreements(planes, 23), 0) << t;
+  }
+}
+
+TEST(ComponentValues, NearATieTheExactPathDecides) {
+  // N/D = 1 + 2^-24 + 2^-80 and 1 + 2^-24 exactly (a tie, to even: 1) over a shared D = 3:
+  // the double quotient cannot tell them apart.
+  const LinearForm d{0, 0, 3};
+  const std::vector<ComponentPlane> planes = {
+      ratio_plane({0, 0, 3 * (1 + pow2(-24) + pow2(-80))}, d),
+      ratio_plane({0, 0, 3 * (1 + pow2(-24))}, d),
+      ratio_plane({0, 0, 3 * (1 + pow2(-24) - pow2(-80))}, d)};
+  std::vector<float> out(3);
+  ComponentValues(planes).values(3, 5, out.data());
+  EXPECT_EQ(out[0], std::nextafter(1.0f, 2.0f));
+  EXPECT_EQ(out[1], 1.0f);
+  EXPECT_EQ(out[2], 1.0f);
+}
+
+}  // namespace
+}  // namespace glrc::ref
