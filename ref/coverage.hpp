@@ -15,6 +15,11 @@ class CoverageTest {
  public:
   CoverageTest(const TriangleSetup& t, const Model& m);
   bool covers(int px, int py) const;
+  // f(px) for every px in [x0, x1] whose pixel of row py covers() holds, in order. The snapped
+  // edge functions are stepped by their integer a from pixel to pixel: exact, the same values
+  // as evaluating each pixel, for a fraction of the 128-bit products.
+  template <class F>
+  void for_each_covered(int py, int x0, int x1, F&& f) const;
   // What this triangle's boundary means for the centre of pixel (px, py), as edge:: bits.
   // `freedom`: how far (in pixels, along x and along y) an implementation may move each vertex;
   // an edge then moves by at most freedom·(|n_x| + |n_y|) for its unit normal n, which is the
@@ -26,6 +31,10 @@ class CoverageTest {
   // by the freedom; every centre inside it grown by the bands is marked edge::unstable.
   uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
                    bool unstable = false) const;
+  // Whether classify(px, py, freedom, ...) is 0 for every freedom up to `largest` (the centre is
+  // outside a band, or inside every band with nothing else to mark), so that the freedom at the
+  // pixel need not be computed. False says nothing.
+  bool classifies_nothing(int px, int py, double largest, bool unstable) const;
   // The pixels [first, last] of row py within [x0, x1] whose centre may be within `reach`
   // pixels of the exact triangle (inside every exact edge's line grown by `reach`), as a span
   // that may hold more but never misses one (SignEvaluator::row_interval); first > last for
@@ -43,5 +52,27 @@ class CoverageTest {
   std::array<bool, 3> tie_inside_{};    // a centre exactly on edge i is covered
   std::array<double, 3> band_scale_{};  // (|n_x| + |n_y|) of each exact edge's unit normal
 };
+
+template <class F>
+void CoverageTest::for_each_covered(int py, int x0, int x1, F&& f) const {
+  if (t_.path != CoveragePath::snapped) {
+    for (int px = x0; px <= x1; ++px)
+      if (covers(px, py)) f(px);
+    return;
+  }
+  std::array<int128, 3> e;
+  for (int i = 0; i < 3; ++i)
+    e[size_t(i)] = t_.snapped_edges[size_t(i)].at(x0, py);
+  for (int px = x0; px <= x1; ++px) {
+    bool inside = true;
+    for (size_t i = 0; i < 3; ++i) {
+      inside = inside && (e[i] > 0 || (e[i] == 0 && tie_inside_[i]));
+      e[i] += t_.snapped_edges[i].a;
+    }
+    if (inside && (!clip_.crosses_near || clip_.near.sign(px, py) >= 0) &&
+        (!clip_.crosses_far || clip_.far.sign(px, py) >= 0))
+      f(px);
+  }
+}
 
 }  // namespace glrc::ref

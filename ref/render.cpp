@@ -53,8 +53,11 @@ struct Prepared {
     unstable = s.allowance && freedom.may_turn_over();
     // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further
     // (the viewport bounds it anyway; the clamp keeps the conversion defined).
-    const double largest = s.allowance ? freedom.largest() : s.model_step;
+    largest = s.allowance ? freedom.largest() : s.model_step;
     margin = 1 + int(std::min(std::ceil(largest * 1.5), 1e6));
+    // What row_span needs, 1 + largest·sqrt(2), and a little more for its arithmetic; never
+    // beyond the margin of the box.
+    reach_px = std::min(double(margin), 1 + largest * 1.5);
     reach = {std::max(s.viewport.x0, t.box.x0 - margin), std::max(s.viewport.y0, t.box.y0 - margin),
              std::min(s.viewport.x1, t.box.x1 + margin),
              std::min(s.viewport.y1, t.box.y1 + margin)};
@@ -86,7 +89,9 @@ struct Prepared {
   PositionFreedom freedom;
   bool unstable = false, clipped = false;
   int margin = 1;
-  PixelBox reach;  // the pixels it may classify: its box grown by the margin, in the viewport
+  double largest = 0;   // the freedom at no pixel is larger (PositionFreedom::largest)
+  double reach_px = 1;  // how far from the triangle a pixel may be classified or covered
+  PixelBox reach;       // the pixels it may classify: its box grown by the margin, in the viewport
   RatioEvaluator depth;
   std::vector<ComponentPlane> planes;
   ComponentValues values;  // of `planes`
@@ -108,10 +113,9 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
 
   const auto& planes = w.planes;
   std::vector<float> value(planes.size());  // the fragment's components
-  // One fragment of the triangle at pixel (px, py), if it covers it: depth-tested, with its
+  // One fragment of the triangle at pixel (px, py), which it covers: depth-tested, with its
   // allowances and the candidates.
   auto draw = [&](int px, int py) {
-    if (!w.coverage.covers(px, py)) return;
     const size_t i = f.index(px, py);
     const float z = w.depth.at(px, py);
     if (!s.allowance) {
@@ -191,13 +195,15 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
   const bool draws = t.drawn && !t.box.empty();
   for (int py = std::max(band.y0, w.reach.y0); py <= std::min(band.y1, w.reach.y1); ++py) {
-    const auto [x0, x1] = w.coverage.row_span(py, w.margin, w.reach.x0, w.reach.x1);
+    const auto [x0, x1] = w.coverage.row_span(py, w.reach_px, w.reach.x0, w.reach.x1);
     for (int px = x0; px <= x1; ++px)
-      r.edges[f.index(px, py)] |=
-          w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable);
+      // Most pixels are beyond or deep within every band: no freedom to compute for them.
+      if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable))
+        r.edges[f.index(px, py)] |=
+            w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable);
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
-    for (int px = std::max(x0, t.box.x0); px <= std::min(x1, t.box.x1); ++px)
-      draw(px, py);
+    w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
+                                [&](int px) { draw(px, py); });
   }
 }
 

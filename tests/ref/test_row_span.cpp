@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "ref/coverage.hpp"
 #include "ref/setup.hpp"
@@ -33,9 +34,23 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
   const TriangleSetup t = setup_triangle(c, m, 0);
   if (!t.has_edges) return 0;
   const CoverageTest coverage(t, m);
-  const int reach = 1 + int(std::ceil(freedom * 1.5));  // render.cpp's margin
+  const double reach = 1 + freedom * 1.5;  // render.cpp's reach_px
   size_t held = 0;
   for (int py = 0; py < kSize; ++py) {
+    // for_each_covered steps the edge functions along the row: the very pixels covers() gives.
+    std::vector<int> stepped, tested;
+    coverage.for_each_covered(py, 0, kSize - 1, [&](int px) { stepped.push_back(px); });
+    for (int px = 0; px < kSize; ++px) {
+      if (coverage.covers(px, py)) tested.push_back(px);
+      // classifies_nothing for the largest freedom holds for every smaller one.
+      for (bool unstable : {false, true})
+        if (coverage.classifies_nothing(px, py, freedom, unstable)) {
+          for (double f : {freedom, freedom / 2, 0.0})
+            EXPECT_EQ(coverage.classify(px, py, f, {true, false, true}, unstable), 0)
+                << "pixel " << px << "," << py << " freedom " << f;
+        }
+    }
+    EXPECT_EQ(stepped, tested) << "row " << py;
     const auto [x0, x1] = coverage.row_span(py, reach, 0, kSize - 1);
     EXPECT_GE(x0, 0);
     EXPECT_LE(x1, kSize - 1);
