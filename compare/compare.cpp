@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -18,19 +19,13 @@ constexpr size_t kWorstPerChannel = 10;
 constexpr size_t kMismatchesKept = 64;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A float's bits as an unsigned key in the float's order (negatives flipped below positives;
-// a NaN above +infinity, so that every value has a place).
-uint32_t order_key(float v) {
-  const uint32_t bits = std::bit_cast<uint32_t>(v);
-  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
-}
-
 // One channel's errors, gathered over the pixels both frames cover with the same primitive.
 struct ChannelAccumulator {
   ChannelStats stats;
-  // Every compared pixel's error and share of its allowance, for the percentiles; float is
-  // ample for a statistic and halves the memory of a large frame with many channels.
-  std::vector<float> ulps, ratios;
+  // The largest errors and shares of the allowance, enough of them for the percentiles; float
+  // is ample for a statistic.
+  explicit ChannelAccumulator(size_t most_compared) : ulps(most_compared), ratios(most_compared) {}
+  LargestValues ulps, ratios;
   bool exact = false;  // exact mode: any differing bit is over
   // The kWorstPerChannel largest errors as a min-heap: memory does not grow with the frame.
   std::vector<WorstPixel> worst;
@@ -56,7 +51,7 @@ struct ChannelAccumulator {
     if (!std::isfinite(gl)) ++stats.non_finite;
     const double ratio = e.abs_error == 0 ? 0.0 : allowed > 0 ? e.abs_error / allowed : kInf;
     stats.max_ratio = std::max(stats.max_ratio, ratio);
-    ratios.push_back(float(ratio));
+    ratios.add(float(ratio));
     if (std::isfinite(e.ulps)) {
       sum += e.ulps;
       sum_sq += e.ulps * e.ulps;
@@ -64,7 +59,7 @@ struct ChannelAccumulator {
     }
     stats.max_abs = std::max(stats.max_abs, e.abs_error);
     stats.max_ulps = std::max(stats.max_ulps, e.ulps);
-    ulps.push_back(float(e.ulps));
+    ulps.add(float(e.ulps));
     if (e.ulps == 0) return;
     const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps, allowed, ratio};
     if (worst.size() < kWorstPerChannel) {
@@ -84,8 +79,8 @@ struct ChannelAccumulator {
       stats.mean_ulps = sum / double(finite);
       stats.rms_ulps = std::sqrt(sum_sq / double(finite));
     }
-    stats.p99_ulps = p99(ulps);
-    stats.p99_ratio = p99(ratios);
+    stats.p99_ulps = ulps.p99();
+    stats.p99_ratio = ratios.p99();
     std::sort_heap(worst.begin(), worst.end(), larger);
     stats.worst = std::move(worst);
     return std::move(stats);
@@ -148,36 +143,33 @@ std::string failure_message(const CaseResult& r) {
 
 }  // namespace
 
-// Nearest-rank 99th percentile; 0 for no values. Of a frame's million values, by two counting
-// passes over their keys (the upper 16 bits, then the lower 16 within the upper half's bucket
-// that holds the rank): linear, moving nothing, and the same element nth_element finds,
-// which the few values of a small triangle still use.
-double p99(std::vector<float>& values) {
-  if (values.empty()) return 0;
-  const size_t rank = size_t(std::ceil(0.99 * double(values.size()))) - 1;
-  if (values.size() < (size_t(1) << 16)) {
-    std::nth_element(values.begin(), values.begin() + ptrdiff_t(rank), values.end(),
-                     [](float a, float b) { return order_key(a) < order_key(b); });
-    return values[rank];
-  }
-  std::vector<uint32_t> count(size_t(1) << 16);
-  // The bucket of `bits` (of the key, from `shift`) that holds the rank-th smallest key,
-  // `rank` left as the rank within it.
-  auto bucket = [&](size_t& rank_left) {
-    size_t b = 0;
-    for (; rank_left >= count[b]; ++b)
-      rank_left -= count[b];
-    return uint32_t(b);
-  };
+double p99(const std::vector<float>& values) {
+  LargestValues largest(values.size());
   for (float v : values)
-    ++count[order_key(v) >> 16];
-  size_t left = rank;
-  const uint32_t high = bucket(left);
-  std::fill(count.begin(), count.end(), 0u);
-  for (float v : values)
-    if (const uint32_t key = order_key(v); key >> 16 == high) ++count[key & 0xffffu];
-  const uint32_t key = high << 16 | bucket(left);
-  return std::bit_cast<float>(key & 0x80000000u ? key & 0x7fffffffu : ~key);
+    largest.add(v);
+  return largest.p99();
+}
+
+LargestValues::LargestValues(size_t most) : keep_(most / 100 + 16) {}
+
+void LargestValues::compact() {
+  // The keep_ largest keys, the smallest of them last: everything not above it may go.
+  std::nth_element(keys_.begin(), keys_.begin() + ptrdiff_t(keep_ - 1), keys_.end(),
+                   std::greater<>());
+  keys_.resize(keep_);
+  floor_ = keys_.back();
+  compacted_ = true;
+}
+
+double LargestValues::p99() {
+  if (count_ == 0) return 0;
+  const size_t rank = size_t(std::ceil(0.99 * double(count_))) - 1;
+  // The (count - rank)-th largest. Every value above floor_ is kept, and at least keep_ values
+  // not below it, so the kept keys' j-th largest is the stream's for any j <= keep_.
+  const size_t j = count_ - rank;
+  if (j > keys_.size()) throw std::logic_error("LargestValues: kept too few values for p99");
+  std::nth_element(keys_.begin(), keys_.begin() + ptrdiff_t(j - 1), keys_.end(), std::greater<>());
+  return float_of_order_key(keys_[j - 1]);
 }
 
 double attribute_scale(const Case& c, int primitive, int component) {
@@ -285,30 +277,67 @@ std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, 
   return Label::fill_rule;
 }
 
-CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
-                   const Tolerance& tolerance) {
+// What a Comparator gathers between bands.
+struct Comparator::State {
+  State(const Case& the_case, const Tolerance& t, int w, int h)
+      : c(the_case), ulps(the_case), width(w), height(h) {
+    r.name = c.name;
+    r.description = c.description;
+    r.tolerance = t;
+    r.coverage.fragments_checked = true;  // until a band without counts says otherwise
+    const std::vector<std::string> names = component_names(c);
+    for (int k = kDepth; k < int(names.size()); ++k) {
+      ChannelAccumulator& acc = channels.emplace_back(size_t(w) * size_t(std::max(h, 0)));
+      acc.exact = t.mode == ToleranceMode::exact;
+      acc.stats.name = k == kDepth ? "depth" : names[size_t(k)];
+    }
+    largest_allowance_ulps.assign(channels.size(), 0.0);
+    fixed_ulps.assign(channels.size(), std::nullopt);
+  }
+
+  const Case& c;
+  const UlpTable ulps;
+  int width, height, next_row = 0;
+  CaseResult r;
+  std::vector<ChannelAccumulator> channels;  // depth, then each component
+  std::vector<double> largest_allowance_ulps;
+  std::vector<std::optional<double>> fixed_ulps;    // a channel's fixed allowance, if not per pixel
+  std::vector<std::pair<size_t, Judged>> compared;  // one band's, reused
+};
+
+Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height)
+    : state_(std::make_unique<State>(c, tolerance, width, height)) {}
+
+Comparator::~Comparator() = default;
+
+void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) {
+  State& st = *state_;
+  const Case& c = st.c;
+  const Tolerance& tolerance = st.r.tolerance;
   const Frame& reference = expected.frame;
   const bool spec = tolerance.mode == ToleranceMode::spec;
   const bool exact = tolerance.mode == ToleranceMode::exact;
-  if (reference.width != gl.width || reference.height != gl.height ||
+  if (reference.width != st.width || reference.width != gl.width || reference.height != gl.height ||
+      y0 != st.next_row || reference.height < 0 || y0 + reference.height > st.height ||
+      reference.components.size() != size_t(c.component_count()) ||
       reference.components.size() != gl.components.size() ||
       expected.edges.size() != reference.pixel_count() ||
       (spec && (expected.allowed.components.size() != reference.components.size() ||
                 expected.allowed.depth.size() != reference.pixel_count())))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
-
-  CaseResult r;
-  r.name = c.name;
-  r.description = c.description;
-  r.tolerance = tolerance;
+  st.next_row += reference.height;
 
   // Coverage first; the pixels where values are compared are kept for the channel passes, with
   // the candidate GL kept where the depth test could go either way.
-  std::vector<std::pair<size_t, Judged>> compared;
-  compared.reserve(reference.pixel_count());  // untouched beyond what is covered
-  advise_huge_pages(compared.data(), compared.capacity() * sizeof compared[0]);
-  auto& cov = r.coverage;
-  cov.fragments_checked = reference.fragments.size() == reference.pixel_count() &&
+  std::vector<std::pair<size_t, Judged>>& compared = st.compared;
+  compared.clear();
+  if (compared.capacity() < reference.pixel_count()) {
+    compared.reserve(reference.pixel_count());  // untouched beyond what is covered
+    advise_huge_pages(compared.data(), compared.capacity() * sizeof compared[0]);
+  }
+  auto& cov = st.r.coverage;
+  cov.fragments_checked = cov.fragments_checked &&
+                          reference.fragments.size() == reference.pixel_count() &&
                           gl.fragments.size() == gl.pixel_count();
   using Label = CoverageStats::Label;
   for (int y = 0; y < reference.height; ++y) {
@@ -338,44 +367,40 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
       if (free) ++cov.boundary;
       if (!free || !tolerance.allow_boundary || exact) ++cov.failures;
       if (cov.mismatches.size() < kMismatchesKept)
-        cov.mismatches.push_back({x, y, pr, pg, free, *label});
+        cov.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
     }
   }
 
-  // Then one channel at a time (depth, then each component), so that only one channel's
-  // per-pixel errors are held at once, however many varyings a large frame has.
-  const std::vector<std::string> names = component_names(c);
-  const UlpTable ulps(c);
-  // The per-pixel errors of one channel, their storage reused by the next.
-  std::vector<float> ulps_kept, ratios_kept;
-  for (int k = kDepth; k < int(names.size()); ++k) {
-    ChannelAccumulator acc;
-    acc.ulps = std::move(ulps_kept), acc.ratios = std::move(ratios_kept);
-    acc.ulps.clear(), acc.ratios.clear();
-    acc.exact = exact;
+  // Then one channel at a time (depth, then each component), each in pixel order.
+  for (int k = kDepth; k < int(st.channels.size()) - 1; ++k) {
+    const size_t slot = size_t(k + 1);
+    ChannelAccumulator& acc = st.channels[slot];
     const bool depth = k == kDepth;
-    acc.stats.name = depth ? "depth" : names[size_t(k)];
     const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
     const ChannelAllowance allowance(c, expected, tolerance, k);
-    if (acc.ulps.capacity() < compared.size()) {
-      acc.ulps.reserve(compared.size()), acc.ratios.reserve(compared.size());
-      advise_huge_pages(acc.ulps.data(), compared.size() * sizeof(float));
-      advise_huge_pages(acc.ratios.data(), compared.size() * sizeof(float));
-    }
-    double largest_allowance_ulps = 0;
+    if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
+    double& largest_allowance_ulps = st.largest_allowance_ulps[slot];
     for (const auto& [i, judged] : compared) {
-      const double ulp = ulps.ulp(judged.primitive(expected, i), k);
+      const double ulp = st.ulps.ulp(judged.primitive(expected, i), k);
       const double allowed = judged.allowed(allowance, i, ulp, k);
       largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
-      acc.add(int(i % size_t(reference.width)), int(i / size_t(reference.width)),
+      acc.add(int(i % size_t(reference.width)), y0 + int(i / size_t(reference.width)),
               judged.value(expected, i, k), gl_values[i], ulp, allowed);
     }
-    acc.stats.tolerance_ulps =
-        allowance.per_pixel() ? largest_allowance_ulps : allowance.fixed_ulps();
-    r.channels.push_back(acc.finish());
-    ulps_kept = std::move(acc.ulps), ratios_kept = std::move(acc.ratios);
   }
+}
 
+CaseResult Comparator::finish() {
+  State& st = *state_;
+  CaseResult r = std::move(st.r);
+  for (size_t slot = 0; slot < st.channels.size(); ++slot) {
+    ChannelAccumulator& acc = st.channels[slot];
+    acc.stats.tolerance_ulps =
+        st.fixed_ulps[slot] ? *st.fixed_ulps[slot] : st.largest_allowance_ulps[slot];
+    r.channels.push_back(acc.finish());
+  }
+  const Case& c = st.c;
+  const auto& cov = r.coverage;
   bool pass = cov.failures == 0;
   for (const auto& ch : r.channels)
     pass = pass && ch.pass();
@@ -388,6 +413,13 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
   }
   r.outcome = r.status;
   return r;
+}
+
+CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
+                   const Tolerance& tolerance) {
+  Comparator comparator(c, tolerance, expected.frame.width, expected.frame.height);
+  comparator.add_rows(expected, gl, 0);
+  return comparator.finish();
 }
 
 }  // namespace glrc::compare

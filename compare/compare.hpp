@@ -2,7 +2,9 @@
 // Knows nothing of GL: two Frames in the same layout, the Case for the attribute scales.
 #pragma once
 
+#include <bit>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -19,6 +21,31 @@ namespace glrc::compare {
 // reason in the message), and fills the statistics.
 CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
                    const Tolerance& tolerance);
+
+// The same comparison, band of rows by band of rows, so that neither frame need be held whole:
+// the result of adding a frame's bands in order, top row of each following the last, is the
+// result of compare() on the whole frames, field for field. Keeps the statistics, the worst
+// pixels, the first coverage mismatches and a percent of each channel's errors (LargestValues),
+// not the frames. c must outlive it.
+class Comparator {
+ public:
+  // For frames of width × height pixels.
+  Comparator(const Case& c, const Tolerance& tolerance, int width, int height);
+  ~Comparator();
+  Comparator(const Comparator&) = delete;
+  Comparator& operator=(const Comparator&) = delete;
+  // Rows [y0, y0 + expected.frame.height) of both frames: `expected` and `gl` hold only them
+  // (frames that wide and that high; pixel indices, Candidate::pixel included, within the
+  // band). y0 must be the row after the previous band's. Throws std::invalid_argument for bands
+  // of another shape or out of order.
+  void add_rows(const Expectation& expected, const Frame& gl, int y0);
+  // The verdict and the statistics, as compare() gives them. Once.
+  CaseResult finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // The scale of component k at a pixel covered by triangle `primitive`: the largest |v_i| of
 // that triangle's three vertices. Depth is component kDepth, of scale 1.0. Errors are counted in
@@ -104,9 +131,45 @@ struct PixelError {
 };
 PixelError pixel_error(float reference, float gl, double ulp);
 
+// A float's bits as an unsigned key in the float's order: negatives below positives, -0 just
+// below +0, a NaN above +infinity, so that every value has a place.
+inline uint32_t order_key(float v) {
+  const uint32_t bits = std::bit_cast<uint32_t>(v);
+  return bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+}
+inline float float_of_order_key(uint32_t key) {
+  return std::bit_cast<float>(key & 0x80000000u ? key & 0x7fffffffu : ~key);
+}
+
 // The nearest-rank 99th percentile of `values` (the ChannelStats p99s): the element of rank
-// ceil(0.99·n) - 1 in ascending order, NaN ordered above +infinity; 0 for no values. Reorders
-// `values`. Linear time: two counting passes over a large frame's values.
-double p99(std::vector<float>& values);
+// ceil(0.99·n) - 1 in ascending order (order_key's order); 0 for no values.
+double p99(const std::vector<float>& values);
+
+// The p99 above of a stream of values, without holding the stream: for n values it is the
+// (n - rank)-th largest, and n - rank <= n/100 + 1, so only the largest few are kept (at most
+// 2·(most/100 + 16) for at most `most` values; those not above the smallest kept value once
+// enough are kept are dropped as they come). Amortized constant time per value.
+class LargestValues {
+ public:
+  explicit LargestValues(size_t most);
+  void add(float v) {
+    ++count_;
+    const uint32_t key = order_key(v);
+    if (compacted_ && key <= floor_) return;
+    keys_.push_back(key);
+    if (keys_.size() >= 2 * keep_) compact();
+  }
+  size_t count() const { return count_; }
+  // The nearest-rank 99th percentile of every value added; 0 for none.
+  double p99();
+
+ private:
+  void compact();
+
+  size_t keep_, count_ = 0;
+  std::vector<uint32_t> keys_;
+  uint32_t floor_ = 0;
+  bool compacted_ = false;
+};
 
 }  // namespace glrc::compare
