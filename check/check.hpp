@@ -40,7 +40,18 @@ struct CheckOptions {
   // Threads drawing the reference (ref::render; the same bits for any number); 0: every core
   // this process may use.
   int threads = 1;
+  // A case whose frame (frame_bytes) is larger than this is checked band of rows by band of
+  // rows (streamed): the reference rendered, GL's frame read back and the two compared one band
+  // at a time, so that neither is held whole. Same verdict and statistics, bit for bit; no
+  // frames are kept (Checked::streamed), so no heatmaps. Not with a driver model.
+  size_t whole_frame_bytes = size_t(256) << 20;
+  // About how many bytes of frame one band of a streamed case holds.
+  size_t band_bytes = size_t(16) << 20;
 };
+
+// The bytes of one Frame of case c: every pixel's primitive, depth, fragment count and
+// components, 4 bytes each.
+size_t frame_bytes(const Case& c);
 
 // The subpixel bits of the position freedom: spec_subpixel_bits, else what the implementation
 // reports, never below the 4 GL requires (OpenGL 4.6 section 14.6.1's minimum).
@@ -65,6 +76,7 @@ struct Checked {
   CaseResult result;
   Expectation reference;
   Frame gl;
+  bool streamed = false;  // checked band by band: no frames kept
 };
 
 // Renders `c` on the reference and on `renderer`, and compares them. A GL error drawing this

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "check/check.hpp"
 #include "cli/identify.hpp"
@@ -25,6 +26,8 @@ int cmd_diff(const Options& o) {
   const ModelChoice model = choose_model(o, *renderer);
   check::CheckOptions judged = check_options(o);
   judged.model = model.model;
+  // diff is for looking at a case's heatmaps: its frames are kept whole, however large.
+  judged.whole_frame_bytes = std::numeric_limits<size_t>::max();
   const RunInfo info = run_info(o, renderer->info(), model);
   const check::Checked checked = check::check_with_frames(c, *renderer, judged);
   const CaseResult& r = checked.result;

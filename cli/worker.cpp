@@ -74,6 +74,15 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
 // A failing case's heatmaps, in <out>/cases/<case>/ for the HTML report and anyone triaging
 // the run. Returns why there are none, or "".
 std::string write_images(const Outcome& done, const Options& o) {
+  if (done.checked.streamed) {
+    const std::string why =
+        "not written: the case was checked band by band (its frames, " +
+        std::to_string(check::frame_bytes(done.c) >> 20) +
+        " MiB each, are not held whole), and heatmaps need whole frames; `glrefcheck diff` "
+        "the case for them";
+    std::cerr << "glrefcheck worker: " << done.c.name << ": no heatmaps: " << why << '\n';
+    return why;
+  }
   try {
     report::write_diff_images(std::filesystem::path(o.out) / "cases" / done.c.name, done.c,
                               done.checked.reference, done.checked.gl, done.checked.result);

@@ -87,7 +87,11 @@ void Framebuffer::release() {
   colour_formats_.clear();
 }
 
-void Framebuffer::read_varyings(const Case& c, Frame& frame) {
+void Framebuffer::use() const {
+  gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+}
+
+void Framebuffer::read_varyings(const Case& c, Frame& frame, int y0) {
   const int n = int(c.varyings.size());
   const int w = frame.width, h = frame.height;
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -96,7 +100,7 @@ void Framebuffer::read_varyings(const Case& c, Frame& frame) {
   int component = 0;
   for (int k = 0; k < n; ++k) {
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + k);
-    gl_.ReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+    gl_.ReadPixels(0, y0, w, h, GL_RGBA, GL_FLOAT, rgba);
     // Rows come bottom first, as Frame wants: no flip.
     for (int i = 0; i < c.varyings[k].size; ++i, ++component) {
       std::vector<float>& out = frame.components[size_t(component)];
@@ -105,29 +109,29 @@ void Framebuffer::read_varyings(const Case& c, Frame& frame) {
     }
   }
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
-  gl_.ReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
+  gl_.ReadPixels(0, y0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
 }
 
 // Mesa replicates the top bits below when widening a 24-bit depth to 32, so >> 8 gives the
 // stored integer back.
-void Framebuffer::read_depth(Frame& frame) {
+void Framebuffer::read_depth(Frame& frame, int y0) {
   if (depth_format_ == DepthFormat::float32) {
-    gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_FLOAT,
+    gl_.ReadPixels(0, y0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_FLOAT,
                    frame.depth.data());
     return;
   }
   std::vector<GLuint> z;
   assign_large(z, frame.pixel_count(), GLuint(0));
-  gl_.ReadPixels(0, 0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
+  gl_.ReadPixels(0, y0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
   for (size_t i = 0; i < z.size(); ++i)
     frame.depth[i] = float(z[i] >> 8);
 }
 
-void Framebuffer::read_fragment_counts(Frame& frame) {
+void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
   std::vector<float> counts;
   assign_large(counts, frame.pixel_count(), 0.0f);
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  gl_.ReadPixels(0, 0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
+  gl_.ReadPixels(0, y0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
   assign_large(frame.fragments, counts.size(), uint16_t(0));
   for (size_t i = 0; i < counts.size(); ++i)
     frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));

@@ -66,15 +66,18 @@ class Framebuffer {
   // Colour attachments 0 .. n-1 of a case's layout into frame.components (varying k's
   // components, in Case order; the padding is dropped), and attachment n into
   // frame.primitive. Sets GL_PACK_ALIGNMENT to 1. GL errors are left for the caller to check.
-  void read_varyings(const Case& c, Frame& frame);
+  // Rows [y0, y0 + frame.height) only, into a frame that high: the same for every read_*.
+  void read_varyings(const Case& c, Frame& frame, int y0 = 0);
 
   // The depth attachment into frame.depth: float z_w for DepthFormat::float32, the stored
   // 24-bit integer (0 .. 2^24 - 1, exact in a float) for unorm24.
-  void read_depth(Frame& frame);
+  void read_depth(Frame& frame, int y0 = 0);
 
   // The fragment-count pass's R32F attachment 0 into frame.fragments (resized to the pixel
   // count), each count clamped to 0 .. 65535.
-  void read_fragment_counts(Frame& frame);
+  void read_fragment_counts(Frame& frame, int y0 = 0);
+  // Binds (GL_FRAMEBUFFER) the FBO the last bind() made, as it is: to read it again.
+  void use() const;
 
  private:
   const GlFunctions& gl_;

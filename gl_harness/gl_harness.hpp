@@ -90,7 +90,21 @@ class Renderer {
   virtual const GlInfo& info() const = 0;
   // Renders one case into a fresh FBO of the case's framebuffer size and reads it back.
   virtual Frame render(const Case& c) = 0;
+  // The same in two steps, for a frame too large to hold whole: draw() renders the case and
+  // keeps it; read_rows() then reads rows [y0, y0 + rows) of it into a Frame that many rows
+  // high (row 0 = window row y0), glReadPixels of that region only, as often as asked, until
+  // the next draw() or render(). render(c) is draw(c), then read_rows(c, 0, c.fb_height).
+  // Throws as render() does, and RenderError for rows outside the framebuffer. These defaults
+  // (for renderers that are no GL: tests) keep render()'s whole frame and cut it.
+  virtual void draw(const Case& c) { drawn_ = render(c); }
+  virtual Frame read_rows(const Case& c, int y0, int rows);
+
+ private:
+  Frame drawn_;
 };
+
+// Rows [y0, y0 + rows) of a frame, as Renderer::read_rows gives them.
+Frame frame_rows(const Frame& f, int y0, int rows);
 
 // Creates a context on the target and checks that the driver asked for is the one running.
 // Throws Unavailable. Mesa picks its driver once per process: every call in one process must

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -104,6 +105,12 @@ class GlRenderer final : public Renderer {
   const GlInfo& info() const override { return info_; }
 
   Frame render(const Case& c) override {
+    draw(c);
+    return read_rows(c, 0, c.fb_height);
+  }
+
+  void draw(const Case& c) override {
+    drawn_ = false;
     validate(c);
     context_->make_current();
     while (gl_.GetError() != GL_NO_ERROR) {
@@ -119,12 +126,24 @@ class GlRenderer final : public Renderer {
     clear(n);
     draw(c, objects);
     check_error(c, "drawing");
+    count_fragments(c);
+    drawn_ = true;
+  }
 
-    Frame frame(w, h, c.component_count());
-    framebuffer_.read_varyings(c, frame);
-    framebuffer_.read_depth(frame);
+  Frame read_rows(const Case& c, int y0, int rows) override {
+    if (!drawn_) throw RenderError("case '" + c.name + "': read back before it was drawn");
+    if (y0 < 0 || rows < 0 || rows > c.fb_height - y0)
+      throw RenderError("case '" + c.name + "': rows " + std::to_string(y0) + " + " +
+                        std::to_string(rows) + " outside the framebuffer");
+    context_->make_current();
+    Frame frame(c.fb_width, rows, c.component_count());
+    framebuffer_.use();
+    framebuffer_.read_varyings(c, frame, y0);
+    framebuffer_.read_depth(frame, y0);
     check_error(c, "reading back");
-    count_fragments(c, frame);
+    count_framebuffer_.use();
+    count_framebuffer_.read_fragment_counts(frame, y0);
+    check_error(c, "reading fragment counts");
     return frame;
   }
 
@@ -132,7 +151,7 @@ class GlRenderer final : public Renderer {
   // Draws the case again with positions only, into its own framebuffer, adding 1 per fragment
   // that passes the same depth test: how many fragments each pixel received, which the final
   // primitive id cannot tell (a shared edge drawn twice shows only its last triangle).
-  void count_fragments(const Case& c, Frame& frame) {
+  void count_fragments(const Case& c) {
     if (!count_program_) {
       const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
       const GLuint fs = compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c);
@@ -149,8 +168,6 @@ class GlRenderer final : public Renderer {
     gl_.DrawElements(GL_TRIANGLES, GLsizei(c.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
     gl_.Disable(GL_BLEND);
     check_error(c, "counting fragments");
-    count_framebuffer_.read_fragment_counts(frame);
-    check_error(c, "reading fragment counts");
   }
 
   GLint integer(GLenum name) const {
@@ -383,6 +400,7 @@ class GlRenderer final : public Renderer {
   std::map<std::string, GLuint> programs_;
   // The case's (case_colour_formats) and the fragment-count pass's (R32F).
   Framebuffer framebuffer_, count_framebuffer_;
+  bool drawn_ = false;  // both hold the last draw()'s case
   GLuint count_program_ = 0;
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
@@ -390,6 +408,29 @@ class GlRenderer final : public Renderer {
 };
 
 }  // namespace
+
+Frame frame_rows(const Frame& f, int y0, int rows) {
+  if (y0 < 0 || rows < 0 || rows > f.height - y0)
+    throw RenderError("rows " + std::to_string(y0) + " + " + std::to_string(rows) +
+                      " outside a frame " + std::to_string(f.height) + " high");
+  Frame band;
+  band.width = f.width, band.height = rows;
+  const size_t a = f.index(0, y0), b = f.index(0, y0 + rows);
+  auto cut = [&](const auto& v) {
+    return std::decay_t<decltype(v)>(v.begin() + ptrdiff_t(a), v.begin() + ptrdiff_t(b));
+  };
+  band.primitive = cut(f.primitive), band.depth = cut(f.depth);
+  if (f.fragments.size() == f.pixel_count()) band.fragments = cut(f.fragments);
+  for (const std::vector<float>& component : f.components)
+    band.components.push_back(cut(component));
+  return band;
+}
+
+Frame Renderer::read_rows(const Case& c, int y0, int rows) {
+  if (drawn_.width != c.fb_width || drawn_.height != c.fb_height)
+    throw RenderError("case '" + c.name + "': read back before it was drawn");
+  return frame_rows(drawn_, y0, rows);
+}
 
 std::unique_ptr<Renderer> create_renderer(const Target& t) {
   // Before the library creates its screen: that is when Mesa reads GALLIUM_DRIVER.

@@ -5,12 +5,25 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "ref/reference.hpp"
 
 namespace glrc::ref {
 
 namespace {
+
+// The digest of `ctx`, as hex.
+std::string final_hex(EVP_MD_CTX* ctx) {
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int len = 0;
+  EVP_DigestFinal_ex(ctx, md, &len);
+  static const char* kHex = "0123456789abcdef";
+  std::string out;
+  for (unsigned i = 0; i < len; ++i)
+    out += kHex[md[i] >> 4], out += kHex[md[i] & 15];
+  return out;
+}
 
 // SHA-256 of what `fill` feeds it, as hex.
 template <typename Fill>
@@ -20,30 +33,55 @@ std::string sha256(const Fill& fill) {
   if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
     throw std::runtime_error("OpenSSL SHA-256 unavailable");
   fill([&](const void* p, size_t n) { EVP_DigestUpdate(ctx.get(), p, n); });
-  unsigned char md[EVP_MAX_MD_SIZE];
-  unsigned int len = 0;
-  EVP_DigestFinal_ex(ctx.get(), md, &len);
-  static const char* kHex = "0123456789abcdef";
-  std::string out;
-  for (unsigned i = 0; i < len; ++i)
-    out += kHex[md[i] >> 4], out += kHex[md[i] & 15];
-  return out;
+  return final_hex(ctx.get());
 }
 
 }  // namespace
 
-std::string digest(const Frame& f) {
-  return sha256([&](const auto& feed) {
-    const int32_t size[2] = {f.width, f.height};
-    feed(size, sizeof size);
-    // Per pixel, so that the layout of Frame's vectors is not part of the digest.
-    for (size_t i = 0; i < f.pixel_count(); ++i) {
-      feed(&f.primitive[i], 4);
-      feed(&f.depth[i], 4);
+struct FrameDigest::Context {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> md{EVP_MD_CTX_new(), EVP_MD_CTX_free};
+  std::vector<unsigned char> row;  // one row's pixels, fed at once
+};
+
+FrameDigest::FrameDigest(int width, int height)
+    : context_(std::make_unique<Context>()), width_(width) {
+  static_assert(std::endian::native == std::endian::little, "digest hashes little-endian bits");
+  if (!context_->md || EVP_DigestInit_ex(context_->md.get(), EVP_sha256(), nullptr) != 1)
+    throw std::runtime_error("OpenSSL SHA-256 unavailable");
+  const int32_t size[2] = {width, height};
+  EVP_DigestUpdate(context_->md.get(), size, sizeof size);
+}
+
+FrameDigest::~FrameDigest() = default;
+
+void FrameDigest::add_rows(const Frame& f) {
+  if (f.width != width_) throw std::invalid_argument("FrameDigest: a band of another width");
+  // Per pixel, so that the layout of Frame's vectors is not part of the digest: primitive,
+  // depth, every component.
+  const size_t per_pixel = 4 * (2 + f.components.size());
+  std::vector<unsigned char>& row = context_->row;
+  row.resize(per_pixel * size_t(f.width));
+  for (int y = 0; y < f.height; ++y) {
+    unsigned char* out = row.data();
+    for (int x = 0; x < f.width; ++x) {
+      const size_t i = f.index(x, y);
+      std::memcpy(out, &f.primitive[i], 4), out += 4;
+      std::memcpy(out, &f.depth[i], 4), out += 4;
       for (const auto& comp : f.components)
-        feed(&comp[i], 4);
+        std::memcpy(out, &comp[i], 4), out += 4;
     }
-  });
+    EVP_DigestUpdate(context_->md.get(), row.data(), row.size());
+  }
+}
+
+std::string FrameDigest::hex() {
+  return final_hex(context_->md.get());
+}
+
+std::string digest(const Frame& f) {
+  FrameDigest d(f.width, f.height);
+  d.add_rows(f);
+  return d.hex();
 }
 
 std::string expectation_digest(const Reference& r) {

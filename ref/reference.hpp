@@ -5,7 +5,9 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/case.hpp"
@@ -26,9 +28,32 @@ using Reference = Expectation;
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt,
                  int threads = 1);
 
+// Rows [y0, y0 + rows) of render()'s result, for a frame too large to hold whole (check.hpp's
+// streamed comparison): the same bits, in frames `rows` high whose row 0 is window row y0, the
+// edge bits and candidates' pixels indexed within them. Every triangle is set up and prepared
+// again for each call (per-triangle work times the number of bands). Throws
+// std::invalid_argument for rows outside the framebuffer.
+Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                      int y0, int rows);
+
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.
 std::string digest(const Frame& f);
+// digest() of a frame fed band of rows by band of rows, in order: the same hex, without the
+// frame held whole.
+class FrameDigest {
+ public:
+  FrameDigest(int width, int height);
+  ~FrameDigest();
+  FrameDigest(const FrameDigest&) = delete;
+  FrameDigest& operator=(const FrameDigest&) = delete;
+  void add_rows(const Frame& band);  // band.width must be the frame's
+  std::string hex();                 // once, after the last row
+ private:
+  struct Context;
+  std::unique_ptr<Context> context_;
+  int width_;
+};
 // SHA-256 (hex) of everything render() gives: the frame's digest, then per pixel the edge bits
 // and the allowance's primitive, depth and components (when computed), then every candidate
 // (pixel, primitive, depth, allowed depth, values, allowed values). A faster reference must keep

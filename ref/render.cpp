@@ -8,6 +8,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "ref/allowance.hpp"
 #include "ref/coverage.hpp"
@@ -36,8 +38,9 @@ struct Settings {
   bool allowance;
   int bits;           // subpixel bits of the position freedom (with an allowance)
   double model_step;  // the edge band without an allowance
-  PixelBox viewport;
+  PixelBox viewport;  // its rows cut to the ones drawn
   std::vector<bool> component_smooth;
+  int row0 = 0;  // the window row of the frames' row 0
 };
 
 // Fragments that may win the depth test instead of the reference's, by pixel.
@@ -116,7 +119,7 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
   // One fragment of the triangle at pixel (px, py), which it covers: depth-tested, with its
   // allowances and the candidates.
   auto draw = [&](int px, int py) {
-    const size_t i = f.index(px, py);
+    const size_t i = f.index(px, py - s.row0);
     const float z = w.depth.at(px, py);
     if (!s.allowance) {
       if (!depth_test(c.depth_func, z, f.depth[i])) return;
@@ -199,7 +202,7 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     for (int px = x0; px <= x1; ++px)
       // Most pixels are beyond or deep within every band: no freedom to compute for them.
       if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable))
-        r.edges[f.index(px, py)] |=
+        r.edges[f.index(px, py - s.row0)] |=
             w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable);
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
     w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
@@ -210,12 +213,21 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
 }  // namespace
 
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads) {
-  Reference r{Frame(c.fb_width, c.fb_height, c.component_count()), {}, Frame()};
+  return render_rows(c, m, freedom_bits, threads, 0, c.fb_height);
+}
+
+Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                      int y0, int row_count) {
+  if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
+    throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
+                                std::to_string(int64_t(y0) + row_count) +
+                                ") outside a framebuffer " + std::to_string(c.fb_height) + " high");
+  Reference r{Frame(c.fb_width, row_count, c.component_count()), {}, Frame()};
   Frame& f = r.frame;
   assign_large(r.edges, f.pixel_count(), uint8_t(0));
   assign_large(f.fragments, f.pixel_count(), uint16_t(0));
   const bool allowance = freedom_bits.has_value();
-  if (allowance) r.allowed = Frame(c.fb_width, c.fb_height, c.component_count());
+  if (allowance) r.allowed = Frame(c.fb_width, row_count, c.component_count());
   // Without an allowance, coverage may legally differ within one model subpixel step of an
   // edge (1/256 pixel when the model does not snap).
   Settings s{c,
@@ -224,7 +236,11 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
              allowance ? std::max(*freedom_bits, 4) : 0,
              std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8)),
              viewport_box(c),
-             {}};
+             {},
+             y0};
+  // Only the rows asked for: what a triangle does elsewhere changes nothing in them.
+  s.viewport.y0 = std::max(s.viewport.y0, y0);
+  s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);
   for (int v : component_varying(c))
     s.component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
   threads = thread_count(threads);

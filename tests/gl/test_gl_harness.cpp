@@ -671,6 +671,61 @@ class GlEgl : public Gl {
 
 // End to end on cases of the suite: the real driver against the exact reference, judged by
 // check/ with the default options (the case file's own tolerance, where it sets one).
+// GL's frame read back band by band (glReadPixels of each band's rows) is the frame render()
+// reads whole; a case checked band by band (streamed) gets the whole check's verdict and
+// statistics, bit for bit.
+TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
+  for (const char* name : {"fan", "clip_near", "depth_range_reversed", "viewport_offset"}) {
+    SCOPED_TRACE(name);
+    const Case c =
+        casefile::load(std::string(GLRC_SOURCE_DIR) + "/cases/" + std::string(name) + ".json");
+    const Frame whole = gl().render(c);
+    gl().draw(c);
+    for (int y0 = 0; y0 < c.fb_height; y0 += 5) {
+      const int rows = std::min(5, c.fb_height - y0);
+      EXPECT_EQ(ref::digest(gl().read_rows(c, y0, rows)), ref::digest(frame_rows(whole, y0, rows)));
+    }
+    EXPECT_THROW(gl().read_rows(c, c.fb_height - 1, 2), RenderError);
+
+    check::CheckOptions streamed;
+    streamed.whole_frame_bytes = 0;
+    streamed.band_bytes = 3 * check::frame_bytes(c) / size_t(c.fb_height);  // 3 rows a band
+    for (const bool exact : {false, true}) {
+      check::CheckOptions o;
+      if (exact) o.tolerance = streamed.tolerance = ToleranceMode::exact;
+      const check::Checked a = check::check_with_frames(c, gl(), o);
+      const check::Checked b = check::check_with_frames(c, gl(), streamed);
+      EXPECT_FALSE(a.streamed);
+      EXPECT_TRUE(b.streamed);
+      EXPECT_TRUE(b.gl.components.empty() && b.reference.frame.primitive.empty());
+      const CaseResult &x = a.result, &y = b.result;
+      EXPECT_EQ(x.status, y.status);
+      EXPECT_EQ(x.message, y.message);
+      EXPECT_EQ(x.gl_digest, y.gl_digest);
+      EXPECT_EQ(x.coverage.both, y.coverage.both);
+      EXPECT_EQ(x.coverage.failures, y.coverage.failures);
+      EXPECT_EQ(x.coverage.boundary, y.coverage.boundary);
+      EXPECT_EQ(x.coverage.mismatches.size(), y.coverage.mismatches.size());
+      ASSERT_EQ(x.channels.size(), y.channels.size());
+      for (size_t k = 0; k < x.channels.size(); ++k) {
+        const ChannelStats &p = x.channels[k], &q = y.channels[k];
+        EXPECT_EQ(p.compared, q.compared);
+        EXPECT_EQ(p.over_tolerance, q.over_tolerance);
+        EXPECT_EQ(p.differing, q.differing);
+        EXPECT_EQ(p.max_ulps, q.max_ulps);
+        EXPECT_EQ(p.mean_ulps, q.mean_ulps);
+        EXPECT_EQ(p.p99_ulps, q.p99_ulps);
+        EXPECT_EQ(p.max_ratio, q.max_ratio);
+        EXPECT_EQ(p.p99_ratio, q.p99_ratio);
+        EXPECT_EQ(p.tolerance_ulps, q.tolerance_ulps);
+        ASSERT_EQ(p.worst.size(), q.worst.size());
+        for (size_t i = 0; i < p.worst.size(); ++i)
+          EXPECT_EQ(p.worst[i].ulps, q.worst[i].ulps);
+      }
+    }
+  }
+}
+
 TEST_F(Gl, SuiteCasesAgreeWithTheReference) {
   const char* names[] = {"face_on",
                          "checkerboard_quad",

@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <filesystem>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "casefile/casefile.hpp"
 #include "ref/reference.hpp"
 #include "ref/tiles.hpp"
 
@@ -80,6 +83,55 @@ TEST(Tiles, OverlappingTrianglesGiveTheSameBitsOnAnyNumberOfThreads) {
   EXPECT_EQ(digest(render(c, Model{}, std::nullopt, 5).frame),
             digest(render(c, Model{}, std::nullopt, 1).frame));
   EXPECT_FALSE(render(c, Model{}, 8, 5).candidates.empty());  // the depth order was contested
+}
+
+// render_rows' bands, one after another, as one Reference: what render() gives, if they are
+// right.
+Reference stacked(const Case& c, std::optional<int> bits, int rows, int threads) {
+  Reference whole{Frame(c.fb_width, 0, c.component_count()), {}, Frame()};
+  whole.frame.fragments.clear();
+  if (bits) whole.allowed = Frame(c.fb_width, 0, c.component_count());
+  auto append = [](Frame& to, const Frame& band) {
+    to.height += band.height;
+    to.primitive.insert(to.primitive.end(), band.primitive.begin(), band.primitive.end());
+    to.depth.insert(to.depth.end(), band.depth.begin(), band.depth.end());
+    to.fragments.insert(to.fragments.end(), band.fragments.begin(), band.fragments.end());
+    for (size_t k = 0; k < to.components.size(); ++k)
+      to.components[k].insert(to.components[k].end(), band.components[k].begin(),
+                              band.components[k].end());
+  };
+  for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
+    const Reference band =
+        render_rows(c, Model{}, bits, threads, y0, std::min(rows, c.fb_height - y0));
+    const size_t before = whole.frame.pixel_count();
+    append(whole.frame, band.frame);
+    if (bits) append(whole.allowed, band.allowed);
+    whole.edges.insert(whole.edges.end(), band.edges.begin(), band.edges.end());
+    for (Candidate k : band.candidates) {
+      k.pixel += before;
+      whole.candidates.push_back(k);
+    }
+  }
+  return whole;
+}
+
+TEST(Tiles, RowsRenderedBandByBandAreTheWholeFrame) {
+  std::vector<Case> cases;
+  for (const auto& entry : std::filesystem::directory_iterator(GLRC_SOURCE_DIR "/cases"))
+    if (entry.path().extension() == ".json") cases.push_back(casefile::load(entry.path()));
+  ASSERT_GT(cases.size(), 40u);
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string whole = expectation_digest(render(c, Model{}, 8, 2));
+    EXPECT_EQ(expectation_digest(stacked(c, 8, 7, 2)), whole);
+    EXPECT_EQ(expectation_digest(stacked(c, 8, 1 + c.fb_height / 2, 1)), whole);
+    EXPECT_EQ(digest(stacked(c, std::nullopt, 5, 2).frame),
+              digest(render(c, Model{}, std::nullopt, 1).frame));
+  }
+  const Case& c = cases.front();
+  EXPECT_THROW(render_rows(c, Model{}, 8, 1, -1, 2), std::invalid_argument);
+  EXPECT_THROW(render_rows(c, Model{}, 8, 1, c.fb_height - 1, 2), std::invalid_argument);
+  EXPECT_EQ(render_rows(c, Model{}, 8, 1, c.fb_height, 0).frame.pixel_count(), 0u);
 }
 
 }  // namespace
