@@ -51,6 +51,16 @@ size_t frame_bytes(const Case& c) {
          (3 + size_t(std::max(c.component_count(), 0))) * 4;
 }
 
+int band_rows(const Case& c, const CheckOptions& o) {
+  const size_t row_bytes = std::max<size_t>(frame_bytes(c) / size_t(std::max(c.fb_height, 1)), 1);
+  return int(std::clamp<size_t>(o.band_bytes / row_bytes, 1, size_t(std::max(c.fb_height, 1))));
+}
+
+Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_bits, int y0,
+                             int rows) {
+  return ref::render_rows(c, o.model, freedom_bits(o, reported_bits), o.threads, y0, rows);
+}
+
 namespace {
 
 // Band by band: GL draws once, then for each band the reference renders its rows, GL's are read
@@ -58,15 +68,13 @@ namespace {
 // are alive at a time.
 void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o, int reported,
                     Checked& out) {
-  const std::optional<int> bits = freedom_bits(o, reported);
-  const size_t row_bytes = std::max<size_t>(frame_bytes(c) / size_t(std::max(c.fb_height, 1)), 1);
-  const int rows = int(std::clamp<size_t>(o.band_bytes / row_bytes, 1, size_t(c.fb_height)));
+  const int rows = band_rows(c, o);
   renderer.draw(c);
   compare::Comparator comparator(c, tolerance_for(c, o, reported), c.fb_width, c.fb_height);
   ref::FrameDigest digest(c.fb_width, c.fb_height);
   for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
     const int n = std::min(rows, c.fb_height - y0);
-    const Expectation expected = ref::render_rows(c, o.model, bits, o.threads, y0, n);
+    const Expectation expected = expectation_rows(c, o, reported, y0, n);
     const Frame gl = renderer.read_rows(c, y0, n);
     comparator.add_rows(expected, gl, y0);
     digest.add_rows(gl);

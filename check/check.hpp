@@ -43,7 +43,8 @@ struct CheckOptions {
   // A case whose frame (frame_bytes) is larger than this is checked band of rows by band of
   // rows (streamed): the reference rendered, GL's frame read back and the two compared one band
   // at a time, so that neither is held whole. Same verdict and statistics, bit for bit; no
-  // frames are kept (Checked::streamed), so no heatmaps. Not with a driver model.
+  // frames are kept (Checked::streamed: report::write_streamed_diff_images makes the heatmaps
+  // from the bands again). Not with a driver model.
   size_t whole_frame_bytes = size_t(256) << 20;
   // About how many bytes of frame one band of a streamed case holds.
   size_t band_bytes = size_t(16) << 20;
@@ -52,6 +53,12 @@ struct CheckOptions {
 // The bytes of one Frame of case c: every pixel's primitive, depth, fragment count and
 // components, 4 bytes each.
 size_t frame_bytes(const Case& c);
+// The rows of one band of a streamed case: about o.band_bytes of frame, at least 1, at most
+// the framebuffer's height.
+int band_rows(const Case& c, const CheckOptions& o);
+// Rows [y0, y0 + rows) of expectation_for (no driver model): ref::render_rows.
+Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_bits, int y0,
+                             int rows);
 
 // The subpixel bits of the position freedom: spec_subpixel_bits, else what the implementation
 // reports, never below the 4 GL requires (OpenGL 4.6 section 14.6.1's minimum).

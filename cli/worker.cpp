@@ -73,19 +73,24 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
 
 // A failing case's heatmaps, in <out>/cases/<case>/ for the HTML report and anyone triaging
 // the run. Returns why there are none, or "".
-std::string write_images(const Outcome& done, const Options& o) {
-  if (done.checked.streamed) {
-    const std::string why =
-        "not written: the case was checked band by band (its frames, " +
-        std::to_string(check::frame_bytes(done.c) >> 20) +
-        " MiB each, are not held whole), and heatmaps need whole frames; `glrefcheck diff` "
-        "the case for them";
-    std::cerr << "glrefcheck worker: " << done.c.name << ": no heatmaps: " << why << '\n';
-    return why;
-  }
+// A case checked band by band holds no whole frame: its pictures are made band by band again,
+// from the reference's rows and GL's, which still holds the case's drawing.
+std::string write_images(const Outcome& done, const Options& o, const check::CheckOptions& judged,
+                         gl::Renderer& renderer) {
   try {
-    report::write_diff_images(std::filesystem::path(o.out) / "cases" / done.c.name, done.c,
-                              done.checked.reference, done.checked.gl, done.checked.result);
+    const std::filesystem::path dir = std::filesystem::path(o.out) / "cases" / done.c.name;
+    if (done.checked.streamed) {
+      const int reported = renderer.info().subpixel_bits;
+      report::write_streamed_diff_images(
+          dir, done.c, done.checked.result, check::band_rows(done.c, judged),
+          [&](int y0, int rows) {
+            return std::pair{check::expectation_rows(done.c, judged, reported, y0, rows),
+                             renderer.read_rows(done.c, y0, rows)};
+          });
+      return "";
+    }
+    report::write_diff_images(dir, done.c, done.checked.reference, done.checked.gl,
+                              done.checked.result);
     return "";
   } catch (const std::exception& e) {
     std::cerr << "glrefcheck worker: " << done.c.name << ": no heatmaps: " << e.what() << '\n';
@@ -122,9 +127,9 @@ int cmd_worker() {
     }
     const size_t index = job.at("index");
     Outcome done;
+    check::CheckOptions judged = check_options(o);
     try {
       // Every case of the run is judged by the run's model, which the runner chose.
-      check::CheckOptions judged = check_options(o);
       const auto model = identify::model_from_json(job.at("model"));
       if (!model) throw std::runtime_error("a job without a valid model: " + line);
       judged.model = *model;
@@ -139,7 +144,7 @@ int cmd_worker() {
     const bool images = done.checked.result.outcome == Status::fail && job.value("images", true);
     channel.send_raw_result(index, report::case_result_json(done.checked.result), images);
     if (!images) continue;
-    const std::string error = write_images(done, o);
+    const std::string error = write_images(done, o, judged, *renderer);
     nlohmann::json note = {{"images_done", index}};
     if (!error.empty()) note["images_error"] = error;
     channel.send(note);

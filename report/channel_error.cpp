@@ -98,10 +98,6 @@ ChannelError as_ratio_map(const ChannelError& e) {
   return m;
 }
 
-namespace {
-
-// How bad pixel i is, for choosing what a block or a tile shows: compared first, then a
-// non-finite error, then the share of the allowance, then the error.
 std::array<double, 4> badness(const ChannelError& e, size_t i) {
   if (!e.compared[i]) return {0, 0, 0, 0};
   const double ulps = e.ulps[i], allowed = e.allowed_ulps[i];
@@ -110,8 +106,6 @@ std::array<double, 4> badness(const ChannelError& e, size_t i) {
   if (std::isnan(share)) share = INFINITY;
   return {1, finite ? 0.0 : 1.0, share, finite ? ulps : 0.0};
 }
-
-}  // namespace
 
 ChannelError downsampled(const ChannelError& e, int factor) {
   if (factor <= 1) return e;

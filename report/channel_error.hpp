@@ -3,6 +3,7 @@
 // compare computes only statistics; the images need every pixel.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -53,5 +54,9 @@ ChannelError downsampled(const ChannelError& e, int factor);
 // The pixel whose error uses the largest share of its allowance (non-finite first); -1 when
 // nothing is compared.
 long worst_pixel(const ChannelError& e);
+// How bad pixel i is, for choosing what a block or a tile shows: compared first, then a
+// non-finite error, then the share of the allowance, then the error; larger (in lexicographic
+// order) is worse.
+std::array<double, 4> badness(const ChannelError& e, size_t i);
 
 }  // namespace glrc::report

@@ -112,43 +112,62 @@ bool explained_mismatches_fail(const Tolerance& t) {
   return !t.allow_boundary || t.mode == ToleranceMode::exact;
 }
 
-Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
-                       const std::optional<std::string>& font, bool explained_fail) {
-  const Frame& reference = expected.frame;
-  const std::vector<uint8_t>& edge_band = expected.edges;
-  const int factor = upscale_factor(reference.width, reference.height);
-  const int image_w = reference.width * factor, image_h = reference.height * factor;
-  Canvas canvas(std::max(image_w, kMinWidth) + 2 * kMargin, kTitleHeight + image_h + kLegendHeight,
-                kBackground);
-
-  const bool has_band = edge_band.size() == reference.pixel_count();
-  const int text_width = canvas.width - 2 * kMargin;
-  draw_text(canvas, font, kMargin, 22,
+CoverageCanvas::CoverageCanvas(int width, int height, const CoverageStats& stats,
+                               const std::optional<std::string>& font, bool explained_fail)
+    : width_(width),
+      height_(height),
+      factor_(upscale_factor(width, height)),
+      image_x_(0),
+      explained_fail_(explained_fail),
+      font_(font),
+      canvas_(std::max(width * factor_, kMinWidth) + 2 * kMargin,
+              kTitleHeight + height * factor_ + kLegendHeight, kBackground) {
+  const int text_width = canvas_.width - 2 * kMargin;
+  draw_text(canvas_, font, kMargin, 22,
             fmt::format("coverage   {}   ties {}   within snapping {}   fill-rule {}"
                         "   gaps {}   double hits {}",
                         count_text(stats.failures, "failure", "failures"), stats.exact_tie,
                         stats.within_snapping, stats.fill_rule, stats.gaps, stats.double_hits),
             16, kText, Align::left, text_width);
-  draw_text(canvas, font, kMargin, 42,
+  draw_text(canvas_, font, kMargin, 42,
             fmt::format("both {}   reference only {}   GL only {}   other primitive {}", stats.both,
                         stats.reference_only, stats.gl_only, stats.other_primitive),
             12, kText, Align::left, text_width);
+  image_x_ = (canvas_.width - width * factor_) / 2;
+}
 
-  const int image_x = (canvas.width - image_w) / 2;
-  std::vector<std::pair<int, int>> failing;
-  paint_frame(
-      canvas, image_x, kTitleHeight, factor, reference.width, reference.height, [&](int x, int y) {
-        const size_t i = reference.index(x, y);
-        const auto label = has_band ? compare::coverage_label(expected, gl, i) : std::nullopt;
-        if (label && (explained_fail || !compare::explained(*label))) failing.emplace_back(x, y);
-        return pixel_colour(reference.primitive[i], gl.primitive[i], has_band && edge_band[i] != 0,
-                            label);
-      });
+void CoverageCanvas::add_rows(const Expectation& expected, const Frame& gl, int y0) {
+  const Frame& reference = expected.frame;
+  const std::vector<uint8_t>& edge_band = expected.edges;
+  const bool has_band = edge_band.size() == reference.pixel_count();
+  const int rows = reference.height;
+  // Frame row y0 + y lands on image block row height - 1 - (y0 + y): the band's rows are the
+  // blocks from height - y0 - rows down.
+  paint_frame(canvas_, image_x_, kTitleHeight + (height_ - y0 - rows) * factor_, factor_, width_,
+              rows, [&](int x, int y) {
+                const size_t i = reference.index(x, y);
+                const auto label =
+                    has_band ? compare::coverage_label(expected, gl, i) : std::nullopt;
+                if (label && (explained_fail_ || !compare::explained(*label)))
+                  failing_.emplace_back(x, y0 + y);
+                return pixel_colour(reference.primitive[i], gl.primitive[i],
+                                    has_band && edge_band[i] != 0, label);
+              });
+}
+
+Canvas CoverageCanvas::finish() {
   // After every pixel is painted: a ring overlaps its neighbours.
-  for (const auto& [x, y] : failing)
-    draw_ring(canvas, image_x, kTitleHeight, factor, reference.width, reference.height, x, y);
-  draw_legend(canvas, font, kTitleHeight + image_h);
-  return canvas;
+  for (const auto& [x, y] : failing_)
+    draw_ring(canvas_, image_x_, kTitleHeight, factor_, width_, height_, x, y);
+  draw_legend(canvas_, font_, kTitleHeight + height_ * factor_);
+  return std::move(canvas_);
+}
+
+Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
+                       const std::optional<std::string>& font, bool explained_fail) {
+  CoverageCanvas canvas(expected.frame.width, expected.frame.height, stats, font, explained_fail);
+  canvas.add_rows(expected, gl, 0);
+  return canvas.finish();
 }
 
 }  // namespace glrc::report

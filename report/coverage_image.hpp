@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/frame.hpp"
@@ -25,5 +26,23 @@ bool explained_mismatches_fail(const Tolerance& t);
 // in a large frame.
 Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
                        const std::optional<std::string>& font, bool explained_fail = false);
+
+// The same picture of a width x height frame, painted band of rows by band of rows (in any
+// order): render_coverage is one band of the whole frame.
+class CoverageCanvas {
+ public:
+  CoverageCanvas(int width, int height, const CoverageStats& stats,
+                 const std::optional<std::string>& font, bool explained_fail = false);
+  // Rows [y0, y0 + expected.frame.height) of both frames, as compare::Comparator takes them.
+  void add_rows(const Expectation& expected, const Frame& gl, int y0);
+  Canvas finish();  // once
+
+ private:
+  int width_, height_, factor_, image_x_;
+  bool explained_fail_;
+  std::optional<std::string> font_;
+  Canvas canvas_;
+  std::vector<std::pair<int, int>> failing_;
+};
 
 }  // namespace glrc::report

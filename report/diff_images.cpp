@@ -1,8 +1,12 @@
 // write_diff_images: the files a person opens to see where and how GL differs from the
 // reference. PNGs to look at, EXRs to read exact values from.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -45,15 +49,16 @@ void check_frame(const Case& c, const Frame& f, const Frame& reference, const ch
 constexpr size_t kFullResolutionPixels = size_t(1) << 20;
 constexpr int kLargestMapSide = 1024, kTileSide = 256;
 
-// The square of at most kTileSide pixels around pixel `centre`, inside the frame.
+// The square of at most kTileSide pixels around pixel `centre` of a width x height frame,
+// inside it.
 struct Tile {
   int x0, y0, width, height;
 };
-Tile tile_around(const ChannelError& e, long centre) {
-  const int cx = int(centre % e.width), cy = int(centre / e.width);
-  Tile t{0, 0, std::min(kTileSide, e.width), std::min(kTileSide, e.height)};
-  t.x0 = std::clamp(cx - t.width / 2, 0, e.width - t.width);
-  t.y0 = std::clamp(cy - t.height / 2, 0, e.height - t.height);
+Tile tile_around(int width, int height, long centre) {
+  const int cx = int(centre % width), cy = int(centre / width);
+  Tile t{0, 0, std::min(kTileSide, width), std::min(kTileSide, height)};
+  t.x0 = std::clamp(cx - t.width / 2, 0, width - t.width);
+  t.y0 = std::clamp(cy - t.height / 2, 0, height - t.height);
   return t;
 }
 template <typename T>
@@ -66,6 +71,63 @@ std::vector<T> cut(const std::vector<T>& v, int frame_width, const Tile& t) {
   return out;
 }
 
+// The channels a picture is made of, with the fixed tolerance marked on the legend (NaN for
+// the specification's, which varies per pixel): every one, or of a large frame the failing ones.
+struct Shown {
+  int channel;
+  double tolerance;
+};
+std::vector<Shown> shown_channels(const Case& c, const CaseResult& r, bool large) {
+  const bool fixed = r.tolerance.mode != ToleranceMode::spec;
+  std::vector<Shown> out;
+  for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
+    const std::string name =
+        channel == compare::kDepth ? "depth" : component_names(c).at(size_t(channel));
+    double tolerance = NAN;
+    bool passes = false;
+    for (const auto& ch : r.channels)
+      if (ch.name == name) tolerance = fixed ? ch.tolerance_ulps : NAN, passes = ch.pass();
+    if (!(large && passes)) out.push_back({channel, tolerance});
+  }
+  return out;
+}
+
+// The blocks of factor x factor pixels a large frame's maps shrink to (1: full resolution).
+int map_factor(const Case& c) {
+  return size_t(c.fb_width) * size_t(c.fb_height) > kFullResolutionPixels
+             ? (std::max(c.fb_width, c.fb_height) + kLargestMapSide - 1) / kLargestMapSide
+             : 1;
+}
+
+// Writes one channel's three PNG maps from `shown` (already shrunk by `factor`).
+void write_maps(ChannelError shown, int factor, double tolerance,
+                const std::optional<std::string>& font,
+                const std::function<std::filesystem::path(const std::string&)>& out) {
+  if (factor > 1) shown.quantity += fmt::format(" (each pixel the worst of {}x{})", factor, factor);
+  write_png(render_heatmap(shown, tolerance, font), out("_error.png"));
+  write_png(render_heatmap(as_allowance_map(shown), NAN, font), out("_allowed.png"));
+  write_png(render_heatmap(as_ratio_map(shown), 1.0, font), out("_ratio.png"));
+}
+
+// The tile's pixels of one channel, as four value planes.
+struct TileValues {
+  std::vector<float> signed_error, allowed, gl, reference;
+};
+
+// Writes the full-resolution EXRs of tile t around pixel `worst` of a frame `width` wide.
+void write_tile(const std::string& name, const TileValues& v, const Tile& t, long worst, int width,
+                const std::function<std::filesystem::path(const std::string&)>& out) {
+  const std::string where =
+      fmt::format(", pixels ({}, {}) to ({}, {}) around the worst ({}, {})", t.x0, t.y0,
+                  t.x0 + t.width - 1, t.y0 + t.height - 1, worst % width, worst / width);
+  write_exr(out("_error_tile.exr"), t.width, t.height, v.signed_error,
+            name + ": GL - reference, NaN where not covered by the same primitive in both" + where);
+  write_exr(out("_allowed_tile.exr"), t.width, t.height, v.allowed,
+            name + ": allowed |GL - reference|, NaN where not compared" + where);
+  write_exr(out("_gl_tile.exr"), t.width, t.height, v.gl, name + ": GL" + where);
+  write_exr(out("_ref_tile.exr"), t.width, t.height, v.reference, name + ": reference" + where);
+}
+
 }  // namespace
 
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
@@ -76,36 +138,19 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
   check_frame(c, gl, reference, "GL");
   std::filesystem::create_directories(dir);
   const auto font = find_font();
-  // A fixed threshold is marked on the legend; the specification's varies per pixel.
-  const bool fixed = r.tolerance.mode != ToleranceMode::spec;
-
   // A large frame: maps only of the channels that fail, shrunk to kLargestMapSide showing each
   // block's worst pixel, and full-resolution EXRs of a tile around the worst pixel.
   const bool large = reference.pixel_count() > kFullResolutionPixels;
-  const int factor =
-      large ? (std::max(reference.width, reference.height) + kLargestMapSide - 1) / kLargestMapSide
-            : 1;
+  const int factor = map_factor(c);
   std::vector<std::filesystem::path> written;
-  for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
-    const std::string name =
-        channel == compare::kDepth ? "depth" : component_names(c).at(size_t(channel));
-    double tolerance = NAN;
-    bool passes = false;
-    for (const auto& ch : r.channels)
-      if (ch.name == name) tolerance = fixed ? ch.tolerance_ulps : NAN, passes = ch.pass();
-    if (large && passes) continue;
-    const ChannelError e = channel_error(c, expected, gl, channel, r.tolerance);
+  for (const Shown& shown : shown_channels(c, r, large)) {
+    const ChannelError e = channel_error(c, expected, gl, shown.channel, r.tolerance);
     const std::string stem = file_stem(e.name);
     const auto out = [&](const std::string& suffix) {
       written.push_back(dir / (stem + suffix));
       return written.back();
     };
-    ChannelError shown = downsampled(e, factor);
-    if (factor > 1)
-      shown.quantity += fmt::format(" (each pixel the worst of {}x{})", factor, factor);
-    write_png(render_heatmap(shown, tolerance, font), out("_error.png"));
-    write_png(render_heatmap(as_allowance_map(shown), NAN, font), out("_allowed.png"));
-    write_png(render_heatmap(as_ratio_map(shown), 1.0, font), out("_ratio.png"));
+    write_maps(downsampled(e, factor), factor, shown.tolerance, font, out);
     if (!large) {
       write_exr(out("_error.exr"), e.width, e.height, e.signed_error,
                 e.name + ": GL - reference, NaN where not covered by the same primitive in both");
@@ -117,23 +162,105 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
     }
     const long worst = worst_pixel(e);
     if (worst < 0) continue;
-    const Tile t = tile_around(e, worst);
-    const std::string where =
-        fmt::format(", pixels ({}, {}) to ({}, {}) around the worst ({}, {})", t.x0, t.y0,
-                    t.x0 + t.width - 1, t.y0 + t.height - 1, worst % e.width, worst / e.width);
-    write_exr(
-        out("_error_tile.exr"), t.width, t.height, cut(e.signed_error, e.width, t),
-        e.name + ": GL - reference, NaN where not covered by the same primitive in both" + where);
-    write_exr(out("_allowed_tile.exr"), t.width, t.height, cut(e.allowed, e.width, t),
-              e.name + ": allowed |GL - reference|, NaN where not compared" + where);
-    write_exr(out("_gl_tile.exr"), t.width, t.height, cut(e.gl, e.width, t),
-              e.name + ": GL" + where);
-    write_exr(out("_ref_tile.exr"), t.width, t.height, cut(e.reference, e.width, t),
-              e.name + ": reference" + where);
+    const Tile t = tile_around(e.width, e.height, worst);
+    write_tile(e.name,
+               {cut(e.signed_error, e.width, t), cut(e.allowed, e.width, t), cut(e.gl, e.width, t),
+                cut(e.reference, e.width, t)},
+               t, worst, e.width, out);
   }
   written.push_back(dir / "coverage.png");
   write_png(render_coverage(expected, gl, r.coverage, font, explained_mismatches_fail(r.tolerance)),
             written.back());
+  return written;
+}
+
+std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesystem::path& dir,
+                                                              const Case& c, const CaseResult& r,
+                                                              int band_rows, const BandSource& band,
+                                                              size_t map_bytes) {
+  const int width = c.fb_width, height = c.fb_height;
+  const bool large = size_t(width) * size_t(height) > kFullResolutionPixels;
+  if (!large) {
+    // Full-resolution pictures need whole frames, and a small frame's are small: stacked.
+    std::pair<Expectation, Frame> whole = band(0, height);
+    return write_diff_images(dir, c, whole.first, whole.second, r);
+  }
+  std::filesystem::create_directories(dir);
+  const auto font = find_font();
+  const int factor = map_factor(c);
+  // Bands of whole blocks, so that each block of the maps lies in one band.
+  const int rows = std::max(1, band_rows / factor) * factor;
+  const std::vector<Shown> all = shown_channels(c, r, large);
+  struct Worst {
+    long pixel = -1;
+    std::array<double, 4> badness{};
+  };
+  CoverageCanvas coverage(width, height, r.coverage, font, explained_mismatches_fail(r.tolerance));
+  // The maps of a few channels at a time, within map_bytes (a 1024 x 1024 map is ~40 MB, and a
+  // frame may have 29 channels): the bands are read again for each group.
+  const size_t map_pixels =
+      size_t((width + factor - 1) / factor) * size_t((height + factor - 1) / factor);
+  const size_t group = std::max<size_t>(1, map_bytes / std::max<size_t>(map_pixels * 40, 1));
+  std::vector<std::filesystem::path> written;
+  for (size_t first = 0; first < std::max<size_t>(all.size(), 1); first += group) {
+    const std::vector<Shown> channels(all.begin() + ptrdiff_t(std::min(first, all.size())),
+                                      all.begin() + ptrdiff_t(std::min(first + group, all.size())));
+    std::vector<ChannelError> maps(channels.size());
+    std::vector<Worst> worst(channels.size());
+    auto append = [](ChannelError& to, const ChannelError& rows_of) {
+      if (to.height == 0) {
+        to = rows_of;
+        return;
+      }
+      to.height += rows_of.height;
+      auto add = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
+      add(to.reference, rows_of.reference), add(to.gl, rows_of.gl);
+      add(to.signed_error, rows_of.signed_error), add(to.allowed, rows_of.allowed);
+      add(to.ulps, rows_of.ulps), add(to.allowed_ulps, rows_of.allowed_ulps);
+      add(to.compared, rows_of.compared);
+      to.max_finite_ulps = std::max(to.max_finite_ulps, rows_of.max_finite_ulps);
+      to.non_finite += rows_of.non_finite;
+    };
+    for (int y0 = 0; y0 < height; y0 += rows) {
+      const auto [expected, gl] = band(y0, std::min(rows, height - y0));
+      if (first == 0) coverage.add_rows(expected, gl, y0);
+      for (size_t k = 0; k < channels.size(); ++k) {
+        const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
+        append(maps[k], downsampled(e, factor));
+        // The first of the worst pixels in row order, as worst_pixel picks it on a whole frame.
+        if (const long w = worst_pixel(e); w >= 0) {
+          const auto b = badness(e, size_t(w));
+          if (worst[k].pixel < 0 || b > worst[k].badness) worst[k] = {long(y0) * width + w, b};
+        }
+      }
+    }
+    for (size_t k = 0; k < channels.size(); ++k) {
+      const std::string stem = file_stem(maps[k].name);
+      const auto out = [&](const std::string& suffix) {
+        written.push_back(dir / (stem + suffix));
+        return written.back();
+      };
+      write_maps(maps[k], factor, channels[k].tolerance, font, out);
+      if (worst[k].pixel < 0) continue;
+      // The tile's rows band by band again, its columns cut from each.
+      const Tile t = tile_around(width, height, worst[k].pixel);
+      TileValues values;
+      for (int y0 = t.y0; y0 < t.y0 + t.height; y0 += rows) {
+        const auto [expected, gl] = band(y0, std::min(rows, t.y0 + t.height - y0));
+        const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
+        const Tile part{t.x0, 0, t.width, e.height};
+        auto add = [&](std::vector<float>& to, const std::vector<float>& from) {
+          const std::vector<float> piece = cut(from, e.width, part);
+          to.insert(to.end(), piece.begin(), piece.end());
+        };
+        add(values.signed_error, e.signed_error), add(values.allowed, e.allowed);
+        add(values.gl, e.gl), add(values.reference, e.reference);
+      }
+      write_tile(maps[k].name, values, t, worst[k].pixel, width, out);
+    }
+  }
+  written.push_back(dir / "coverage.png");
+  write_png(coverage.finish(), written.back());
   return written;
 }
 

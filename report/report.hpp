@@ -2,7 +2,9 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/case.hpp"
@@ -70,5 +72,17 @@ std::string coverage_failures_table(const CaseResult& r, const Frame& reference,
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
                                                      const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r);
+// Rows [y0, y0 + rows) of a case's expectation and GL frame (check's streamed bands).
+using BandSource = std::function<std::pair<Expectation, Frame>(int y0, int rows)>;
+// The same files from a case checked band by band (check::Checked::streamed), which holds no
+// whole frame: the maps shrunk and built band by band, the tiles read again, coverage.png
+// painted band by band; about `band_rows` rows at a time. The very files write_diff_images
+// writes from the whole frames (a frame of 2^20 pixels or fewer is stacked whole and given to
+// it). The maps of as many channels as fit in `map_bytes` are made in one pass over the bands
+// (a 1024 x 1024 map takes ~40 MB); the bands are read again for the next channels.
+std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesystem::path& dir,
+                                                              const Case& c, const CaseResult& r,
+                                                              int band_rows, const BandSource& band,
+                                                              size_t map_bytes = size_t(256) << 20);
 
 }  // namespace glrc::report

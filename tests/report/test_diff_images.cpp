@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "compare/compare.hpp"
 #include "report/channel_error.hpp"
 #include "report/coverage_image.hpp"
 #include "report/report.hpp"
@@ -229,6 +230,91 @@ TEST_F(ReportTest, LargeFramesGetShrunkMapsOfFailingChannelsAndTilesAroundTheWor
   EXPECT_EQ(tile.at(bad_x - x0 + 1, 255 - (bad_y - y0)), 0.0f);
   const Image map = read_image(dir_ / "large" / "v.x_error.png");
   EXPECT_LE(map.width, 1024 + 200);  // 550 x 500 pixels of frame, and the margins and legend
+}
+
+// A streamed case's pictures, made band by band from the rows alone, are the very files the
+// whole frames give: the same names, the same bytes.
+TEST_F(ReportTest, StreamedPicturesAreTheWholeFramesPictures) {
+  constexpr int w = 1100, h = 1000;
+  Case c;
+  c.name = "large";
+  c.fb_width = w, c.fb_height = h;
+  c.viewport = {0, 0, w, h};
+  c.varyings = {{"v", 2, Interpolation::smooth}};
+  c.vertices = {{{-1, -1, 0, 1}, {1, 1}}, {{3, -1, 0, 1}, {1, 1}}, {{-1, 3, 0, 1}, {1, 1}}};
+  c.triangles = {{0, 1, 2}};
+  Frame ref(w, h, 2), allowed(w, h, 2);
+  ref.primitive.assign(ref.pixel_count(), 0);
+  allowed.primitive = ref.primitive;
+  for (size_t i = 0; i < ref.pixel_count(); ++i) {
+    ref.depth[i] = 0.5f, allowed.depth[i] = 0x1p-20f;
+    for (int k = 0; k < 2; ++k)
+      ref.components[size_t(k)][i] = float(i % 977) / 977.0f + float(k),
+      allowed.components[size_t(k)][i] = 0x1p-18f * float(1 + i % 7);
+  }
+  Frame gl = ref;
+  for (size_t i = 0; i < gl.pixel_count(); i += 4093)
+    gl.components[0][i] += 0x1p-17f * float(i % 5);       // some within, some over the allowance
+  gl.components[0][gl.index(700, 901)] = 9.0f;            // the worst, near the top
+  gl.primitive[gl.index(10, 500)] = Frame::kNoPrimitive;  // a coverage failure
+  std::vector<uint8_t> edges(size_t(w) * h, 0);
+  const Expectation expected{ref, edges, allowed};
+  Tolerance t;
+
+  gl.components[1][gl.index(3, 3)] = -1.0f;  // a second failing channel
+  const CaseResult r = compare::compare(c, expected, gl, t);
+  ASSERT_EQ(r.status, Status::fail);
+  const auto whole = write_diff_images(dir_ / "whole", c, expected, gl, r);
+  auto rows_of = [&](const Frame& f, int y0, int rows) {
+    Frame band;
+    band.width = f.width, band.height = rows;
+    const size_t a = f.index(0, y0), b = f.index(0, y0 + rows);
+    auto cut = [&](const auto& v) {
+      return std::decay_t<decltype(v)>(v.begin() + ptrdiff_t(a), v.begin() + ptrdiff_t(b));
+    };
+    band.primitive = cut(f.primitive), band.depth = cut(f.depth);
+    for (const auto& component : f.components)
+      band.components.push_back(cut(component));
+    return band;
+  };
+  int calls = 0;
+  const auto streamed = write_streamed_diff_images(
+      dir_ / "streamed", c, r, 37,
+      [&](int y0, int rows) {
+        ++calls;
+        EXPECT_LE(rows, 37);
+        Expectation e{rows_of(ref, y0, rows), {}, rows_of(allowed, y0, rows)};
+        e.edges.assign(size_t(w) * size_t(rows), 0);
+        return std::pair{e, rows_of(gl, y0, rows)};
+      },
+      1);  // one channel's map at a time: the bands are read once per channel
+  EXPECT_GT(calls, 2 * 1000 / 37);
+  ASSERT_EQ(streamed.size(), whole.size());
+  auto bytes = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (size_t i = 0; i < whole.size(); ++i) {
+    EXPECT_EQ(streamed[i].filename(), whole[i].filename());
+    if (whole[i].extension() != ".exr") {
+      EXPECT_TRUE(bytes(streamed[i]) == bytes(whole[i])) << whole[i].filename();
+      continue;
+    }
+    // An EXR holds the second it was written (capDate): its size, description and pixels.
+    const Image a = read_image(streamed[i]), b = read_image(whole[i]);
+    EXPECT_EQ(a.width, b.width);
+    EXPECT_EQ(a.height, b.height);
+    EXPECT_TRUE(std::equal(
+        a.pixels.begin(), a.pixels.end(), b.pixels.begin(), b.pixels.end(),
+        [](float x, float y) { return std::bit_cast<uint32_t>(x) == std::bit_cast<uint32_t>(y); }))
+        << whole[i].filename();
+    auto comments = [](const std::filesystem::path& f) {
+      auto in = OIIO::ImageInput::open(f.string());
+      return in ? std::string(in->spec().get_string_attribute("ImageDescription"))
+                : std::string("?");
+    };
+    EXPECT_EQ(comments(streamed[i]), comments(whole[i]));
+  }
 }
 
 // Downsampling keeps each block's worst pixel: the one failing pixel of a million survives.
