@@ -35,6 +35,20 @@ struct Frame {
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
   size_t pixel_count() const { return size_t(width) * height; }
+  // Rows [y0, y0 + n) as a frame n rows high (its row 0 is row y0): one band of a frame checked
+  // band by band. Requires 0 <= y0, 0 <= n, y0 + n <= height.
+  Frame rows(int y0, int n) const {
+    Frame band;
+    band.width = width, band.height = n;
+    const auto a = ptrdiff_t(index(0, y0)), b = ptrdiff_t(index(0, y0 + n));
+    band.primitive.assign(primitive.begin() + a, primitive.begin() + b);
+    band.depth.assign(depth.begin() + a, depth.begin() + b);
+    if (fragments.size() == pixel_count())
+      band.fragments.assign(fragments.begin() + a, fragments.begin() + b);
+    for (const std::vector<float>& c : components)
+      band.components.emplace_back(c.begin() + a, c.begin() + b);
+    return band;
+  }
 };
 
 // What is known about the reference's edges near a pixel centre: bits of one byte per pixel,

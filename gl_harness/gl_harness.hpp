@@ -103,9 +103,6 @@ class Renderer {
   Frame drawn_;
 };
 
-// Rows [y0, y0 + rows) of a frame, as Renderer::read_rows gives them.
-Frame frame_rows(const Frame& f, int y0, int rows);
-
 // Creates a context on the target and checks that the driver asked for is the one running.
 // Throws Unavailable. Mesa picks its driver once per process: every call in one process must
 // name the same Target::driver (a different one throws Unavailable); run one process per

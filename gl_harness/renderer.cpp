@@ -6,7 +6,6 @@
 #include <map>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -409,27 +408,13 @@ class GlRenderer final : public Renderer {
 
 }  // namespace
 
-Frame frame_rows(const Frame& f, int y0, int rows) {
-  if (y0 < 0 || rows < 0 || rows > f.height - y0)
-    throw RenderError("rows " + std::to_string(y0) + " + " + std::to_string(rows) +
-                      " outside a frame " + std::to_string(f.height) + " high");
-  Frame band;
-  band.width = f.width, band.height = rows;
-  const size_t a = f.index(0, y0), b = f.index(0, y0 + rows);
-  auto cut = [&](const auto& v) {
-    return std::decay_t<decltype(v)>(v.begin() + ptrdiff_t(a), v.begin() + ptrdiff_t(b));
-  };
-  band.primitive = cut(f.primitive), band.depth = cut(f.depth);
-  if (f.fragments.size() == f.pixel_count()) band.fragments = cut(f.fragments);
-  for (const std::vector<float>& component : f.components)
-    band.components.push_back(cut(component));
-  return band;
-}
-
 Frame Renderer::read_rows(const Case& c, int y0, int rows) {
   if (drawn_.width != c.fb_width || drawn_.height != c.fb_height)
     throw RenderError("case '" + c.name + "': read back before it was drawn");
-  return frame_rows(drawn_, y0, rows);
+  if (y0 < 0 || rows < 0 || rows > drawn_.height - y0)
+    throw RenderError("case '" + c.name + "': rows " + std::to_string(y0) + " + " +
+                      std::to_string(rows) + " outside the framebuffer");
+  return drawn_.rows(y0, rows);
 }
 
 std::unique_ptr<Renderer> create_renderer(const Target& t) {

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <type_traits>
 #include <vector>
 
 #include "compare/compare.hpp"
@@ -64,22 +63,8 @@ Case crossing() {
   return c;
 }
 
-Frame rows_of(const Frame& f, int y0, int rows) {
-  Frame band;
-  band.width = f.width, band.height = rows;
-  const size_t a = f.index(0, y0), b = f.index(0, y0 + rows);
-  auto cut = [&](const auto& v) {
-    return std::decay_t<decltype(v)>(v.begin() + ptrdiff_t(a), v.begin() + ptrdiff_t(b));
-  };
-  band.primitive = cut(f.primitive), band.depth = cut(f.depth);
-  if (!f.fragments.empty()) band.fragments = cut(f.fragments);
-  for (const auto& c : f.components)
-    band.components.push_back(cut(c));
-  return band;
-}
-
 Expectation rows_of(const Expectation& e, int y0, int rows) {
-  Expectation band{rows_of(e.frame, y0, rows), {}, rows_of(e.allowed, y0, rows), {}};
+  Expectation band{e.frame.rows(y0, rows), {}, e.allowed.rows(y0, rows), {}};
   const size_t a = e.frame.index(0, y0), b = e.frame.index(0, y0 + rows);
   band.edges.assign(e.edges.begin() + ptrdiff_t(a), e.edges.begin() + ptrdiff_t(b));
   for (Candidate k : e.candidates)
@@ -167,7 +152,7 @@ TEST(Comparator, BandsGiveTheWholeFramesResult) {
       Comparator comparator(c, t, c.fb_width, c.fb_height);
       for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
         const int n = std::min(rows, c.fb_height - y0);
-        comparator.add_rows(rows_of(e, y0, n), rows_of(gl, y0, n), y0);
+        comparator.add_rows(rows_of(e, y0, n), gl.rows(y0, n), y0);
       }
       SCOPED_TRACE("bands of " + std::to_string(rows) + " rows");
       expect_same(comparator.finish(), whole);
@@ -179,13 +164,10 @@ TEST(Comparator, BandsOutOfOrderAreRefused) {
   const Case c = crossing();
   const Expectation e = ref::render(c, Model{}, 8);
   Comparator comparator(c, Tolerance{}, c.fb_width, c.fb_height);
-  EXPECT_THROW(comparator.add_rows(rows_of(e, 4, 4), rows_of(e.frame, 4, 4), 4),
-               std::invalid_argument);
-  comparator.add_rows(rows_of(e, 0, 4), rows_of(e.frame, 0, 4), 0);
-  EXPECT_THROW(comparator.add_rows(rows_of(e, 0, 4), rows_of(e.frame, 0, 4), 0),
-               std::invalid_argument);
-  EXPECT_THROW(comparator.add_rows(rows_of(e, 4, 4), rows_of(e.frame, 4, 5), 4),
-               std::invalid_argument);
+  EXPECT_THROW(comparator.add_rows(rows_of(e, 4, 4), e.frame.rows(4, 4), 4), std::invalid_argument);
+  comparator.add_rows(rows_of(e, 0, 4), e.frame.rows(0, 4), 0);
+  EXPECT_THROW(comparator.add_rows(rows_of(e, 0, 4), e.frame.rows(0, 4), 0), std::invalid_argument);
+  EXPECT_THROW(comparator.add_rows(rows_of(e, 4, 4), e.frame.rows(4, 5), 4), std::invalid_argument);
 }
 
 }  // namespace

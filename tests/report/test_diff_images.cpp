@@ -265,27 +265,15 @@ TEST_F(ReportTest, StreamedPicturesAreTheWholeFramesPictures) {
   const CaseResult r = compare::compare(c, expected, gl, t);
   ASSERT_EQ(r.status, Status::fail);
   const auto whole = write_diff_images(dir_ / "whole", c, expected, gl, r);
-  auto rows_of = [&](const Frame& f, int y0, int rows) {
-    Frame band;
-    band.width = f.width, band.height = rows;
-    const size_t a = f.index(0, y0), b = f.index(0, y0 + rows);
-    auto cut = [&](const auto& v) {
-      return std::decay_t<decltype(v)>(v.begin() + ptrdiff_t(a), v.begin() + ptrdiff_t(b));
-    };
-    band.primitive = cut(f.primitive), band.depth = cut(f.depth);
-    for (const auto& component : f.components)
-      band.components.push_back(cut(component));
-    return band;
-  };
   int calls = 0;
   const auto streamed = write_streamed_diff_images(
       dir_ / "streamed", c, r, 37,
       [&](int y0, int rows) {
         ++calls;
         EXPECT_LE(rows, 37);
-        Expectation e{rows_of(ref, y0, rows), {}, rows_of(allowed, y0, rows)};
+        Expectation e{ref.rows(y0, rows), {}, allowed.rows(y0, rows)};
         e.edges.assign(size_t(w) * size_t(rows), 0);
-        return std::pair{e, rows_of(gl, y0, rows)};
+        return std::pair{e, gl.rows(y0, rows)};
       },
       1);  // one channel's map at a time: the bands are read once per channel
   EXPECT_GT(calls, 2 * 1000 / 37);
