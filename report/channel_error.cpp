@@ -107,6 +107,32 @@ std::array<double, 4> badness(const ChannelError& e, size_t i) {
   return {1, finite ? 0.0 : 1.0, share, finite ? ulps : 0.0};
 }
 
+namespace {
+
+constexpr size_t kFullResolutionPixels = size_t(1) << 20;
+constexpr int kLargestMapSide = 1024;
+// A shrunk map keeps, per pixel, the error and the allowance in ulps (doubles) and whether it
+// was compared (downsampled); all the maps of a case together stay within kMapBytes.
+constexpr size_t kMapPixelBytes = 2 * sizeof(double) + 1;
+constexpr size_t kMapBytes = size_t(128) << 20;
+
+}  // namespace
+
+int map_factor(int width, int height, size_t channels) {
+  if (size_t(width) * size_t(height) <= kFullResolutionPixels) return 1;
+  // At most kLargestMapSide on the long side; then larger blocks until the maps of every
+  // channel shown fit in kMapBytes together, so that a frame with many failing channels makes
+  // all its maps in one pass over its rows.
+  int factor = (std::max(width, height) + kLargestMapSide - 1) / kLargestMapSide;
+  auto bytes = [&](int f) {
+    const size_t pixels = size_t((width + f - 1) / f) * size_t((height + f - 1) / f);
+    return pixels * kMapPixelBytes * std::max<size_t>(channels, 1);
+  };
+  while (bytes(factor) > kMapBytes && factor < std::max(width, height))
+    factor *= 2;
+  return factor;
+}
+
 ChannelError downsampled(const ChannelError& e, int factor) {
   if (factor <= 1) return e;
   ChannelError d;
@@ -116,7 +142,7 @@ ChannelError downsampled(const ChannelError& e, int factor) {
   d.max_finite_ulps = e.max_finite_ulps;
   d.non_finite = e.non_finite;
   const size_t n = size_t(d.width) * size_t(d.height);
-  d.reference.resize(n), d.gl.resize(n), d.signed_error.resize(n), d.allowed.resize(n);
+  // What the maps show only: the values themselves are read from tiles (diff_images.cpp).
   d.ulps.resize(n), d.allowed_ulps.resize(n), d.compared.resize(n);
   for (int by = 0; by < d.height; ++by)
     for (int bx = 0; bx < d.width; ++bx) {
@@ -129,8 +155,6 @@ ChannelError downsampled(const ChannelError& e, int factor) {
           if (b > worst) worst = b, pick = i;
         }
       const size_t o = size_t(by) * size_t(d.width) + size_t(bx);
-      d.reference[o] = e.reference[pick], d.gl[o] = e.gl[pick];
-      d.signed_error[o] = e.signed_error[pick], d.allowed[o] = e.allowed[pick];
       d.ulps[o] = e.ulps[pick], d.allowed_ulps[o] = e.allowed_ulps[pick];
       d.compared[o] = e.compared[pick];
     }

@@ -48,8 +48,17 @@ ChannelError as_ratio_map(const ChannelError& e);
 // The map shrunk by `factor` in x and y (blocks of factor x factor pixels; the last ones may be
 // partial), each block showing its worst pixel: a non-finite error first, then the largest
 // share of the allowance, then the largest error, so that no failure disappears from a picture
-// of a large frame. max_finite_ulps and non_finite keep the whole frame's values.
+// of a large frame. max_finite_ulps and non_finite keep the whole frame's values. With a factor
+// over 1 the result is a map only: ulps, allowed_ulps and compared (what render_heatmap,
+// as_allowance_map and as_ratio_map read); reference, gl, signed_error and allowed are empty.
 ChannelError downsampled(const ChannelError& e, int factor);
+
+// The side of the blocks a width x height frame's pictures shrink to when `channels` maps are
+// shown: 1 for a frame of 2^20 pixels or fewer; else at least enough for 1024 pixels on the
+// long side, doubled until all the maps together take at most 128 MiB (17 bytes a map pixel):
+// a 4096 x 4096 frame gets 1024 x 1024 maps for up to 7 channels, 512 x 512 for 29. Its
+// coverage picture shrinks by map_factor(width, height, 1).
+int map_factor(int width, int height, size_t channels);
 
 // The pixel whose error uses the largest share of its allowance (non-finite first); -1 when
 // nothing is compared.

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "compare/compare.hpp"
+#include "report/channel_error.hpp"
 #include "report/format.hpp"
 
 namespace glrc::report {
@@ -116,12 +119,15 @@ CoverageCanvas::CoverageCanvas(int width, int height, const CoverageStats& stats
                                const std::optional<std::string>& font, bool explained_fail)
     : width_(width),
       height_(height),
-      factor_(upscale_factor(width, height)),
+      shrink_(map_factor(width, height, 1)),
+      shown_width_((width + shrink_ - 1) / shrink_),
+      shown_height_((height + shrink_ - 1) / shrink_),
+      factor_(upscale_factor(shown_width_, shown_height_)),
       image_x_(0),
       explained_fail_(explained_fail),
       font_(font),
-      canvas_(std::max(width * factor_, kMinWidth) + 2 * kMargin,
-              kTitleHeight + height * factor_ + kLegendHeight, kBackground) {
+      canvas_(std::max(shown_width_ * factor_, kMinWidth) + 2 * kMargin,
+              kTitleHeight + shown_height_ * factor_ + kLegendHeight, kBackground) {
   const int text_width = canvas_.width - 2 * kMargin;
   draw_text(canvas_, font, kMargin, 22,
             fmt::format("coverage   {}   ties {}   within snapping {}   fill-rule {}"
@@ -129,37 +135,61 @@ CoverageCanvas::CoverageCanvas(int width, int height, const CoverageStats& stats
                         count_text(stats.failures, "failure", "failures"), stats.exact_tie,
                         stats.within_snapping, stats.fill_rule, stats.gaps, stats.double_hits),
             16, kText, Align::left, text_width);
-  draw_text(canvas_, font, kMargin, 42,
-            fmt::format("both {}   reference only {}   GL only {}   other primitive {}", stats.both,
-                        stats.reference_only, stats.gl_only, stats.other_primitive),
-            12, kText, Align::left, text_width);
-  image_x_ = (canvas_.width - width * factor_) / 2;
+  std::string counts =
+      fmt::format("both {}   reference only {}   GL only {}   other primitive {}", stats.both,
+                  stats.reference_only, stats.gl_only, stats.other_primitive);
+  if (shrink_ > 1)
+    counts += fmt::format("   (each pixel the most severe of {}x{})", shrink_, shrink_);
+  draw_text(canvas_, font, kMargin, 42, counts, 12, kText, Align::left, text_width);
+  image_x_ = (canvas_.width - shown_width_ * factor_) / 2;
 }
 
 void CoverageCanvas::add_rows(const Expectation& expected, const Frame& gl, int y0) {
   const Frame& reference = expected.frame;
   const std::vector<uint8_t>& edge_band = expected.edges;
   const bool has_band = edge_band.size() == reference.pixel_count();
-  const int rows = reference.height;
-  // Frame row y0 + y lands on image block row height - 1 - (y0 + y): the band's rows are the
-  // blocks from height - y0 - rows down.
-  paint_frame(canvas_, image_x_, kTitleHeight + (height_ - y0 - rows) * factor_, factor_, width_,
-              rows, [&](int x, int y) {
-                const size_t i = reference.index(x, y);
-                const auto label =
-                    has_band ? compare::coverage_label(expected, gl, i) : std::nullopt;
-                if (label && (explained_fail_ || !compare::explained(*label)))
-                  failing_.emplace_back(x, y0 + y);
-                return pixel_colour(reference.primitive[i], gl.primitive[i],
-                                    has_band && edge_band[i] != 0, label);
+  if (y0 % shrink_ != 0)
+    throw std::invalid_argument("coverage picture: a band starting at row " + std::to_string(y0) +
+                                " is not on a block of " + std::to_string(shrink_) + " rows");
+  // Frame row y0 + y lands on shown row (y0 + y) / shrink_, image block row shown_height_ - 1
+  // minus that: the band's shown rows are the blocks from shown_height_ - y0 / shrink_ - rows
+  // down.
+  const int first = y0 / shrink_;
+  const int rows = (reference.height + shrink_ - 1) / shrink_;
+  paint_frame(canvas_, image_x_, kTitleHeight + (shown_height_ - first - rows) * factor_, factor_,
+              shown_width_, rows, [&](int bx, int by) {
+                // The block's most severe pixel: 4 a gap or double hit, 3 another failing
+                // mismatch, 2 an explained one, 1 an agreeing pixel in an edge band, 0 any.
+                int worst = -1, failing = 0;
+                Rgb colour;
+                for (int y = by * shrink_; y < std::min(reference.height, (by + 1) * shrink_); ++y)
+                  for (int x = bx * shrink_; x < std::min(width_, (bx + 1) * shrink_); ++x) {
+                    const size_t i = reference.index(x, y);
+                    const auto label =
+                        has_band ? compare::coverage_label(expected, gl, i) : std::nullopt;
+                    const bool band = has_band && edge_band[i] != 0;
+                    const bool fails = label && (explained_fail_ || !compare::explained(*label));
+                    const int severity = !label ? (band ? 1 : 0)
+                                         : (*label == CoverageStats::Label::gap ||
+                                            *label == CoverageStats::Label::double_hit)
+                                             ? 4
+                                         : fails ? 3
+                                                 : 2;
+                    failing += fails;
+                    if (severity > worst)
+                      worst = severity,
+                      colour = pixel_colour(reference.primitive[i], gl.primitive[i], band, label);
+                  }
+                if (failing > 0) failing_.emplace_back(bx, first + by);
+                return colour;
               });
 }
 
 Canvas CoverageCanvas::finish() {
   // After every pixel is painted: a ring overlaps its neighbours.
   for (const auto& [x, y] : failing_)
-    draw_ring(canvas_, image_x_, kTitleHeight, factor_, width_, height_, x, y);
-  draw_legend(canvas_, font_, kTitleHeight + height_ * factor_);
+    draw_ring(canvas_, image_x_, kTitleHeight, factor_, shown_width_, shown_height_, x, y);
+  draw_legend(canvas_, font_, kTitleHeight + shown_height_ * factor_);
   return std::move(canvas_);
 }
 

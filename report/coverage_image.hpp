@@ -28,7 +28,12 @@ Canvas render_coverage(const Expectation& expected, const Frame& gl, const Cover
                        const std::optional<std::string>& font, bool explained_fail = false);
 
 // The same picture of a width x height frame, painted band of rows by band of rows (in any
-// order): render_coverage is one band of the whole frame.
+// order): render_coverage is one band of the whole frame. A frame of more than 2^20 pixels is
+// shown shrunk by map_factor(width, height, 1) (channel_error.hpp), each pixel of the picture
+// the most severe of its block (a gap or double hit, then a failing mismatch, then an explained
+// one, then an agreeing pixel in an edge band, then any; the first in row order among equals),
+// ringed when any pixel of the block fails; a band then starts on a row that is a multiple of
+// that factor.
 class CoverageCanvas {
  public:
   CoverageCanvas(int width, int height, const CoverageStats& stats,
@@ -38,11 +43,14 @@ class CoverageCanvas {
   Canvas finish();  // once
 
  private:
-  int width_, height_, factor_, image_x_;
+  int width_, height_;
+  int shrink_;                      // frame pixels per picture pixel, each way
+  int shown_width_, shown_height_;  // the frame as shown: shrunk
+  int factor_, image_x_;            // canvas pixels per shown pixel; where the frame starts
   bool explained_fail_;
   std::optional<std::string> font_;
   Canvas canvas_;
-  std::vector<std::pair<int, int>> failing_;
+  std::vector<std::pair<int, int>> failing_;  // shown pixels to ring
 };
 
 }  // namespace glrc::report

@@ -43,11 +43,10 @@ void check_frame(const Case& c, const Frame& f, const Frame& reference, const ch
                              " frame does not match the case's layout");
 }
 
-// Frames larger than this get pictures of their worst pixels instead of every pixel: a 4096 x
-// 4096 case with 7 vec4 varyings would otherwise write ~200 full-size maps (1.2 GB) before the
-// worker can move on.
-constexpr size_t kFullResolutionPixels = size_t(1) << 20;
-constexpr int kLargestMapSide = 1024, kTileSide = 256;
+// Frames of more than 2^20 pixels (map_factor > 1) get pictures of their worst pixels instead
+// of every pixel: a 4096 x 4096 case with 7 vec4 varyings would otherwise write ~200 full-size
+// maps (1.2 GB) before the worker can move on.
+constexpr int kTileSide = 256;
 
 // The square of at most kTileSide pixels around pixel `centre` of a width x height frame,
 // inside it.
@@ -75,6 +74,7 @@ std::vector<T> cut(const std::vector<T>& v, int frame_width, const Tile& t) {
 // the specification's, which varies per pixel): every one, or of a large frame the failing ones.
 struct Shown {
   int channel;
+  std::string name;
   double tolerance;
 };
 std::vector<Shown> shown_channels(const Case& c, const CaseResult& r, bool large) {
@@ -87,26 +87,23 @@ std::vector<Shown> shown_channels(const Case& c, const CaseResult& r, bool large
     bool passes = false;
     for (const auto& ch : r.channels)
       if (ch.name == name) tolerance = fixed ? ch.tolerance_ulps : NAN, passes = ch.pass();
-    if (!(large && passes)) out.push_back({channel, tolerance});
+    if (!(large && passes)) out.push_back({channel, name, tolerance});
   }
   return out;
 }
 
-// The blocks of factor x factor pixels a large frame's maps shrink to (1: full resolution).
-int map_factor(const Case& c) {
-  return size_t(c.fb_width) * size_t(c.fb_height) > kFullResolutionPixels
-             ? (std::max(c.fb_width, c.fb_height) + kLargestMapSide - 1) / kLargestMapSide
-             : 1;
-}
-
 // Writes one channel's three PNG maps from `shown` (already shrunk by `factor`).
-void write_maps(ChannelError shown, int factor, double tolerance,
+void write_maps(const ChannelError& shown, int factor, double tolerance,
                 const std::optional<std::string>& font,
                 const std::function<std::filesystem::path(const std::string&)>& out) {
-  if (factor > 1) shown.quantity += fmt::format(" (each pixel the worst of {}x{})", factor, factor);
-  write_png(render_heatmap(shown, tolerance, font), out("_error.png"));
-  write_png(render_heatmap(as_allowance_map(shown), NAN, font), out("_allowed.png"));
-  write_png(render_heatmap(as_ratio_map(shown), 1.0, font), out("_ratio.png"));
+  // Each map says it is shrunk (as_allowance_map and as_ratio_map set their own quantity).
+  auto shrunk = [&](ChannelError map) {
+    if (factor > 1) map.quantity += fmt::format(" (each pixel the worst of {}x{})", factor, factor);
+    return map;
+  };
+  write_png(render_heatmap(shrunk(shown), tolerance, font), out("_error.png"));
+  write_png(render_heatmap(shrunk(as_allowance_map(shown)), NAN, font), out("_allowed.png"));
+  write_png(render_heatmap(shrunk(as_ratio_map(shown)), 1.0, font), out("_ratio.png"));
 }
 
 // The tile's pixels of one channel, as four value planes.
@@ -138,12 +135,13 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
   check_frame(c, gl, reference, "GL");
   std::filesystem::create_directories(dir);
   const auto font = find_font();
-  // A large frame: maps only of the channels that fail, shrunk to kLargestMapSide showing each
+  // A large frame: maps only of the channels that fail, shrunk by map_factor showing each
   // block's worst pixel, and full-resolution EXRs of a tile around the worst pixel.
-  const bool large = reference.pixel_count() > kFullResolutionPixels;
-  const int factor = map_factor(c);
+  const bool large = map_factor(c.fb_width, c.fb_height, 1) > 1;
+  const std::vector<Shown> all = shown_channels(c, r, large);
+  const int factor = map_factor(c.fb_width, c.fb_height, all.size());
   std::vector<std::filesystem::path> written;
-  for (const Shown& shown : shown_channels(c, r, large)) {
+  for (const Shown& shown : all) {
     const ChannelError e = channel_error(c, expected, gl, shown.channel, r.tolerance);
     const std::string stem = file_stem(e.name);
     const auto out = [&](const std::string& suffix) {
@@ -176,10 +174,10 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
 
 std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesystem::path& dir,
                                                               const Case& c, const CaseResult& r,
-                                                              int band_rows, const BandSource& band,
-                                                              size_t map_bytes) {
+                                                              int band_rows,
+                                                              const BandSource& band) {
   const int width = c.fb_width, height = c.fb_height;
-  const bool large = size_t(width) * size_t(height) > kFullResolutionPixels;
+  const bool large = map_factor(width, height, 1) > 1;
   if (!large) {
     // Full-resolution pictures need whole frames, and a small frame's are small: stacked.
     std::pair<Expectation, Frame> whole = band(0, height);
@@ -187,80 +185,105 @@ std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesys
   }
   std::filesystem::create_directories(dir);
   const auto font = find_font();
-  const int factor = map_factor(c);
+  const std::vector<Shown> channels = shown_channels(c, r, large);
+  const int factor = map_factor(width, height, channels.size());
   // Bands of whole blocks, so that each block of the maps lies in one band.
   const int rows = std::max(1, band_rows / factor) * factor;
-  const std::vector<Shown> all = shown_channels(c, r, large);
+
+  // First pass: every channel's shrunk map (within kMapBytes together), its worst pixel, and
+  // coverage.png, band by band.
   struct Worst {
     long pixel = -1;
     std::array<double, 4> badness{};
   };
+  std::vector<ChannelError> maps(channels.size());
+  std::vector<Worst> worst(channels.size());
   CoverageCanvas coverage(width, height, r.coverage, font, explained_mismatches_fail(r.tolerance));
-  // The maps of a few channels at a time, within map_bytes (a 1024 x 1024 map is ~40 MB, and a
-  // frame may have 29 channels): the bands are read again for each group.
-  const size_t map_pixels =
-      size_t((width + factor - 1) / factor) * size_t((height + factor - 1) / factor);
-  const size_t group = std::max<size_t>(1, map_bytes / std::max<size_t>(map_pixels * 40, 1));
-  std::vector<std::filesystem::path> written;
-  for (size_t first = 0; first < std::max<size_t>(all.size(), 1); first += group) {
-    const std::vector<Shown> channels(all.begin() + ptrdiff_t(std::min(first, all.size())),
-                                      all.begin() + ptrdiff_t(std::min(first + group, all.size())));
-    std::vector<ChannelError> maps(channels.size());
-    std::vector<Worst> worst(channels.size());
-    auto append = [](ChannelError& to, const ChannelError& rows_of) {
-      if (to.height == 0) {
-        to = rows_of;
-        return;
-      }
-      to.height += rows_of.height;
-      auto add = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
-      add(to.reference, rows_of.reference), add(to.gl, rows_of.gl);
-      add(to.signed_error, rows_of.signed_error), add(to.allowed, rows_of.allowed);
-      add(to.ulps, rows_of.ulps), add(to.allowed_ulps, rows_of.allowed_ulps);
-      add(to.compared, rows_of.compared);
-      to.max_finite_ulps = std::max(to.max_finite_ulps, rows_of.max_finite_ulps);
-      to.non_finite += rows_of.non_finite;
-    };
-    for (int y0 = 0; y0 < height; y0 += rows) {
-      const auto [expected, gl] = band(y0, std::min(rows, height - y0));
-      if (first == 0) coverage.add_rows(expected, gl, y0);
-      for (size_t k = 0; k < channels.size(); ++k) {
-        const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
-        append(maps[k], downsampled(e, factor));
-        // The first of the worst pixels in row order, as worst_pixel picks it on a whole frame.
-        if (const long w = worst_pixel(e); w >= 0) {
-          const auto b = badness(e, size_t(w));
-          if (worst[k].pixel < 0 || b > worst[k].badness) worst[k] = {long(y0) * width + w, b};
-        }
-      }
+  auto append = [](ChannelError& to, const ChannelError& rows_of) {
+    if (to.height == 0) {
+      to = rows_of;
+      return;
     }
+    to.height += rows_of.height;
+    auto add = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
+    add(to.ulps, rows_of.ulps), add(to.allowed_ulps, rows_of.allowed_ulps);
+    add(to.compared, rows_of.compared);
+    to.max_finite_ulps = std::max(to.max_finite_ulps, rows_of.max_finite_ulps);
+    to.non_finite += rows_of.non_finite;
+  };
+  for (int y0 = 0; y0 < height; y0 += rows) {
+    const auto [expected, gl] = band(y0, std::min(rows, height - y0));
+    coverage.add_rows(expected, gl, y0);
     for (size_t k = 0; k < channels.size(); ++k) {
-      const std::string stem = file_stem(maps[k].name);
-      const auto out = [&](const std::string& suffix) {
-        written.push_back(dir / (stem + suffix));
-        return written.back();
-      };
-      write_maps(maps[k], factor, channels[k].tolerance, font, out);
-      if (worst[k].pixel < 0) continue;
-      // The tile's rows band by band again, its columns cut from each.
-      const Tile t = tile_around(width, height, worst[k].pixel);
-      TileValues values;
-      for (int y0 = t.y0; y0 < t.y0 + t.height; y0 += rows) {
-        const auto [expected, gl] = band(y0, std::min(rows, t.y0 + t.height - y0));
-        const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
-        const Tile part{t.x0, 0, t.width, e.height};
-        auto add = [&](std::vector<float>& to, const std::vector<float>& from) {
-          const std::vector<float> piece = cut(from, e.width, part);
-          to.insert(to.end(), piece.begin(), piece.end());
-        };
-        add(values.signed_error, e.signed_error), add(values.allowed, e.allowed);
-        add(values.gl, e.gl), add(values.reference, e.reference);
+      const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
+      append(maps[k], downsampled(e, factor));
+      // The first of the worst pixels in row order, as worst_pixel picks it on a whole frame.
+      if (const long w = worst_pixel(e); w >= 0) {
+        const auto b = badness(e, size_t(w));
+        if (worst[k].pixel < 0 || b > worst[k].badness) worst[k] = {long(y0) * width + w, b};
       }
-      write_tile(maps[k].name, values, t, worst[k].pixel, width, out);
     }
   }
-  written.push_back(dir / "coverage.png");
-  write_png(coverage.finish(), written.back());
+  std::vector<std::vector<std::filesystem::path>> files(channels.size());
+  for (size_t k = 0; k < channels.size(); ++k) {
+    const auto out = [&](const std::string& suffix) {
+      files[k].push_back(dir / (file_stem(channels[k].name) + suffix));
+      return files[k].back();
+    };
+    write_maps(maps[k], factor, channels[k].tolerance, font, out);
+    maps[k] = ChannelError();
+  }
+  std::filesystem::path coverage_png = dir / "coverage.png";
+  write_png(coverage.finish(), coverage_png);
+
+  // Second pass: the tiles around the worst pixels, all of them in one pass over the rows any
+  // of them covers.
+  std::vector<Tile> tiles(channels.size());
+  std::vector<TileValues> values(channels.size());
+  std::vector<std::pair<int, int>> spans;  // rows [first, last) some tile needs, merged
+  for (size_t k = 0; k < channels.size(); ++k) {
+    if (worst[k].pixel < 0) continue;
+    tiles[k] = tile_around(width, height, worst[k].pixel);
+    spans.push_back({tiles[k].y0, tiles[k].y0 + tiles[k].height});
+  }
+  std::sort(spans.begin(), spans.end());
+  std::vector<std::pair<int, int>> merged;
+  for (const auto& span : spans)
+    if (!merged.empty() && span.first <= merged.back().second)
+      merged.back().second = std::max(merged.back().second, span.second);
+    else
+      merged.push_back(span);
+  for (const auto& [first, last] : merged)
+    for (int y0 = first; y0 < last; y0 += rows) {
+      const int n = std::min(rows, last - y0);
+      const auto [expected, gl] = band(y0, n);
+      for (size_t k = 0; k < channels.size(); ++k) {
+        const Tile& t = tiles[k];
+        const int from = std::max(y0, t.y0), to = std::min(y0 + n, t.y0 + t.height);
+        if (worst[k].pixel < 0 || from >= to) continue;
+        const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
+        const Tile part{t.x0, from - y0, t.width, to - from};
+        auto add = [&](std::vector<float>& into, const std::vector<float>& from_band) {
+          const std::vector<float> piece = cut(from_band, e.width, part);
+          into.insert(into.end(), piece.begin(), piece.end());
+        };
+        add(values[k].signed_error, e.signed_error), add(values[k].allowed, e.allowed);
+        add(values[k].gl, e.gl), add(values[k].reference, e.reference);
+      }
+    }
+  std::vector<std::filesystem::path> written;
+  for (size_t k = 0; k < channels.size(); ++k) {
+    if (worst[k].pixel >= 0) {
+      const auto out = [&](const std::string& suffix) {
+        files[k].push_back(dir / (file_stem(channels[k].name) + suffix));
+        return files[k].back();
+      };
+      write_tile(channels[k].name, values[k], tiles[k], worst[k].pixel, width, out);
+      values[k] = TileValues();
+    }
+    written.insert(written.end(), files[k].begin(), files[k].end());
+  }
+  written.push_back(coverage_png);
   return written;
 }
 

@@ -66,23 +66,23 @@ std::string coverage_failures_table(const CaseResult& r, const Frame& reference,
 // Writes, for depth and each component, colour-mapped PNG heatmaps with legends of the error
 // (_error.png), of the allowance (_allowed.png) and of their ratio (_ratio.png); EXRs of the
 // signed error, the allowance, and the GL and reference values; and coverage.png. Returns the
-// files. A frame over 2^20 pixels gets maps only of its failing channels, shrunk to 1024 pixels
-// on the long side (each pixel the worst of its block), and EXRs of a 256 x 256 tile around each
-// one's worst pixel (_error_tile.exr, ...), so that pictures of any frame stay small and quick.
+// files. A frame over 2^20 pixels gets maps only of its failing channels, shrunk by
+// map_factor (channel_error.hpp; each pixel the worst of its block), and EXRs of a 256 x 256 tile
+// around each one's worst pixel (_error_tile.exr, ...), so that pictures of any frame stay small
+// and quick.
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
                                                      const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r);
 // Rows [y0, y0 + rows) of a case's expectation and GL frame (check's streamed bands).
 using BandSource = std::function<std::pair<Expectation, Frame>(int y0, int rows)>;
 // The same files from a case checked band by band (check::Checked::streamed), which holds no
-// whole frame: the maps shrunk and built band by band, the tiles read again, coverage.png
-// painted band by band; about `band_rows` rows at a time. The very files write_diff_images
-// writes from the whole frames (a frame of 2^20 pixels or fewer is stacked whole and given to
-// it). The maps of as many channels as fit in `map_bytes` are made in one pass over the bands
-// (a 1024 x 1024 map takes ~40 MB); the bands are read again for the next channels.
+// whole frame: the very files write_diff_images writes from the whole frames (a frame of 2^20
+// pixels or fewer is stacked whole and given to it), about `band_rows` rows at a time. The
+// bands are read at most twice: once for every map, their worst pixels and coverage.png, once
+// more for the rows of the tiles around the worst pixels.
 std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesystem::path& dir,
                                                               const Case& c, const CaseResult& r,
-                                                              int band_rows, const BandSource& band,
-                                                              size_t map_bytes = size_t(256) << 20);
+                                                              int band_rows,
+                                                              const BandSource& band);
 
 }  // namespace glrc::report

@@ -37,6 +37,14 @@ for target in "${targets[@]}"; do
     status=1
     echo "$target: FINDING (log: $log)"
     grep -E "ERROR|SUMMARY|fuzz_reference:|runtime error|Test unit written" "$log" | head -10
+    # The input itself, so that a finding on a machine whose files are gone can be replayed:
+    # xxd -r -p turns these lines back into the file the target reads.
+    for finding in "$build/findings/$target-"*; do
+      [ -f "$finding" ] || continue
+      echo "$(basename "$finding") as hex:"
+      od -An -v -tx1 "$finding" | tr -d ' \n' | fold -w 128
+      echo
+    done
   fi
 done
 exit $status

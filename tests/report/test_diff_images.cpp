@@ -266,17 +266,18 @@ TEST_F(ReportTest, StreamedPicturesAreTheWholeFramesPictures) {
   ASSERT_EQ(r.status, Status::fail);
   const auto whole = write_diff_images(dir_ / "whole", c, expected, gl, r);
   int calls = 0;
-  const auto streamed = write_streamed_diff_images(
-      dir_ / "streamed", c, r, 37,
-      [&](int y0, int rows) {
+  const auto streamed =
+      write_streamed_diff_images(dir_ / "streamed", c, r, 37, [&](int y0, int rows) {
         ++calls;
         EXPECT_LE(rows, 37);
         Expectation e{ref.rows(y0, rows), {}, allowed.rows(y0, rows)};
         e.edges.assign(size_t(w) * size_t(rows), 0);
         return std::pair{e, gl.rows(y0, rows)};
-      },
-      1);  // one channel's map at a time: the bands are read once per channel
-  EXPECT_GT(calls, 2 * 1000 / 37);
+      });
+  // Every band once for the maps, then the rows of the two tiles (256 rows each, apart): the
+  // bands are read at most twice.
+  EXPECT_GE(calls, (1000 + 36) / 37 + 2 * 256 / 37);
+  EXPECT_LE(calls, 2 * ((1000 + 36) / 37));
   ASSERT_EQ(streamed.size(), whole.size());
   auto bytes = [](const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -302,6 +303,25 @@ TEST_F(ReportTest, StreamedPicturesAreTheWholeFramesPictures) {
                 : std::string("?");
     };
     EXPECT_EQ(comments(streamed[i]), comments(whole[i]));
+  }
+}
+
+// The maps of a large frame shrink further when many channels fail, so that all of them are
+// made in one pass within their 128 MiB: 4096 x 4096 keeps 1024 x 1024 maps up to 7 channels.
+TEST(ChannelErrorMap, MapsShrinkToFitEveryChannelInOnePass) {
+  EXPECT_EQ(map_factor(1024, 1024, 29), 1);  // 2^20 pixels: full resolution
+  EXPECT_EQ(map_factor(1100, 1000, 1), 2);
+  EXPECT_EQ(map_factor(4096, 4096, 1), 4);
+  EXPECT_EQ(map_factor(4096, 4096, 7), 4);
+  EXPECT_EQ(map_factor(4096, 4096, 8), 8);
+  EXPECT_EQ(map_factor(4096, 4096, 29), 8);
+  EXPECT_EQ(map_factor(4096, 4096, 200), 32);
+  EXPECT_EQ(map_factor(16384, 16384, 29), 32);
+  for (const size_t channels : {1, 7, 29, 200}) {
+    const int f = map_factor(8000, 3000, channels);
+    const size_t map_pixels = size_t((8000 + f - 1) / f) * size_t((3000 + f - 1) / f);
+    EXPECT_LE(map_pixels * 17 * channels, size_t(128) << 20) << channels;
+    EXPECT_LE(8000 / f, 1024) << channels;
   }
 }
 
@@ -366,6 +386,52 @@ TEST(CoverageImage, RingsEveryFailingPixelAndOnlyThose) {
   EXPECT_EQ(
       ring_pixels(render_coverage(expected, ref, CoverageStats{}, std::nullopt), image_end).count,
       0u);
+}
+
+// A large frame's coverage picture shrinks as its maps do, and a single failing pixel among
+// 1.1 million still shows: its block takes the failing colour and is ringed; band by band
+// (blocks whole) it is the same picture.
+TEST(CoverageImage, ALargeFrameIsShrunkAndKeepsItsOneFailingPixel) {
+  constexpr int w = 1100, h = 1000;
+  ASSERT_EQ(map_factor(w, h, 1), 2);
+  Frame ref(w, h, 0);
+  ref.primitive.assign(ref.pixel_count(), 0);
+  Frame gl = ref;
+  gl.primitive[gl.index(801, 333)] = Frame::kNoPrimitive;  // reference only: a fill-rule error
+  const std::vector<uint8_t> edges(ref.pixel_count(), 0);
+  const Expectation expected{ref, edges, Frame()};
+  const Canvas canvas = render_coverage(expected, gl, CoverageStats{}, std::nullopt);
+  ASSERT_EQ(upscale_factor(550, 500), 1);
+  EXPECT_EQ(canvas.width, 550 + 2 * 12);
+  constexpr int kTitle = 50;
+  EXPECT_EQ(canvas.height, kTitle + 500 + 144);
+  // Shown pixel (400, 166), image row 500 - 1 - 166: the reference-only red, ringed around.
+  const int x = (canvas.width - 550) / 2 + 400, y = kTitle + 500 - 1 - 166;
+  const float* p = &canvas.rgb[(size_t(y) * size_t(canvas.width) + size_t(x)) * 3];
+  EXPECT_EQ(p[0], 0.9f);
+  EXPECT_EQ(p[1], 0.1f);
+  EXPECT_EQ(p[2], 0.1f);
+  const RingPixels rings = ring_pixels(canvas, kTitle + 500);
+  EXPECT_GT(rings.count, 0u);
+  EXPECT_NEAR((rings.min_x + rings.max_x) / 2.0, x + 0.5, 1.0);
+  EXPECT_NEAR((rings.min_y + rings.max_y) / 2.0, y + 0.5, 1.0);
+  // The other pixels agree: one shade of grey, in the frame's image.
+  const float* agree = &canvas.rgb[(size_t(kTitle + 10) * size_t(canvas.width) + 30) * 3];
+  EXPECT_EQ(agree[0], 0.24f);
+
+  CoverageCanvas bands(w, h, CoverageStats{}, std::nullopt);
+  for (int y0 = 0; y0 < h; y0 += 38) {
+    const int rows = std::min(38, h - y0);
+    bands.add_rows(Expectation{ref.rows(y0, rows), std::vector<uint8_t>(size_t(w) * rows, 0), {}},
+                   gl.rows(y0, rows), y0);
+  }
+  const Canvas banded = bands.finish();
+  EXPECT_TRUE(banded.rgb == canvas.rgb);
+  // A band that splits a block is refused.
+  CoverageCanvas odd(w, h, CoverageStats{}, std::nullopt);
+  EXPECT_THROW(odd.add_rows(Expectation{ref.rows(3, 2), std::vector<uint8_t>(size_t(w) * 2, 0), {}},
+                            gl.rows(3, 2), 3),
+               std::invalid_argument);
 }
 
 TEST_F(ReportTest, DiffImagesShowNonFiniteValuesInMagenta) {
