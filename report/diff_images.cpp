@@ -199,10 +199,15 @@ std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesys
   std::vector<ChannelError> maps(channels.size());
   std::vector<Worst> worst(channels.size());
   CoverageCanvas coverage(width, height, r.coverage, font, explained_mismatches_fail(r.tolerance));
-  auto append = [](ChannelError& to, const ChannelError& rows_of) {
+  // Each map's storage taken once (growing it band by band would hold twice as much at times).
+  const size_t map_pixels =
+      size_t((width + factor - 1) / factor) * size_t((height + factor - 1) / factor);
+  auto append = [&](ChannelError& to, const ChannelError& rows_of) {
     if (to.height == 0) {
-      to = rows_of;
-      return;
+      to.name = rows_of.name, to.quantity = rows_of.quantity, to.unit = rows_of.unit;
+      to.judged = rows_of.judged, to.width = rows_of.width;
+      to.ulps.reserve(map_pixels), to.allowed_ulps.reserve(map_pixels);
+      to.compared.reserve(map_pixels);
     }
     to.height += rows_of.height;
     auto add = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
