@@ -26,6 +26,7 @@ for target in "${targets[@]}"; do
   seeds=()
   [ "$target" = fuzz_casefile ] && seeds=(tests/fuzz/corpus)
   log="$build/$target.log"
+  touch "$build/findings/.start-$target"  # findings newer than this are this run's
   # -timeout: an input taking 10 s is a hang, a finding; -rss_limit_mb: so is 2 GB of memory.
   if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
     "$build/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
@@ -39,12 +40,12 @@ for target in "${targets[@]}"; do
     grep -E "ERROR|SUMMARY|fuzz_reference:|runtime error|Test unit written" "$log" | head -10
     # The input itself, so that a finding on a machine whose files are gone can be replayed:
     # xxd -r -p turns these lines back into the file the target reads.
-    for finding in "$build/findings/$target-"*; do
-      [ -f "$finding" ] || continue
-      echo "$(basename "$finding") as hex:"
-      od -An -v -tx1 "$finding" | tr -d ' \n' | fold -w 128
-      echo
-    done
+    find "$build/findings" -name "$target-*" -newer "$build/findings/.start-$target" |
+      while read -r finding; do
+        echo "$(basename "$finding") as hex:"
+        od -An -v -tx1 "$finding" | tr -d ' \n' | fold -w 128
+        echo
+      done
   fi
 done
 exit $status
