@@ -148,9 +148,12 @@ void CoverageCanvas::add_rows(const Expectation& expected, const Frame& gl, int 
   const Frame& reference = expected.frame;
   const std::vector<uint8_t>& edge_band = expected.edges;
   const bool has_band = edge_band.size() == reference.pixel_count();
-  if (y0 % shrink_ != 0)
-    throw std::invalid_argument("coverage picture: a band starting at row " + std::to_string(y0) +
-                                " is not on a block of " + std::to_string(shrink_) + " rows");
+  if (y0 % shrink_ != 0 || y0 < 0 || y0 + reference.height > height_ || reference.width != width_)
+    throw std::invalid_argument("coverage picture: rows [" + std::to_string(y0) + ", " +
+                                std::to_string(y0 + reference.height) + ") of a frame " +
+                                std::to_string(reference.width) + " wide are not whole blocks of " +
+                                std::to_string(shrink_) + " rows of a " + std::to_string(width_) +
+                                " x " + std::to_string(height_) + " frame");
   // Frame row y0 + y lands on shown row (y0 + y) / shrink_, image block row shown_height_ - 1
   // minus that: the band's shown rows are the blocks from shown_height_ - y0 / shrink_ - rows
   // down.
