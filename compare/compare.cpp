@@ -38,7 +38,18 @@ struct ChannelAccumulator {
     return a.y != b.y ? a.y < b.y : a.x < b.x;
   }
 
+  // Where the expectation is NaN or Inf (spec and ulps modes) no value is wrong: not judged
+  // (value_determined). The first such pixel where GL also gave NaN or Inf is kept: it makes a
+  // case that otherwise passes outside what GL specifies, never a pass.
+  std::optional<WorstPixel> undetermined_non_finite;
+
   void add(int x, int y, float reference, float gl, double ulp, double allowed) {
+    if (!exact && !std::isfinite(reference)) {
+      ++stats.undetermined;
+      if (!std::isfinite(gl) && !undetermined_non_finite)
+        undetermined_non_finite = WorstPixel{x, y, reference, gl, kInf, kInf, allowed, kInf};
+      return;
+    }
     const PixelError e = pixel_error(reference, gl, ulp);
     ++stats.compared;
     const bool differs = std::bit_cast<uint32_t>(reference) != std::bit_cast<uint32_t>(gl);
@@ -139,6 +150,20 @@ std::string failure_message(const CaseResult& r) {
     append(part + kinds + ")");
   }
   return msg;
+}
+
+// Why a case whose only trouble is a NaN or Inf where no value is determined is skipped.
+std::string undetermined_message(const std::string& channel, const WorstPixel& p) {
+  auto number = [](float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", double(v));
+    return std::string(buf);
+  };
+  return "outside what GL specifies: " + channel + " at " + std::to_string(p.x) + "," +
+         std::to_string(p.y) + " has no value the specification determines (the exact " +
+         "interpolation there is " + number(p.reference) +
+         ": the pixel lies outside the triangle its plane comes from, beyond the plane's " +
+         "vanishing line), and GL drew " + number(p.gl) + " there; nothing else fails";
 }
 
 }  // namespace
@@ -406,6 +431,15 @@ CaseResult Comparator::finish() {
     pass = pass && ch.pass();
   r.status = pass ? Status::pass : Status::fail;
   if (!pass) r.message = failure_message(r);
+  // A NaN or Inf where the specification determines no value (value_determined) is no failure,
+  // and no pass either.
+  if (pass)
+    for (size_t slot = 0; slot < st.channels.size(); ++slot)
+      if (const auto& p = st.channels[slot].undetermined_non_finite) {
+        r.status = Status::skip;
+        r.message = undetermined_message(r.channels[slot].name, *p);
+        break;
+      }
   // Beyond the magnitudes GL guarantees, a difference is no failure of the implementation.
   if (const auto why = pass ? std::nullopt : outside_specified_range(c)) {
     r.status = Status::skip;

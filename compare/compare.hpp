@@ -3,6 +3,7 @@
 #pragma once
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -89,6 +90,19 @@ class ChannelAllowance {
   const std::vector<float>* per_pixel_ = nullptr;
   double fixed_ulps_ = 0;
 };
+
+// Whether the specification determines a value where the expectation is `expected`: always in
+// exact mode (bits are bits, NaN included), else only where it is a finite number. The exact
+// reference gives NaN where the interpolation formula is 0/0 and Inf where its value is beyond
+// float32: at a pixel covered by the snapped triangle but outside the triangle whose plane it
+// is evaluated on, beyond that plane's vanishing line (the denominator sum of lambda_i / w_i
+// changes sign there). The allowance there is unbounded, and an implementation anchoring its
+// planes at snapped vertices gets a finite value where one using unsnapped planes gets any: no
+// value is wrong there, and none is judged. A NaN or Inf from GL there is still never a pass:
+// the case is then outside what GL specifies (Comparator::finish).
+inline bool value_determined(float expected, const Tolerance& tolerance) {
+  return tolerance.mode == ToleranceMode::exact || std::isfinite(expected);
+}
 
 // Whether values are compared at a pixel: both frames name the same drawn triangle.
 inline bool same_primitive(const Case& c, int32_t reference, int32_t gl) {

@@ -66,7 +66,11 @@ struct ChannelStats {
   uint64_t compared = 0;        // pixels covered by the same primitive in both frames
   uint64_t over_tolerance = 0;  // of which over the tolerance (NaN/Inf included)
   uint64_t non_finite = 0;      // GL gave NaN or Inf where the reference is finite
-  uint64_t differing = 0;       // pixels whose bits differ from the reference at all
+  // Pixels covered by the same primitive in both whose expected value is itself NaN or Inf
+  // (spec and ulps modes): the specification determines no value there, so they are not
+  // judged (compare::value_determined); not counted in `compared`.
+  uint64_t undetermined = 0;
+  uint64_t differing = 0;  // pixels whose bits differ from the reference at all
   double max_abs = 0, max_ulps = 0, mean_ulps = 0, rms_ulps = 0, p99_ulps = 0;
   // How much of the allowance was used: abs_error / allowed, over the compared pixels.
   double max_ratio = 0, p99_ratio = 0;

@@ -33,10 +33,13 @@ ChannelError channel_error(const Case& c, const Expectation& expected, const Fra
   for (size_t i = 0; i < n; ++i) {
     const compare::Judged judged = compare::judged_against(c, expected, gl, i, tolerance);
     if (!judged.compared) continue;
-    e.compared[i] = true;
     // Where GL kept another fragment that may win the depth test, that is the expectation.
     const int k = depth ? compare::kDepth : channel;
-    e.reference[i] = judged.value(expected, i, k);
+    const float expectation = judged.value(expected, i, k);
+    // Not judged where the specification determines no value, as compare counts it.
+    if (!compare::value_determined(expectation, tolerance)) continue;
+    e.compared[i] = true;
+    e.reference[i] = expectation;
     // Both values are float32, so the difference is exact in double.
     e.signed_error[i] = float(double(e.gl[i]) - double(e.reference[i]));
     const double ulp = ulp_table.ulp(judged.primitive(expected, i), k);

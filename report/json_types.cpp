@@ -25,6 +25,7 @@ void to_json(json& j, const ChannelStats& c) {
        {"compared", c.compared},
        {"over_tolerance", c.over_tolerance},
        {"non_finite", c.non_finite},
+       {"undetermined", c.undetermined},
        {"differing", c.differing},
        {"max_abs", json_number(c.max_abs)},
        {"max_ulps", json_number(c.max_ulps)},
@@ -197,6 +198,8 @@ void read(const Reader& r, const json& j, const std::string& path, ChannelStats&
   c.compared = count(r, j, path, "compared");
   c.over_tolerance = count(r, j, path, "over_tolerance");
   c.non_finite = count(r, j, path, "non_finite");
+  // Absent in files written before it was counted (there it was 0).
+  c.undetermined = j.contains("undetermined") ? count(r, j, path, "undetermined") : 0;
   c.differing = count(r, j, path, "differing");
   c.max_abs = num(r, j, path, "max_abs");
   c.max_ulps = num(r, j, path, "max_ulps");
