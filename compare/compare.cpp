@@ -408,9 +408,12 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     for (const auto& [i, judged] : compared) {
       const double ulp = st.ulps.ulp(judged.primitive(expected, i), k);
       const double allowed = judged.allowed(allowance, i, ulp, k);
-      largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
-      acc.add(int(i % size_t(reference.width)), y0 + int(i / size_t(reference.width)),
-              judged.value(expected, i, k), gl_values[i], ulp, allowed);
+      const float value = judged.value(expected, i, k);
+      // An undetermined pixel's unbounded allowance is not one the verdict applied.
+      if (value_determined(value, tolerance))
+        largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
+      acc.add(int(i % size_t(reference.width)), y0 + int(i / size_t(reference.width)), value,
+              gl_values[i], ulp, allowed);
     }
   }
 }

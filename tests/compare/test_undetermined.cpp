@@ -58,6 +58,9 @@ TEST(Undetermined, APixelWithoutADeterminedValueIsNotJudgedAndNaNThereIsNoPass) 
   EXPECT_EQ(self.channels[1].undetermined, 1u);
   EXPECT_EQ(self.channels[1].non_finite, 0u);
   EXPECT_EQ(self.channels[1].compared + 1, self.coverage.both);
+  // The largest allowance applied is that of a judged pixel, not the corner's +inf.
+  EXPECT_TRUE(std::isfinite(self.channels[1].tolerance_ulps));
+  EXPECT_GT(self.channels[1].tolerance_ulps, 0);
 
   // An implementation anchoring its planes at the snapped vertices draws v2's value there.
   Frame snapped = r.frame;
