@@ -43,13 +43,14 @@ struct ChannelAccumulator {
   // case that otherwise passes outside what GL specifies, never a pass.
   std::optional<WorstPixel> undetermined_non_finite;
 
+  // A pixel where the specification determines no value (value_determined): counted only.
+  void add_undetermined(int x, int y, float reference, float gl, double allowed) {
+    ++stats.undetermined;
+    if (!std::isfinite(gl) && !undetermined_non_finite)
+      undetermined_non_finite = WorstPixel{x, y, reference, gl, kInf, kInf, allowed, kInf};
+  }
+
   void add(int x, int y, float reference, float gl, double ulp, double allowed) {
-    if (!exact && !std::isfinite(reference)) {
-      ++stats.undetermined;
-      if (!std::isfinite(gl) && !undetermined_non_finite)
-        undetermined_non_finite = WorstPixel{x, y, reference, gl, kInf, kInf, allowed, kInf};
-      return;
-    }
     const PixelError e = pixel_error(reference, gl, ulp);
     ++stats.compared;
     const bool differs = std::bit_cast<uint32_t>(reference) != std::bit_cast<uint32_t>(gl);
@@ -409,11 +410,14 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
       const double ulp = st.ulps.ulp(judged.primitive(expected, i), k);
       const double allowed = judged.allowed(allowance, i, ulp, k);
       const float value = judged.value(expected, i, k);
-      // An undetermined pixel's unbounded allowance is not one the verdict applied.
-      if (value_determined(value, tolerance))
-        largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
-      acc.add(int(i % size_t(reference.width)), y0 + int(i / size_t(reference.width)), value,
-              gl_values[i], ulp, allowed);
+      const int x = int(i % size_t(reference.width)), y = y0 + int(i / size_t(reference.width));
+      // Not judged, and its unbounded allowance is not one the verdict applied.
+      if (!value_determined(value, tolerance)) {
+        acc.add_undetermined(x, y, value, gl_values[i], allowed);
+        continue;
+      }
+      largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
+      acc.add(x, y, value, gl_values[i], ulp, allowed);
     }
   }
 }
