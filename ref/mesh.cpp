@@ -1,19 +1,38 @@
 #include "ref/mesh.hpp"
 
-#include <map>
+#include <algorithm>
 #include <utility>
 
 namespace glrc::ref {
 
 namespace {
 
-// An edge's ends, by their exact homogeneous window positions, smaller first: triangles share
-// an edge when they name the same two points, whichever vertices (or indices) carry them.
-using Point = std::array<mpq_class, 3>;
-using EdgeKey = std::pair<Point, Point>;
+// A vertex's exact window position (x_h/w_c, y_h/w_c), canonical, with double copies that order
+// like it: get_d truncates, so it never reverses an order, and two points whose copies differ
+// are ordered by the copies alone. Equal copies fall back to the exact values.
+struct WindowPoint {
+  mpq_class x, y;
+  double dx = 0, dy = 0;
+};
 
-Point point_of(const WindowVertex& v) {
-  return {v.x_h, v.y_h, v.w_c};
+int compare(const WindowPoint& p, const WindowPoint& q) {
+  if (p.dx != q.dx) return p.dx < q.dx ? -1 : 1;
+  if (const int c = cmp(p.x, q.x); c != 0) return c;
+  if (p.dy != q.dy) return p.dy < q.dy ? -1 : 1;
+  return cmp(p.y, q.y);
+}
+
+// One drawn triangle's edge: its ends, the smaller first, so that triangles naming the same two
+// window points in either order have the same ends.
+struct EdgeUse {
+  const WindowPoint *a, *b;
+  size_t triangle;
+  int edge;
+};
+
+int compare(const EdgeUse& u, const EdgeUse& k) {
+  if (const int c = compare(*u.a, *k.a); c != 0) return c;
+  return compare(*u.b, *k.b);
 }
 
 // Sign of the homogeneous edge form of triangle t's edge i at vertex v (w_c > 0): > 0 on the
@@ -29,25 +48,32 @@ int side(const TriangleSetup& t, int i, const WindowVertex& v) {
 
 std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles) {
   std::vector<std::array<bool, 3>> shared(triangles.size(), {false, false, false});
-  std::map<EdgeKey, std::vector<std::pair<size_t, int>>> by_edge;
+  // Each drawn triangle's three window points, computed once (an edge names two of them).
+  std::vector<std::array<WindowPoint, 3>> points(triangles.size());
+  std::vector<EdgeUse> uses;
   for (size_t t = 0; t < triangles.size(); ++t) {
     const TriangleSetup& s = triangles[t];
     if (!s.drawn) continue;
-    bool w_positive = true;
-    for (const auto& v : s.v)
-      w_positive = w_positive && sgn(v.w_c) > 0;
-    if (!w_positive) continue;
+    if (!std::all_of(s.v.begin(), s.v.end(), [](const WindowVertex& v) { return sgn(v.w_c) > 0; }))
+      continue;
+    for (size_t j = 0; j < 3; ++j) {
+      WindowPoint& p = points[t][j];
+      p.x = s.v[j].x_h / s.v[j].w_c, p.y = s.v[j].y_h / s.v[j].w_c;
+      p.dx = p.x.get_d(), p.dy = p.y.get_d();
+    }
     for (int i = 0; i < 3; ++i) {
-      Point a = point_of(s.v[size_t((i + 1) % 3)]), b = point_of(s.v[size_t((i + 2) % 3)]);
-      // Homogeneous points are equal when their window positions are: compare x/w and y/w.
-      auto window = [](const Point& p) {
-        return std::array<mpq_class, 2>{p[0] / p[2], p[1] / p[2]};
-      };
-      auto wa = window(a), wb = window(b);
-      if (wb < wa) std::swap(wa, wb);
-      by_edge[{{wa[0], wa[1], 1}, {wb[0], wb[1], 1}}].push_back({t, i});
+      const WindowPoint* a = &points[t][size_t((i + 1) % 3)];
+      const WindowPoint* b = &points[t][size_t((i + 2) % 3)];
+      if (compare(*b, *a) < 0) std::swap(a, b);
+      uses.push_back({a, b, t, i});
     }
   }
+  // Grouped by their ends: sorted, in primitive order within a group. O(n log n) comparisons,
+  // nearly all of doubles.
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& u, const EdgeUse& k) {
+    const int c = compare(u, k);
+    return c != 0 ? c < 0 : std::pair(u.triangle, u.edge) < std::pair(k.triangle, k.edge);
+  });
   // Within one edge's users, side(t, i, p) is the sign of the exact edge function of t through
   // the edge's two ends (the same two window points for every user), oriented so that t's own
   // third vertex is positive: sign(orient(P, Q, p)) times t's orientation sign. So for two users
@@ -55,20 +81,26 @@ std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& 
   // side(r, v_u) and side(r, v_k) differ, r being any one user. One exact evaluation per user
   // decides every pair: linear in the users, where comparing all pairs was quadratic (10,000
   // copies of one triangle took minutes).
-  for (const auto& [key, users] : by_edge) {
-    if (users.size() < 2) continue;
-    const auto [tr, ir] = users.front();
-    std::vector<int> rel(users.size());
+  std::vector<int> rel;
+  for (size_t first = 0, end = 0; first < uses.size(); first = end) {
+    end = first + 1;
+    while (end < uses.size() && compare(uses[first], uses[end]) == 0)
+      ++end;
+    if (end - first < 2) continue;
+    const EdgeUse& r = uses[first];
+    rel.assign(end - first, 0);
     bool positive = false, negative = false;
-    for (size_t u = 0; u < users.size(); ++u) {
-      const auto [t, i] = users[u];
-      rel[u] = u == 0 ? 1 : side(triangles[tr], ir, triangles[t].v[size_t(i)]);
-      positive = positive || rel[u] > 0;
-      negative = negative || rel[u] < 0;
+    for (size_t u = first; u < end; ++u) {
+      const EdgeUse& k = uses[u];
+      rel[u - first] =
+          u == first ? 1
+                     : side(triangles[r.triangle], r.edge, triangles[k.triangle].v[size_t(k.edge)]);
+      positive = positive || rel[u - first] > 0;
+      negative = negative || rel[u - first] < 0;
     }
     if (!positive || !negative) continue;
-    for (size_t u = 0; u < users.size(); ++u)
-      if (rel[u] != 0) shared[users[u].first][size_t(users[u].second)] = true;
+    for (size_t u = first; u < end; ++u)
+      if (rel[u - first] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
   }
   return shared;
 }
