@@ -11,14 +11,16 @@ DepthClip depth_clip(const TriangleSetup& t) {
     if (v.z_c > v.w_c) clip.crosses_far = true;
   }
   // b_i is proportional to E'_i with a positive factor, so sign(z_c + w_c) at the pixel is
-  // sign(sum E'_i (z_i + w_i)); likewise for the far plane.
-  LinearForm near_form, far_form;
-  for (int i = 0; i < 3; ++i) {
-    near_form += t.homogeneous_edges[i] * mpq_class(t.v[i].z_c + t.v[i].w_c);
-    far_form += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c - t.v[i].z_c);
-  }
-  if (clip.crosses_near) clip.near = SignEvaluator(near_form);
-  if (clip.crosses_far) clip.far = SignEvaluator(far_form);
+  // sign(sum E'_i (z_i + w_i)); likewise for the far plane. Built only for a plane crossed:
+  // exact products, per triangle.
+  auto form = [&](int plane) {
+    LinearForm f;
+    for (int i = 0; i < 3; ++i)
+      f += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c + plane * t.v[i].z_c);
+    return SignEvaluator(f);
+  };
+  if (clip.crosses_near) clip.near = form(1);
+  if (clip.crosses_far) clip.far = form(-1);
   return clip;
 }
 

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 namespace glrc::ref {
 
@@ -21,19 +22,26 @@ Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
   return b;
 }
 
+LinearForm sum(const Barycentrics& b, const std::array<mpq_class, 3>& alpha) {
+  LinearForm f;
+  for (int i = 0; i < 3; ++i)
+    // Most weights are 1 (beta of smooth or noperspective planes): a sum, no product.
+    if (alpha[i] == 1)
+      f += b.l[i];
+    else
+      f += b.l[i] * alpha[i];
+  return f;
+}
+
 Plane plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
             const std::array<mpq_class, 3>& beta) {
-  Plane p;
-  for (int i = 0; i < 3; ++i) {
-    p.numerator += b.l[i] * alpha[i];
-    p.denominator += b.l[i] * beta[i];
-  }
-  return p;
+  return {sum(b, alpha), sum(b, beta)};
 }
 
 std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
                                              const Barycentrics& b) {
   std::vector<ComponentPlane> planes;
+  std::optional<LinearForm> denominators[2];  // noperspective, smooth
   const int provoking = c.provoking == ProvokingVertex::last ? 2 : 0;
   const auto owner = component_varying(c);
   for (size_t k = 0; k < owner.size(); ++k) {
@@ -45,7 +53,8 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
       planes.push_back(std::move(p));
       continue;
     }
-    std::array<mpq_class, 3> alpha, beta;
+    const bool perspective = q == Interpolation::smooth;
+    std::array<mpq_class, 3> alpha;
     double lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < 3; ++i) {
       const double value = double(c.vertices[t.index[i]].values[k]);
@@ -53,17 +62,27 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
       p.scale = std::max(p.scale, std::fabs(value));
       const mpq_class v(value);
       const mpq_class& w = t.v[i].w_c;
-      const bool perspective = q == Interpolation::smooth;
-      if (b.screen_space) {
+      if (b.screen_space)
         alpha[i] = perspective ? mpq_class(v / w) : v;
-        beta[i] = perspective ? mpq_class(1 / w) : mpq_class(1);
-      } else {
+      else
         alpha[i] = perspective ? v : mpq_class(w * v);
-        beta[i] = perspective ? mpq_class(1) : w;
+    }
+    // Every component of one qualifier has the same denominator: its exact form is built once
+    // per triangle, not once per component.
+    std::optional<LinearForm>& denominator = denominators[perspective ? 1 : 0];
+    if (!denominator) {
+      std::array<mpq_class, 3> beta;
+      for (int i = 0; i < 3; ++i) {
+        const mpq_class& w = t.v[i].w_c;
+        if (b.screen_space)
+          beta[i] = perspective ? mpq_class(1 / w) : mpq_class(1);
+        else
+          beta[i] = perspective ? mpq_class(1) : w;
       }
+      denominator = sum(b, beta);
     }
     p.spread = hi - lo;
-    p.plane = plane(b, alpha, beta);
+    p.plane = {sum(b, alpha), *denominator};
     p.ratio = p.plane.evaluator();
     planes.push_back(std::move(p));
   }

@@ -78,6 +78,9 @@ class ComponentValues {
   std::vector<size_t> slow_;         // the non-flat components without one
 };
 
+// Sum L_i alpha_i.
+LinearForm sum(const Barycentrics& b, const std::array<mpq_class, 3>& alpha);
+
 // Sum L_i alpha_i over sum L_i beta_i.
 Plane plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
             const std::array<mpq_class, 3>& beta);
