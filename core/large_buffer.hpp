@@ -15,14 +15,23 @@ namespace glrc {
 // for a range under 2 MiB, and never fails.
 void advise_huge_pages(void* p, size_t bytes);
 
-// v = n copies of `value`, the storage advised as above before it is first written. Existing
-// capacity is reused as it is.
+// Makes the kernel back [p, p + bytes) with memory now, in one call (madvise
+// MADV_POPULATE_WRITE, Linux 5.14 and later), for memory about to be written whole: a buffer is
+// not huge-page aligned (malloc places it), so the part of it outside whole huge pages is 4 KiB
+// pages, and on a VM the fault taken at the first write of each costs more than the write
+// (measured on a 2-core VM: 36 buffers of 4 MiB filled in 450-620 ms, 210-310 ms populated
+// first). Advice only: nothing where the kernel cannot, never a change to any value.
+void populate(void* p, size_t bytes);
+
+// v = n copies of `value`, the storage advised and populated as above before it is first
+// written. Existing capacity is reused as it is.
 template <class T>
 void assign_large(std::vector<T>& v, size_t n, const T& value) {
   if (v.capacity() < n) {
     std::vector<T>().swap(v);
     v.reserve(n);
     advise_huge_pages(v.data(), n * sizeof(T));
+    populate(v.data(), n * sizeof(T));
   }
   v.assign(n, value);
 }
