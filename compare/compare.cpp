@@ -50,8 +50,9 @@ struct ChannelAccumulator {
       undetermined_non_finite = WorstPixel{x, y, reference, gl, kInf, kInf, allowed, kInf};
   }
 
-  void add(int x, int y, float reference, float gl, double ulp, double allowed) {
-    const PixelError e = pixel_error(reference, gl, ulp);
+  void add(int x, int y, float reference, float gl, double ulp, double inverse_ulp,
+           double allowed) {
+    const PixelError e = pixel_error(reference, gl, ulp, inverse_ulp);
     ++stats.compared;
     const bool differs = std::bit_cast<uint32_t>(reference) != std::bit_cast<uint32_t>(gl);
     stats.differing += differs;
@@ -61,9 +62,6 @@ struct ChannelAccumulator {
     if (over) ++stats.over_tolerance;
     // GL's NaN never passes, even where the reference (a driver model) has the same NaN.
     if (!std::isfinite(gl)) ++stats.non_finite;
-    const double ratio = e.abs_error == 0 ? 0.0 : allowed > 0 ? e.abs_error / allowed : kInf;
-    stats.max_ratio = std::max(stats.max_ratio, ratio);
-    ratios.add(float(ratio));
     if (std::isfinite(e.ulps)) {
       sum += e.ulps;
       sum_sq += e.ulps * e.ulps;
@@ -72,6 +70,16 @@ struct ChannelAccumulator {
     stats.max_abs = std::max(stats.max_abs, e.abs_error);
     stats.max_ulps = std::max(stats.max_ulps, e.ulps);
     ulps.add(float(e.ulps));
+    // The share of the allowance is divided out only where it can matter: a ratio LargestValues
+    // certainly drops is below every ratio it keeps, and so below the largest and the worst
+    // pixels' (LargestValues::certainly_dropped); it is only counted.
+    if (ratios.certainly_dropped(e.abs_error, allowed)) {
+      ratios.count_dropped();
+      return;
+    }
+    const double ratio = e.abs_error == 0 ? 0.0 : allowed > 0 ? e.abs_error / allowed : kInf;
+    stats.max_ratio = std::max(stats.max_ratio, ratio);
+    ratios.add(float(ratio));
     if (e.ulps == 0) return;
     const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps, allowed, ratio};
     if (worst.size() < kWorstPerChannel) {
@@ -185,6 +193,7 @@ void LargestValues::compact() {
   keys_.resize(keep_);
   floor_ = keys_.back();
   compacted_ = true;
+  floor_value_ = float_of_order_key(floor_);
 }
 
 double LargestValues::p99() {
@@ -214,11 +223,16 @@ double ulp_of_scale(double scale) {
 }
 
 UlpTable::UlpTable(const Case& c)
-    : components_(c.component_count()), depth_ulp_(ulp_of_scale(1.0)) {
+    : components_(c.component_count()),
+      depth_ulp_(ulp_of_scale(1.0)),
+      depth_inverse_(1 / depth_ulp_) {
   ulps_.reserve(c.triangles.size() * size_t(components_));
   for (size_t t = 0; t < c.triangles.size(); ++t)
     for (int k = 0; k < components_; ++k)
       ulps_.push_back(ulp_of_scale(attribute_scale(c, int(t), k)));
+  inverses_.reserve(ulps_.size());
+  for (double ulp : ulps_)
+    inverses_.push_back(1 / ulp);
 }
 
 ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
@@ -236,31 +250,7 @@ ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
 }
 
 PixelError pixel_error(float reference, float gl, double ulp) {
-  PixelError e;
-  if (!std::isfinite(gl) && std::isfinite(reference)) {
-    // Never a pass, however large the tolerance: the value is not a number at all.
-    e.non_finite = true;
-    e.abs_error = e.ulps = kInf;
-  } else if (!std::isfinite(reference)) {
-    // The reference is finite for every valid case; if it were not, only identical bits
-    // could be called equal.
-    const bool same = std::bit_cast<uint32_t>(gl) == std::bit_cast<uint32_t>(reference);
-    e.abs_error = e.ulps = same ? 0 : kInf;
-  } else {
-    e.abs_error = std::fabs(double(gl) - double(reference));  // exact: both are floats
-    e.ulps = e.abs_error / ulp;
-  }
-  return e;
-}
-
-float Judged::value(const Expectation& e, size_t i, int channel) const {
-  if (candidate) return channel == kDepth ? candidate->depth : candidate->values[size_t(channel)];
-  return channel == kDepth ? e.frame.depth[i] : e.frame.components[size_t(channel)][i];
-}
-
-double Judged::allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const {
-  if (!candidate || !a.per_pixel()) return a.at(i, ulp);
-  return channel == kDepth ? candidate->allowed_depth : candidate->allowed[size_t(channel)];
+  return pixel_error(reference, gl, ulp, 0);
 }
 
 Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
@@ -327,8 +317,16 @@ struct Comparator::State {
   CaseResult r;
   std::vector<ChannelAccumulator> channels;  // depth, then each component
   std::vector<double> largest_allowance_ulps;
-  std::vector<std::optional<double>> fixed_ulps;    // a channel's fixed allowance, if not per pixel
-  std::vector<std::pair<size_t, Judged>> compared;  // one band's, reused
+  std::vector<std::optional<double>> fixed_ulps;  // a channel's fixed allowance, if not per pixel
+  // A pixel whose values are compared: its index in the band and its window position, kept so
+  // that the channel passes divide no index back into x and y (a division per pixel and
+  // channel was most of the comparison's time on large frames).
+  struct Compared {
+    size_t i;
+    int x, y;
+    Judged judged;
+  };
+  std::vector<Compared> compared;  // one band's, reused
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height)
@@ -355,7 +353,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
 
   // Coverage first; the pixels where values are compared are kept for the channel passes, with
   // the candidate GL kept where the depth test could go either way.
-  std::vector<std::pair<size_t, Judged>>& compared = st.compared;
+  std::vector<State::Compared>& compared = st.compared;
   compared.clear();
   if (compared.capacity() < reference.pixel_count()) {
     compared.reserve(reference.pixel_count());  // untouched beyond what is covered
@@ -374,7 +372,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
         ++cov.neither;
       } else if (const Judged j = judged_against(c, expected, gl, i, tolerance); j.compared) {
         ++cov.both;
-        compared.push_back({i, j});
+        compared.push_back({i, x, y0 + y, j});
       } else if (pg == Frame::kNoPrimitive) {
         ++cov.reference_only;
       } else if (pr == Frame::kNoPrimitive) {
@@ -406,18 +404,20 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     const ChannelAllowance allowance(c, expected, tolerance, k);
     if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
     double& largest_allowance_ulps = st.largest_allowance_ulps[slot];
-    for (const auto& [i, judged] : compared) {
-      const double ulp = st.ulps.ulp(judged.primitive(expected, i), k);
+    for (const auto& [i, x, y, judged] : compared) {
+      const int32_t primitive = judged.primitive(expected, i);
+      const double ulp = st.ulps.ulp(primitive, k);
       const double allowed = judged.allowed(allowance, i, ulp, k);
       const float value = judged.value(expected, i, k);
-      const int x = int(i % size_t(reference.width)), y = y0 + int(i / size_t(reference.width));
       // Not judged, and its unbounded allowance is not one the verdict applied.
       if (!value_determined(value, tolerance)) {
         acc.add_undetermined(x, y, value, gl_values[i], allowed);
         continue;
       }
-      largest_allowance_ulps = std::max(largest_allowance_ulps, allowed / ulp);
-      acc.add(x, y, value, gl_values[i], ulp, allowed);
+      // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
+      const double inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+      largest_allowance_ulps = std::max(largest_allowance_ulps, allowed * inverse_ulp);
+      acc.add(x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -65,11 +66,17 @@ class UlpTable {
     return component == kDepth ? depth_ulp_
                                : ulps_[size_t(primitive) * size_t(components_) + size_t(component)];
   }
+  // 1 / ulp(primitive, component), exact: every ulp is a power of two.
+  double inverse_ulp(int primitive, int component) const {
+    return component == kDepth
+               ? depth_inverse_
+               : inverses_[size_t(primitive) * size_t(components_) + size_t(component)];
+  }
 
  private:
   int components_;
-  double depth_ulp_;
-  std::vector<double> ulps_;
+  double depth_ulp_, depth_inverse_;
+  std::vector<double> ulps_, inverses_;
 };
 
 // What the verdict accepts in one channel (compare::kDepth or a component): per pixel, the
@@ -119,9 +126,16 @@ struct Judged {
   int32_t primitive(const Expectation& e, size_t i) const {
     return candidate ? candidate->primitive : e.frame.primitive[i];
   }
-  // The expected value of channel (kDepth or a component) and the allowance there.
-  float value(const Expectation& e, size_t i, int channel) const;
-  double allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const;
+  // The expected value of channel (kDepth or a component) and the allowance there. Inline:
+  // once per compared pixel and channel.
+  float value(const Expectation& e, size_t i, int channel) const {
+    if (candidate) return channel == kDepth ? candidate->depth : candidate->values[size_t(channel)];
+    return channel == kDepth ? e.frame.depth[i] : e.frame.components[size_t(channel)][i];
+  }
+  double allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const {
+    if (!candidate || !a.per_pixel()) return a.at(i, ulp);
+    return channel == kDepth ? candidate->allowed_depth : candidate->allowed[size_t(channel)];
+  }
 };
 Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
                       const Tolerance& tolerance);
@@ -144,6 +158,26 @@ struct PixelError {
   bool non_finite = false;  // GL gave NaN or Inf where the reference is finite
 };
 PixelError pixel_error(float reference, float gl, double ulp);
+// The same for an ulp that is a power of two (as ulp_of_scale's are), given with its inverse:
+// abs_error·(1/ulp) is then abs_error/ulp bit for bit, without a division per pixel and channel.
+// inverse_ulp 0: not given, abs_error/ulp. Inline: once per compared pixel and channel.
+inline PixelError pixel_error(float reference, float gl, double ulp, double inverse_ulp) {
+  PixelError e;
+  if (!std::isfinite(gl) && std::isfinite(reference)) {
+    // Never a pass, however large the tolerance: the value is not a number at all.
+    e.non_finite = true;
+    e.abs_error = e.ulps = std::numeric_limits<double>::infinity();
+  } else if (!std::isfinite(reference)) {
+    // The reference is finite for every valid case; if it were not, only identical bits
+    // could be called equal.
+    const bool same = std::bit_cast<uint32_t>(gl) == std::bit_cast<uint32_t>(reference);
+    e.abs_error = e.ulps = same ? 0 : std::numeric_limits<double>::infinity();
+  } else {
+    e.abs_error = std::fabs(double(gl) - double(reference));  // exact: both are floats
+    e.ulps = inverse_ulp > 0 ? e.abs_error * inverse_ulp : e.abs_error / ulp;
+  }
+  return e;
+}
 
 // A float's bits as an unsigned key in the float's order: negatives below positives, -0 just
 // below +0, a NaN above +infinity, so that every value has a place.
@@ -173,6 +207,17 @@ class LargestValues {
     keys_.push_back(key);
     if (keys_.size() >= 2 * keep_) compact();
   }
+  // Whether add(float(a / b)) certainly drops the value, for a >= 0 and b > 0, without the
+  // division: once compacted, when a/b < floor·(1 - 2^-22) (computed as a < floor·b·(1 - 2^-20),
+  // whose two roundings, the division's and float's cannot carry a/b up to floor). Then the
+  // value is below every kept value, and below the keep_-th (at least the 16th) largest value
+  // added so far: for a floor of a normal float > 0, every value kept was at least
+  // floor·(1 - 2^-24) before its rounding to float. False says nothing: add it.
+  bool certainly_dropped(double a, double b) const {
+    return compacted_ && floor_value_ >= 0x1p-100 && a < floor_value_ * b * (1 - 0x1p-20);
+  }
+  // Counts a value certainly_dropped said is dropped.
+  void count_dropped() { ++count_; }
   size_t count() const { return count_; }
   // The nearest-rank 99th percentile of every value added; 0 for none.
   double p99();
@@ -183,6 +228,7 @@ class LargestValues {
   size_t keep_, count_ = 0;
   std::vector<uint32_t> keys_;
   uint32_t floor_ = 0;
+  double floor_value_ = 0;  // float_of_order_key(floor_)
   bool compacted_ = false;
 };
 

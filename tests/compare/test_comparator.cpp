@@ -48,6 +48,42 @@ TEST(LargestValues, P99OfStreamsInEveryOrder) {
   EXPECT_EQ(none.p99(), 0.0);
 }
 
+// certainly_dropped(a, b) is only ever true for a ratio below the keep_ (n/100 + 16) largest
+// seen so far, which add would drop, so the stream's p99 is that of dividing every one out;
+// ratios within a few float ulps of each other included.
+TEST(LargestValues, CertainlyDroppedOnlyBelowWhatIsKept) {
+  std::mt19937 random(11);
+  const size_t n = 8000, keep = n / 100 + 16;
+  LargestValues divided(n), skipping(n);
+  std::vector<float> seen;  // sorted: every ratio so far
+  size_t skipped = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const double b = std::ldexp(double(random() % 4096 + 1), int(random() % 30) - 40);
+    const double r = k % 3 == 0 ? 1.0 + double(random() % 64) * 0x1p-23
+                                : std::ldexp(double(random() % 1000), -int(random() % 20));
+    const double a = r * b;
+    const float ratio = float(a / b);
+    if (skipping.certainly_dropped(a, b)) {
+      const auto above = seen.end() - std::upper_bound(seen.begin(), seen.end(), ratio);
+      ASSERT_GE(size_t(above), keep) << k;
+      skipping.count_dropped();
+      ++skipped;
+    } else {
+      skipping.add(ratio);
+    }
+    divided.add(ratio);
+    seen.insert(std::upper_bound(seen.begin(), seen.end(), ratio), ratio);
+  }
+  EXPECT_GT(skipped, n / 2);  // the fast path is taken for most values of a long stream
+  EXPECT_EQ(skipping.count(), n);
+  EXPECT_EQ(skipping.p99(), divided.p99());
+  // Never for a zero allowance, a NaN or an infinite error, or before anything is kept.
+  EXPECT_FALSE(skipping.certainly_dropped(1.0, 0.0));
+  EXPECT_FALSE(skipping.certainly_dropped(std::numeric_limits<double>::infinity(), 1.0));
+  EXPECT_FALSE(skipping.certainly_dropped(std::nan(""), 1.0));
+  EXPECT_FALSE(LargestValues(100).certainly_dropped(0.0, 1.0));
+}
+
 // The crossing triangles of test_depth_order.cpp (depth candidates), with one varying.
 Case crossing() {
   Case c;
