@@ -10,6 +10,7 @@
 
 #include <cerrno>
 #include <climits>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -49,6 +50,14 @@ std::vector<std::string> environment_with(
   for (const auto& [name, value] : overrides)
     env.push_back(name + "=" + value);
   return env;
+}
+
+std::pair<std::string, std::string> huge_page_malloc_tunable() {
+  const char* given = std::getenv("GLIBC_TUNABLES");
+  std::string value = given ? given : "";
+  if (value.find("glibc.malloc.hugetlb") == std::string::npos)
+    value += std::string(value.empty() ? "" : ":") + "glibc.malloc.hugetlb=1";
+  return {"GLIBC_TUNABLES", value};
 }
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv_text,

@@ -11,6 +11,7 @@
 #include "cli/journal.hpp"
 #include "cli/mesa_prefix.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/process.hpp"
 #include "cli/run_support.hpp"
 #include "cli/workers.hpp"
 #include "core/text.hpp"
@@ -116,6 +117,7 @@ int cmd_run(const Options& given) {
   // Known failures get their heatmaps only for the HTML report: triage needs the new ones.
   s.images = [&](const Case& c) { return o.html || !baseline.expected.count(c.name); };
   if (prefix) s.environment = mesa_environment(*prefix, out);
+  s.environment.push_back(huge_page_malloc_tunable());
 
   // What the run knows before GL (enough when every case is skipped), and again once a worker
   // has told the GL strings.

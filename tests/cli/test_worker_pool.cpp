@@ -4,9 +4,11 @@
 // interrupt handling is tested end to end in test_workers.cpp and test_run_folder.cpp.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <map>
 #include <stdexcept>
 
+#include "cli/process.hpp"
 #include "cli/worker_pool.hpp"
 #include "cli/workers.hpp"
 #include "tests/support/temp_dir_test.hpp"
@@ -192,6 +194,29 @@ TEST_F(WorkerPool, AWrapperRunsTheWorkerAsTypedOnAShell) {
   const auto r = run({"--crash-at", "alpha"});
   EXPECT_EQ(r.at("alpha").status, Status::crash);
   EXPECT_EQ(r.at("beta").status, Status::pass);
+}
+
+}  // namespace
+
+namespace {
+
+// GL workers get glibc's huge-page malloc, added to what the user's GLIBC_TUNABLES already says
+// and never overriding a hugetlb setting of theirs.
+TEST(WorkerEnvironment, HugePageMallocIsAddedToTheUsersTunables) {
+  const char* before = std::getenv("GLIBC_TUNABLES");
+  const std::string saved = before ? before : "";
+  using glrc::cli::huge_page_malloc_tunable;
+  unsetenv("GLIBC_TUNABLES");
+  EXPECT_EQ(huge_page_malloc_tunable().first, "GLIBC_TUNABLES");
+  EXPECT_EQ(huge_page_malloc_tunable().second, "glibc.malloc.hugetlb=1");
+  setenv("GLIBC_TUNABLES", "glibc.malloc.arena_max=2", 1);
+  EXPECT_EQ(huge_page_malloc_tunable().second, "glibc.malloc.arena_max=2:glibc.malloc.hugetlb=1");
+  setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=0", 1);
+  EXPECT_EQ(huge_page_malloc_tunable().second, "glibc.malloc.hugetlb=0");
+  if (before)
+    setenv("GLIBC_TUNABLES", saved.c_str(), 1);
+  else
+    unsetenv("GLIBC_TUNABLES");
 }
 
 }  // namespace
