@@ -77,6 +77,7 @@ struct Prepared {
     fan = FanTriangles(freedom.polygon(), freedom.largest());
     anchors = Anchors(freedom.polygon(), freedom.guard_band_triangle());
     const int generations = freedom.generations();
+    allowed.reserve(planes.size());
     for (const ComponentPlane& cp : planes)
       allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
                            value_freedom(c, t, cp.scale, generations), anchors);

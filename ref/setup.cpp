@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace glrc::ref {
 
@@ -13,7 +14,12 @@ struct H3 {
   mpq_class x, y, w;
 };
 
-H3 cross(const H3& u, const H3& v) {
+// A vertex's column, by reference: the vertex's own rationals, not copies of them.
+struct Column {
+  const mpq_class &x, &y, &w;
+};
+
+H3 cross(const Column& u, const Column& v) {
   return {u.y * v.w - u.w * v.y, u.w * v.x - u.x * v.w, u.x * v.y - u.y * v.x};
 }
 
@@ -77,9 +83,9 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
   // x_w = px + 1/2; det = col_0 · (col_1 × col_2) is 2·area·w_0·w_1·w_2 when all w_c > 0, and
   // its sign is the facing in every case (the Jacobian of the projective map has the sign of
   // det wherever w > 0).
-  const H3 col[3] = {{t.v[0].x_h, t.v[0].y_h, t.v[0].w_c},
-                     {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
-                     {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
+  const Column col[3] = {{t.v[0].x_h, t.v[0].y_h, t.v[0].w_c},
+                         {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
+                         {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
   H3 g[3];
   for (int i = 0; i < 3; ++i)
     g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
@@ -119,9 +125,12 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
   if (det_sign == 0) return t;  // zero area: nothing is drawn, by any implementation
   t.has_edges = true;
   for (int i = 0; i < 3; ++i) {
-    LinearForm e{g[i].x, g[i].y, (g[i].x + g[i].y) / 2 + g[i].w};
-    if (det_sign < 0) e = e * mpq_class(-1);
-    t.homogeneous_edges[i] = e;
+    LinearForm& e = t.homogeneous_edges[i];
+    e.c = (g[i].x + g[i].y) / 2 + g[i].w;
+    e.a = std::move(g[i].x), e.b = std::move(g[i].y);
+    if (det_sign < 0)
+      for (mpq_class* q : {&e.a, &e.b, &e.c})
+        mpq_neg(q->get_mpq_t(), q->get_mpq_t());
   }
 
   // Pixels that can be covered: pixel centres inside the (snapped or exact) window-space
