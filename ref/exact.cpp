@@ -84,6 +84,11 @@ SignEvaluator::SignEvaluator(const LinearForm& f) : form_(f) {
   da_ = f.a.get_d(), db_ = f.b.get_d(), dc_ = f.c.get_d();
   const double norm = std::hypot(da_, db_);
   inv_norm_ = norm > 0 ? 1.0 / norm : 0.0;
+  // What row_interval needs of the form on every row, once.
+  spans_ = inv_norm_ > 0 && std::isfinite(inv_norm_) && std::isfinite(da_) && std::isfinite(db_) &&
+           std::isfinite(dc_);
+  scale_ = spans_ ? 1 / inv_norm_ : 0.0;
+  inverse_abs_da_ = da_ != 0 ? 1 / std::fabs(da_) : 0.0;
 }
 
 int SignEvaluator::sign(long px, long py) const {
@@ -107,9 +112,7 @@ std::pair<double, double> SignEvaluator::row_interval(long py, double grow, long
                                                       long x_hi) const {
   constexpr double inf = std::numeric_limits<double>::infinity();
   constexpr std::pair<double, double> every = {-inf, inf}, none = {inf, -inf};
-  if (!(inv_norm_ > 0) || !std::isfinite(inv_norm_) || !std::isfinite(da_) || !std::isfinite(db_) ||
-      !std::isfinite(dc_))
-    return every;
+  if (!spans_) return every;
   const double y = double(py);
   const double x_max = std::max(std::fabs(double(x_lo)), std::fabs(double(x_hi)));
   // distance() rounds three products and sums and a product: off by at most 8u·S·inv_norm_
@@ -119,12 +122,13 @@ std::pair<double, double> SignEvaluator::row_interval(long py, double grow, long
   // distance(x) >= -grow  <=>  da·x >= -grow/inv_norm - (db·y + dc) =: bound, up to rounding:
   // `slack` (in the form's units) bounds the rounding of bound here, and the quarter pixel
   // above that of distance(); both are covered by widening by their sum plus a pixel.
-  const double scale = 1 / inv_norm_;
+  const double scale = scale_;
   const double bound = -grow * scale - (db_ * y + dc_);
   const double slack = 8 * kU * (grow * scale + std::fabs(db_ * y) + std::fabs(dc_)) + 0.25 * scale;
   if (da_ == 0) return bound - slack <= 0 ? every : none;
   const double x = bound / da_;
-  const double widen = 1 + slack / std::fabs(da_) + 8 * kU * std::fabs(x);
+  // slack·(1/|da|) rounds twice where slack/|da| rounded once: the extra pixel covers it.
+  const double widen = 1 + slack * inverse_abs_da_ + 8 * kU * std::fabs(x);
   if (!std::isfinite(x) || !std::isfinite(widen)) return every;
   return da_ > 0 ? std::pair{x - widen, inf} : std::pair{-inf, x + widen};
 }

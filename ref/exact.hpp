@@ -57,6 +57,8 @@ class SignEvaluator {
   LinearForm form_;
   double a_ = 0, b_ = 0, c_ = 0;                    // range-checked copies for the fast sign
   double da_ = 0, db_ = 0, dc_ = 0, inv_norm_ = 0;  // unchecked copies for distance()
+  double scale_ = 0, inverse_abs_da_ = 0;           // 1 / inv_norm_, 1 / |da_|
+  bool spans_ = false;  // row_interval can bound a span: finite copies and a gradient
   bool fast_ = false;
 };
 
