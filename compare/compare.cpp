@@ -318,15 +318,6 @@ struct Comparator::State {
   std::vector<ChannelAccumulator> channels;  // depth, then each component
   std::vector<double> largest_allowance_ulps;
   std::vector<std::optional<double>> fixed_ulps;  // a channel's fixed allowance, if not per pixel
-  // A pixel whose values are compared: its index in the band and its window position, kept so
-  // that the channel passes divide no index back into x and y (a division per pixel and
-  // channel was most of the comparison's time on large frames).
-  struct Compared {
-    size_t i;
-    int x, y;
-    Judged judged;
-  };
-  std::vector<Compared> compared;  // one band's, reused
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height)
@@ -351,14 +342,11 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
   st.next_row += reference.height;
 
-  // Coverage first; the pixels where values are compared are kept for the channel passes, with
-  // the candidate GL kept where the depth test could go either way.
-  std::vector<State::Compared>& compared = st.compared;
-  compared.clear();
-  if (compared.capacity() < reference.pixel_count()) {
-    compared.reserve(reference.pixel_count());  // untouched beyond what is covered
-    advise_huge_pages(compared.data(), compared.capacity() * sizeof compared[0]);
-  }
+  // Coverage first, then the values where both frames name the same triangle (or GL a
+  // candidate of the depth test), channel by channel. Which pixels those are is asked again in
+  // each channel's pass rather than kept: two primitive ids per pixel read again cost less than
+  // a list of the compared pixels written and read (16 bytes and more per pixel, a fresh
+  // allocation per case).
   auto& cov = st.r.coverage;
   cov.fragments_checked = cov.fragments_checked &&
                           reference.fragments.size() == reference.pixel_count() &&
@@ -370,9 +358,8 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
       const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
       if (pr == pg && pr == Frame::kNoPrimitive) {
         ++cov.neither;
-      } else if (const Judged j = judged_against(c, expected, gl, i, tolerance); j.compared) {
+      } else if (judged_against(c, expected, gl, i, tolerance).compared) {
         ++cov.both;
-        compared.push_back({i, x, y0 + y, j});
       } else if (pg == Frame::kNoPrimitive) {
         ++cov.reference_only;
       } else if (pr == Frame::kNoPrimitive) {
@@ -404,21 +391,26 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     const ChannelAllowance allowance(c, expected, tolerance, k);
     if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
     double& largest_allowance_ulps = st.largest_allowance_ulps[slot];
-    for (const auto& [i, x, y, judged] : compared) {
-      const int32_t primitive = judged.primitive(expected, i);
-      const double ulp = st.ulps.ulp(primitive, k);
-      const double allowed = judged.allowed(allowance, i, ulp, k);
-      const float value = judged.value(expected, i, k);
-      // Not judged, and its unbounded allowance is not one the verdict applied.
-      if (!value_determined(value, tolerance)) {
-        acc.add_undetermined(x, y, value, gl_values[i], allowed);
-        continue;
+    for (int row = 0; row < reference.height; ++row)
+      for (int x = 0; x < reference.width; ++x) {
+        const size_t i = reference.index(x, row);
+        const Judged judged = judged_against(c, expected, gl, i, tolerance);
+        if (!judged.compared) continue;
+        const int y = y0 + row;
+        const int32_t primitive = judged.primitive(expected, i);
+        const double ulp = st.ulps.ulp(primitive, k);
+        const double allowed = judged.allowed(allowance, i, ulp, k);
+        const float value = judged.value(expected, i, k);
+        // Not judged, and its unbounded allowance is not one the verdict applied.
+        if (!value_determined(value, tolerance)) {
+          acc.add_undetermined(x, y, value, gl_values[i], allowed);
+          continue;
+        }
+        // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
+        const double inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+        largest_allowance_ulps = std::max(largest_allowance_ulps, allowed * inverse_ulp);
+        acc.add(x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
       }
-      // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
-      const double inverse_ulp = st.ulps.inverse_ulp(primitive, k);
-      largest_allowance_ulps = std::max(largest_allowance_ulps, allowed * inverse_ulp);
-      acc.add(x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
-    }
   }
 }
 
