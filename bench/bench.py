@@ -27,6 +27,16 @@ def progress(text):
         sys.stderr.flush()
 
 
+def worker_environment():
+    """The environment `run` gives its GL workers (cli/process.hpp, huge_page_malloc_tunable):
+    the parts are timed as a worker runs them."""
+    env = dict(os.environ)
+    tunables = env.get("GLIBC_TUNABLES", "")
+    if "glibc.malloc.hugetlb" not in tunables:
+        env["GLIBC_TUNABLES"] = (tunables + ":" if tunables else "") + "glibc.malloc.hugetlb=1"
+    return env
+
+
 def bench_parts(build, scene, reps):
     """Median real seconds of gl/, reference/, compare/ and check/ for one scene."""
     name = os.path.splitext(os.path.basename(scene))[0]
@@ -34,7 +44,8 @@ def bench_parts(build, scene, reps):
         [os.path.join(build, "bench", "glrc_bench"), scene,
          "--benchmark_filter=^(gl|reference|compare|check)/%s(/|$)" % name,
          "--benchmark_repetitions=%d" % reps, "--benchmark_min_time=0.2",
-         "--benchmark_format=json"], check=True, capture_output=True, text=True).stdout
+         "--benchmark_format=json"], check=True, capture_output=True, text=True,
+        env=worker_environment()).stdout
     times = {}
     for b in json.loads(out)["benchmarks"]:
         # One repetition has no aggregates; several, the median among them.
