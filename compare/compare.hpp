@@ -208,11 +208,12 @@ class LargestValues {
     if (keys_.size() >= 2 * keep_) compact();
   }
   // Whether add(float(a / b)) certainly drops the value, for a >= 0 and b > 0, without the
-  // division: once compacted, when a/b < floor·(1 - 2^-22) (computed as a < floor·b·(1 - 2^-20),
-  // whose two roundings, the division's and float's cannot carry a/b up to floor). Then the
-  // value is below every kept value, and below the keep_-th (at least the 16th) largest value
-  // added so far: for a floor of a normal float > 0, every value kept was at least
-  // floor·(1 - 2^-24) before its rounding to float. False says nothing: add it.
+  // division: once compacted, when a < floor·b·(1 - 2^-20) as computed, so that a/b <
+  // floor·(1 - 2^-22) and neither rounding, the division's nor float's, can carry it up to the
+  // floor. Then the value is below every kept value, and below the keep_-th (at least the 16th)
+  // largest value added so far: for a floor of a normal float > 0, every value kept was at
+  // least floor·(1 - 2^-24) before its rounding to float. False (always for a NaN, an infinite
+  // a or a zero b) says nothing: add it.
   bool certainly_dropped(double a, double b) const {
     return compacted_ && floor_value_ >= 0x1p-100 && a < floor_value_ * b * (1 - 0x1p-20);
   }
