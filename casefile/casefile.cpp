@@ -118,8 +118,12 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
     std::error_code ec;
     const fs::file_status st = fs::status(p, ec);
     if (ec || !fs::exists(st))
-      throw CaseError(printable(arg) +
-                      ": expected a case file or a directory of them, got no such path");
+      // A link that leads nowhere, or back to itself, is there: say what it is.
+      throw CaseError(
+          printable(arg) + ": expected a case file or a directory of them, got " +
+          (fs::is_symlink(fs::symlink_status(p))
+               ? "a symbolic link that leads to no file (" + (ec ? ec.message() : "dangling") + ")"
+               : std::string("no such path")));
     if (fs::is_regular_file(st)) {
       out.push_back(p.lexically_normal());  // a file named explicitly is taken as it is
       continue;

@@ -75,12 +75,21 @@ bool model_options_given(const CLI::App& app) {
   return false;
 }
 
+// CLI11's own words where they do not say what was expected: an option given twice.
+std::string plain_parse_error(const std::string& what) {
+  const std::string twice = ": At Most 1 required but received ";
+  if (const size_t at = what.find(twice); at != std::string::npos)
+    return what.substr(0, at) + ": expected once, given " + what.substr(at + twice.size()) +
+           " times";
+  return what;
+}
+
 void add_gl_options(CLI::App& app, Options& o) {
   add_enum_option(app, "--backend", o.backend, "osmesa, egl (Mesa surfaceless) or egl-device");
   app.add_option(
       "--driver", o.driver,
       "Mesa gallium driver: llvmpipe, softpipe, zink (egl: GL on lavapipe); \"\" for a GPU");
-  app.add_option("--device", o.device, "egl-device: which EGL device");
+  app.add_option("--device", o.device, "egl-device: which EGL device")->check(whole_number(0));
   app.add_option("--tolerance-ulps", o.varying_ulps,
                  "varying tolerance in ULPs of the attribute's scale (overrides case files)")
       ->check(finite_number(0, true));
@@ -233,7 +242,8 @@ int main_impl(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // One line, like every other input error; CLI11 quotes what was typed, which may be long
     // or hold control characters.
-    fmt::print(stderr, "glrefcheck: {} (see --help)\n", printable(e.what(), 300));
+    fmt::print(stderr, "glrefcheck: {} (see --help)\n",
+               printable(plain_parse_error(e.what()), 300));
     return 2;
   }
   o.model_given = model_options_given(app);

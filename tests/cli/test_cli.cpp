@@ -10,6 +10,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/support/glrefcheck_process.hpp"
 
@@ -90,6 +92,31 @@ TEST(Cli, BadInputsExitTwo) {
       glrefcheck("run --filter '^face_on' --baseline '" + (d / "fails.txt").string() + "'");
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_NE(o.err.find("fails.txt:2"), std::string::npos) << o.err;
+}
+
+// What a careless user types, each said as it is: an option given twice, a device that is no
+// number, --resume on a file, a case path that is a link to itself or to nothing.
+TEST(Cli, MisusesSayWhatTheyAre) {
+  const fs::path d = temp_dir("misuses");
+  std::ofstream(d / "afile") << "x";
+  fs::create_symlink("self.json", d / "self.json");
+  fs::create_symlink("nowhere.json", d / "dangling.json");
+  const std::vector<std::pair<std::string, std::string>> said = {
+      {"run --jobs 1 --jobs 2", "--jobs: expected once, given 2 times"},
+      {"run --device -1", "--device: expected a whole number >= 0, got -1"},
+      {"run --device abc", "--device: expected a whole number >= 0, got \"abc\""},
+      {"run --resume '" + (d / "afile").string() + "'",
+       "expected a run folder with a journal.jsonl, got a file, not a folder"},
+      {"list '" + (d / "self.json").string() + "'",
+       "got a symbolic link that leads to no file (Too many levels of symbolic links)"},
+      {"list '" + (d / "dangling.json").string() + "'",
+       "got a symbolic link that leads to no file (No such file or directory)"}};
+  for (const auto& [args, message] : said) {
+    const Outcome o = glrefcheck(args);
+    EXPECT_EQ(o.exit_code, 2) << args << ": " << o.err;
+    EXPECT_EQ(lines(o.err), 1u) << args << ": " << o.err;
+    EXPECT_NE(o.err.find(message), std::string::npos) << args << ": " << o.err;
+  }
 }
 
 TEST(Cli, RunWritesResultsAndHonoursTheBaseline) {
