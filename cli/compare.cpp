@@ -2,7 +2,9 @@
 #include "cli/validators.hpp"
 
 #include <fmt/core.h>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -38,9 +40,13 @@ void make_parent(const std::string& file) {
 
 void write_text(const std::string& file, const std::string& text) {
   make_parent(file);
+  errno = 0;
   std::ofstream out(file, std::ios::binary);
   out << text;
-  if (!out) throw std::runtime_error("cannot write " + file);
+  // The stream keeps no reason; the open or write under it left one in errno.
+  if (!out)
+    throw std::runtime_error("cannot write " + file +
+                             (errno ? ": " + std::string(std::strerror(errno)) : ""));
 }
 
 }  // namespace

@@ -94,7 +94,8 @@ void write_file_atomically(const std::filesystem::path& file, const std::string&
   name += std::to_string(getpid());
   const std::filesystem::path tmp = dir / name;
   const int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error("cannot write " + file.string());
+  if (fd < 0)
+    throw std::runtime_error("cannot write " + file.string() + " (" + strerror(errno) + ")");
   bool ok = true;
   for (size_t done = 0; ok && done < text.size();) {
     const ssize_t n = write(fd, text.data() + done, text.size() - done);
