@@ -231,7 +231,8 @@ TEST(HtmlReport, UnwritableFileThrows) {
     write_run_html(file, RunResults{}, "/nonexistent-glrc-folder");
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), "cannot write " + file.string());
+    EXPECT_EQ(std::string(e.what()),
+              "cannot write " + file.string() + " (No such file or directory)");
   }
   EXPECT_THROW(write_comparison_html(file, RunComparison{}, "/a", "/b"), std::runtime_error);
 }
