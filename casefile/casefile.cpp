@@ -48,13 +48,18 @@ Case load(const fs::path& file) {
   if (in.bad() || ec) reader.fail("", "a readable case file", "a read error");
   // A file that grew since its size was taken: read the rest.
   if (in) text.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return parse(std::move(text), name, file.stem().string());
+}
 
+Case parse(std::string text, const std::string& source, const std::string& name) {
+  const typed_json::Reader reader(source, typed_json::Wording::full,
+                                  &typed_json::raise_as<CaseError>);
   const typed_json::ArenaScope arena;  // before the document: outlives it
   CaseJson root;
   typed_json::parse(reader, text, root, expected_number_at);
   text = std::string();  // the document holds it all now
   Case c = Loader(reader).load(root);
-  c.name = file.stem().string();
+  c.name = name;
   return c;
 }
 

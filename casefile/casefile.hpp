@@ -24,6 +24,11 @@ struct CaseError : typed_json::Error {
 // its type or range.
 Case load(const std::filesystem::path& file);
 
+// The case a case file's text holds, named `name`; messages name `source` as load()'s name the
+// file. Throws CaseError as load() does for the text. `fuzz` checks every shrunk candidate
+// with it, so that a minimal case is always one the loader takes.
+Case parse(std::string text, const std::string& source, const std::string& name);
+
 // Case files named by the arguments: files as given, directories searched recursively for
 // *.json (following symbolic links, each folder once, so that a link loop ends); sorted by path,
 // duplicates removed. A FIFO, socket, device or unfollowable link found as *.json in a folder is
