@@ -19,6 +19,7 @@
 #include "casefile/casefile.hpp"
 #include "cli/case_commands.hpp"
 #include "cli/compare.hpp"
+#include "cli/fuzz.hpp"
 #include "cli/identify.hpp"
 #include "cli/mesa_prefix.hpp"
 #include "cli/run.hpp"
@@ -180,6 +181,23 @@ int main_impl(int argc, char** argv) {
                   "cases it began with (only --jobs, --jobs-force, --threads and --worker-wrapper "
                   "may be given with it)");
 
+  FuzzOptions fuzz_options;
+  auto* fuzz = add_fuzz_command(app, fuzz_options);
+  add_model_options(*fuzz, o), add_gl_options(*fuzz, o);
+  fuzz->add_option("--jobs,-j", o.jobs,
+                   "worker processes in parallel (default and most: one per core)")
+      ->check(whole_number(1));
+  fuzz->add_flag("--jobs-force", o.jobs_force, "allow --jobs beyond the number of cores");
+  fuzz->add_option("--timeout", o.timeout,
+                   "seconds a case may take before its worker is killed (class timeout)")
+      ->check(finite_range(0.001, 1e6));
+  fuzz->add_option("--fraction", o.fraction,
+                   "check every N-th case of the campaign (a shard; `merge` joins them)")
+      ->check(whole_number(1));
+  fuzz->add_option("--fraction-start", o.fraction_start,
+                   "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
+      ->check(whole_number(1));
+
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);
 
@@ -255,6 +273,11 @@ int main_impl(int argc, char** argv) {
     // workers only).
     if (!o.mesa.empty() && (*diff || *identify || *selftest)) reexec_with_mesa(o, argv);
     if (*run) return cmd_run(o);
+    if (*fuzz) {
+      // Its own default folder: a campaign's results.json is not a run's.
+      if (fuzz->count("--out") == 0) o.out = "fuzz-out";
+      return cmd_fuzz(o, fuzz_options);
+    }
     if (*merge) return cmd_merge(merge_dirs, o.out, o.html);
     if (*report_cmd) return cmd_report(report_dir, report_file);
     if (*compare) return cmd_compare(compare_options);

@@ -80,7 +80,8 @@ void Pool::hello(Worker& w, const nlohmann::json& hello) {
 
 void Pool::assign(Worker& w) {
   if (queue_.empty()) {
-    stop(w, false);  // nothing left for it: end of input lets it exit
+    // Nothing left for it: end of input lets it exit, unless it waits for the next cases.
+    if (!persistent_) stop(w, false);
     return;
   }
   if (!model_) return;  // it waits for the model

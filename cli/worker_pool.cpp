@@ -36,10 +36,16 @@ std::vector<std::string> worker_argv(const WorkerSettings& s) {
   return wrapped;
 }
 
-Pool::Pool(const std::vector<const Case*>& cases, const Options& o, const WorkerSettings& s,
-           const OnStart& on_start, const std::function<void(size_t, CaseResult)>& on_result)
-    : cases_(cases), o_(o), s_(s), on_start_(on_start), on_result_(on_result) {
-  for (size_t k = 0; k < cases.size(); ++k)
+Pool::Pool(std::vector<const Case*> cases, const Options& o, const WorkerSettings& s,
+           const OnStart& on_start, const std::function<void(size_t, CaseResult)>& on_result,
+           bool persistent)
+    : cases_(std::move(cases)),
+      persistent_(persistent),
+      o_(o),
+      s_(s),
+      on_start_(on_start),
+      on_result_(on_result) {
+  for (size_t k = 0; k < cases_.size(); ++k)
     queue_.push_back(k);
   options_line_ = options_json(o) + "\n";
   env_ = environment_with(s.environment);
@@ -51,12 +57,31 @@ Pool::~Pool() {
     stop(w, true);
 }
 
+void Pool::add(const std::vector<const Case*>& more) {
+  for (const Case* c : more) {
+    queue_.push_back(cases_.size());
+    cases_.push_back(c);
+  }
+}
+
 void Pool::run() {
-  const size_t n = std::min<size_t>(size_t(std::max(s_.jobs, 1)), cases_.size());
-  workers_.resize(n);
   if (interrupted()) return;
-  for (size_t k = 0; k < n; ++k)
-    start(workers_[k], k);
+  if (workers_.empty()) {
+    const size_t jobs = size_t(std::max(s_.jobs, 1));
+    const size_t n = persistent_ ? jobs : std::min(jobs, cases_.size());
+    workers_.resize(n);
+    for (size_t k = 0; k < n; ++k)
+      start(workers_[k], k);
+  } else {
+    // Persistent workers from the last run: idle ones get cases, ended ones start again.
+    for (size_t k = 0; k < workers_.size() && !queue_.empty(); ++k) {
+      Worker& w = workers_[k];
+      if (!w.process.running())
+        start(w, k);
+      else if (w.ready && !busy(w))
+        assign(w);
+    }
+  }
   while (done_ < cases_.size() || imaging()) {
     std::vector<pollfd> fds;
     std::vector<size_t> owner;
@@ -201,6 +226,43 @@ void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
   std::filesystem::create_directories(s.log_dir);
   Pool pool(cases, o, s, on_start, on_result);
   pool.run();
+}
+
+WorkerSession::WorkerSession(const Options& o, const WorkerSettings& s, OnStart on_start)
+    : o_(o), s_(s), on_start_(std::move(on_start)) {
+  signal(SIGPIPE, SIG_IGN);
+  std::filesystem::create_directories(s_.log_dir);
+  on_result_ = [this](size_t k, CaseResult r) {
+    if (k >= offset_ && k - offset_ < results_.size()) results_[k - offset_] = std::move(r);
+  };
+  pool_ = std::make_unique<Pool>(std::vector<const Case*>{}, o_, s_, on_start_, on_result_, true);
+}
+
+WorkerSession::~WorkerSession() = default;
+
+bool WorkerSession::interrupted() const {
+  return pool_->interrupted();
+}
+
+std::vector<CaseResult> WorkerSession::check(const std::vector<const Case*>& cases) {
+  results_.assign(cases.size(), std::nullopt);
+  pool_->add(cases);
+  pool_->run();
+  offset_ += cases.size();
+  std::vector<CaseResult> out;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    if (results_[k]) {
+      out.push_back(std::move(*results_[k]));
+      continue;
+    }
+    CaseResult r;
+    r.name = cases[k]->name, r.description = cases[k]->description;
+    r.status = r.outcome = Status::skip;
+    r.message = "not checked: interrupted";
+    out.push_back(std::move(r));
+  }
+  results_.clear();
+  return out;
 }
 
 }  // namespace glrc::cli

@@ -41,19 +41,26 @@ std::vector<std::string> worker_argv(const WorkerSettings& s);
 
 class Pool {
  public:
-  Pool(const std::vector<const Case*>& cases, const Options& o, const WorkerSettings& s,
-       const OnStart& on_start, const std::function<void(size_t, CaseResult)>& on_result);
+  // `persistent`: the workers outlive the cases given so far and wait, idle, for add() and the
+  // next run() (a campaign's batches and its shrinking use the same processes); otherwise each
+  // worker ends once the queue is empty.
+  Pool(std::vector<const Case*> cases, const Options& o, const WorkerSettings& s,
+       const OnStart& on_start, const std::function<void(size_t, CaseResult)>& on_result,
+       bool persistent = false);
   ~Pool();
   Pool(const Pool&) = delete;
   Pool& operator=(const Pool&) = delete;
 
   // Until every verdict is in and every heatmap written, or the interrupt fd is readable.
   void run();
+  // More cases, their indices following the earlier ones'; checked by the next run().
+  void add(const std::vector<const Case*>& more);
+  // Whether the interrupt fd is readable (the run is to stop).
+  bool interrupted() const;
 
  private:
   // worker_pool.cpp: the processes.
   bool imaging() const;
-  bool interrupted() const;
   int next_deadline_ms() const;
   void start(Worker& w, size_t slot);
   void read_from(Worker& w, size_t slot);
@@ -70,7 +77,8 @@ class Pool {
   void begin_model(Worker& w, const std::vector<std::string>& driver_files);
   void model_chosen(const ModelChoice& chosen);
 
-  const std::vector<const Case*>& cases_;
+  std::vector<const Case*> cases_;
+  bool persistent_ = false;
   const Options& o_;
   const WorkerSettings& s_;
   const OnStart& on_start_;

@@ -27,6 +27,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -80,5 +81,34 @@ using OnStart = std::function<void(const gl::GlInfo&, const ModelChoice&)>;
 void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
                     const WorkerSettings& s, const OnStart& on_start,
                     const std::function<void(size_t, CaseResult)>& on_result);
+
+class Pool;
+
+// Workers kept between batches of cases: `fuzz` checks a batch of generated cases, then the
+// shrinker's candidates, then the next batch, on the same processes and GL contexts (a worker
+// costs 0.1 to 0.5 s to start). Deaths, timeouts and the model are as in run_in_workers; the
+// model is chosen once, at the first batch, and `on_start` is called then.
+class WorkerSession {
+ public:
+  WorkerSession(const Options& o, const WorkerSettings& s, OnStart on_start);
+  ~WorkerSession();
+  WorkerSession(const WorkerSession&) = delete;
+  WorkerSession& operator=(const WorkerSession&) = delete;
+
+  // One result per case, in order. The cases need live only until this returns. Once
+  // interrupted() the cases not checked come back as Skip with the message "not checked:
+  // interrupted". Throws as run_in_workers.
+  std::vector<CaseResult> check(const std::vector<const Case*>& cases);
+  bool interrupted() const;
+
+ private:
+  Options o_;
+  WorkerSettings s_;
+  OnStart on_start_;
+  std::function<void(size_t, CaseResult)> on_result_;
+  std::vector<std::optional<CaseResult>> results_;
+  size_t offset_ = 0;  // the pool's index of results_[0]
+  std::unique_ptr<Pool> pool_;
+};
 
 }  // namespace glrc::cli

@@ -218,9 +218,10 @@ TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
 TEST(CommandLine, AnUnknownCommandIsNamed) {
   const Outcome o = glrefcheck("bogus");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_EQ(o.err,
-            "glrefcheck: expected a command (run, compare, merge, report, diff, digest, list, "
-            "identify, selftest), got \"bogus\" (see --help)\n");
+  EXPECT_EQ(
+      o.err,
+      "glrefcheck: expected a command (run, fuzz, compare, merge, report, diff, digest, list, "
+      "identify, selftest), got \"bogus\" (see --help)\n");
   const Outcome bytes = glrefcheck("\"$(printf 'r\\377n')\"");
   EXPECT_EQ(bytes.exit_code, 2);
   EXPECT_NE(bytes.err.find("got \"r\\xffn\""), std::string::npos) << bytes.err;

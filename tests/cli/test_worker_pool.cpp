@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -217,6 +218,43 @@ TEST(WorkerEnvironment, HugePageMallocIsAddedToTheUsersTunables) {
     setenv("GLIBC_TUNABLES", saved.c_str(), 1);
   else
     unsetenv("GLIBC_TUNABLES");
+}
+
+}  // namespace
+
+namespace {
+
+// fuzz's pool: workers kept between batches. Each batch gets its own results, in order; the
+// workers of one batch check the next (no worker starts again unless one died); a crash is that
+// case's, and the next batch goes on.
+TEST_F(WorkerPool, ASessionChecksBatchAfterBatchOnTheSameWorkers) {
+  s_.command = {kFake, "--crash-at", "beta", "--log-at-start", "worker started"};
+  int starts = 0;
+  glrc::cli::WorkerSession session(
+      options_, s_, [&](const glrc::gl::GlInfo&, const glrc::cli::ModelChoice&) { ++starts; });
+  const auto names = [](const std::vector<CaseResult>& results) {
+    std::string out;
+    for (const CaseResult& r : results)
+      out += r.name + ":" + std::string(glrc::to_string(r.status)) + " ";
+    return out;
+  };
+  EXPECT_EQ(names(session.check({&cases_[0], &cases_[2], &cases_[3]})),
+            "alpha:Pass gamma:Pass delta:Pass ");
+  EXPECT_EQ(names(session.check({&cases_[4], &cases_[3], &cases_[0]})),
+            "epsilon:Pass delta:Pass alpha:Pass ");
+  // Two workers at most were started for both batches: none again for the second.
+  int started = 0;
+  for (const auto& log : fs::directory_iterator(dir_ / "logs")) {
+    std::ifstream in(log.path());
+    for (std::string line; std::getline(in, line);)
+      started += line == "worker started";
+  }
+  EXPECT_GE(started, 1);
+  EXPECT_LE(started, 2);
+  EXPECT_EQ(names(session.check({&cases_[1], &cases_[4]})), "beta:Crash epsilon:Pass ");
+  EXPECT_EQ(names(session.check({&cases_[2]})), "gamma:Pass ");
+  EXPECT_EQ(starts, 1);  // the model is chosen once, for every batch
+  EXPECT_FALSE(session.interrupted());
 }
 
 }  // namespace

@@ -1,0 +1,103 @@
+// A random campaign: generated cases checked in batches, each failure classified, the first
+// case of every distinct failure (class and signature) shrunk to a minimal case, and counts of
+// what was checked. Knows nothing of GL or processes: the Judge (shrink.hpp) checks cases, in
+// `glrefcheck fuzz` on worker processes, in the tests on a planted fault.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "campaign/failure.hpp"
+#include "campaign/generators.hpp"
+#include "campaign/shrink.hpp"
+#include "core/case.hpp"
+#include "core/result.hpp"
+
+namespace glrc::campaign {
+
+struct CampaignOptions {
+  uint64_t seed = 1;
+  // Stop after this many cases of the campaign (over all shards), or after this many seconds,
+  // whichever comes first; at least one must be set.
+  std::optional<uint64_t> count;
+  std::optional<double> seconds;
+  std::vector<const Generator*> generators;  // not empty
+  // Only this index (--replay S:I without --emit): the campaign of one case.
+  std::optional<uint64_t> only_index;
+  // Sharding: this campaign checks the indices i with i mod fraction == fraction_start - 1.
+  int fraction = 1, fraction_start = 1;
+  size_t batch = 16;  // cases handed to the judge at once
+  bool shrink = true;
+  ShrinkOptions shrinking;
+};
+
+// One distinct failure: the first case that showed it, shrunk.
+struct FoundFailure {
+  Failure failure;
+  std::string generator;
+  uint64_t seed = 0, index = 0;   // the case that first showed it
+  std::string first_description;  // describe() of that case's result
+  Case minimal;                   // named "<signature>" with '/' as '_', described by describe()
+  CaseResult minimal_result;
+  int shrink_steps = 0, shrink_checks = 0;
+  double shrink_seconds = 0;
+  bool shrink_complete = false;
+  uint64_t cases = 0;              // cases of the campaign showing it
+  std::vector<uint64_t> examples;  // the first few of their indices
+};
+
+struct CampaignStats {
+  uint64_t cases = 0, triangles = 0;
+  uint64_t pixels = 0;          // pixels either frame covered, over every case
+  uint64_t failing_cases = 0;   // cases that showed at least one failure
+  uint64_t skipped = 0;         // beyond GL's specified range, or undetermined: not judged
+  double seconds = 0;           // the whole campaign
+  double checking_seconds = 0;  // checking generated cases (not shrinking)
+  bool interrupted = false;
+  // Triangles of generated cases checked per second of checking them.
+  double triangles_per_second() const {
+    return checking_seconds > 0 ? double(triangles) / checking_seconds : 0;
+  }
+};
+
+struct CampaignResult {
+  CampaignOptions options;
+  CampaignStats stats;
+  std::vector<FoundFailure> failures;  // in the order found
+};
+
+// What the campaign reports as it goes: after every batch (for a progress line), and when a new
+// distinct failure is found (before shrinking it) and shrunk. Any may be empty.
+struct CampaignProgress {
+  std::function<void(const CampaignStats&, size_t distinct)> batch_done;
+  std::function<void(const FoundFailure&)> found, shrunk;
+  // Whether to stop now (an interrupt): checked between batches and shrink steps.
+  std::function<bool()> stop;
+};
+
+// The message of a result the judge did not check because the campaign is being interrupted
+// (its outcome Skip): such a case is not counted.
+extern const char* const kNotChecked;
+
+// Runs the campaign. `judge` checks each batch; a case it could not check should come back as
+// a result that shows no failure.
+CampaignResult run_campaign(const CampaignOptions& o, const Judge& judge,
+                            const CampaignProgress& progress = {});
+
+// The file name of a failure's minimal case in DIR/failures/: the signature, '/' as '_', then
+// ".json" ("non_finite_noperspective.json").
+std::string failure_file_name(const Failure& f);
+
+// The campaign's results.json: {"campaign": {seed, count, seconds, generators, fraction,
+// fraction_start}, "stats": {...}, "failures": [{class, detail, signature, description,
+// generator, seed, index, replay, cases, examples, file, shrink: {steps, checks, seconds,
+// complete}, triangles, varyings}]}. `run` is the run's description (GL strings and model) as
+// the caller has it, stored as given under "run".
+nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run);
+
+}  // namespace glrc::campaign

@@ -1,0 +1,103 @@
+#include "campaign/failure.hpp"
+
+#include <cstdio>
+
+namespace glrc::campaign {
+namespace {
+
+// The channel's kind: "depth", or the qualifier of the varying it belongs to.
+std::string channel_kind(const Case& c, const std::string& channel) {
+  if (channel == "depth") return "depth";
+  const std::vector<std::string> names = component_names(c);
+  const std::vector<int> varying = component_varying(c);
+  for (size_t k = 0; k < names.size(); ++k)
+    if (names[k] == channel)
+      return std::string(name_of(c.varyings[size_t(varying[k])].interpolation));
+  return "other";
+}
+
+std::string number(float x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", double(x));
+  return text;
+}
+
+}  // namespace
+
+std::string Failure::signature() const {
+  const std::string name(name_of(kind));
+  return detail.empty() ? name : name + "/" + detail;
+}
+
+std::vector<Failure> failures_of(const Case& c, const CaseResult& r) {
+  switch (r.outcome) {
+    case Status::crash:
+      return {{FailureClass::crash, ""}};
+    case Status::timeout:
+      return {{FailureClass::timeout, ""}};
+    case Status::error:
+      return {{FailureClass::error, ""}};
+    case Status::fail:
+      break;
+    default:
+      return {};
+  }
+  std::vector<Failure> found;
+  auto add = [&](FailureClass kind, const std::string& detail) {
+    const Failure f{kind, detail};
+    for (const Failure& g : found)
+      if (g == f) return;
+    found.push_back(f);
+  };
+  for (const ChannelStats& ch : r.channels)
+    if (ch.non_finite > 0) add(FailureClass::non_finite, channel_kind(c, ch.name));
+  if (r.coverage.gaps > 0) add(FailureClass::gap, "");
+  if (r.coverage.double_hits > 0) add(FailureClass::double_hit, "");
+  if (r.coverage.fill_rule > 0 && r.coverage.failures > 0) add(FailureClass::fill_rule, "");
+  for (const ChannelStats& ch : r.channels)
+    if (ch.over_tolerance > ch.non_finite) add(FailureClass::value, channel_kind(c, ch.name));
+  if (found.empty()) add(FailureClass::value, "other");
+  return found;
+}
+
+std::string describe(const Failure& f, const CaseResult& r) {
+  std::string line = f.signature();
+  auto worst_of = [&](bool non_finite) -> std::string {
+    for (const ChannelStats& ch : r.channels)
+      if ((non_finite ? ch.non_finite : ch.over_tolerance) > 0 && !ch.worst.empty()) {
+        const WorstPixel& p = ch.worst.front();
+        return ": " + ch.name + " at (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+               "): GL " + number(p.gl) + ", reference " + number(p.reference) +
+               (non_finite ? "" : ", " + number(float(p.ratio)) + "x the allowance") + ", " +
+               std::to_string(non_finite ? ch.non_finite : ch.over_tolerance) + " pixels";
+      }
+    return "";
+  };
+  auto mismatch = [&](CoverageStats::Label label, uint64_t count) -> std::string {
+    for (const CoverageStats::Pixel& p : r.coverage.mismatches)
+      if (p.label == label)
+        return ": (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ") reference primitive " +
+               std::to_string(p.reference) + ", GL " + std::to_string(p.gl) + ", " +
+               std::to_string(count) + " pixels";
+    return ": " + std::to_string(count) + " pixels";
+  };
+  switch (f.kind) {
+    case FailureClass::crash:
+    case FailureClass::timeout:
+    case FailureClass::error:
+      return line + ": " + r.message.substr(0, 300);
+    case FailureClass::non_finite:
+      return line + worst_of(true);
+    case FailureClass::gap:
+      return line + mismatch(CoverageStats::Label::gap, r.coverage.gaps);
+    case FailureClass::double_hit:
+      return line + mismatch(CoverageStats::Label::double_hit, r.coverage.double_hits);
+    case FailureClass::fill_rule:
+      return line + mismatch(CoverageStats::Label::fill_rule, r.coverage.fill_rule);
+    case FailureClass::value:
+      return line + worst_of(false);
+  }
+  return line;
+}
+
+}  // namespace glrc::campaign

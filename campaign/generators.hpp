@@ -1,0 +1,50 @@
+// Generators of random cases for `glrefcheck fuzz`: each makes an ordinary Case from a seed and
+// an index, the same Case on every machine and build (campaign/random.hpp), aimed at one kind of
+// input where rasterizers go wrong. Every case is valid as casefile::load would accept it (at
+// most 7 varyings, a viewport inside the framebuffer, noperspective only where every vertex a
+// triangle uses has w_c > 0), so casefile/write.hpp can write it as a case file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/case.hpp"
+
+namespace glrc::campaign {
+
+class Random;
+
+struct Generator {
+  std::string_view name;
+  std::string_view aims_at;  // one line, for `fuzz --help` and the campaign's results
+  Case (*make)(Random& random);
+};
+
+// Every generator, in a fixed order:
+//   sizes       triangles from sub-pixel to several times the viewport, slivers, and
+//               triangles far from the window origin (framebuffers up to 4096 pixels wide or
+//               high);
+//   clip        w over orders of magnitude, w <= 0, vertices and edges on and near the clip
+//               planes (x = ±w, y = ±w, z = ±w), near and far crossings, all three qualifiers;
+//   mesh        shared edges: fans around random centres with sub-pixel rim steps, jittered
+//               grids, meshes whose vertices are pixel centres;
+//   attributes  values from 1e-30 to 1e30, mixed signs and magnitudes in one vector, all three
+//               qualifiers, up to 7 varyings;
+//   states      cull, front face, provoking vertex, depth range (reversed too), depth function,
+//               viewport offsets and sizes.
+const std::vector<Generator>& generators();
+// The generator of that name, or nullptr.
+const Generator* find_generator(std::string_view name);
+
+// Which generator makes case `index` of a campaign over `chosen` (in the order given, not
+// empty): chosen[index mod size], so a campaign spreads its cases evenly over its generators.
+const Generator& generator_for(const std::vector<const Generator*>& chosen, uint64_t index);
+
+// Case `index` of the campaign (`seed`, `chosen`): named "fuzz_<generator>_<seed>_<index>",
+// described by its generator and how to make it again. The same arguments give the same
+// Case, bit for bit.
+Case generate(const std::vector<const Generator*>& chosen, uint64_t seed, uint64_t index);
+
+}  // namespace glrc::campaign

@@ -1,0 +1,250 @@
+#include "cli/fuzz.hpp"
+
+#include <signal.h>
+
+#include <fmt/core.h>
+#include <charconv>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "campaign/campaign.hpp"
+#include "casefile/write.hpp"
+#include "cli/interrupts.hpp"
+#include "cli/mesa_prefix.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/process.hpp"
+#include "cli/run_support.hpp"
+#include "cli/validators.hpp"
+#include "cli/workers.hpp"
+#include "core/text.hpp"
+#include "report/json_types.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+namespace {
+
+// What every case file fuzz writes holds: --emit replaces only such a file.
+constexpr const char* kEmitSignature = "glrefcheck fuzz";
+
+std::vector<const campaign::Generator*> chosen_generators(const FuzzOptions& f) {
+  std::vector<const campaign::Generator*> chosen;
+  if (f.generators.empty())
+    for (const campaign::Generator& g : campaign::generators())
+      chosen.push_back(&g);
+  for (const std::string& name : f.generators) {
+    const campaign::Generator* g = campaign::find_generator(name);
+    if (!g) {
+      std::string names;
+      for (const campaign::Generator& h : campaign::generators())
+        names += (names.empty() ? "" : ", ") + std::string(h.name);
+      throw InputError("--generator: expected one of " + names + ", got \"" + printable(name, 80) +
+                       "\"");
+    }
+    chosen.push_back(g);
+  }
+  return chosen;
+}
+
+uint64_t whole(std::string_view text, const std::string& what) {
+  uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) throw InputError(what);
+  return v;
+}
+
+std::pair<uint64_t, uint64_t> parse_replay(const std::string& text) {
+  const std::string what =
+      "--replay: expected SEED:INDEX, two whole numbers (as a campaign "
+      "prints them), got \"" +
+      printable(text, 80) + "\"";
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) throw InputError(what);
+  return {whole(std::string_view(text).substr(0, colon), what),
+          whole(std::string_view(text).substr(colon + 1), what)};
+}
+
+void write_case_file(const std::filesystem::path& file, const Case& c) {
+  report::write_file_atomically(file, casefile::to_case_file(c));
+}
+
+}  // namespace
+
+CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
+  auto* cmd = app.add_subcommand(
+      "fuzz",
+      "random campaigns: generated cases checked on GL, each distinct failure shrunk to a "
+      "minimal case in <out>/failures/");
+  cmd->add_option("--seed", f.seed, "the campaign's seed (default: a fresh one, printed)");
+  cmd->add_option("--count", f.count, "check this many cases (default 200 without --time)")
+      ->check(whole_number(1));
+  cmd->add_option("--time", f.seconds, "check cases for this many seconds")
+      ->check(finite_range(0.001, 1e7));
+  std::string generators_help = "the generators to draw cases from (default: all):";
+  for (const campaign::Generator& g : campaign::generators())
+    generators_help += fmt::format(" {}: {};", g.name, g.aims_at);
+  cmd->add_option("--generator", f.generators, generators_help);
+  cmd->add_option("--replay", f.replay,
+                  "SEED:INDEX: only that case of the campaign (with the campaign's --generator "
+                  "list); with --emit, write it as a case file instead of checking it");
+  cmd->add_option("--emit", f.emit, "with --replay: the case file to write");
+  cmd->add_option("--shrink-time", f.shrink_seconds,
+                  "seconds shrinking one failure may take (default 60)")
+      ->check(finite_range(0, 1e7));
+  cmd->add_flag("--no-shrink", f.no_shrink, "keep each failure's first case as found");
+  return cmd;
+}
+
+int cmd_fuzz(const Options& given, const FuzzOptions& f) {
+  Options o = given;
+  campaign::CampaignOptions co;
+  co.generators = chosen_generators(f);
+  if (!f.emit.empty() && f.replay.empty())
+    throw InputError("--emit: expected --replay SEED:INDEX with it (the case to write)");
+  if (!f.replay.empty() && (f.seed || f.count || f.seconds))
+    throw InputError(
+        "--replay: expected no --seed, --count or --time with it (SEED:INDEX names "
+        "the case)");
+  if (o.fraction < 1 || o.fraction_start < 1 || o.fraction_start > o.fraction)
+    throw InputError(
+        fmt::format("--fraction {} --fraction-start {}: expected 1 <= fraction-start <= fraction",
+                    o.fraction, o.fraction_start));
+  if (!f.replay.empty()) {
+    const auto [seed, index] = parse_replay(f.replay);
+    if (!f.emit.empty()) {
+      const Case c = campaign::generate(co.generators, seed, index);
+      check_replaceable(f.emit, "--emit", kEmitSignature);
+      write_case_file(f.emit, c);
+      fmt::print("wrote {}: {}, {} triangles, {} varyings\n", f.emit, c.name, c.triangles.size(),
+                 c.varyings.size());
+      return 0;
+    }
+    co.seed = seed, co.only_index = index, co.count = index + 1;
+  } else {
+    co.seed = f.seed ? *f.seed : std::random_device{}() * 0x100000000ull + std::random_device{}();
+    co.count = f.count, co.seconds = f.seconds;
+    if (!co.count && !co.seconds) co.count = 200;
+  }
+  co.fraction = o.fraction, co.fraction_start = o.fraction_start;
+  co.shrink = !f.no_shrink;
+  co.shrinking.seconds = f.shrink_seconds;
+
+  std::optional<MesaPrefix> prefix;
+  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
+  const int interrupt_fd = catch_interrupts();
+  const std::filesystem::path out = output_folder(o.out);
+  clear_run_outputs(out);
+  std::error_code ec;
+  std::filesystem::remove_all(out / "failures", ec);
+  if (ec)
+    throw InputError("--out: cannot remove the earlier campaign's failures/: " + ec.message());
+
+  WorkerSettings s;
+  s.jobs = workers_for(o);
+  if (o.threads == 0) o.threads = std::max(1, available_cores() / s.jobs);
+  s.timeout = o.timeout;
+  s.log_dir = out / "logs";
+  s.interrupt_fd = interrupt_fd;
+  s.wrapper = o.worker_wrapper;
+  s.images = [](const Case&) { return false; };
+  if (prefix) s.environment = mesa_environment(*prefix, out);
+  s.environment.push_back(huge_page_malloc_tunable());
+  co.batch = size_t(std::max(4 * s.jobs, 8));
+  co.shrinking.batch = size_t(std::max(s.jobs, 1));
+
+  RunInfo info;
+  info.backend = gl::to_string(o.backend), info.driver = o.driver, info.jobs = s.jobs;
+  info.mesa_prefix = o.mesa;
+  const auto on_start = [&](const gl::GlInfo& gl, const ModelChoice& model) {
+    if (prefix && !from_prefix(*prefix, gl.library))
+      throw InputError("--mesa " + o.mesa + ": GL came from " +
+                       (gl.library.empty() ? "an unknown library" : gl.library) +
+                       ", not from the prefix (GL_VERSION " + gl.version + ")");
+    const RunInfo run = run_info(o, gl, model);
+    info.gl_vendor = run.gl_vendor, info.gl_renderer = run.gl_renderer;
+    info.gl_version = run.gl_version, info.gl_library = run.gl_library;
+    info.model = run.model, info.model_source = run.model_source;
+    info.tolerance = run.tolerance, info.subpixel_bits = run.subpixel_bits;
+    info.gl_warnings = run.gl_warnings;
+    std::string generators;
+    for (const campaign::Generator* g : co.generators)
+      generators += (generators.empty() ? "" : ",") + std::string(g->name);
+    fmt::print(
+        "glrefcheck fuzz: seed {}, generators {}, {} on {} ({}), GL {} | model {} from {} "
+        "| tolerance {} | {} worker{}\n",
+        co.seed, generators,
+        co.only_index            ? fmt::format("case {}", *co.only_index)
+        : co.count && co.seconds ? fmt::format("{} cases or {} s", *co.count, *co.seconds)
+        : co.count               ? fmt::format("{} cases", *co.count)
+                                 : fmt::format("{} s", *co.seconds),
+        info.gl_renderer, info.backend, info.gl_version, info.model, info.model_source,
+        info.tolerance, s.jobs, s.jobs == 1 ? "" : "s");
+    for (const std::string& w : info.gl_warnings)
+      fmt::print("warning: {}\n", w);
+    std::fflush(stdout);
+  };
+  WorkerSession session(o, s, on_start);
+  const campaign::Judge judge = [&](const std::vector<Case>& cases) {
+    std::vector<const Case*> pointers;
+    for (const Case& c : cases)
+      pointers.push_back(&c);
+    return session.check(pointers);
+  };
+  const bool terminal = isatty(STDERR_FILENO) && !std::getenv("CI");
+  const auto clear_line = [&] {
+    if (terminal) fmt::print(stderr, "\r\033[K"), std::fflush(stderr);
+  };
+  std::filesystem::create_directories(out / "failures");
+  campaign::CampaignProgress progress;
+  progress.stop = [&] { return caught_signal() != 0; };
+  progress.batch_done = [&](const campaign::CampaignStats& st, size_t distinct) {
+    if (!terminal) return;
+    fmt::print(stderr,
+               "\r\033[K{} cases, {} triangles, {} pixels | {} failing, {} distinct | {:.0f} "
+               "triangles/s | {:.0f} s",
+               st.cases, st.triangles, st.pixels, st.failing_cases, distinct,
+               st.triangles_per_second(), st.seconds);
+    std::fflush(stderr);
+  };
+  progress.found = [&](const campaign::FoundFailure& nf) {
+    clear_line();
+    fmt::print("new failure {} in {}_{}_{}: {}\n", nf.failure.signature(), nf.generator, nf.seed,
+               nf.index, nf.first_description);
+    std::fflush(stdout);
+  };
+  progress.shrunk = [&](const campaign::FoundFailure& nf) {
+    const auto file = out / "failures" / campaign::failure_file_name(nf.failure);
+    write_case_file(file, nf.minimal);
+    clear_line();
+    fmt::print("  {} to {} triangle{}, {} varying{} in {:.1f} s ({} steps, {} checks{}): {}\n",
+               co.shrink ? "shrunk" : "kept", nf.minimal.triangles.size(),
+               nf.minimal.triangles.size() == 1 ? "" : "s", nf.minimal.varyings.size(),
+               nf.minimal.varyings.size() == 1 ? "" : "s", nf.shrink_seconds, nf.shrink_steps,
+               nf.shrink_checks, nf.shrink_complete || !co.shrink ? "" : ", out of time",
+               shown_path(file.string()));
+    std::fflush(stdout);
+  };
+  const campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
+  clear_line();
+
+  nlohmann::json run;
+  glrc::to_json(run, info);
+  report::write_file_atomically(out / "results.json",
+                                campaign::campaign_json(result, run).dump(2) + "\n");
+  // deqp-runner's format, one line per distinct failure (its minimal case's name).
+  std::string csv;
+  for (const campaign::FoundFailure& nf : result.failures)
+    csv += fmt::format("{},Fail,{:.3f}\n", nf.minimal.name, nf.minimal_result.seconds);
+  report::write_file_atomically(out / "results.csv", csv);
+  const campaign::CampaignStats& st = result.stats;
+  fmt::print(
+      "\n{} cases, {} triangles, {} pixels checked in {:.1f} s ({:.0f} triangles/s); {} "
+      "failing, {} distinct failure{}{}\n",
+      st.cases, st.triangles, st.pixels, st.seconds, st.triangles_per_second(), st.failing_cases,
+      result.failures.size(), result.failures.size() == 1 ? "" : "s",
+      st.skipped ? fmt::format("; {} skipped (beyond GL's specified range)", st.skipped) : "");
+  fmt::print("results in {}\n", shown_path(out.string()));
+  if (st.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
+  return result.failures.empty() ? 0 : 1;
+}
+
+}  // namespace glrc::cli

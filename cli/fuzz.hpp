@@ -1,0 +1,32 @@
+// glrefcheck fuzz: random campaigns (campaign/) on worker processes, each distinct failure
+// shrunk to a minimal case written into <out>/failures/, and --replay S:I --emit FILE to make
+// one generated case again as a case file.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/session.hpp"
+
+namespace glrc::cli {
+
+struct FuzzOptions {
+  std::optional<uint64_t> seed;  // default: a fresh one, printed and recorded
+  std::optional<uint64_t> count;
+  std::optional<double> seconds;
+  std::vector<std::string> generators;  // default: every one
+  std::string replay, emit;
+  double shrink_seconds = 60;
+  bool no_shrink = false;
+};
+
+// Adds the `fuzz` subcommand's own options (the GL, model and worker options are the caller's).
+CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f);
+// Exit 0: no failure; 1: failures found; 2: bad input; 130/143: interrupted.
+int cmd_fuzz(const Options& o, const FuzzOptions& f);
+
+}  // namespace glrc::cli

@@ -1,0 +1,110 @@
+// glrefcheck fuzz as a user runs it, on the system's llvmpipe through OSMesa: a campaign finds
+// Mesa 22.3.6's clipper NaN (a noperspective varying on a triangle with an edge on x = w_c cut
+// by y = w_c, cases/known-failures.txt) and shrinks it; --replay --emit writes the very case the
+// campaign drew; bad input is one line and exit 2. The campaign's logic without GL is in
+// tests/campaign/.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "campaign/generators.hpp"
+#include "casefile/casefile.hpp"
+#include "casefile/write.hpp"
+#include "tests/support/glrefcheck_process.hpp"
+#include "tests/support/temp_dir_test.hpp"
+
+namespace {
+
+using glrc::test::glrefcheck;
+
+class Fuzz : public glrc::test::TempDirTest {};
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST_F(Fuzz, FindsAndShrinksTheClipperNaN) {
+  const auto out = dir_ / "campaign";
+  const auto r =
+      glrefcheck("fuzz --seed 1 --count 12 --generator clip --jobs 2 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("new failure non_finite/noperspective in clip_1_7"), std::string::npos)
+      << r.out;
+  const auto file = out / "failures" / "non_finite_noperspective.json";
+  ASSERT_TRUE(std::filesystem::exists(file)) << r.out;
+  const glrc::Case minimal = glrc::casefile::load(file);
+  EXPECT_LE(minimal.triangles.size(), 2u);
+  ASSERT_EQ(minimal.varyings.size(), 1u);
+  EXPECT_EQ(minimal.varyings[0].interpolation, glrc::Interpolation::noperspective);
+  EXPECT_NE(minimal.description.find("--replay 1:7"), std::string::npos) << minimal.description;
+
+  const auto results = nlohmann::json::parse(read(out / "results.json"));
+  EXPECT_EQ(results["stats"]["cases"], 12);
+  EXPECT_GT(results["stats"]["triangles"].get<int>(), 12);
+  EXPECT_EQ(results["campaign"]["seed"], 1);
+  EXPECT_EQ(results["run"]["driver"], "llvmpipe");
+  bool listed = false;
+  for (const auto& f : results["failures"])
+    if (f["signature"] == "non_finite/noperspective") {
+      listed = true;
+      EXPECT_EQ(f["index"], 7);
+      EXPECT_EQ(f["file"], "failures/non_finite_noperspective.json");
+      EXPECT_EQ(f["replay"], "glrefcheck fuzz --generator clip --replay 1:7 --emit clip_1_7.json");
+    }
+  EXPECT_TRUE(listed) << results.dump(2);
+  EXPECT_NE(read(out / "results.csv").find("non_finite_noperspective,Fail,"), std::string::npos);
+
+  // The minimal case fails `run` the same way: NaN where the reference has a value.
+  const auto run =
+      glrefcheck("run '" + file.string() + "' --jobs 1 --out '" + (dir_ / "run").string() + "'");
+  EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
+  EXPECT_NE(run.out.find("NaN/Inf"), std::string::npos) << run.out;
+}
+
+TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
+  const auto file = dir_ / "clip_1_7.json";
+  const auto r = glrefcheck("fuzz --generator clip --replay 1:7 --emit '" + file.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto* clip = glrc::campaign::find_generator("clip");
+  const glrc::Case drawn = glrc::campaign::generate({clip}, 1, 7);
+  EXPECT_EQ(read(file), glrc::casefile::to_case_file(drawn));
+  EXPECT_EQ(glrc::casefile::to_case_file(glrc::casefile::load(file)),
+            glrc::casefile::to_case_file(drawn));
+  // Again over its own file; never over one it did not write.
+  EXPECT_EQ(
+      glrefcheck("fuzz --generator clip --replay 1:8 --emit '" + file.string() + "'").exit_code, 0);
+  std::ofstream(dir_ / "mine.json") << "{}";
+  const auto refused =
+      glrefcheck("fuzz --replay 1:8 --emit '" + (dir_ / "mine.json").string() + "'");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("--emit: expected a new file or one glrefcheck wrote"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(read(dir_ / "mine.json"), "{}");
+}
+
+TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
+  const std::string out = " --out '" + (dir_ / "o").string() + "'";
+  const std::pair<std::string, std::string> cases[] = {
+      {"fuzz --generator bogus" + out,
+       "--generator: expected one of sizes, clip, mesh, attributes, states, got \"bogus\""},
+      {"fuzz --replay 12" + out, "--replay: expected SEED:INDEX"},
+      {"fuzz --replay 1:x" + out, "--replay: expected SEED:INDEX"},
+      {"fuzz --replay 1:2 --seed 3" + out, "--replay: expected no --seed, --count or --time"},
+      {"fuzz --emit x.json" + out, "--emit: expected --replay SEED:INDEX with it"},
+      {"fuzz --count 0" + out, "--count"},
+      {"fuzz --time nan" + out, "--time"},
+      {"fuzz --fraction 2 --fraction-start 3" + out, "expected 1 <= fraction-start <= fraction"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto r = glrefcheck(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+  }
+}
+
+}  // namespace
