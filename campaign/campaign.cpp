@@ -89,6 +89,7 @@ CampaignResult run_campaign(const CampaignOptions& o, const Judge& judge,
         nf.generator = std::string(generator_for(o.generators, index[k]).name);
         nf.seed = o.seed, nf.index = index[k];
         nf.first_description = describe(f, r);
+        nf.found_after = since(start);
         nf.cases = 1;
         nf.examples = {index[k]};
         nf.minimal = c;
@@ -151,6 +152,7 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                         {"seed", f.seed},
                         {"index", f.index},
                         {"replay", replay_command(f)},
+                        {"found_after_seconds", f.found_after},
                         {"cases", f.cases},
                         {"examples", f.examples},
                         {"file", "failures/" + failure_file_name(f.failure)},

@@ -88,10 +88,14 @@ Case sizes(Random& r) {
   }
   const double vw = c.viewport.width, vh = c.viewport.height;
   const int top = largest_exponent_below(4 * std::max(vw, vh));
-  const int count = r.between(1, 6);
+  // 1 to 511 triangles, log-distributed: most cases have a few, some a crowd (with the depth
+  // test, overlapping ones), and checking many at once keeps the campaign fast.
+  const int count = int(r.binades(0, 8));
   const bool perspective = r.chance(0.4);
+  // A crowd's triangles stay below 64 pixels, so that a case costs milliseconds, not seconds.
+  const int largest = count > 16 ? std::min(top, 5) : top;
   for (int t = 0; t < count; ++t) {
-    const double size = r.binades(-5, top);  // pixels
+    const double size = r.binades(-5, largest);  // pixels
     double cx = r.uniform(0, vw), cy = r.uniform(0, vh);
     if (r.chance(0.2)) cx = r.uniform(-0.25 * vw, 1.25 * vw), cy = r.uniform(-0.25 * vh, 1.25 * vh);
     std::array<std::array<double, 2>, 3> p;

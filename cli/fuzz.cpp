@@ -215,12 +215,14 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     const auto file = out / "failures" / campaign::failure_file_name(nf.failure);
     write_case_file(file, nf.minimal);
     clear_line();
-    fmt::print("  {} to {} triangle{}, {} varying{} in {:.1f} s ({} steps, {} checks{}): {}\n",
-               co.shrink ? "shrunk" : "kept", nf.minimal.triangles.size(),
-               nf.minimal.triangles.size() == 1 ? "" : "s", nf.minimal.varyings.size(),
-               nf.minimal.varyings.size() == 1 ? "" : "s", nf.shrink_seconds, nf.shrink_steps,
-               nf.shrink_checks, nf.shrink_complete || !co.shrink ? "" : ", out of time",
-               shown_path(file.string()));
+    fmt::print(
+        "  {} to {} triangle{}, {} varying{} in {:.1f} s ({} steps, {} checks{}), {:.1f} s "
+        "into the campaign: {}\n",
+        co.shrink ? "shrunk" : "kept", nf.minimal.triangles.size(),
+        nf.minimal.triangles.size() == 1 ? "" : "s", nf.minimal.varyings.size(),
+        nf.minimal.varyings.size() == 1 ? "" : "s", nf.shrink_seconds, nf.shrink_steps,
+        nf.shrink_checks, nf.shrink_complete || !co.shrink ? "" : ", out of time",
+        nf.found_after + nf.shrink_seconds, shown_path(file.string()));
     std::fflush(stdout);
   };
   const campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
