@@ -148,6 +148,7 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                         {"signature", f.failure.signature()},
                         {"description", f.minimal.description},
                         {"first_description", f.first_description},
+                        {"known", f.known},
                         {"generator", f.generator},
                         {"seed", f.seed},
                         {"index", f.index},

@@ -48,6 +48,7 @@ struct FoundFailure {
   double shrink_seconds = 0;
   bool shrink_complete = false;
   double found_after = 0;          // seconds into the campaign when its first case was checked
+  bool known = false;              // listed in the campaign's baseline (set by whoever has one)
   uint64_t cases = 0;              // cases of the campaign showing it
   std::vector<uint64_t> examples;  // the first few of their indices
 };
@@ -96,9 +97,9 @@ std::string failure_file_name(const Failure& f);
 
 // The campaign's results.json: {"campaign": {seed, count, seconds, generators, fraction,
 // fraction_start}, "stats": {...}, "failures": [{class, detail, signature, description,
-// generator, seed, index, replay, found_after_seconds, cases, examples, file, shrink: {steps,
-// checks, seconds, complete}, triangles, varyings}]}. `run` is the run's description (GL strings
-// and model) as the caller has it, stored as given under "run".
+// known, generator, seed, index, replay, found_after_seconds, cases, examples, file, shrink:
+// {steps, checks, seconds, complete}, triangles, varyings}]}. `run` is the run's description (GL
+// strings and model) as the caller has it, stored as given under "run".
 nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run);
 
 }  // namespace glrc::campaign

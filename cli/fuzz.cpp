@@ -91,6 +91,10 @@ CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
                   "seconds shrinking one failure may take (default 60)")
       ->check(finite_range(0, 1e7));
   cmd->add_flag("--no-shrink", f.no_shrink, "keep each failure's first case as found");
+  cmd->add_option(
+      "--baseline", f.baseline,
+      "known campaign failures, `<failure>,Fail` lines (non_finite_noperspective,Fail): "
+      "reported as known, they do not fail the campaign");
   return cmd;
 }
 
@@ -128,6 +132,13 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   co.shrink = !f.no_shrink;
   co.shrinking.seconds = f.shrink_seconds;
 
+  Options for_baseline;
+  for_baseline.baseline = f.baseline;
+  const Baseline baseline = load_baseline(for_baseline);
+  const auto known = [&](const campaign::Failure& failure) {
+    const std::string file = campaign::failure_file_name(failure);
+    return baseline.expected.count(file.substr(0, file.size() - 5)) > 0;
+  };
   std::optional<MesaPrefix> prefix;
   if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
@@ -207,8 +218,8 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   };
   progress.found = [&](const campaign::FoundFailure& nf) {
     clear_line();
-    fmt::print("new failure {} in {}_{}_{}: {}\n", nf.failure.signature(), nf.generator, nf.seed,
-               nf.index, nf.first_description);
+    fmt::print("{} {} in {}_{}_{}: {}\n", known(nf.failure) ? "known failure" : "new failure",
+               nf.failure.signature(), nf.generator, nf.seed, nf.index, nf.first_description);
     std::fflush(stdout);
   };
   progress.shrunk = [&](const campaign::FoundFailure& nf) {
@@ -225,8 +236,13 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
         nf.found_after + nf.shrink_seconds, shown_path(file.string()));
     std::fflush(stdout);
   };
-  const campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
+  campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
   clear_line();
+  size_t new_failures = 0;
+  for (campaign::FoundFailure& nf : result.failures) {
+    nf.known = known(nf.failure);
+    new_failures += !nf.known;
+  }
 
   nlohmann::json run;
   glrc::to_json(run, info);
@@ -235,18 +251,19 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   // deqp-runner's format, one line per distinct failure (its minimal case's name).
   std::string csv;
   for (const campaign::FoundFailure& nf : result.failures)
-    csv += fmt::format("{},Fail,{:.3f}\n", nf.minimal.name, nf.minimal_result.seconds);
+    csv += fmt::format("{},{},{:.3f}\n", nf.minimal.name, nf.known ? "ExpectedFail" : "Fail",
+                       nf.minimal_result.seconds);
   report::write_file_atomically(out / "results.csv", csv);
   const campaign::CampaignStats& st = result.stats;
   fmt::print(
       "\n{} cases, {} triangles, {} pixels checked in {:.1f} s ({:.0f} triangles/s); {} "
-      "failing, {} distinct failure{}{}\n",
+      "failing, {} distinct failure{} ({} new){}\n",
       st.cases, st.triangles, st.pixels, st.seconds, st.triangles_per_second(), st.failing_cases,
-      result.failures.size(), result.failures.size() == 1 ? "" : "s",
+      result.failures.size(), result.failures.size() == 1 ? "" : "s", new_failures,
       st.skipped ? fmt::format("; {} skipped (beyond GL's specified range)", st.skipped) : "");
   fmt::print("results in {}\n", shown_path(out.string()));
   if (st.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
-  return result.failures.empty() ? 0 : 1;
+  return new_failures == 0 ? 0 : 1;
 }
 
 }  // namespace glrc::cli

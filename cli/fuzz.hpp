@@ -20,13 +20,17 @@ struct FuzzOptions {
   std::optional<double> seconds;
   std::vector<std::string> generators;  // default: every one
   std::string replay, emit;
+  // Known campaign failures, `<failure>,Fail` lines (Mesa CI's format; <failure> is the name of
+  // the minimal case, "non_finite_noperspective"): reported as known, they do not fail it.
+  std::string baseline;
   double shrink_seconds = 60;
   bool no_shrink = false;
 };
 
 // Adds the `fuzz` subcommand's own options (the GL, model and worker options are the caller's).
 CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f);
-// Exit 0: no failure; 1: failures found; 2: bad input; 130/143: interrupted.
+// Exit 0: no failure the baseline does not list; 1: a new failure; 2: bad input; 130/143:
+// interrupted.
 int cmd_fuzz(const Options& o, const FuzzOptions& f);
 
 }  // namespace glrc::cli

@@ -64,6 +64,20 @@ TEST_F(Fuzz, FindsAndShrinksTheClipperNaN) {
   EXPECT_NE(run.out.find("NaN/Inf"), std::string::npos) << run.out;
 }
 
+TEST_F(Fuzz, AFailureTheBaselineListsIsKnownAndDoesNotFailTheCampaign) {
+  std::ofstream(dir_ / "known.txt") << "# Mesa's clipper NaN\nnon_finite_noperspective,Fail\n";
+  const auto out = dir_ / "campaign";
+  const auto r = glrefcheck("fuzz --seed 1 --count 12 --generator clip --jobs 2 --baseline '" +
+                            (dir_ / "known.txt").string() + "' --out '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("known failure non_finite/noperspective in clip_1_7"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("1 distinct failure (0 new)"), std::string::npos) << r.out;
+  EXPECT_EQ(read(out / "results.csv").substr(0, 38), "non_finite_noperspective,ExpectedFail,");
+  const auto results = nlohmann::json::parse(read(out / "results.json"));
+  EXPECT_EQ(results["failures"][0]["known"], true);
+}
+
 TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
   const auto file = dir_ / "clip_1_7.json";
   const auto r = glrefcheck("fuzz --generator clip --replay 1:7 --emit '" + file.string() + "'");
