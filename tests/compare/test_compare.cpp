@@ -212,6 +212,32 @@ TEST(Compare, StatisticsOverManyPixels) {
   EXPECT_EQ(r.status, Status::pass);
 }
 
+// A case without varyings has an allowance without components: its depth is still judged by the
+// allowance, not by the fixed 16 ULPs (found by a fuzz campaign: llvmpipe's depth 21 ULPs off,
+// where the allowance was 2e-3, failed).
+TEST(Compare, DepthOfACaseWithoutVaryingsIsJudgedByTheAllowance) {
+  Case c = two_varyings_case();
+  c.varyings.clear();
+  for (Vertex& v : c.vertices)
+    v.values.clear();
+  Frame ref = reference_frame(two_varyings_case());
+  ref.components.clear();
+  Frame allowed(ref.width, ref.height, 0);
+  allowed.primitive = ref.primitive;
+  for (float& d : allowed.depth)
+    d = 1e-3f;
+  const std::vector<uint8_t> band(ref.pixel_count(), 0);
+  Frame gl = ref;
+  gl.depth[gl.index(2, 2)] += 5e-4f;  // about 8,000 ULPs of 1.0, half the allowance
+  CaseResult r = compare(c, expect(ref, band, allowed), gl, Tolerance{});
+  EXPECT_EQ(r.status, Status::pass) << r.message;
+  EXPECT_NEAR(channel(r, "depth").max_ratio, 0.5, 1e-3);
+  gl.depth[gl.index(2, 2)] += 1e-3f;
+  r = compare(c, expect(ref, band, allowed), gl, Tolerance{});
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_NEAR(channel(r, "depth").max_ratio, 1.5, 1e-3);
+}
+
 TEST(Compare, SpecToleranceIsThePerPixelAllowance) {
   const Case c = two_varyings_case();
   const Frame ref = reference_frame(c);
