@@ -1,5 +1,7 @@
 #include "ref/clipping.hpp"
 
+#include <cmath>
+
 namespace glrc::ref {
 
 DepthClip depth_clip(const TriangleSetup& t) {
@@ -21,6 +23,20 @@ DepthClip depth_clip(const TriangleSetup& t) {
   };
   if (clip.crosses_near) clip.near = form(1);
   if (clip.crosses_far) clip.far = form(-1);
+  // 1 ± z_n at a pixel is form / Δ with Δ = Σ E'_i·w_c,i, constant over the window; the scale
+  // is |Δ| over the form's gradient (doubles: it sizes a band, it decides no bit).
+  LinearForm w;
+  for (int i = 0; i < 3; ++i)
+    w += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c);
+  auto scale = [&](int plane) {
+    LinearForm f;
+    for (int i = 0; i < 3; ++i)
+      f += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c + plane * t.v[i].z_c);
+    const double g = std::hypot(f.a.get_d(), f.b.get_d());
+    return g > 0 ? std::fabs(w.c.get_d()) / g : 0.0;
+  };
+  if (clip.crosses_near) clip.near_scale = scale(1);
+  if (clip.crosses_far) clip.far_scale = scale(-1);
   return clip;
 }
 

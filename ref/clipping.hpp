@@ -14,6 +14,11 @@ struct DepthClip {
   // >= 0 where the point of the triangle under the pixel centre has z_c >= -w_c (near) and
   // z_c <= w_c (far). Closed: a centre exactly on the plane is inside.
   SignEvaluator near, far;
+  // Pixels per unit of z_n across each plane's line (1/|grad z_n|, in window pixels): how far
+  // the line moves when z_n at it is off by one. 1 ± z_n is form / Σ E'_i·w_c,i, and that
+  // denominator is constant over the window (homogeneous rasterization: w/w = 1), so a z_n
+  // error ε moves the line by ε·scale pixels. 0 for a plane the triangle does not cross.
+  double near_scale = 0, far_scale = 0;
 };
 
 DepthClip depth_clip(const TriangleSetup& t);

@@ -60,7 +60,8 @@ std::pair<int, int> CoverageTest::row_span(int py, double reach, int x0, int x1)
   return {int(std::ceil(lo)), int(std::floor(hi))};
 }
 
-bool CoverageTest::classifies_nothing(int px, int py, double largest, bool unstable) const {
+bool CoverageTest::classifies_nothing(int px, int py, double largest, bool unstable,
+                                      double largest_z) const {
   // classify's own tests with the band of `largest`, which is the widest: a centre outside it
   // is outside every narrower one; one inside every edge's and the near and far planes' bands
   // from within is inside every narrower one too.
@@ -71,20 +72,20 @@ bool CoverageTest::classifies_nothing(int px, int py, double largest, bool unsta
     inside = inside && d > band;
   }
   if (clip_.crosses_near) {
-    const double d = clip_.near.distance(px, py);
-    if (d < -largest) return true;
-    inside = inside && d > largest;
+    const double d = clip_.near.distance(px, py), b = largest + largest_z * clip_.near_scale;
+    if (d < -b) return true;
+    inside = inside && d > b;
   }
   if (clip_.crosses_far) {
-    const double d = clip_.far.distance(px, py);
-    if (d < -largest) return true;
-    inside = inside && d > largest;
+    const double d = clip_.far.distance(px, py), b = largest + largest_z * clip_.far_scale;
+    if (d < -b) return true;
+    inside = inside && d > b;
   }
   return inside;
 }
 
 uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
-                               bool unstable) const {
+                               bool unstable, double z_freedom) const {
   uint8_t bits = 0;
   // Distances first: a centre far outside any band needs no exact sign.
   std::array<double, 3> d{}, band{};
@@ -94,11 +95,13 @@ uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<
     if (d[i] < -band[i]) return 0;
   }
   double near_d = INFINITY, far_d = INFINITY;
-  if (clip_.crosses_near && (near_d = clip_.near.distance(px, py)) < -freedom) return 0;
-  if (clip_.crosses_far && (far_d = clip_.far.distance(px, py)) < -freedom) return 0;
+  const double near_band = freedom + z_freedom * clip_.near_scale;
+  const double far_band = freedom + z_freedom * clip_.far_scale;
+  if (clip_.crosses_near && (near_d = clip_.near.distance(px, py)) < -near_band) return 0;
+  if (clip_.crosses_far && (far_d = clip_.far.distance(px, py)) < -far_band) return 0;
   for (int i = 0; i < 3; ++i)
     if (d[i] <= band[i]) bits |= shared[i] ? edge::shared : edge::snapping;
-  if (near_d <= freedom || far_d <= freedom) bits |= edge::snapping;
+  if (near_d <= near_band || far_d <= far_band) bits |= edge::snapping;
   if (unstable) bits |= edge::unstable;
   if (bits == 0) return 0;
 

@@ -30,11 +30,15 @@ class CoverageTest {
   // triangle, and not outside the others. unstable: the triangle's orientation is not decided
   // by the freedom; every centre inside it grown by the bands is marked edge::unstable.
   uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
-                   bool unstable = false) const;
+                   bool unstable = false, double z_freedom = 0) const;
+  // (z_freedom: the z_n freedom at the pixel, PositionFreedom::z_clip_at, which widens the near
+  // and far planes' bands by z_freedom · DepthClip's scale pixels.)
   // Whether classify(px, py, freedom, ...) is 0 for every freedom up to `largest` (the centre is
   // outside a band, or inside every band with nothing else to mark), so that the freedom at the
   // pixel need not be computed. False says nothing.
-  bool classifies_nothing(int px, int py, double largest, bool unstable) const;
+  // largest_z: the largest z_freedom of the triangle.
+  bool classifies_nothing(int px, int py, double largest, bool unstable,
+                          double largest_z = 0) const;
   // The pixels [first, last] of row py within [x0, x1] whose centre may be within `reach`
   // pixels of the exact triangle (inside every exact edge's line grown by `reach`), as a span
   // that may hold more but never misses one (SignEvaluator::row_interval); first > last for

@@ -68,8 +68,8 @@ double ConcaveEnvelope::at(double x, double y) const {
   return std::clamp(v, lo_, hi_);
 }
 
-std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t,
-                                           int subpixel_bits) {
+std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
+                                           std::vector<std::array<double, 3>>* z_clip) {
   std::vector<ClipVertex> poly;
   for (uint32_t index : t.index) {
     ClipVertex v;
@@ -85,6 +85,18 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     return plane % 2 == 0 ? w + v.p[axis] : w - v.p[axis];
   };
   for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
+    if (plane == 4 && z_clip) {
+      // The polygon the near and far planes cut: each vertex's z_c and w_c carry e_z and e_w,
+      // so the sign of w_c ∓ z_c may differ from the exact one within (e_z + e_w)/w_c in z_n
+      // (e_z + |z_n|·e_w would be the error of z_n itself; the sign is of the difference).
+      const Viewport& vp = c.viewport;
+      for (const ClipVertex& v : poly) {
+        const double w = v.p[3];
+        if (!(w > 0)) continue;
+        z_clip->push_back({vp.x + vp.width / 2.0 * (1 + v.p[0] / w),
+                           vp.y + vp.height / 2.0 * (1 + v.p[1] / w), (v.e[2] + v.e[3]) / w});
+      }
+    }
     std::vector<ClipVertex> out;
     for (size_t i = 0; i < poly.size(); ++i) {
       const ClipVertex& a = poly[i];
@@ -156,8 +168,10 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     whole.push_back({x_w, y_w, snap_and_round(x_w, y_w, m, subpixel_bits)});
   }
   bool any = false;
-  if (const std::vector<PolygonVertex> polygon = clipped_polygon(c, t, subpixel_bits);
-      !polygon.empty()) {
+  std::vector<std::array<double, 3>> z_clip;
+  const std::vector<PolygonVertex> poly_vertices = clipped_polygon(c, t, subpixel_bits, &z_clip);
+  if (!z_clip.empty()) z_clip_ = ConcaveEnvelope(z_clip);
+  if (const std::vector<PolygonVertex>& polygon = poly_vertices; !polygon.empty()) {
     any = true;
     std::vector<std::array<double, 3>> delta, depth, weight, inverse_w;
     for (const PolygonVertex& v : polygon) {

@@ -82,9 +82,11 @@ struct PolygonVertex {
 
 // Triangle t clipped in clip space against the view volume in Mesa's order (x, y, then near
 // and far), each vertex with its freedom for an implementation reporting `subpixel_bits`.
-// Empty when nothing of the triangle is left.
-std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t,
-                                           int subpixel_bits);
+// Empty when nothing of the triangle is left. With `z_clip`, also the vertices of the polygon
+// clipped against x and y only, as {x_w, y_w, (e_z + e_w)/w_c} (window pixels, z_n units; vertices
+// with w_c <= 0 left out): the freedom of the near and far planes' cut (PositionFreedom).
+std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
+                                           std::vector<std::array<double, 3>>* z_clip = nullptr);
 
 // The freedom of one triangle, per pixel: the largest of the polygons' envelopes (see above).
 class PositionFreedom {
@@ -95,6 +97,13 @@ class PositionFreedom {
   double at(int px, int py) const;
   // Freedom of z_w at the pixel from the clipping of depth (0 for an unclipped triangle).
   double depth_at(int px, int py) const;
+  // Freedom of z_n at the pixel where the near and far planes decide coverage: clipping
+  // against x and y (first, as Mesa does) makes vertices whose z_c and w_c are rounded
+  // (e_z, e_w of the polygon's vertices), so the sign of w_c ∓ z_c of the polygon the near and
+  // far planes then cut may differ from the exact one within Σ λ_j (e_z,j + e_w,j)/w_c,j, the
+  // least concave majorant of those over that polygon's vertices. 0 where no vertex was made.
+  double z_clip_at(int px, int py) const { return z_clip_.at(px + 0.5, py + 0.5); }
+  double z_clip_largest() const { return z_clip_.largest(); }
   // How much a smooth value may move at the pixel, as a share of the triangle's spread, from
   // the relative errors ρ_j of clipped vertices' 1/w_c: a value is Σ μ_j v_j with perspective
   // weights μ_j = λ_j (1/w_j) / (1/w), and re-weighting vertex j by 1 + ρ_j moves it by at most
@@ -118,7 +127,7 @@ class PositionFreedom {
  private:
   // The clipped polygon, the whole triangle in a guard band.
   std::array<ConcaveEnvelope, 2> delta_;
-  ConcaveEnvelope depth_, weight_, inverse_w_;
+  ConcaveEnvelope depth_, weight_, inverse_w_, z_clip_;
   std::vector<std::array<double, 2>> polygon_, whole_;
   int generations_ = 0;
   bool may_turn_over_ = false;

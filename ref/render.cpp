@@ -202,9 +202,11 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     const auto [x0, x1] = w.coverage.row_span(py, w.reach_px, w.reach.x0, w.reach.x1);
     for (int px = x0; px <= x1; ++px)
       // Most pixels are beyond or deep within every band: no freedom to compute for them.
-      if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable))
+      if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable,
+                                         s.allowance ? freedom.z_clip_largest() : 0.0))
         r.edges[f.index(px, py - s.row0)] |=
-            w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable);
+            w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable,
+                                s.allowance ? freedom.z_clip_at(px, py) : 0.0);
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
     w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
                                 [&](int px) { draw(px, py); });

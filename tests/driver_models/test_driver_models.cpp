@@ -207,5 +207,56 @@ TEST(DriverModelAllowance, TinyWFanSliversStayWithinTheAllowance) {
   }
 }
 
+// Coverage at the near and far planes. Mesa clips against x and y before z, and a vertex made
+// on an x or y plane has its z_c and w_c rounded to float32, so the far (or near) plane cuts the
+// polygon where it cuts the rounded one: a fuzz campaign found llvmpipe covering a pixel whose
+// exact z_n is 1 + 1.4e-8 (two vertices on z = w_c, the third 2^-21 beyond it). Every pixel
+// Mesa's clipper (the models, bit for bit) covers differently from the exact reference lies
+// within a band the reference marks (ref/freedom.hpp, PositionFreedom::z_clip_at), on that case
+// and on random triangles with vertices on, near and beyond the near and far planes.
+TEST(DriverModelCoverage, AtTheNearAndFarPlanesOnlyMarkedPixelsDiffer) {
+  Case found;
+  found.name = "fuzz-fill-rule";
+  found.fb_width = found.fb_height = 1;
+  found.viewport = {0, 0, 1, 1};
+  found.vertices = {{{0, -32, 1.0000005f, 1}, {}}, {{1, 0, 1, 1}, {}}, {{0, 1, 1, 1}, {}}};
+  found.triangles = {{0, 1, 2}};
+  std::vector<Case> cases = {found};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    Case c;
+    c.name = "near-far";
+    c.fb_width = c.fb_height = 32;
+    c.viewport = {0, 0, 32, 32};
+    for (int i = 0; i < 3; ++i) {
+      const float w = float(1.5 + unit(rng));
+      const float side = unit(rng) < 0 ? -1.0f : 1.0f;
+      // On the plane, a few ulps either side of it, or anywhere in depth.
+      float z = side * w;
+      const double pick = unit(rng);
+      if (pick > 0.3) z = float(z * (1 + std::ldexp(unit(rng), -20)));
+      if (pick > 0.8) z = float(1.2 * w * unit(rng));
+      c.vertices.push_back({{float(3 * w * unit(rng)), float(3 * w * unit(rng)), z, w}, {}});
+    }
+    c.triangles = {{0, 1, 2}};
+    cases.push_back(c);
+  }
+  for (Driver d : kDrivers) {
+    long differ = 0;
+    for (const Case& c : cases) {
+      const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
+      const Frame f = render(c, d);
+      for (size_t i = 0; i < f.pixel_count(); ++i)
+        if (r.frame.primitive[i] != f.primitive[i]) {
+          ++differ;
+          EXPECT_NE(r.edges[i], 0) << to_string(d) << ": case " << c.name << " pixel " << i;
+        }
+    }
+    // The band is not everything: the models differ from the reference somewhere at all.
+    EXPECT_GT(differ, 0) << to_string(d);
+  }
+}
+
 }  // namespace
 }  // namespace glrc::driver_models
