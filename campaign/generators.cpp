@@ -88,9 +88,9 @@ Case sizes(Random& r) {
   }
   const double vw = c.viewport.width, vh = c.viewport.height;
   const int top = largest_exponent_below(4 * std::max(vw, vh));
-  // 1 to 511 triangles, log-distributed: most cases have a few, some a crowd (with the depth
+  // 1 to 2,047 triangles, log-distributed: most cases have a few, some a crowd (with the depth
   // test, overlapping ones), and checking many at once keeps the campaign fast.
-  const int count = int(r.binades(0, 8));
+  const int count = int(r.binades(0, 10));
   const bool perspective = r.chance(0.4);
   // A crowd's triangles stay below 64 pixels, so that a case costs milliseconds, not seconds.
   const int largest = count > 16 ? std::min(top, 5) : top;
@@ -163,9 +163,11 @@ Case clip(Random& r) {
     }
     add_triangle(c, v);
   }
+  // 1 to 3 vec2 varyings of any qualifiers: 39 layouts, each compiled once per worker (sizes
+  // are the attributes generator's business).
   const int varyings = r.between(1, 3);
   for (int k = 0; k < varyings; ++k)
-    add_varying(c, r.between(1, 4), any_interpolation(r));
+    add_varying(c, 2, any_interpolation(r));
   fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
   return c;
 }
@@ -265,9 +267,16 @@ Case attributes(Random& r) {
                   r.uniform(-0.9, 0.9), some_w(r, perspective));
     add_triangle(c, v);
   }
-  const int varyings = r.between(1, 7);
+  // The varyings' layout from a menu of 24 (1, 2, 4 or 7 varyings; all vec4 or sizes 1 to 4
+  // in turn; qualifiers in turn from a random one): every qualifier and size still comes, and
+  // a worker compiles each layout's shaders once, not once per case (compiling took four
+  // fifths of a campaign of these).
+  static constexpr int kCounts[] = {1, 2, 4, 7};
+  const int varyings = kCounts[r.below(4)];
+  const bool vec4 = r.chance(0.5);
+  const auto first = uint64_t(r.below(3));
   for (int k = 0; k < varyings; ++k)
-    add_varying(c, r.between(1, 4), any_interpolation(r));
+    add_varying(c, vec4 ? 4 : 1 + k % 4, Interpolation((first + uint64_t(k)) % 3));
   // Per component, a magnitude from 2^-100 (about 1e-30) to 2^100 (about 1e30), each vertex's
   // value within a few binades of it, either sign: mixed magnitudes within one vector.
   std::vector<int> exponent(size_t(c.component_count()));

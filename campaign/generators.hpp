@@ -23,7 +23,7 @@ struct Generator {
 };
 
 // Every generator, in a fixed order:
-//   sizes       1 to 511 triangles from sub-pixel to several times the viewport, slivers, and
+//   sizes       1 to 2,047 triangles from sub-pixel to several times the viewport, slivers, and
 //               triangles far from the window origin (framebuffers up to 4096 pixels wide or
 //               high);
 //   clip        w over orders of magnitude, w <= 0, vertices and edges on and near the clip
