@@ -6,6 +6,7 @@
 #include <charconv>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <set>
 
 #include "campaign/campaign.hpp"
 #include "casefile/write.hpp"
@@ -17,6 +18,7 @@
 #include "cli/validators.hpp"
 #include "cli/workers.hpp"
 #include "core/text.hpp"
+#include "report/html.hpp"
 #include "report/json_types.hpp"
 #include "report/report.hpp"
 
@@ -156,7 +158,10 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   s.log_dir = out / "logs";
   s.interrupt_fd = interrupt_fd;
   s.wrapper = o.worker_wrapper;
-  s.images = [](const Case&) { return false; };
+  // Heatmaps for the minimal cases only (checked once more when shrunk), for report.html.
+  std::set<std::string> with_images;
+  std::vector<CaseResult> minimal_results;
+  s.images = [&with_images](const Case& c) { return with_images.count(c.name) > 0; };
   if (prefix) s.environment = mesa_environment(*prefix, out);
   s.environment.push_back(huge_page_malloc_tunable());
   co.batch = size_t(std::max(4 * s.jobs, 8));
@@ -225,6 +230,11 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   progress.shrunk = [&](const campaign::FoundFailure& nf) {
     const auto file = out / "failures" / campaign::failure_file_name(nf.failure);
     write_case_file(file, nf.minimal);
+    // Its heatmaps, in <out>/cases/<name>/ as `run` writes a failing case's.
+    with_images.insert(nf.minimal.name);
+    CaseResult again = session.check({&nf.minimal}).front();
+    report::apply(baseline, again);
+    minimal_results.push_back(std::move(again));
     clear_line();
     fmt::print(
         "  {} to {} triangle{}, {} varying{} in {:.1f} s ({} steps, {} checks{}), {:.1f} s "
@@ -254,6 +264,12 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     csv += fmt::format("{},{},{:.3f}\n", nf.minimal.name, nf.known ? "ExpectedFail" : "Fail",
                        nf.minimal_result.seconds);
   report::write_file_atomically(out / "results.csv", csv);
+  // The page of the minimal failures: each one's statistics and heatmaps.
+  RunInfo page = info;
+  page.seconds = result.stats.seconds;
+  page.total_cases = minimal_results.size();
+  page.interrupted = result.stats.interrupted;
+  report::write_run_html(out / "report.html", {page, minimal_results}, out);
   const campaign::CampaignStats& st = result.stats;
   fmt::print(
       "\n{} cases, {} triangles, {} pixels checked in {:.1f} s ({:.0f} triangles/s); {} "

@@ -56,6 +56,11 @@ TEST_F(Fuzz, FindsAndShrinksTheClipperNaN) {
     }
   EXPECT_TRUE(listed) << results.dump(2);
   EXPECT_NE(read(out / "results.csv").find("non_finite_noperspective,Fail,"), std::string::npos);
+  // The page of the minimal failures, with the heatmaps `run` would write for them.
+  EXPECT_TRUE(std::filesystem::exists(out / "cases" / "non_finite_noperspective" / "coverage.png"));
+  const std::string page = read(out / "report.html");
+  EXPECT_NE(page.find("non_finite_noperspective"), std::string::npos);
+  EXPECT_NE(page.find("data:image/png"), std::string::npos);
 
   // The minimal case fails `run` the same way: NaN where the reference has a value.
   const auto run =
