@@ -1,5 +1,6 @@
 #include "campaign/campaign.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -165,6 +166,138 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                           {"seconds", f.shrink_seconds},
                           {"complete", f.shrink_complete}}}});
   return {{"campaign", campaign}, {"run", run}, {"stats", stats}, {"failures", failures}};
+}
+
+bool is_campaign_json(const nlohmann::json& results) {
+  return results.is_object() && results.contains("campaign") && results.contains("stats") &&
+         results.contains("failures");
+}
+
+namespace {
+
+// A field of a shard, checked: one line naming the shard and the field otherwise.
+const nlohmann::json& field(const nlohmann::json& j, const std::string& source,
+                            const std::string& path, const char* key,
+                            nlohmann::json::value_t type) {
+  const std::string where = path.empty() ? key : path + "." + key;
+  if (!j.is_object() || !j.contains(key))
+    throw std::runtime_error(source + ": " + where + ": expected a field, got none");
+  const nlohmann::json& v = j.at(key);
+  const bool number = type == nlohmann::json::value_t::number_float;
+  const bool unsigned_ok = type == nlohmann::json::value_t::number_unsigned;
+  if ((number && !v.is_number()) || (unsigned_ok && !v.is_number_unsigned()) ||
+      (!number && !unsigned_ok && v.type() != type))
+    throw std::runtime_error(source + ": " + where + ": expected " +
+                             (number        ? "a number"
+                              : unsigned_ok ? "a whole number"
+                                            : std::string(nlohmann::json(type).type_name())) +
+                             ", got " + v.dump().substr(0, 80));
+  return v;
+}
+
+}  // namespace
+
+nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
+                               const std::vector<std::string>& sources, std::vector<size_t>& from) {
+  using T = nlohmann::json::value_t;
+  if (shards.empty()) throw std::runtime_error("merge: no campaign shards");
+  const auto& first = field(shards[0], sources[0], "", "campaign", T::object);
+  const uint64_t fraction = field(first, sources[0], "campaign", "fraction", T::number_unsigned);
+  std::vector<bool> seen(fraction + 1, false);
+  nlohmann::json merged = shards[0];
+  nlohmann::json& stats = merged["stats"];
+  nlohmann::json failures = nlohmann::json::array();
+  std::map<std::string, size_t> by_signature;
+  from.clear();
+  for (size_t k = 0; k < shards.size(); ++k) {
+    const std::string& source = sources[k];
+    const auto& campaign = field(shards[k], source, "", "campaign", T::object);
+    for (const char* key : {"seed", "generators", "count", "seconds", "fraction"})
+      if (campaign.value(key, nlohmann::json()) != first.value(key, nlohmann::json()))
+        throw std::runtime_error(source + ": campaign." + key + ": expected " +
+                                 first.value(key, nlohmann::json()).dump() +
+                                 " as the first shard, got " +
+                                 campaign.value(key, nlohmann::json()).dump().substr(0, 80));
+    const uint64_t start =
+        field(campaign, source, "campaign", "fraction_start", T::number_unsigned);
+    if (start < 1 || start > fraction || seen[start])
+      throw std::runtime_error(source + ": campaign.fraction_start: expected one of 1.." +
+                               std::to_string(fraction) + " not given by another shard, got " +
+                               std::to_string(start));
+    seen[start] = true;
+    const auto& run = shards[k].value("run", nlohmann::json::object());
+    const auto& run0 = shards[0].value("run", nlohmann::json::object());
+    for (const char* key : {"gl_renderer", "gl_version", "model", "tolerance", "backend", "driver"})
+      if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
+        throw std::runtime_error(
+            source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
+            " as the first shard, got " + run.value(key, nlohmann::json()).dump().substr(0, 80));
+    const auto& s = field(shards[k], source, "", "stats", T::object);
+    if (k > 0) {
+      for (const char* key : {"cases", "triangles", "pixels", "failing_cases", "skipped"})
+        stats[key] = stats[key].get<uint64_t>() +
+                     field(s, source, "stats", key, T::number_unsigned).get<uint64_t>();
+      for (const char* key : {"seconds", "checking_seconds"})
+        stats[key] = stats[key].get<double>() +
+                     field(s, source, "stats", key, T::number_float).get<double>();
+      stats["interrupted"] = stats["interrupted"].get<bool>() || s.value("interrupted", false);
+    }
+    const auto& list = field(shards[k], source, "", "failures", T::array);
+    for (size_t i = 0; i < list.size(); ++i) {
+      const std::string path = "failures[" + std::to_string(i) + "]";
+      const auto& f = list[i];
+      const std::string signature = field(f, source, path, "signature", T::string);
+      const uint64_t index = field(f, source, path, "index", T::number_unsigned);
+      const uint64_t cases = field(f, source, path, "cases", T::number_unsigned);
+      const auto& examples = field(f, source, path, "examples", T::array);
+      const auto at = by_signature.find(signature);
+      if (at == by_signature.end()) {
+        by_signature[signature] = failures.size();
+        failures.push_back(f);
+        from.push_back(k);
+        continue;
+      }
+      nlohmann::json& m = failures[at->second];
+      std::vector<uint64_t> all = m["examples"].get<std::vector<uint64_t>>();
+      for (const auto& e : examples)
+        all.push_back(e.get<uint64_t>());
+      std::sort(all.begin(), all.end());
+      all.resize(std::min<size_t>(all.size(), 8));
+      const uint64_t total = m["cases"].get<uint64_t>() + cases;
+      if (index < m["index"].get<uint64_t>()) {
+        m = f;
+        from[at->second] = k;
+      }
+      m["cases"] = total;
+      m["examples"] = all;
+    }
+  }
+  for (uint64_t start = 1; start <= fraction; ++start)
+    if (!seen[start])
+      throw std::runtime_error("merge: shard " + std::to_string(start) + " of " +
+                               std::to_string(fraction) + " is missing");
+  // In the order the unsharded campaign meets them: by the index that first showed each.
+  std::vector<size_t> order(failures.size());
+  for (size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return failures[a]["index"].get<uint64_t>() < failures[b]["index"].get<uint64_t>();
+  });
+  nlohmann::json sorted = nlohmann::json::array();
+  std::vector<size_t> sorted_from;
+  for (const size_t i : order) {
+    sorted.push_back(failures[i]);
+    sorted_from.push_back(from[i]);
+  }
+  from = sorted_from;
+  merged["failures"] = sorted;
+  merged["campaign"]["fraction"] = 1;
+  merged["campaign"]["fraction_start"] = 1;
+  merged["campaign"]["merged_shards"] = shards.size();
+  const double checking = stats["checking_seconds"].get<double>();
+  stats["triangles_per_second"] =
+      checking > 0 ? double(stats["triangles"].get<uint64_t>()) / checking : 0.0;
+  return merged;
 }
 
 }  // namespace glrc::campaign

@@ -102,4 +102,20 @@ std::string failure_file_name(const Failure& f);
 // strings and model) as the caller has it, stored as given under "run".
 nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run);
 
+// Whether `results` (a results.json's contents) is a campaign's, not a run's.
+bool is_campaign_json(const nlohmann::json& results);
+
+// Joins the results.json of a campaign's shards (`fuzz --fraction N --fraction-start K`, each K
+// of 1..N once; the same seed, generators and count, on the same GL and model) into the
+// results.json of the campaign unsharded, timings aside: counts added up, and each failure
+// taken from the shard that met it first (the lowest index, whose minimal case the unsharded
+// campaign shrinks too), with the cases and examples of every shard. `from[i]` is the shard of
+// merged failure i. `sources` name the shards in messages. Throws std::runtime_error
+// ("<source>: campaign.seed: expected 7 as the other shards, got 8") for shards of different
+// campaigns, a shard twice or missing, or a field not as campaign_json writes it. A campaign
+// bounded by --time has no fixed set of cases: its shards merge, but the result is not the
+// unsharded one's.
+nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
+                               const std::vector<std::string>& sources, std::vector<size_t>& from);
+
 }  // namespace glrc::campaign

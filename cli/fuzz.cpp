@@ -71,6 +71,22 @@ void write_case_file(const std::filesystem::path& file, const Case& c) {
 
 }  // namespace
 
+void write_campaign_files(const std::filesystem::path& out, const nlohmann::json& doc) {
+  report::write_file_atomically(out / "results.json", doc.dump(2) + "\n");
+  // deqp-runner's format, one line per distinct failure (its minimal case's name).
+  std::string csv;
+  for (const nlohmann::json& f : doc["failures"]) {
+    std::string name = f.value("file", "");
+    name = std::filesystem::path(name).stem().string();
+    const double seconds = f.contains("result") ? f["result"].value("seconds", 0.0) : 0.0;
+    csv += fmt::format("{},{},{:.3f}\n", name, f.value("known", false) ? "ExpectedFail" : "Fail",
+                       seconds);
+  }
+  report::write_file_atomically(out / "results.csv", csv);
+}
+
+namespace {}  // namespace
+
 CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
   auto* cmd = app.add_subcommand(
       "fuzz",
@@ -256,14 +272,12 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
 
   nlohmann::json run;
   glrc::to_json(run, info);
-  report::write_file_atomically(out / "results.json",
-                                campaign::campaign_json(result, run).dump(2) + "\n");
-  // deqp-runner's format, one line per distinct failure (its minimal case's name).
-  std::string csv;
-  for (const campaign::FoundFailure& nf : result.failures)
-    csv += fmt::format("{},{},{:.3f}\n", nf.minimal.name, nf.known ? "ExpectedFail" : "Fail",
-                       nf.minimal_result.seconds);
-  report::write_file_atomically(out / "results.csv", csv);
+  nlohmann::json doc = campaign::campaign_json(result, run);
+  // Each minimal case's check as results.json has a case's, for `merge` and `report`.
+  for (size_t i = 0; i < doc["failures"].size() && i < minimal_results.size(); ++i)
+    doc["failures"][i]["result"] =
+        nlohmann::json::parse(report::case_result_json(minimal_results[i]));
+  write_campaign_files(out, doc);
   // The page of the minimal failures: each one's statistics and heatmaps.
   RunInfo page = info;
   page.seconds = result.stats.seconds;

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "cli/session.hpp"
 
@@ -32,5 +34,14 @@ CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f);
 // Exit 0: no failure the baseline does not list; 1: a new failure; 2: bad input; 130/143:
 // interrupted.
 int cmd_fuzz(const Options& o, const FuzzOptions& f);
+
+// A campaign's results.json (campaign::campaign_json, each failure with its minimal case's
+// "result") and results.csv (`<failure>,Fail|ExpectedFail,seconds`) in `out`.
+void write_campaign_files(const std::filesystem::path& out, const nlohmann::json& doc);
+
+// `merge` of campaign shards (`fuzz --fraction`): campaign::merge_campaigns, each failure's
+// minimal case and heatmaps copied from the shard it came from, report.html. Exit 0 when no
+// failure is new, 1 otherwise.
+int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir);
 
 }  // namespace glrc::cli

@@ -19,6 +19,7 @@
 #include "casefile/casefile.hpp"
 #include "cli/case_commands.hpp"
 #include "cli/compare.hpp"
+#include "cli/export.hpp"
 #include "cli/fuzz.hpp"
 #include "cli/identify.hpp"
 #include "cli/mesa_prefix.hpp"
@@ -201,6 +202,9 @@ int main_impl(int argc, char** argv) {
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);
 
+  ExportOptions export_options;
+  auto* export_command = add_export_command(app, export_options);
+
   auto* worker = app.add_subcommand("worker", "(internal) a GL worker process of `run`");
   worker->group("");  // not for people: `run` starts it
 
@@ -281,6 +285,7 @@ int main_impl(int argc, char** argv) {
     if (*merge) return cmd_merge(merge_dirs, o.out, o.html);
     if (*report_cmd) return cmd_report(report_dir, report_file);
     if (*compare) return cmd_compare(compare_options);
+    if (*export_command) return cmd_export(export_options, *export_command);
     if (*diff) return cmd_diff(o);
     if (*digest) return cmd_digest(o);
     if (*selftest) return cmd_selftest(o);

@@ -2,8 +2,14 @@
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "campaign/campaign.hpp"
+#include "cli/fuzz.hpp"
 #include "cli/journal.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run.hpp"
@@ -14,7 +20,103 @@
 
 namespace glrc::cli {
 
+namespace {
+
+// The results.json of a shard folder (or the file itself), parsed; nullopt when it cannot be
+// read as JSON (read_results_json then says why in its words).
+std::optional<nlohmann::json> raw_results(const std::string& dir) {
+  const std::filesystem::path file = report::run_folder(dir) / "results.json";
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
+}
+
+// The merge replaces its folder's run files: never a shard's own.
+void check_apart(const std::vector<std::string>& dirs, const std::string& out_dir) {
+  for (const auto& d : dirs) {
+    bool clash = inside(out_dir, report::run_folder(d)) && inside(report::run_folder(d), out_dir);
+    for (const std::string& name : run_output_names())
+      clash = clash || inside(report::run_folder(d), std::filesystem::path(out_dir) / name);
+    if (clash)
+      throw InputError("merge --out " + out_dir + ": expected a folder apart from the shards, " +
+                       "got the shard " + d + " or a folder whose run files hold it");
+  }
+}
+
+}  // namespace
+
+int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir) {
+  std::vector<nlohmann::json> shards;
+  for (const auto& d : dirs) {
+    auto j = raw_results(d);
+    if (!j || !campaign::is_campaign_json(*j))
+      throw InputError("merge: " + d + ": expected the results of a fuzz campaign shard, as the " +
+                       "first shard holds, got " +
+                       (j ? "a run's results" : "no readable results.json"));
+    shards.push_back(std::move(*j));
+  }
+  std::vector<size_t> from;
+  nlohmann::json merged;
+  try {
+    merged = campaign::merge_campaigns(shards, dirs, from);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string("merge: ") + e.what());
+  }
+  check_apart(dirs, out_dir);
+  const std::filesystem::path out = output_folder(out_dir);
+  clear_run_outputs(out);
+  std::filesystem::remove_all(out / "failures");
+  std::filesystem::create_directories(out / "failures");
+  // Each failure's minimal case and heatmaps, from the shard it was taken from.
+  std::vector<CaseResult> minimal;
+  size_t new_failures = 0;
+  for (size_t i = 0; i < merged["failures"].size(); ++i) {
+    const nlohmann::json& f = merged["failures"][i];
+    const std::filesystem::path shard = report::run_folder(dirs[from[i]]);
+    const std::filesystem::path file = f.value("file", "");
+    const std::string name = file.stem().string();
+    std::error_code ec;
+    std::filesystem::copy_file(shard / file, out / file,
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) throw InputError("merge: cannot copy " + (shard / file).string() + ": " + ec.message());
+    if (std::filesystem::is_directory(shard / "cases" / name, ec)) {
+      std::filesystem::create_directories(out / "cases" / name);
+      std::filesystem::copy(shard / "cases" / name, out / "cases" / name,
+                            std::filesystem::copy_options::recursive |
+                                std::filesystem::copy_options::overwrite_existing,
+                            ec);
+      if (ec) throw InputError("merge: cannot copy the heatmaps of " + name + ": " + ec.message());
+    }
+    if (f.contains("result"))
+      minimal.push_back(
+          report::case_result_from_json(f["result"].dump(), (shard / "results.json").string()));
+    new_failures += !f.value("known", false);
+  }
+  write_campaign_files(out, merged);
+  RunInfo page;
+  try {
+    page = report::run_info_from_json(merged["run"].dump(), dirs[0]);
+  } catch (const std::runtime_error& e) {
+    throw InputError(std::string("merge: ") + e.what());
+  }
+  page.total_cases = minimal.size();
+  report::write_run_html(out / "report.html", {page, minimal}, out);
+  const nlohmann::json& st = merged["stats"];
+  fmt::print("merged {} campaign shards: {} cases, {} triangles, {} distinct failure{} ({} new)\n",
+             shards.size(), st.value("cases", uint64_t(0)), st.value("triangles", uint64_t(0)),
+             merged["failures"].size(), merged["failures"].size() == 1 ? "" : "s", new_failures);
+  fmt::print("results in {}\n", shown_path(out.string()));
+  return new_failures == 0 ? 0 : 1;
+}
+
 int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, bool html) {
+  if (!dirs.empty())
+    if (const auto first = raw_results(dirs[0]); first && campaign::is_campaign_json(*first))
+      return cmd_merge_campaign(dirs, out_dir);
   std::vector<report::RunResults> shards;
   for (const auto& d : dirs) {
     try {
@@ -31,15 +133,7 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
   }
   const RunInfo& info = merged.run;
   const std::vector<CaseResult>& list = merged.cases;
-  // The merge replaces its folder's run files: never a shard's own.
-  for (const auto& d : dirs) {
-    bool clash = inside(out_dir, report::run_folder(d)) && inside(report::run_folder(d), out_dir);
-    for (const std::string& name : run_output_names())
-      clash = clash || inside(report::run_folder(d), std::filesystem::path(out_dir) / name);
-    if (clash)
-      throw InputError("merge --out " + out_dir + ": expected a folder apart from the shards, " +
-                       "got the shard " + d + " or a folder whose run files hold it");
-  }
+  check_apart(dirs, out_dir);
   const std::filesystem::path out = output_folder(out_dir);
   // Heatmaps and files of an earlier run or merge here would be taken for this merge's.
   clear_run_outputs(out);

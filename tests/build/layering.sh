@@ -20,7 +20,7 @@ declare -A allowed=(
   [check]="core ref compare driver_models gl_harness"
   [identify]="core ref compare gl_harness"
   [selftest]="core check compare driver_models gl_harness report"
-  [campaign]="core casefile selftest"
+  [campaign]="core casefile selftest compare"
 )
 
 status=0

@@ -220,8 +220,8 @@ TEST(CommandLine, AnUnknownCommandIsNamed) {
   EXPECT_EQ(o.exit_code, 2);
   EXPECT_EQ(
       o.err,
-      "glrefcheck: expected a command (run, fuzz, compare, merge, report, diff, digest, list, "
-      "identify, selftest), got \"bogus\" (see --help)\n");
+      "glrefcheck: expected a command (run, fuzz, compare, export, merge, report, diff, digest, "
+      "list, identify, selftest), got \"bogus\" (see --help)\n");
   const Outcome bytes = glrefcheck("\"$(printf 'r\\377n')\"");
   EXPECT_EQ(bytes.exit_code, 2);
   EXPECT_NE(bytes.err.find("got \"r\\xffn\""), std::string::npos) << bytes.err;

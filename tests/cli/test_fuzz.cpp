@@ -83,6 +83,62 @@ TEST_F(Fuzz, AFailureTheBaselineListsIsKnownAndDoesNotFailTheCampaign) {
   EXPECT_EQ(results["failures"][0]["known"], true);
 }
 
+// A campaign's results.json without what depends on timing.
+nlohmann::json untimed(const std::filesystem::path& file) {
+  nlohmann::json j = nlohmann::json::parse(read(file));
+  for (const char* key : {"seconds", "checking_seconds", "triangles_per_second"})
+    j["stats"].erase(key);
+  j["campaign"].erase("merged_shards");
+  for (auto& f : j["failures"]) {
+    f.erase("found_after_seconds");
+    f["shrink"].erase("seconds");
+    f["result"].erase("seconds");
+  }
+  return j;
+}
+
+TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
+  // Both shards meet the clipper NaN first (the first at index 18, the second at 7): the merge
+  // keeps index 7's, as the unsharded campaign does.
+  const std::string campaign = "fuzz --seed 1 --count 40 --generator clip --jobs 2";
+  const auto whole = dir_ / "whole", a = dir_ / "a", b = dir_ / "b", merged = dir_ / "merged";
+  ASSERT_EQ(glrefcheck(campaign + " --out '" + whole.string() + "'").exit_code, 1);
+  ASSERT_EQ(glrefcheck(campaign + " --fraction 2 --fraction-start 2 --out '" + b.string() + "'")
+                .exit_code,
+            1);
+  ASSERT_EQ(glrefcheck(campaign + " --fraction 2 --fraction-start 1 --out '" + a.string() + "'")
+                .exit_code,
+            1);
+  const auto r =
+      glrefcheck("merge '" + a.string() + "' '" + b.string() + "' --out '" + merged.string() + "'");
+  ASSERT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("merged 2 campaign shards: 40 cases"), std::string::npos) << r.out;
+  EXPECT_EQ(untimed(merged / "results.json")["failures"][0]["index"], 7);
+  EXPECT_EQ(untimed(merged / "results.json"), untimed(whole / "results.json"));
+  for (const auto& f : std::filesystem::directory_iterator(whole / "failures"))
+    EXPECT_EQ(read(merged / "failures" / f.path().filename()), read(f.path())) << f.path();
+  EXPECT_TRUE(std::filesystem::exists(merged / "report.html"));
+
+  // Shards of two campaigns, or one shard twice, are no campaign.
+  const auto other = dir_ / "other";
+  ASSERT_NE(glrefcheck("fuzz --seed 2 --count 40 --generator clip --jobs 2 --fraction 2 "
+                       "--fraction-start 2 --out '" +
+                       other.string() + "'")
+                .exit_code,
+            2);
+  const auto mixed = glrefcheck("merge '" + a.string() + "' '" + other.string() + "' --out '" +
+                                (dir_ / "m2").string() + "'");
+  EXPECT_EQ(mixed.exit_code, 2);
+  EXPECT_NE(mixed.err.find("campaign.seed: expected 1 as the first shard, got 2"),
+            std::string::npos)
+      << mixed.err;
+  const auto twice = glrefcheck("merge '" + a.string() + "' '" + a.string() + "' --out '" +
+                                (dir_ / "m3").string() + "'");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("campaign.fraction_start: expected one of 1..2"), std::string::npos)
+      << twice.err;
+}
+
 TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
   const auto file = dir_ / "clip_1_7.json";
   const auto r = glrefcheck("fuzz --generator clip --replay 1:7 --emit '" + file.string() + "'");

@@ -1,0 +1,1417 @@
+// A case as one self-contained C file (reproducer.hpp): the case's draw, its expectation as
+// hexadecimal float literals, and a C runtime that opens GL through dlopen, draws as gl_harness/
+// does and judges as compare/ does.
+#include "campaign/reproducer.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "compare/compare.hpp"
+
+namespace glrc::campaign {
+namespace {
+
+// ---- The C runtime: the same text in every reproducer ----
+
+// GL, EGL and OSMesa declared by hand (no headers needed), and the scene a draw takes.
+constexpr std::string_view kDeclarations = R"C(#define _POSIX_C_SOURCE 200809L /* setenv */
+#include <dlfcn.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- GL: the types, constants and entry points used (OpenGL 3.3 core) ---- */
+typedef unsigned int GLenum;
+typedef unsigned int GLuint;
+typedef int GLint;
+typedef int GLsizei;
+typedef unsigned char GLboolean;
+typedef unsigned char GLubyte;
+typedef char GLchar;
+typedef float GLfloat;
+typedef double GLdouble;
+typedef ptrdiff_t GLsizeiptr;
+typedef void (*gl_proc)(void);
+
+#define GL_NO_ERROR 0
+#define GL_FALSE 0
+#define GL_TRUE 1
+#define GL_ONE 1
+#define GL_TRIANGLES 0x0004
+#define GL_LESS 0x0201
+#define GL_ALWAYS 0x0207
+#define GL_FRONT 0x0404
+#define GL_BACK 0x0405
+#define GL_FRONT_AND_BACK 0x0408
+#define GL_INVALID_ENUM 0x0500
+#define GL_INVALID_VALUE 0x0501
+#define GL_INVALID_OPERATION 0x0502
+#define GL_OUT_OF_MEMORY 0x0505
+#define GL_INVALID_FRAMEBUFFER_OPERATION 0x0506
+#define GL_CW 0x0900
+#define GL_CCW 0x0901
+#define GL_CULL_FACE 0x0B44
+#define GL_DEPTH_TEST 0x0B71
+#define GL_STENCIL_TEST 0x0B90
+#define GL_DITHER 0x0BD0
+#define GL_BLEND 0x0BE2
+#define GL_SCISSOR_TEST 0x0C11
+#define GL_PACK_ALIGNMENT 0x0D05
+#define GL_MAX_VIEWPORT_DIMS 0x0D3A
+#define GL_SUBPIXEL_BITS 0x0D50
+#define GL_UNSIGNED_BYTE 0x1401
+#define GL_INT 0x1404
+#define GL_UNSIGNED_INT 0x1405
+#define GL_FLOAT 0x1406
+#define GL_COLOR 0x1800
+#define GL_DEPTH 0x1801
+#define GL_DEPTH_COMPONENT 0x1902
+#define GL_RED 0x1903
+#define GL_RGBA 0x1908
+#define GL_VENDOR 0x1F00
+#define GL_RENDERER 0x1F01
+#define GL_VERSION 0x1F02
+#define GL_FUNC_ADD 0x8006
+#define GL_POLYGON_OFFSET_FILL 0x8037
+#define GL_MULTISAMPLE 0x809D
+#define GL_SAMPLE_ALPHA_TO_COVERAGE 0x809E
+#define GL_R32F 0x822E
+#define GL_R32I 0x8235
+#define GL_MAJOR_VERSION 0x821B
+#define GL_MINOR_VERSION 0x821C
+#define GL_MAX_RENDERBUFFER_SIZE 0x84E8
+#define GL_DEPTH_CLAMP 0x864F
+#define GL_RGBA32F 0x8814
+#define GL_MAX_DRAW_BUFFERS 0x8824
+#define GL_ARRAY_BUFFER 0x8892
+#define GL_ELEMENT_ARRAY_BUFFER 0x8893
+#define GL_STATIC_DRAW 0x88E4
+#define GL_CLAMP_READ_COLOR 0x891C
+#define GL_FRAGMENT_SHADER 0x8B30
+#define GL_VERTEX_SHADER 0x8B31
+#define GL_COMPILE_STATUS 0x8B81
+#define GL_LINK_STATUS 0x8B82
+#define GL_RASTERIZER_DISCARD 0x8C89
+#define GL_DEPTH_COMPONENT32F 0x8CAC
+#define GL_FRAMEBUFFER_COMPLETE 0x8CD5
+#define GL_MAX_COLOR_ATTACHMENTS 0x8CDF
+#define GL_COLOR_ATTACHMENT0 0x8CE0
+#define GL_DEPTH_ATTACHMENT 0x8D00
+#define GL_FRAMEBUFFER 0x8D40
+#define GL_RENDERBUFFER 0x8D41
+#define GL_RED_INTEGER 0x8D94
+#define GL_GEOMETRY_SHADER 0x8DD9
+#define GL_FIRST_VERTEX_CONVENTION 0x8E4D
+#define GL_LAST_VERTEX_CONVENTION 0x8E4E
+#define GL_PRIMITIVE_RESTART 0x8F9D
+
+/* X(return type, name without "gl", parameters): every GL function this file calls. */
+#define GL_FUNCTIONS(X)                                                                          \
+  X(const GLubyte *, GetString, (GLenum name))                                                   \
+  X(void, GetIntegerv, (GLenum name, GLint * data))                                              \
+  X(GLenum, GetError, (void))                                                                    \
+  X(GLuint, CreateShader, (GLenum type))                                                         \
+  X(void, ShaderSource, (GLuint shader, GLsizei count, const GLchar *const *text, const GLint *length)) \
+  X(void, CompileShader, (GLuint shader))                                                        \
+  X(void, GetShaderiv, (GLuint shader, GLenum name, GLint * value))                              \
+  X(void, GetShaderInfoLog, (GLuint shader, GLsizei size, GLsizei * length, GLchar * log))       \
+  X(void, DeleteShader, (GLuint shader))                                                         \
+  X(GLuint, CreateProgram, (void))                                                               \
+  X(void, AttachShader, (GLuint program, GLuint shader))                                         \
+  X(void, LinkProgram, (GLuint program))                                                         \
+  X(void, GetProgramiv, (GLuint program, GLenum name, GLint * value))                            \
+  X(void, GetProgramInfoLog, (GLuint program, GLsizei size, GLsizei * length, GLchar * log))     \
+  X(void, DeleteProgram, (GLuint program))                                                       \
+  X(void, UseProgram, (GLuint program))                                                          \
+  X(void, GenFramebuffers, (GLsizei n, GLuint * framebuffers))                                   \
+  X(void, BindFramebuffer, (GLenum target, GLuint framebuffer))                                  \
+  X(void, DeleteFramebuffers, (GLsizei n, const GLuint *framebuffers))                           \
+  X(GLenum, CheckFramebufferStatus, (GLenum target))                                             \
+  X(void, GenRenderbuffers, (GLsizei n, GLuint * renderbuffers))                                 \
+  X(void, BindRenderbuffer, (GLenum target, GLuint renderbuffer))                                \
+  X(void, RenderbufferStorage, (GLenum target, GLenum format, GLsizei width, GLsizei height))    \
+  X(void, FramebufferRenderbuffer, (GLenum target, GLenum attachment, GLenum rb_target, GLuint rb)) \
+  X(void, DeleteRenderbuffers, (GLsizei n, const GLuint *renderbuffers))                         \
+  X(void, DrawBuffers, (GLsizei n, const GLenum *buffers))                                       \
+  X(void, ReadBuffer, (GLenum buffer))                                                           \
+  X(void, ClearBufferfv, (GLenum buffer, GLint draw_buffer, const GLfloat *value))               \
+  X(void, ClearBufferiv, (GLenum buffer, GLint draw_buffer, const GLint *value))                 \
+  X(void, Viewport, (GLint x, GLint y, GLsizei width, GLsizei height))                           \
+  X(void, DepthRange, (GLdouble near_value, GLdouble far_value))                                 \
+  X(void, Enable, (GLenum cap))                                                                  \
+  X(void, Disable, (GLenum cap))                                                                 \
+  X(void, DepthFunc, (GLenum func))                                                              \
+  X(void, DepthMask, (GLboolean flag))                                                           \
+  X(void, BlendFunc, (GLenum source, GLenum destination))                                        \
+  X(void, BlendEquation, (GLenum mode))                                                          \
+  X(void, CullFace, (GLenum mode))                                                               \
+  X(void, FrontFace, (GLenum mode))                                                              \
+  X(void, ProvokingVertex, (GLenum mode))                                                        \
+  X(void, ClampColor, (GLenum target, GLenum clamp))                                             \
+  X(void, GenVertexArrays, (GLsizei n, GLuint * arrays))                                         \
+  X(void, BindVertexArray, (GLuint array))                                                       \
+  X(void, DeleteVertexArrays, (GLsizei n, const GLuint *arrays))                                 \
+  X(void, GenBuffers, (GLsizei n, GLuint * buffers))                                             \
+  X(void, BindBuffer, (GLenum target, GLuint buffer))                                            \
+  X(void, BufferData, (GLenum target, GLsizeiptr size, const void *data, GLenum usage))          \
+  X(void, DeleteBuffers, (GLsizei n, const GLuint *buffers))                                     \
+  X(void, VertexAttribPointer,                                                                   \
+    (GLuint index, GLint size, GLenum type, GLboolean normalized, GLsizei stride, const void *offset)) \
+  X(void, EnableVertexAttribArray, (GLuint index))                                               \
+  X(void, DrawElements, (GLenum mode, GLsizei count, GLenum type, const void *offset))           \
+  X(void, PixelStorei, (GLenum name, GLint value))                                               \
+  X(void, ReadPixels,                                                                            \
+    (GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void *pixels))
+
+#define DECLARE_GL_FUNCTION(type, name, parameters) \
+  typedef type(*pfn_gl##name) parameters;           \
+  static pfn_gl##name gl##name;
+GL_FUNCTIONS(DECLARE_GL_FUNCTION)
+
+/* ---- EGL and OSMesa: what making a context needs ---- */
+typedef void *EGLDisplay;
+typedef void *EGLConfig;
+typedef void *EGLContext;
+typedef void *EGLSurface;
+typedef int32_t EGLint;
+typedef unsigned int EGLBoolean;
+typedef unsigned int EGLenum;
+#define EGL_NONE 0x3038
+#define EGL_DONT_CARE (-1)
+#define EGL_OPENGL_BIT 0x0008
+#define EGL_SURFACE_TYPE 0x3033
+#define EGL_RENDERABLE_TYPE 0x3040
+#define EGL_VENDOR 0x3053
+#define EGL_EXTENSIONS 0x3055
+#define EGL_CONTEXT_MAJOR_VERSION 0x3098
+#define EGL_OPENGL_API 0x30A2
+#define EGL_CONTEXT_MINOR_VERSION 0x30FB
+#define EGL_CONTEXT_OPENGL_PROFILE_MASK 0x30FD
+#define EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT 0x0001
+#define EGL_PLATFORM_SURFACELESS_MESA 0x31DD
+
+#define OSMESA_FORMAT 0x22
+#define OSMESA_DEPTH_BITS 0x30
+#define OSMESA_STENCIL_BITS 0x31
+#define OSMESA_ACCUM_BITS 0x32
+#define OSMESA_PROFILE 0x33
+#define OSMESA_CORE_PROFILE 0x34
+#define OSMESA_CONTEXT_MAJOR_VERSION 0x36
+#define OSMESA_CONTEXT_MINOR_VERSION 0x37
+
+/* ---- What one draw takes ---- */
+struct scene {
+  const char *name;
+  int width, height; /* the framebuffer */
+  int viewport[4];   /* glViewport(x, y, width, height) */
+  double depth_near, depth_far; /* glDepthRange */
+  GLenum cull;       /* glCullFace's mode; 0: GL_CULL_FACE disabled */
+  GLenum front_face, provoking_vertex, depth_func;
+  int varying_count;
+  const int *varying_sizes; /* 1 to 4 components each */
+  int component_count;      /* the sum of the sizes */
+  int vertex_count;
+  const float *vertices;    /* per vertex: clip x, y, z, w, then every varying's components */
+  int index_count;          /* 3 per triangle */
+  const GLuint *indices;
+  const char *vertex_shader, *geometry_shader, *fragment_shader, *fragment_after_geometry;
+  const char *count_vertex_shader, *count_fragment_shader; /* the fragment-count pass */
+};
+)C";
+
+// Everything after the data: GL's context, the draw, the readback and the verdict.
+constexpr std::string_view kRuntime = R"C(
+/* ---- Making a context ---- */
+static gl_proc (*get_proc_address)(const char *name);
+static char platform[256];
+static char error_text[2048]; /* why the last draw failed */
+
+static int no_gl(const char *format, ...) {
+  va_list a;
+  fprintf(stderr, "%s: no GL: ", CASE_NAME);
+  va_start(a, format);
+  vfprintf(stderr, format, a);
+  va_end(a);
+  fputc('\n', stderr);
+  return 2;
+}
+
+static void set_error(const char *format, ...) {
+  va_list a;
+  va_start(a, format);
+  vsnprintf(error_text, sizeof error_text, format, a);
+  va_end(a);
+}
+
+/* Whether the space-separated list has `name` as a whole word. */
+static int has_extension(const char *list, const char *name) {
+  size_t n = strlen(name);
+  const char *p = list;
+  while (list && (p = strstr(p, name)) != NULL) {
+    if ((p == list || p[-1] == ' ') && (p[n] == ' ' || p[n] == '\0')) return 1;
+    p += n;
+  }
+  return 0;
+}
+
+/* A library's function as a pointer of its own type (POSIX: a function's address fits a void *). */
+#define LIBRARY_FUNCTION(table, field, library, library_name, name)                          \
+  do {                                                                                    \
+    void *address_ = dlsym(library, name);                                                \
+    if (!address_) return no_gl("%s has no %s: install a current Mesa", library_name, name); \
+    memcpy(&table.field, &address_, sizeof address_);                                    \
+  } while (0)
+
+static struct {
+  gl_proc (*GetProcAddress)(const char *name);
+  EGLint (*GetError)(void);
+  const char *(*QueryString)(EGLDisplay display, EGLint name);
+  EGLBoolean (*Initialize)(EGLDisplay display, EGLint *major, EGLint *minor);
+  EGLBoolean (*BindAPI)(EGLenum api);
+  EGLBoolean (*ChooseConfig)(EGLDisplay display, const EGLint *attributes, EGLConfig *configs,
+                             EGLint size, EGLint *count);
+  EGLContext (*CreateContext)(EGLDisplay display, EGLConfig config, EGLContext share,
+                              const EGLint *attributes);
+  EGLBoolean (*MakeCurrent)(EGLDisplay display, EGLSurface draw, EGLSurface read,
+                            EGLContext context);
+} egl;
+
+/* Mesa's surfaceless EGL platform, an OpenGL 3.3 core context current without a surface: what
+   glrefcheck's --backend egl makes. */
+static int open_egl(void) {
+  static const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3,
+                                              EGL_CONTEXT_MINOR_VERSION, 3,
+                                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  static const EGLint config_attributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                                             EGL_DONT_CARE, EGL_NONE};
+  const char *driver = getenv("GALLIUM_DRIVER"), *client, *extensions, *vendor;
+  EGLDisplay (*get_platform_display)(EGLenum platform, void *native, const EGLint *attributes);
+  EGLDisplay display;
+  EGLConfig config = NULL;
+  EGLContext context;
+  EGLint major = 0, minor = 0, count = 0;
+  void *library;
+  /* As glrefcheck does: without it Mesa tries hardware drivers first, and zink needs it to pick
+     a CPU Vulkan device (lavapipe). */
+  if (driver && (!strcmp(driver, "llvmpipe") || !strcmp(driver, "softpipe") || !strcmp(driver, "zink")))
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 0);
+  library = dlopen("libEGL.so.1", RTLD_NOW | RTLD_LOCAL);
+  if (!library)
+    return no_gl("libEGL.so.1 not found (%s): install libegl1 and libegl-mesa0", dlerror());
+  LIBRARY_FUNCTION(egl, GetProcAddress, library, "libEGL.so.1", "eglGetProcAddress");
+  LIBRARY_FUNCTION(egl, GetError, library, "libEGL.so.1", "eglGetError");
+  LIBRARY_FUNCTION(egl, QueryString, library, "libEGL.so.1", "eglQueryString");
+  LIBRARY_FUNCTION(egl, Initialize, library, "libEGL.so.1", "eglInitialize");
+  LIBRARY_FUNCTION(egl, BindAPI, library, "libEGL.so.1", "eglBindAPI");
+  LIBRARY_FUNCTION(egl, ChooseConfig, library, "libEGL.so.1", "eglChooseConfig");
+  LIBRARY_FUNCTION(egl, CreateContext, library, "libEGL.so.1", "eglCreateContext");
+  LIBRARY_FUNCTION(egl, MakeCurrent, library, "libEGL.so.1", "eglMakeCurrent");
+  client = egl.QueryString(NULL, EGL_EXTENSIONS);
+  if (!client || !has_extension(client, "EGL_EXT_platform_base") ||
+      !has_extension(client, "EGL_MESA_platform_surfaceless"))
+    return no_gl("libEGL.so.1 has no EGL_MESA_platform_surfaceless: install libegl-mesa0");
+  get_platform_display = (EGLDisplay(*)(EGLenum, void *, const EGLint *))egl.GetProcAddress(
+      "eglGetPlatformDisplayEXT");
+  if (!get_platform_display) return no_gl("libEGL.so.1 has no eglGetPlatformDisplayEXT");
+  display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, NULL, NULL);
+  if (!display)
+    return no_gl("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA) failed: EGL error 0x%04X",
+                 (unsigned)egl.GetError());
+  if (!egl.Initialize(display, &major, &minor))
+    return no_gl("eglInitialize failed on the surfaceless platform: EGL error 0x%04X%s%s%s",
+                 (unsigned)egl.GetError(), driver ? " (is GALLIUM_DRIVER=" : "",
+                 driver ? driver : "", driver ? " a gallium driver of this Mesa?)" : "");
+  extensions = egl.QueryString(display, EGL_EXTENSIONS);
+  if (!extensions || !has_extension(extensions, "EGL_KHR_surfaceless_context"))
+    return no_gl("the surfaceless EGL display has no EGL_KHR_surfaceless_context");
+  if (major == 1 && minor < 5 && !has_extension(extensions, "EGL_KHR_create_context"))
+    return no_gl("EGL %d.%d without EGL_KHR_create_context: no core profile context", major, minor);
+  if (!egl.BindAPI(EGL_OPENGL_API))
+    return no_gl("eglBindAPI(EGL_OPENGL_API) failed: EGL error 0x%04X", (unsigned)egl.GetError());
+  /* No surface is ever made, so no config is needed where the display allows that. */
+  if (!has_extension(extensions, "EGL_KHR_no_config_context") &&
+      (!egl.ChooseConfig(display, config_attributes, &config, 1, &count) || count < 1))
+    return no_gl("no EGLConfig with EGL_OPENGL_BIT: EGL error 0x%04X", (unsigned)egl.GetError());
+  context = egl.CreateContext(display, config, NULL, context_attributes);
+  if (!context)
+    return no_gl("eglCreateContext refused an OpenGL 3.3 core context: EGL error 0x%04X",
+                 (unsigned)egl.GetError());
+  if (!egl.MakeCurrent(display, NULL, NULL, context))
+    return no_gl("eglMakeCurrent without a surface failed: EGL error 0x%04X",
+                 (unsigned)egl.GetError());
+  vendor = egl.QueryString(display, EGL_VENDOR);
+  snprintf(platform, sizeof platform, "egl: EGL surfaceless platform (EGL %d.%d, %s)", major,
+           minor, vendor ? vendor : "unknown vendor");
+  get_proc_address = egl.GetProcAddress;
+  return 0;
+}
+
+static struct {
+  void *(*CreateContextAttribs)(const int *attributes, void *share);
+  GLboolean (*MakeCurrent)(void *context, void *buffer, GLenum type, GLsizei width, GLsizei height);
+  gl_proc (*GetProcAddress)(const char *name);
+} osmesa;
+
+/* Mesa's off-screen library, an OpenGL 3.3 core context with no buffers of its own (everything
+   is drawn into framebuffer objects): what glrefcheck's --backend osmesa makes. */
+static int open_osmesa(void) {
+  static const int attributes[] = {OSMESA_FORMAT, GL_RGBA, OSMESA_DEPTH_BITS, 0,
+                                   OSMESA_STENCIL_BITS, 0, OSMESA_ACCUM_BITS, 0,
+                                   OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+                                   OSMESA_CONTEXT_MAJOR_VERSION, 3,
+                                   OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+  static unsigned char pixel[4]; /* OSMesa binds a colour buffer; 1x1 is enough */
+  const char *driver = getenv("GALLIUM_DRIVER");
+  void *library, *context;
+  /* Asked for another driver, Mesa 22.3 crashes in OSMesaCreateContextAttribs. */
+  if (driver && *driver && strcmp(driver, "llvmpipe") && strcmp(driver, "softpipe"))
+    return no_gl("OSMesa runs llvmpipe and softpipe only, GALLIUM_DRIVER is %s: use egl", driver);
+  library = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+  if (!library) library = dlopen("libOSMesa.so.6", RTLD_NOW | RTLD_LOCAL);
+  if (!library)
+    return no_gl("libOSMesa.so.8 not found (%s): install libosmesa6, or use egl", dlerror());
+  LIBRARY_FUNCTION(osmesa, CreateContextAttribs, library, "libOSMesa", "OSMesaCreateContextAttribs");
+  LIBRARY_FUNCTION(osmesa, MakeCurrent, library, "libOSMesa", "OSMesaMakeCurrent");
+  LIBRARY_FUNCTION(osmesa, GetProcAddress, library, "libOSMesa", "OSMesaGetProcAddress");
+  context = osmesa.CreateContextAttribs(attributes, NULL);
+  if (!context)
+    return no_gl("OSMesaCreateContextAttribs refused an OpenGL 3.3 core context; the driver "
+                 "(GALLIUM_DRIVER) may be missing from this Mesa build");
+  if (!osmesa.MakeCurrent(context, pixel, GL_UNSIGNED_BYTE, 1, 1))
+    return no_gl("OSMesaMakeCurrent failed");
+  snprintf(platform, sizeof platform, "osmesa: OSMesa");
+  get_proc_address = osmesa.GetProcAddress;
+  return 0;
+}
+
+static int load_gl(void) {
+#define LOAD_GL_FUNCTION(type, name, parameters)                      \
+  gl##name = (pfn_gl##name)get_proc_address("gl" #name);              \
+  if (!gl##name) return no_gl("the GL context has no gl" #name);
+  GL_FUNCTIONS(LOAD_GL_FUNCTION)
+  return 0;
+}
+
+/* ---- Drawing as glrefcheck's GL harness does ---- */
+struct frame {
+  int32_t *primitive; /* gl_PrimitiveID; -1 where nothing was drawn */
+  float *depth;       /* 1 where nothing was drawn */
+  float *values;      /* component k of pixel i at values[k * pixels + i] */
+  float *fragments;   /* fragments that passed the depth test (the counting pass) */
+};
+
+static const char *gl_error_name(GLenum e) {
+  switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+  }
+  return "a GL error";
+}
+
+static int gl_ok(const char *when) {
+  GLenum e = glGetError();
+  if (e == GL_NO_ERROR) return 1;
+  set_error("%s (0x%04X) while %s", gl_error_name(e), e, when);
+  return 0;
+}
+
+static GLuint compile_shader(GLenum stage, const char *source) {
+  GLint ok = GL_FALSE;
+  GLuint shader = glCreateShader(stage);
+  glShaderSource(shader, 1, &source, NULL);
+  glCompileShader(shader);
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[1024] = "";
+    glGetShaderInfoLog(shader, sizeof log, NULL, log);
+    set_error("%s shader does not compile: %s",
+              stage == GL_VERTEX_SHADER ? "vertex" : stage == GL_GEOMETRY_SHADER ? "geometry"
+                                                                                   : "fragment",
+              log);
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+/* A program of the given shader sources (NULL ones skipped), or 0. */
+static GLuint make_program(const char *vertex, const char *geometry, const char *fragment) {
+  const char *sources[3];
+  const GLenum stages[3] = {GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER};
+  GLuint shaders[3] = {0, 0, 0}, program = 0;
+  GLint ok = GL_FALSE;
+  int k;
+  sources[0] = vertex, sources[1] = geometry, sources[2] = fragment;
+  for (k = 0; k < 3; ++k)
+    if (sources[k] && !(shaders[k] = compile_shader(stages[k], sources[k]))) goto done;
+  program = glCreateProgram();
+  for (k = 0; k < 3; ++k)
+    if (shaders[k]) glAttachShader(program, shaders[k]);
+  glLinkProgram(program);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[1024] = "";
+    glGetProgramInfoLog(program, sizeof log, NULL, log);
+    set_error("program does not link: %s", log);
+    glDeleteProgram(program);
+    program = 0;
+  }
+done:
+  for (k = 0; k < 3; ++k)
+    if (shaders[k]) glDeleteShader(shaders[k]);
+  return program;
+}
+
+/* A framebuffer of `colours` colour renderbuffers (formats[k] at attachment k, all drawn to)
+   and a 32-bit float depth renderbuffer: the harness's layout. */
+static GLuint make_framebuffer(int width, int height, int colours, const GLenum *formats,
+                               GLuint *renderbuffers) {
+  GLenum draw_buffers[16], error, status;
+  GLuint framebuffer = 0;
+  int k;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glGenRenderbuffers(colours + 1, renderbuffers);
+  for (k = 0; k <= colours; ++k) {
+    const GLenum attachment = k < colours ? GL_COLOR_ATTACHMENT0 + k : GL_DEPTH_ATTACHMENT;
+    glBindRenderbuffer(GL_RENDERBUFFER, renderbuffers[k]);
+    glRenderbufferStorage(GL_RENDERBUFFER, k < colours ? formats[k] : GL_DEPTH_COMPONENT32F,
+                          width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, renderbuffers[k]);
+    if (k < colours) draw_buffers[k] = attachment;
+  }
+  glDrawBuffers(colours, draw_buffers);
+  error = glGetError();
+  status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (error == GL_NO_ERROR && status == GL_FRAMEBUFFER_COMPLETE) return framebuffer;
+  if (error != GL_NO_ERROR)
+    set_error("%s while creating the framebuffer", gl_error_name(error));
+  else
+    set_error("framebuffer incomplete: status 0x%04X", status);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteRenderbuffers(colours + 1, renderbuffers);
+  return 0;
+}
+
+static GLint gl_integer(GLenum name) {
+  GLint value = 0;
+  glGetIntegerv(name, &value);
+  return value;
+}
+
+/* Draws scene `s` (with the pass-through geometry shader when `geometry_shader`), then counts
+   its fragments, and reads both back into `f`. 0 with error_text set when GL refuses. */
+static int draw_scene(const struct scene *s, int geometry_shader, struct frame *f) {
+  static const GLenum caps_off[] = {GL_DITHER, GL_BLEND, GL_MULTISAMPLE, GL_SCISSOR_TEST,
+                                    GL_STENCIL_TEST, GL_DEPTH_CLAMP, GL_POLYGON_OFFSET_FILL,
+                                    GL_SAMPLE_ALPHA_TO_COVERAGE, GL_RASTERIZER_DISCARD,
+                                    GL_PRIMITIVE_RESTART};
+  static const GLfloat zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+  static const GLint no_primitive[4] = {-1, 0, 0, 0};
+  const int n = s->varying_count, w = s->width, h = s->height;
+  const size_t pixels = (size_t)w * (size_t)h;
+  const GLsizei stride = (GLsizei)((4 + s->component_count) * sizeof(float));
+  GLenum formats[9], count_format = GL_R32F;
+  GLuint program = 0, count_program = 0, framebuffer = 0, count_framebuffer = 0;
+  GLuint renderbuffers[10], count_renderbuffers[2], vertex_array = 0, buffers[2] = {0, 0};
+  GLint dims[2] = {0, 0};
+  float *rgba = NULL;
+  size_t i, offset = 4;
+  int k, j, component = 0, ok = 0, limit;
+  for (k = 0; k < 100 && glGetError() != GL_NO_ERROR; ++k) {
+    /* errors an earlier draw left are not this one's */
+  }
+  /* What GL would refuse or misread, said plainly first. */
+  limit = gl_integer(GL_MAX_DRAW_BUFFERS);
+  if (gl_integer(GL_MAX_COLOR_ATTACHMENTS) < limit) limit = gl_integer(GL_MAX_COLOR_ATTACHMENTS);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+  if (n + 1 > limit || n > 8) {
+    set_error("%d varyings need %d draw buffers; this GL has %d", n, n + 1, limit);
+    return 0;
+  }
+  if (w > gl_integer(GL_MAX_RENDERBUFFER_SIZE) || h > gl_integer(GL_MAX_RENDERBUFFER_SIZE)) {
+    set_error("framebuffer %dx%d beyond GL_MAX_RENDERBUFFER_SIZE %d", w, h,
+              gl_integer(GL_MAX_RENDERBUFFER_SIZE));
+    return 0;
+  }
+  if (s->viewport[2] > dims[0] || s->viewport[3] > dims[1]) {
+    set_error("viewport %dx%d beyond GL_MAX_VIEWPORT_DIMS %dx%d", s->viewport[2], s->viewport[3],
+              dims[0], dims[1]);
+    return 0;
+  }
+
+  program = make_program(s->vertex_shader, geometry_shader ? s->geometry_shader : NULL,
+                         geometry_shader ? s->fragment_after_geometry : s->fragment_shader);
+  if (!program) goto done;
+  glUseProgram(program);
+  /* One RGBA32F attachment per varying (unused components 0), then gl_PrimitiveID in R32I. */
+  for (k = 0; k < n; ++k) formats[k] = GL_RGBA32F;
+  formats[n] = GL_R32I;
+  if (!(framebuffer = make_framebuffer(w, h, n + 1, formats, renderbuffers))) goto done;
+
+  /* The state the case controls; nothing else may touch a value on its way to the readback. */
+  glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+  glDepthRange(s->depth_near, s->depth_far);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(s->depth_func);
+  glDepthMask(GL_TRUE);
+  if (s->cull) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(s->cull);
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
+  glFrontFace(s->front_face);
+  glProvokingVertex(s->provoking_vertex);
+  for (k = 0; k < (int)(sizeof caps_off / sizeof caps_off[0]); ++k) glDisable(caps_off[k]);
+  glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
+
+  for (k = 0; k < n; ++k) glClearBufferfv(GL_COLOR, k, zero);
+  glClearBufferiv(GL_COLOR, n, no_primitive);
+  glClearBufferfv(GL_DEPTH, 0, &far_depth);
+
+  /* Interleaved: clip coordinates (attribute 0), then each varying (attribute k + 1). */
+  glGenVertexArrays(1, &vertex_array);
+  glBindVertexArray(vertex_array);
+  glGenBuffers(2, buffers);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+  glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(s->vertex_count * stride), s->vertices,
+               GL_STATIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(s->index_count * sizeof(GLuint)), s->indices,
+               GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
+  for (k = 0; k < n; ++k) {
+    glEnableVertexAttribArray((GLuint)(k + 1));
+    glVertexAttribPointer((GLuint)(k + 1), s->varying_sizes[k], GL_FLOAT, GL_FALSE, stride,
+                          (const void *)(offset * sizeof(float)));
+    offset += (size_t)s->varying_sizes[k];
+  }
+  if (s->index_count > 0) glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
+  if (!gl_ok("drawing")) goto done;
+
+  /* The same triangles again, positions only, adding 1 per fragment that passes the same depth
+     test: how many fragments each pixel received, which the primitive id cannot tell. */
+  count_program = make_program(s->count_vertex_shader, NULL, s->count_fragment_shader);
+  if (!count_program) goto done;
+  glUseProgram(count_program);
+  if (!(count_framebuffer = make_framebuffer(w, h, 1, &count_format, count_renderbuffers)))
+    goto done;
+  glClearBufferfv(GL_COLOR, 0, zero);
+  glClearBufferfv(GL_DEPTH, 0, &far_depth);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
+  glDisable(GL_BLEND);
+  if (!gl_ok("counting fragments")) goto done;
+
+  /* Read back, bottom row first (GL window coordinates, as the embedded expectation). */
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  rgba = (float *)malloc(pixels * 4 * sizeof *rgba);
+  if (!rgba) {
+    set_error("out of memory");
+    goto done;
+  }
+  for (k = 0; k < n; ++k) {
+    glReadBuffer(GL_COLOR_ATTACHMENT0 + k);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+    for (j = 0; j < s->varying_sizes[k]; ++j, ++component)
+      for (i = 0; i < pixels; ++i) f->values[(size_t)component * pixels + i] = rgba[4 * i + j];
+  }
+  glReadBuffer(GL_COLOR_ATTACHMENT0 + n);
+  glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_INT, f->primitive);
+  glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, f->depth);
+  if (!gl_ok("reading back")) goto done;
+  glBindFramebuffer(GL_FRAMEBUFFER, count_framebuffer);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, f->fragments);
+  ok = gl_ok("reading fragment counts");
+
+done:
+  free(rgba);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glUseProgram(0);
+  if (buffers[0]) glDeleteBuffers(2, buffers);
+  if (vertex_array) glDeleteVertexArrays(1, &vertex_array);
+  if (framebuffer) {
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteRenderbuffers(n + 2, renderbuffers);
+  }
+  if (count_framebuffer) {
+    glDeleteFramebuffers(1, &count_framebuffer);
+    glDeleteRenderbuffers(2, count_renderbuffers);
+  }
+  if (program) glDeleteProgram(program);
+  if (count_program) glDeleteProgram(count_program);
+  return ok;
+}
+
+static int alloc_frame(struct frame *f, size_t pixels, int components) {
+  f->primitive = (int32_t *)calloc(pixels, sizeof *f->primitive);
+  f->depth = (float *)calloc(pixels, sizeof *f->depth);
+  f->values = (float *)calloc(pixels * (size_t)(components > 0 ? components : 1), sizeof *f->values);
+  f->fragments = (float *)calloc(pixels, sizeof *f->fragments);
+  return f->primitive && f->depth && f->values && f->fragments;
+}
+
+/* ---- The harness's first draw: does gl_PrimitiveID need a geometry shader? ---- */
+
+/* How many of the first draw's 16 pixels are not primitive 0 with flat value 1; the first in
+   `fault`. */
+static int first_draw_wrong(const struct frame *f, char *fault, size_t size) {
+  int wrong = 0, x, y;
+  for (y = 0; y < FIRST_DRAW.height; ++y)
+    for (x = 0; x < FIRST_DRAW.width; ++x) {
+      const size_t i = (size_t)y * (size_t)FIRST_DRAW.width + (size_t)x;
+      if (f->primitive[i] == 0 && f->values[i] == 1.0f) continue;
+      if (wrong++ == 0)
+        snprintf(fault, size, "pixel (%d, %d) expected primitive 0 and flat value 1, got primitive "
+                 "%d and value %.9g", x, y, (int)f->primitive[i], (double)f->values[i]);
+    }
+  return wrong;
+}
+
+/* ---- Judging as glrefcheck's comparator does ---- */
+enum label { NO_LABEL, EXACT_TIE, WITHIN_SNAPPING, GAP, DOUBLE_HIT, FILL_RULE };
+
+static unsigned fragment_count(float counted) {
+  if (!(counted >= 0.0f)) return 0;
+  return counted > 65535.0f ? 65535u : (unsigned)counted;
+}
+
+/* The candidate of primitive p among `first`..`end` (one pixel's), or NULL. */
+static const struct candidate *candidate_of(const struct candidate *first,
+                                            const struct candidate *end, int p) {
+  for (; first != end; ++first)
+    if (first->primitive == p && p >= 0) return first;
+  return NULL;
+}
+
+/* compare/compare.cpp's coverage_label: how pixel i's coverage disagrees with the reference. */
+static enum label coverage_label(int i, int gl_primitive, unsigned gl_fragments,
+                                 const struct candidate *candidate) {
+  const int reference = REF_PRIMITIVE[i];
+  const unsigned char edges = REF_EDGES[i];
+  /* Where either fragment may win the depth test, GL may keep any of them. */
+  if ((edges & EDGE_DEPTH_ORDER) && (gl_primitive == reference || candidate)) return NO_LABEL;
+  /* Near a triangle the freedom may turn over, make vanish or appear: anything goes. */
+  if (edges & EDGE_UNSTABLE)
+    return reference != gl_primitive || (COUNTS_CHECKED && gl_fragments != REF_FRAGMENTS[i])
+               ? WITHIN_SNAPPING
+               : NO_LABEL;
+  /* Watertightness: away from outer edges, as many fragments as the reference. */
+  if (COUNTS_CHECKED && !(edges & EDGE_SNAPPING) && gl_fragments != REF_FRAGMENTS[i]) {
+    if (!(edges & EDGE_SHARED)) return FILL_RULE;
+    return gl_fragments < REF_FRAGMENTS[i] ? GAP : DOUBLE_HIT;
+  }
+  if (reference == gl_primitive) return NO_LABEL;
+  if (edges & EDGE_TIE) return EXACT_TIE;
+  if (edges & (EDGE_SNAPPING | EDGE_SHARED)) return WITHIN_SNAPPING;
+  return FILL_RULE;
+}
+
+static const char *number(char *buffer, size_t size, double v) {
+  if (isnan(v)) return "nan";
+  if (isinf(v)) return v < 0 ? "-inf" : "inf";
+  snprintf(buffer, size, "%.9g", v);
+  return buffer;
+}
+
+static const char *primitive_name(char *buffer, size_t size, int p) {
+  if (p < 0) return "none";
+  snprintf(buffer, size, "%d", p);
+  return buffer;
+}
+
+static void lower_case(char *out, size_t size, const char *text) {
+  size_t n;
+  for (n = 0; n + 1 < size && text[n]; ++n)
+    out[n] = (char)(text[n] >= 'A' && text[n] <= 'Z' ? text[n] - 'A' + 'a' : text[n]);
+  out[n] = '\0';
+}
+
+#define MOST_PRINTED 30
+static long failures, coverage_failures, value_failures;
+
+int main(int argc, char **argv) {
+  const char *backend = argc > 1 ? argv[1] : "egl";
+  const char *gl_renderer, *gl_version, *driver = getenv("GALLIUM_DRIVER");
+  char renderer_lower[256], driver_lower[64], fault[256] = "", gs_fault[256] = "";
+  struct frame probe, frame;
+  const struct candidate *candidate = CANDIDATES, *candidates_end = CANDIDATES + CANDIDATE_COUNT;
+  long judged = 0, undetermined = 0, undetermined_non_finite = 0, covered = 0;
+  double worst_ratio = 0;
+  int use_geometry_shader = 0, wrong, status, x, y, k, major, minor;
+
+  if (argc > 2 || (strcmp(backend, "egl") && strcmp(backend, "osmesa"))) {
+    fprintf(stderr, "usage: %s [egl|osmesa]  (GALLIUM_DRIVER picks Mesa's driver)\n", argv[0]);
+    return 2;
+  }
+  status = strcmp(backend, "egl") ? open_osmesa() : open_egl();
+  if (status) return status;
+  if ((status = load_gl())) return status;
+  gl_renderer = (const char *)glGetString(GL_RENDERER);
+  gl_version = (const char *)glGetString(GL_VERSION);
+  if (!gl_renderer) gl_renderer = "?";
+  if (!gl_version) gl_version = "?";
+  major = gl_integer(GL_MAJOR_VERSION), minor = gl_integer(GL_MINOR_VERSION);
+  if (major * 10 + minor < 33)
+    return no_gl("OpenGL %d.%d on %s ('%s'); the reproducer needs 3.3 core", major, minor,
+                 platform, gl_renderer);
+  /* The driver asked for must be the one running (zink names the Vulkan driver under it). */
+  lower_case(renderer_lower, sizeof renderer_lower, gl_renderer);
+  lower_case(driver_lower, sizeof driver_lower, driver ? driver : "");
+  if (driver && *driver &&
+      (!strstr(renderer_lower, driver_lower) ||
+       (!strncmp(renderer_lower, "zink", 4) && strcmp(driver_lower, "zink"))))
+    return no_gl("GALLIUM_DRIVER is %s, but GL_RENDERER is '%s' (%s)", driver, gl_renderer,
+                 platform);
+
+  if (!alloc_frame(&probe, (size_t)FIRST_DRAW.width * (size_t)FIRST_DRAW.height, 1) ||
+      !alloc_frame(&frame, PIXELS, COMPONENT_COUNT))
+    return no_gl("out of memory");
+  /* softpipe (Mesa 22.3.6) draws nothing when the fragment shader reads gl_PrimitiveID and no
+     geometry shader runs; on llvmpipe a geometry shader changes bits. So, as the harness: the
+     plain draw unless it is wrong and the geometry shader's is right. */
+  if (!draw_scene(&FIRST_DRAW, 0, &probe))
+    return no_gl("'%s' fails a first draw: %s", gl_renderer, error_text);
+  wrong = first_draw_wrong(&probe, fault, sizeof fault);
+  if (wrong > 0) {
+    const int gs_wrong = draw_scene(&FIRST_DRAW, 1, &probe)
+                             ? first_draw_wrong(&probe, gs_fault, sizeof gs_fault)
+                             : (snprintf(gs_fault, sizeof gs_fault, "no draw: %.200s", error_text),
+                                FIRST_DRAW.width * FIRST_DRAW.height);
+    use_geometry_shader = gs_wrong < wrong;
+    if (gs_wrong > 0)
+      printf("warning: the first draw (one triangle covering a 4x4 framebuffer) is wrong: %s (%d "
+             "of 16 pixels wrong); with a pass-through geometry shader for gl_PrimitiveID: %s; "
+             "drawing %s it\n", fault, wrong, gs_fault, use_geometry_shader ? "with" : "without");
+  }
+
+  if (!draw_scene(&THE_CASE, use_geometry_shader, &frame)) {
+    printf("error: %s\n", error_text);
+    printf("%s: FAIL, GL could not draw the case, on GL_RENDERER \"%s\", GL_VERSION \"%s\" (%s)\n",
+           CASE_NAME, gl_renderer, gl_version, platform);
+    return 1;
+  }
+
+  for (y = 0; y < FB_HEIGHT; ++y)
+    for (x = 0; x < FB_WIDTH; ++x) {
+      const int i = y * FB_WIDTH + x;
+      const int reference = REF_PRIMITIVE[i], gl_primitive = frame.primitive[i];
+      const unsigned gl_fragments = fragment_count(frame.fragments[i]);
+      const struct candidate *first = candidate, *other;
+      const float *expected = NULL;
+      const double *allowed = NULL;
+      enum label label;
+      char a[32], b[32];
+      /* This pixel's depth-test candidates. */
+      while (candidate != candidates_end && candidate->pixel == i) ++candidate;
+      other = gl_primitive != reference ? candidate_of(first, candidate, gl_primitive) : NULL;
+
+      label = coverage_label(i, gl_primitive, gl_fragments, other);
+      if (label != NO_LABEL && (!(label == EXACT_TIE || label == WITHIN_SNAPPING) || !ALLOW_BOUNDARY)) {
+        ++coverage_failures;
+        if (failures < MOST_PRINTED) {
+          if (label == GAP || label == DOUBLE_HIT)
+            printf("%s at (%d, %d): %u fragment%s, reference %u\n",
+                   label == GAP ? "gap" : "double hit", x, y, gl_fragments,
+                   gl_fragments == 1 ? "" : "s", (unsigned)REF_FRAGMENTS[i]);
+          else if (gl_primitive == reference)
+            printf("coverage at (%d, %d): %u fragment%s, reference %u\n", x, y, gl_fragments,
+                   gl_fragments == 1 ? "" : "s", (unsigned)REF_FRAGMENTS[i]);
+          else
+            printf("coverage at (%d, %d): GL primitive %s, reference %s%s\n", x, y,
+                   primitive_name(a, sizeof a, gl_primitive), primitive_name(b, sizeof b, reference),
+                   label == EXACT_TIE ? " (an exact tie)"
+                   : label == WITHIN_SNAPPING ? " (within snapping)" : "");
+        }
+        ++failures;
+      }
+
+      /* Values where GL drew the reference's triangle, or a candidate of the depth test. */
+      if (reference >= 0) ++covered;
+      if (reference >= 0 && gl_primitive == reference) {
+        expected = &REF_VALUES[(covered - 1) * CHANNELS];
+        allowed = &REF_ALLOWED[(covered - 1) * CHANNELS];
+      } else if (other) {
+        expected = other->values;
+        allowed = other->allowed;
+      } else {
+        continue;
+      }
+      for (k = 0; k < CHANNELS; ++k) {
+        const float e = expected[k];
+        const float g = k == 0 ? frame.depth[i] : frame.values[(size_t)(k - 1) * PIXELS + (size_t)i];
+        double error;
+        /* No value the specification determines: not judged. */
+        if (!isfinite(e)) {
+          ++undetermined;
+          if (!isfinite(g)) ++undetermined_non_finite;
+          continue;
+        }
+        ++judged;
+        error = fabs((double)g - (double)e);
+        if (isfinite(g) && error <= allowed[k]) {
+          if (error > 0) {
+            const double ratio = allowed[k] > 0 ? error / allowed[k] : INFINITY;
+            if (ratio > worst_ratio) worst_ratio = ratio;
+          }
+          continue;
+        }
+        ++value_failures;
+        if (failures++ < MOST_PRINTED) {
+          printf("%s at (%d, %d): GL %s, reference %s, allowed +-%.3g", CHANNEL_NAMES[k], x, y,
+                 number(a, sizeof a, g), number(b, sizeof b, e), allowed[k]);
+          if (other) printf(" (GL kept primitive %d, a candidate of the depth test)", gl_primitive);
+          printf("\n");
+        }
+      }
+    }
+
+  if (failures > MOST_PRINTED) printf("... and %ld more\n", failures - MOST_PRINTED);
+  if (undetermined_non_finite > 0)
+    printf("note: GL drew NaN or Inf at %ld of the %ld values the specification does not "
+           "determine (not judged; glrefcheck calls such a case outside what GL specifies)\n",
+           undetermined_non_finite, undetermined);
+  if (failures > 0 && OUTSIDE_SPECIFIED_RANGE[0])
+    printf("note: outside GL's specified range: %s (glrefcheck run reports this case as a skip)\n",
+           OUTSIDE_SPECIFIED_RANGE);
+  if (failures > 0) {
+    printf("%s: FAIL: %ld of %d pixels' coverage and %ld of %ld values fail, on GL_RENDERER "
+           "\"%s\", GL_VERSION \"%s\" (%s)\n",
+           CASE_NAME, coverage_failures, PIXELS, value_failures, judged, gl_renderer, gl_version,
+           platform);
+    return 1;
+  }
+  if (worst_ratio > 0)
+    snprintf(fault, sizeof fault, "at most %.3gx the allowance", worst_ratio);
+  else
+    snprintf(fault, sizeof fault, "every value exact");
+  printf("%s: pass: %d pixels' coverage and %ld values within what is allowed (%s), on "
+         "GL_RENDERER \"%s\", GL_VERSION \"%s\" (%s)\n",
+         CASE_NAME, PIXELS, judged, fault, gl_renderer, gl_version, platform);
+  return 0;
+}
+)C";
+
+// ---- Writing C ----
+
+// A C99 literal of v, exactly: hexadecimal floating point, or NAN / INFINITY (math.h).
+std::string hex_literal(double v) {
+  if (std::isnan(v)) return "NAN";
+  if (std::isinf(v)) return v < 0 ? "-INFINITY" : "INFINITY";
+  char digits[64];
+  const auto [end, ec] =
+      std::to_chars(digits, digits + sizeof digits, std::fabs(v), std::chars_format::hex);
+  if (ec != std::errc()) throw std::logic_error("hex_literal: to_chars failed");
+  return (std::signbit(v) ? "-0x" : "0x") + std::string(digits, end);
+}
+
+// A C string literal of `text`, one literal per line of it, the later ones on lines of their
+// own after `indent`. '?' is escaped (no trigraphs), bytes outside printable ASCII are octal.
+std::string c_string(std::string_view text, std::string_view indent = "    ") {
+  if (text.empty()) return "\"\"";
+  std::string out;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    if (start > 0) out += "\n" + std::string(indent);
+    out += '"';
+    for (const char ch : text.substr(start, end - start)) {
+      const auto u = static_cast<unsigned char>(ch);
+      if (ch == '\n') {
+        out += "\\n";
+      } else if (ch == '"' || ch == '\\' || ch == '?') {
+        out += '\\';
+        out += ch;
+      } else if (u < 0x20 || u >= 0x7f) {
+        const char octal[] = {'\\', char('0' + (u >> 6)), char('0' + ((u >> 3) & 7)),
+                              char('0' + (u & 7))};
+        out.append(octal, sizeof octal);
+      } else {
+        out += ch;
+      }
+    }
+    out += '"';
+    start = end;
+  }
+  return out;
+}
+
+// Text for a /* */ comment: no "*/" to end it early, no trigraph, no control character.
+std::string comment_text(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto u = static_cast<unsigned char>(ch);
+    if ((ch == '/' && !out.empty() && out.back() == '*') ||
+        (ch == '?' && !out.empty() && out.back() == '?'))
+      out += ' ';
+    out += u < 0x20 || u == 0x7f ? ' ' : ch;
+  }
+  return out;
+}
+
+// `text` as comment lines " * ..." of at most `width` characters, broken at spaces.
+std::string comment_lines(std::string_view text, size_t width = 96) {
+  const std::string t = comment_text(text);
+  std::string out, line;
+  size_t start = 0;
+  while (start <= t.size()) {
+    size_t end = t.find(' ', start);
+    if (end == std::string::npos) end = t.size();
+    const std::string word = t.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      out += " * " + line + "\n";
+      line.clear();
+    }
+    if (!word.empty()) line += (line.empty() ? "" : " ") + word;
+    start = end + 1;
+  }
+  if (!line.empty()) out += " * " + line + "\n";
+  return out;
+}
+
+// Items separated by ", ", lines broken before 100 columns after `indent`; a lone "0" when
+// there are none (C has no empty initializer lists; a count beside the array says so).
+class ListWriter {
+ public:
+  ListWriter(std::string& out, std::string indent) : out_(out), indent_(std::move(indent)) {}
+  void item(std::string_view text) {
+    separate();
+    if (column_ == 0 || column_ + 1 + text.size() > 100) {
+      newline();
+    } else {
+      out_ += ' ';
+      ++column_;
+    }
+    out_ += text;
+    column_ += text.size();
+    ++items_;
+    comma_ = false;
+  }
+  // A comment starting a line of its own; the next items follow it.
+  void line_comment(std::string_view text) {
+    separate();
+    newline();
+    out_ += "/* " + std::string(text) + " */";
+    column_ += text.size() + 6;
+  }
+  void finish() {
+    if (items_ == 0) {
+      newline();
+      out_ += "0";
+    }
+    out_ += "\n";
+  }
+
+ private:
+  void separate() {
+    if (items_ > 0 && !comma_) out_ += ",", comma_ = true;
+  }
+  void newline() {
+    out_ += "\n" + indent_;
+    column_ = indent_.size();
+  }
+  std::string& out_;
+  std::string indent_;
+  size_t column_ = 0, items_ = 0;
+  bool comma_ = false;
+};
+
+// A float for people: the shortest "%.9g".
+std::string printable_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+const char* gl_cull(CullFace f) {
+  switch (f) {
+    case CullFace::none:
+      return "0 /* no culling */";
+    case CullFace::front:
+      return "GL_FRONT";
+    case CullFace::back:
+      return "GL_BACK";
+    case CullFace::front_and_back:
+      return "GL_FRONT_AND_BACK";
+  }
+  return "0";
+}
+
+// The arrays and the struct scene `name` of case `c`, drawn with `shaders`; its arrays' names
+// start with `prefix`.
+void write_scene(std::string& out, const Case& c, const ReproducerShaders& shaders,
+                 const std::string& prefix, const std::string& name, const std::string& case_name) {
+  out += "static const int " + prefix + "_varying_sizes[] = {";
+  for (size_t k = 0; k < c.varyings.size(); ++k)
+    out += (k ? ", " : "") + std::to_string(c.varyings[k].size);
+  if (c.varyings.empty()) out += "0 /* none */";
+  out += "};\n";
+
+  std::string components;
+  for (const std::string& n : component_names(c))
+    components += ", " + n;
+  out += "/* Per vertex: clip coordinates (x_c, y_c, z_c, w_c), exactly what gl_Position receives" +
+         comment_text(components.empty() ? std::string() : ", then " + components.substr(2)) +
+         ". */\n";
+  out += "static const float " + prefix + "_vertices[] = {";
+  {
+    std::string list;
+    ListWriter w(list, "    ");
+    for (size_t v = 0; v < c.vertices.size(); ++v) {
+      w.line_comment("vertex " + std::to_string(v));
+      for (float x : c.vertices[v].clip)
+        w.item(hex_literal(x));
+      for (float x : c.vertices[v].values)
+        w.item(hex_literal(x));
+    }
+    w.finish();
+    out += list;
+  }
+  out += "};\n";
+  out += "static const GLuint " + prefix + "_indices[] = {";
+  {
+    std::string list;
+    ListWriter w(list, "    ");
+    for (const auto& t : c.triangles)
+      for (uint32_t i : t)
+        w.item(std::to_string(i));
+    w.finish();
+    out += list;
+  }
+  out += "};\n";
+  const std::pair<const char*, const std::string*> sources[] = {
+      {"vertex_shader", &shaders.vertex},
+      {"geometry_shader", &shaders.geometry},
+      {"fragment_shader", &shaders.fragment},
+      {"fragment_after_geometry", &shaders.fragment_after_geometry}};
+  for (const auto& [field, text] : sources)
+    out += "static const char " + prefix + "_" + field + "[] =\n    " + c_string(*text) + ";\n";
+
+  out += "static const struct scene " + name + " = {\n";
+  out += "    .name = " + case_name + ",\n";
+  out += "    .width = " + std::to_string(c.fb_width) +
+         ", .height = " + std::to_string(c.fb_height) + ",\n";
+  out += "    .viewport = {" + std::to_string(c.viewport.x) + ", " + std::to_string(c.viewport.y) +
+         ", " + std::to_string(c.viewport.width) + ", " + std::to_string(c.viewport.height) +
+         "},\n";
+  out += "    .depth_near = " + hex_literal(c.depth_near) +
+         ", .depth_far = " + hex_literal(c.depth_far) + ", /* " +
+         comment_text(printable_number(c.depth_near) + ", " + printable_number(c.depth_far)) +
+         " */\n";
+  out += std::string("    .cull = ") + gl_cull(c.cull) + ",\n";
+  out += std::string("    .front_face = ") + (c.front_face == FrontFace::ccw ? "GL_CCW" : "GL_CW") +
+         ",\n";
+  out += std::string("    .provoking_vertex = ") +
+         (c.provoking == ProvokingVertex::last ? "GL_LAST_VERTEX_CONVENTION"
+                                               : "GL_FIRST_VERTEX_CONVENTION") +
+         ",\n";
+  out += std::string("    .depth_func = ") +
+         (c.depth_func == DepthFunc::less ? "GL_LESS" : "GL_ALWAYS") + ",\n";
+  out += "    .varying_count = " + std::to_string(c.varyings.size()) +
+         ", .varying_sizes = " + prefix + "_varying_sizes,\n";
+  out += "    .component_count = " + std::to_string(c.component_count()) + ",\n";
+  out += "    .vertex_count = " + std::to_string(c.vertices.size()) + ", .vertices = " + prefix +
+         "_vertices,\n";
+  out += "    .index_count = " + std::to_string(c.triangles.size() * 3) + ", .indices = " + prefix +
+         "_indices,\n";
+  out += "    .vertex_shader = " + prefix + "_vertex_shader, .geometry_shader = " + prefix +
+         "_geometry_shader,\n";
+  out += "    .fragment_shader = " + prefix + "_fragment_shader,\n";
+  out += "    .fragment_after_geometry = " + prefix + "_fragment_after_geometry,\n";
+  out += "    .count_vertex_shader = count_vertex_shader,\n";
+  out += "    .count_fragment_shader = count_fragment_shader};\n\n";
+}
+
+// Throws std::invalid_argument unless `e` is an expectation of case `c` the C file can embed.
+void check_inputs(const Case& c, const Expectation& e, const Tolerance& t,
+                  const CReproducerSetup& setup) {
+  auto fail = [&](const std::string& why) {
+    throw std::invalid_argument("c_reproducer: case '" + c.name + "': " + why);
+  };
+  if (t.mode == ToleranceMode::exact)
+    fail("exact tolerance (a driver model's bits) is not what a reproducer judges");
+  if (reproducer_values(c) > kMaxReproducerValues)
+    fail(std::to_string(reproducer_values(c)) + " pixel values, more than " +
+         std::to_string(kMaxReproducerValues));
+  const Frame& f = e.frame;
+  const size_t pixels = f.pixel_count(), components = size_t(c.component_count());
+  if (f.width != c.fb_width || f.height != c.fb_height || f.components.size() != components ||
+      f.primitive.size() != pixels || f.depth.size() != pixels || e.edges.size() != pixels ||
+      (!f.fragments.empty() && f.fragments.size() != pixels))
+    fail("the expectation is not of this case's framebuffer and varyings");
+  for (const std::vector<float>& values : f.components)
+    if (values.size() != pixels) fail("the expectation's components are not the frame's size");
+  if (t.mode == ToleranceMode::spec &&
+      (e.allowed.depth.size() != pixels || e.allowed.components.size() != components))
+    fail("a spec tolerance needs the expectation's allowance");
+  for (const std::vector<float>& values : e.allowed.components)
+    if (values.size() != pixels) fail("the allowance's components are not the frame's size");
+  for (size_t k = 0; k < e.candidates.size(); ++k) {
+    const Candidate& o = e.candidates[k];
+    if (o.pixel >= pixels || o.primitive < 0 || size_t(o.primitive) >= c.triangles.size() ||
+        o.values.size() != components ||
+        (t.mode == ToleranceMode::spec && o.allowed.size() != components) ||
+        (k > 0 && e.candidates[k - 1].pixel > o.pixel))
+      fail("depth-test candidate " + std::to_string(k) + " is not one of this case's");
+  }
+  for (const Vertex& v : c.vertices)
+    if (v.values.size() != components) fail("a vertex has not every varying's components");
+  for (const auto& tri : c.triangles)
+    for (uint32_t i : tri)
+      if (i >= c.vertices.size()) fail("a triangle names a vertex past the last");
+  if (setup.first_draw.component_count() != 1 || setup.first_draw.triangles.empty())
+    fail("the first draw is not the harness's (one flat float, one triangle)");
+}
+
+}  // namespace
+
+size_t reproducer_values(const Case& c) {
+  return size_t(std::max(c.fb_width, 0)) * size_t(std::max(c.fb_height, 0)) *
+         (3 + size_t(std::max(c.component_count(), 0)));
+}
+
+std::string c_compile_command(const std::string& file) {
+  auto quoted = [](const std::string& s) {
+    const bool plain = !s.empty() && s.find_first_not_of(
+                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                         "0123456789._/+-,=:@%") == std::string::npos;
+    if (plain) return s;
+    std::string q = "'";
+    for (char ch : s)
+      q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return q + "'";
+  };
+  std::string program = file;
+  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
+  return "cc -std=c99 -O2 -o " + quoted(program) + " " + quoted(file) + " -ldl -lm";
+}
+
+std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
+                         const CReproducerSetup& setup) {
+  check_inputs(c, expected, tolerance, setup);
+  const Frame& f = expected.frame;
+  const size_t pixels = f.pixel_count();
+  const int components = c.component_count();
+  const std::vector<std::string> names = component_names(c);
+  std::string file_name = setup.file_name.empty() ? c.name + ".c" : setup.file_name;
+  if (const size_t slash = file_name.rfind('/'); slash != std::string::npos)
+    file_name = file_name.substr(slash + 1);
+  std::string program = file_name.ends_with(".c") && file_name.size() > 2
+                            ? file_name.substr(0, file_name.size() - 2)
+                            : file_name;
+  if (program.find('/') == std::string::npos) program = "./" + program;
+
+  std::string out;
+  out.reserve(pixels * 64 + 65536);
+
+  // The header: what this is and how to use it.
+  out += std::string(kCReproducerSignature) + " of case " + comment_text(c.name) + ", in C99\n";
+  out += " *\n";
+  if (!c.description.empty()) out += comment_lines(c.description) + " *\n";
+  out += comment_lines(
+      "Written by `" + setup.exported_by +
+      "`. It draws this one case on GL as glrefcheck's GL harness draws it and checks every "
+      "pixel against glrefcheck's exact reference, embedded below. Self-contained: C99 and libc "
+      "only, no glrefcheck and no GL, EGL or OSMesa headers; libEGL or libOSMesa is opened at "
+      "run time (dlopen).");
+  out += " *\n";
+  out += " *   Build:  " + comment_text(c_compile_command(file_name)) + "\n";
+  out += " *   Run:    " + comment_text(program) + " [egl|osmesa]       (default: egl)\n";
+  out += " *           GALLIUM_DRIVER=softpipe " + comment_text(program) + " osmesa\n";
+  out += " *\n";
+  out += comment_lines(
+      "egl: Mesa's surfaceless EGL platform (libEGL.so.1, EGL_PLATFORM_SURFACELESS_MESA), an "
+      "OpenGL 3.3 core context current without a surface. osmesa: libOSMesa.so.8, "
+      "OSMesaCreateContextAttribs with an OpenGL 3.3 core profile. GALLIUM_DRIVER picks Mesa's "
+      "driver as usual (llvmpipe when unset, softpipe, or zink through egl); with a CPU driver "
+      "named, egl sets LIBGL_ALWAYS_SOFTWARE=1 unless it is set, as glrefcheck does, and a "
+      "GALLIUM_DRIVER that GL_RENDERER does not name is refused.");
+  out += " *\n";
+  std::string judged =
+      "Judged as `glrefcheck run` judges it, against the exact reference of model " + setup.model +
+      ", under ";
+  if (tolerance.mode == ToleranceMode::spec)
+    judged +=
+        "the specification's allowance for an implementation that reports GL_SUBPIXEL_BITS = " +
+        std::to_string(tolerance.subpixel_bits) +
+        " (it must be what the driver reports: llvmpipe 8, softpipe 4)";
+  else
+    judged += "fixed thresholds (" + printable_number(tolerance.varying_ulps) +
+              " ULPs of each attribute's scale, depth " + printable_number(tolerance.depth_ulps) +
+              " ULPs of 1.0, flat values 0)";
+  judged += std::string(
+                ". Coverage: per pixel the reference's primitive (-1: none), its fragment "
+                "count and its edge bits; a different primitive passes only where the "
+                "edge bits say the specification's freedom allows it (a centre exactly on "
+                "an edge, within the snapping band of an edge, near a triangle that may "
+                "turn over, or where another fragment may win the depth test)") +
+            (tolerance.allow_boundary ? "" : " and this case allows no such difference") +
+            "; away from outer edges GL must write as many fragments as the reference (gaps and "
+            "double hits on shared edges fail). Values: depth, then every component, where GL's "
+            "primitive is the reference's (or a candidate of the depth test): |GL - reference| "
+            "must be at most the allowed absolute error; NaN or Inf from GL always fails; a "
+            "reference value that is NaN or Inf (the specification determines none there) is not "
+            "judged. Pixels are in GL window coordinates: (x, y) from the bottom left.";
+  out += comment_lines(judged);
+  out += " *\n";
+  out += comment_lines(
+      "Prints each failing check (the first 30, then how many more) and a summary line with "
+      "GL_RENDERER and GL_VERSION. Exit status: 0 when everything is within what is allowed, 1 "
+      "when a check fails or GL cannot draw the case, 2 when GL cannot be had (library, display, "
+      "context, OpenGL 3.3 core).");
+  out += " */\n";
+  out += kDeclarations;
+
+  // The case and the first draw, as the harness draws them.
+  out += "\n/* ---- The case ---- */\n";
+  out += "static const char CASE_NAME[] = " + c_string(c.name) + ";\n";
+  out += "#define FB_WIDTH " + std::to_string(c.fb_width) + "\n";
+  out += "#define FB_HEIGHT " + std::to_string(c.fb_height) + "\n";
+  out += "#define PIXELS (FB_WIDTH * FB_HEIGHT)\n";
+  out += "#define COMPONENT_COUNT " + std::to_string(components) + "\n";
+  out += "#define CHANNELS (1 + COMPONENT_COUNT) /* depth, then every component */\n";
+  out += "static const char *const CHANNEL_NAMES[CHANNELS] = {\"depth\"";
+  for (const std::string& n : names)
+    out += ", " + c_string(n);
+  out += "};\n";
+  out += "static const char count_vertex_shader[] =\n    " + c_string(setup.count_vertex) + ";\n";
+  out +=
+      "static const char count_fragment_shader[] =\n    " + c_string(setup.count_fragment) + ";\n";
+  write_scene(out, c, setup.shaders, "case", "THE_CASE", "CASE_NAME");
+  out +=
+      "/* The harness's first draw: one triangle over a 4x4 framebuffer, one flat float of 1; "
+      "primitive 0\n   and value 1 expected at every pixel. */\n";
+  write_scene(out, setup.first_draw, setup.first_draw_shaders, "first_draw", "FIRST_DRAW",
+              c_string(setup.first_draw.name));
+
+  // The expectation.
+  const compare::UlpTable ulps(c);
+  std::vector<compare::ChannelAllowance> allowances;
+  for (int k = compare::kDepth; k < components; ++k)
+    allowances.emplace_back(c, expected, tolerance, k);
+  const bool per_pixel = allowances.front().per_pixel();
+  out += "\n/* ---- What the reference expects (glrefcheck's exact CPU rasterizer) ---- */\n";
+  out += "#define ALLOW_BOUNDARY " + std::to_string(int(tolerance.allow_boundary)) +
+         " /* 0: coverage differences at edges fail too */\n";
+  out += "#define COUNTS_CHECKED " + std::to_string(int(f.fragments.size() == pixels)) + "\n";
+  out += "/* Edge bits (core/frame.hpp's edge::). */\n";
+  out += "#define EDGE_TIE " + std::to_string(edge::tie) +
+         " /* the centre lies exactly on an edge */\n";
+  out += "#define EDGE_SNAPPING " + std::to_string(edge::snapping) +
+         " /* within the snapping band of an outer edge or clip plane */\n";
+  out += "#define EDGE_SHARED " + std::to_string(edge::shared) +
+         " /* within the snapping band of an edge two triangles share */\n";
+  out += "#define EDGE_UNSTABLE " + std::to_string(edge::unstable) +
+         " /* near a triangle the freedom may turn over: anything goes */\n";
+  out += "#define EDGE_DEPTH_ORDER " + std::to_string(edge::depth_order) +
+         " /* another fragment may win the depth test */\n";
+  out += "#define TRIANGLE_COUNT " + std::to_string(c.triangles.size()) + "\n";
+
+  auto per_row = [&](const char* type, const char* array, const char* what, auto value) {
+    out += "/* " + std::string(what) + ", per pixel, row by row from the bottom. */\n";
+    out += std::string("static const ") + type + " " + array + "[PIXELS] = {";
+    ListWriter w(out, "    ");
+    for (int y = 0; y < f.height; ++y) {
+      w.line_comment("y = " + std::to_string(y));
+      for (int x = 0; x < f.width; ++x)
+        w.item(value(f.index(x, y)));
+    }
+    w.finish();
+    out += "};\n";
+  };
+  per_row("int", "REF_PRIMITIVE", "The reference's primitive (gl_PrimitiveID; -1: none)",
+          [&](size_t i) { return std::to_string(f.primitive[i]); });
+  per_row("unsigned short", "REF_FRAGMENTS", "How many fragments the reference writes",
+          [&](size_t i) { return std::to_string(f.fragments.empty() ? 0 : f.fragments[i]); });
+  per_row("unsigned char", "REF_EDGES", "Edge bits",
+          [&](size_t i) { return std::to_string(expected.edges[i]); });
+
+  // Values and allowances of the pixels the reference covers.
+  size_t covered = 0;
+  std::string values, allowed;
+  {
+    ListWriter v(values, "    "), a(allowed, "    ");
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x) {
+        const size_t i = f.index(x, y);
+        const int32_t p = f.primitive[i];
+        if (p == Frame::kNoPrimitive) continue;
+        ++covered;
+        const std::string at = std::to_string(x) + ", " + std::to_string(y);
+        v.line_comment(at);
+        a.line_comment(at);
+        for (int k = compare::kDepth; k < components; ++k) {
+          v.item(hex_literal(k == compare::kDepth ? f.depth[i] : f.components[size_t(k)][i]));
+          a.item(hex_literal(allowances[size_t(k + 1)].at(i, ulps.ulp(p, k))));
+        }
+      }
+    v.finish();
+    a.finish();
+  }
+  out +=
+      "/* At each pixel the reference covers (REF_PRIMITIVE >= 0), in pixel order: depth, then "
+      "every\n   component (CHANNEL_NAMES)... */\n";
+  out += "#define COVERED " + std::to_string(covered) + "\n";
+  out += "static const float REF_VALUES[] = {" + values + "};\n";
+  out +=
+      "/* ...and the largest |GL - reference| a conforming implementation can produce there. */\n";
+  out += "static const double REF_ALLOWED[] = {" + allowed + "};\n";
+
+  out +=
+      "/* Where another fragment may win the depth test (EDGE_DEPTH_ORDER): its primitive, "
+      "depth and\n   components, and their allowances; sorted by pixel (y * FB_WIDTH + x). */\n";
+  out +=
+      "struct candidate {\n  int pixel, primitive;\n  float values[CHANNELS];\n"
+      "  double allowed[CHANNELS];\n};\n";
+  out += "#define CANDIDATE_COUNT " + std::to_string(expected.candidates.size()) + "\n";
+  out += "static const struct candidate CANDIDATES[] = {\n";
+  for (const Candidate& o : expected.candidates) {
+    out += "    {" + std::to_string(o.pixel) + ", " + std::to_string(o.primitive) + ", {";
+    out += hex_literal(o.depth);
+    for (float v : o.values)
+      out += ", " + hex_literal(v);
+    out += "}, {";
+    for (int k = compare::kDepth; k < components; ++k) {
+      const double a = per_pixel
+                           ? double(k == compare::kDepth ? o.allowed_depth : o.allowed[size_t(k)])
+                           : allowances[size_t(k + 1)].at(o.pixel, ulps.ulp(o.primitive, k));
+      out += (k == compare::kDepth ? "" : ", ") + hex_literal(a);
+    }
+    out += "}},\n";
+  }
+  if (expected.candidates.empty()) out += "    {-1, -1, {0}, {0}} /* none */\n";
+  out += "};\n";
+  const std::optional<std::string> outside = outside_specified_range(c);
+  out += "/* Why the case asks for more than GL specifies, if it does. */\n";
+  out += "static const char OUTSIDE_SPECIFIED_RANGE[] = " + c_string(outside.value_or("")) + ";\n";
+  out += kRuntime;
+  return out;
+}
+
+}  // namespace glrc::campaign

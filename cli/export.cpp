@@ -1,0 +1,139 @@
+#include "cli/export.hpp"
+
+#include <fmt/core.h>
+#include <filesystem>
+
+#include "campaign/reproducer.hpp"
+#include "casefile/casefile.hpp"
+#include "check/check.hpp"
+#include "cli/output_dir.hpp"
+#include "cli/session.hpp"
+#include "cli/validators.hpp"
+#include "core/text.hpp"
+#include "gl_harness/first_draw.hpp"
+#include "gl_harness/shaders.hpp"
+#include "report/report.hpp"
+
+namespace glrc::cli {
+namespace {
+
+// What `glrefcheck identify` finds for Mesa's drivers (22.3.6, OSMesa and EGL alike; the top
+// README's "What the suite finds"), and the GL_SUBPIXEL_BITS each reports, which sets the
+// specification's allowance: what `run` judges them by.
+struct DriverModel {
+  const char* name;
+  Model model;
+  int reported_subpixel_bits;
+};
+const DriverModel kDriverModels[] = {
+    {"llvmpipe", {8, Planes::unsnapped, TieBreak::bottom_left}, 8},
+    {"softpipe", {0, Planes::unsnapped, TieBreak::bottom_right}, 4},
+    {"zink", {8, Planes::unsnapped, TieBreak::bottom_left}, 4},
+};
+
+campaign::ReproducerShaders shaders_of(const Case& c) {
+  return {gl::vertex_shader_source(c), gl::geometry_shader_source(c),
+          gl::fragment_shader_source(c, false), gl::fragment_shader_source(c, true)};
+}
+
+// The command that wrote the file, for its header: the options given, as given.
+std::string command_line(const ExportOptions& o, const CLI::App& command) {
+  std::string line = "glrefcheck export " + o.case_path + " --format " + o.format;
+  if (!o.driver.empty()) line += " --driver " + o.driver;
+  if (command.count("--subpixel-bits"))
+    line += " --subpixel-bits " + std::to_string(o.subpixel_bits);
+  if (command.count("--planes")) line += std::string(" --planes ") + to_string(o.planes);
+  if (command.count("--tie-break")) line += std::string(" --tie-break ") + to_string(o.tie_break);
+  return line;
+}
+
+}  // namespace
+
+CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
+  auto* cmd = app.add_subcommand(
+      "export",
+      "write one case as a self-contained C reproducer: it draws the case on GL as glrefcheck "
+      "does and checks the reference's expectation, embedded, without glrefcheck");
+  cmd->add_option("case", o.case_path, "the case file")->required();
+  cmd->add_option("--format", o.format, "c: one C99 file, built with cc alone (default)");
+  cmd->add_option("--out", o.out, "the file to write (default: <case name>.c here)");
+  cmd->add_option("--driver", o.driver,
+                  "judge as for this Mesa driver: llvmpipe, softpipe or zink (the model `identify` "
+                  "finds for it and the GL_SUBPIXEL_BITS it reports)");
+  cmd->add_option("--subpixel-bits", o.subpixel_bits,
+                  "without --driver: the reference's snapping, 0 to 16 (default 8), and the "
+                  "GL_SUBPIXEL_BITS the allowance is for (at least 4); must match the driver's "
+                  "(llvmpipe 8, softpipe 4)")
+      ->check(CLI::Range(0, 16));
+  add_enum_option(*cmd, "--planes", o.planes,
+                  "without --driver: attribute planes from snapped or unsnapped positions");
+  add_enum_option(*cmd, "--tie-break", o.tie_break,
+                  "without --driver: pixel centres exactly on an edge");
+  cmd->add_option("--threads", o.threads, "threads drawing the reference (default: every core)")
+      ->check(whole_number(1));
+  return cmd;
+}
+
+int cmd_export(const ExportOptions& o, const CLI::App& command) {
+  if (o.format != "c")
+    throw InputError("--format: expected c, got \"" + printable(o.format, 80) + "\"");
+  check::CheckOptions options;
+  int reported_bits = std::max(o.subpixel_bits, 4);
+  options.model = Model{o.subpixel_bits, o.planes, o.tie_break};
+  if (!o.driver.empty()) {
+    const DriverModel* found = nullptr;
+    for (const DriverModel& d : kDriverModels)
+      if (o.driver == d.name) found = &d;
+    if (!found)
+      throw InputError("--driver: expected llvmpipe, softpipe or zink, got \"" +
+                       printable(o.driver, 80) + "\"");
+    for (const char* name : {"--subpixel-bits", "--planes", "--tie-break"})
+      if (command.count(name))
+        throw InputError(std::string(name) + ": expected no model option with --driver " +
+                         o.driver + " (the driver names the model)");
+    options.model = found->model;
+    reported_bits = found->reported_subpixel_bits;
+  }
+  options.threads = o.threads;
+
+  Case c;
+  try {
+    c = casefile::load(o.case_path);
+  } catch (const std::exception& e) {
+    throw InputError(e.what());
+  }
+  const size_t values = campaign::reproducer_values(c);
+  if (values > campaign::kMaxReproducerValues) {
+    std::string n = std::to_string(values);
+    for (int at = int(n.size()) - 3; at > 0; at -= 3)
+      n.insert(size_t(at), ",");
+    throw InputError(printable(o.case_path, 200) + ": " + n +
+                     " pixel values; a reproducer embeds at most 400,000: shrink the case first "
+                     "(glrefcheck fuzz --replay ...)");
+  }
+  const std::string out = o.out.empty() ? c.name + ".c" : o.out;
+  if (!out.ends_with(".c") || out.size() < 3 || out.ends_with("/.c"))
+    throw InputError("--out: expected a file name ending in .c, got \"" + printable(out, 200) +
+                     "\"");
+  check_replaceable(out, "--out", campaign::kCReproducerSignature);
+
+  const Expectation expected = check::expectation_for(c, options, reported_bits);
+  const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
+  campaign::CReproducerSetup setup;
+  setup.shaders = shaders_of(c);
+  setup.first_draw = gl::first_draw_case();
+  setup.first_draw_shaders = shaders_of(setup.first_draw);
+  setup.count_vertex = gl::count_vertex_shader_source();
+  setup.count_fragment = gl::count_fragment_shader_source();
+  setup.file_name = std::filesystem::path(out).filename().string();
+  setup.exported_by = command_line(o, command);
+  setup.model = options.model.describe() +
+                (o.driver.empty() ? "" : " (what `identify` finds for " + o.driver + ")");
+  report::write_file_atomically(out, campaign::c_reproducer(c, expected, tolerance, setup));
+  fmt::print("wrote {}: compile with {}, run with {} [egl|osmesa]\n", out,
+             campaign::c_compile_command(out),
+             (out.find('/') == std::string::npos ? "./" : "") + out.substr(0, out.size() - 2));
+  return 0;
+}
+
+}  // namespace glrc::cli
