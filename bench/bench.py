@@ -80,6 +80,12 @@ def gl_frame_bytes(scene):
     return fb["width"] * fb["height"] * 4 * (components + 2)
 
 
+def known_failures(driver):
+    """cases/known-failures-<driver>.txt where there is one, else cases/known-failures.txt."""
+    own = os.path.join(ROOT, "cases", "known-failures-%s.txt" % driver)
+    return own if os.path.exists(own) else os.path.join(ROOT, "cases", "known-failures.txt")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -110,7 +116,7 @@ def main():
             progress("the suite on %s, --jobs 2" % driver)
             suite[driver], _ = timed_run(
                 args.build, [os.path.join(ROOT, "cases"), "--driver", driver, "--jobs", "2",
-                             "--baseline", os.path.join(ROOT, "cases", "known-failures.txt")],
+                             "--baseline", known_failures(driver)],
                 args.reps, os.path.join(work, "out-suite-" + driver))
     progress("")
 

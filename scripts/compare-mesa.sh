@@ -17,7 +17,9 @@ for backend in osmesa egl; do
   for driver in llvmpipe softpipe; do
     base=out/mesa-system-$backend-$driver current=out/mesa-$version-$backend-$driver
     report=out/compare-$version-$backend-$driver
-    common=(--backend "$backend" --driver "$driver" --baseline cases/known-failures.txt --html)
+    baseline=cases/known-failures.txt
+    [ -f "cases/known-failures-$driver.txt" ] && baseline="cases/known-failures-$driver.txt"
+    common=(--backend "$backend" --driver "$driver" --baseline "$baseline" --html)
     "$bin" run "${common[@]}" --out "$base" >"$base.log" 2>&1 || true
     "$bin" run "${common[@]}" --mesa ".mesa/$version" --out "$current" >"$current.log" 2>&1 || true
     for log in "$base.log" "$current.log"; do
