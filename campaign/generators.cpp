@@ -42,7 +42,11 @@ double pixel_centre(double x) {
 
 // A varying named v<k>.
 void add_varying(Case& c, int size, Interpolation interpolation) {
-  c.varyings.push_back({"v" + std::to_string(c.varyings.size()), size, interpolation});
+  // Appended, not "v" + std::to_string(...): GCC 12 at -O3 reports a false -Wrestrict in
+  // operator+ on a literal (../shared/DESIGN.md), which would stop a Release -Werror build.
+  std::string name = "v";
+  name += std::to_string(c.varyings.size());
+  c.varyings.push_back({name, size, interpolation});
 }
 Interpolation any_interpolation(Random& r) {
   return Interpolation(r.below(3));  // smooth, flat, noperspective
@@ -373,12 +377,21 @@ Case generate(const std::vector<const Generator*>& chosen, uint64_t seed, uint64
   Random random(stream_seed(seed, index, g.name));
   Case c = g.make(random);
   make_loadable(c);
-  const std::string where = std::to_string(seed) + ":" + std::to_string(index);
-  c.name = "fuzz_" + std::string(g.name) + "_" + std::to_string(seed) + "_" + std::to_string(index);
-  c.description = "Random case of generator " + std::string(g.name) + " (" +
-                  std::string(g.aims_at) + "), seed:index " + where +
-                  ": glrefcheck fuzz --generator " + std::string(g.name) + " --replay " + where +
-                  " --emit FILE";
+  // Appended piece by piece (see add_varying on GCC 12's -Wrestrict).
+  const std::string seed_text = std::to_string(seed), index_text = std::to_string(index);
+  std::string where = seed_text;
+  where += ':';
+  where += index_text;
+  c.name = "fuzz_";
+  for (const std::string_view part : {g.name, std::string_view("_"), std::string_view(seed_text),
+                                      std::string_view("_"), std::string_view(index_text)})
+    c.name += part;
+  c.description = "Random case of generator ";
+  for (const std::string_view part :
+       {g.name, std::string_view(" ("), g.aims_at, std::string_view("), seed:index "),
+        std::string_view(where), std::string_view(": glrefcheck fuzz --generator "), g.name,
+        std::string_view(" --replay "), std::string_view(where), std::string_view(" --emit FILE")})
+    c.description += part;
   return c;
 }
 
