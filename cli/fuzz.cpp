@@ -167,19 +167,11 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   if (ec)
     throw InputError("--out: cannot remove the earlier campaign's failures/: " + ec.message());
 
-  WorkerSettings s;
-  s.jobs = workers_for(o);
-  if (o.threads == 0) o.threads = std::max(1, available_cores() / s.jobs);
-  s.timeout = o.timeout;
-  s.log_dir = out / "logs";
-  s.interrupt_fd = interrupt_fd;
-  s.wrapper = o.worker_wrapper;
+  WorkerSettings s = worker_settings(o, out, interrupt_fd, prefix);
   // Heatmaps for the minimal cases only (checked once more when shrunk), for report.html.
   std::set<std::string> with_images;
   std::vector<CaseResult> minimal_results;
   s.images = [&with_images](const Case& c) { return with_images.count(c.name) > 0; };
-  if (prefix) s.environment = mesa_environment(*prefix, out);
-  s.environment.push_back(huge_page_malloc_tunable());
   co.batch = size_t(std::max(4 * s.jobs, 8));
   co.shrinking.batch = size_t(std::max(s.jobs, 1));
 

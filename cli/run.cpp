@@ -104,20 +104,10 @@ int cmd_run(const Options& given) {
   const double before = earlier ? earlier->elapsed : 0.0;  // time the run took before --resume
   const auto elapsed = [&] { return before + seconds_since(start); };
 
-  WorkerSettings s;
-  s.jobs = workers_for(o);
-  // Each worker draws its references on its share of the cores: workers times threads never
-  // more than the cores.
-  if (o.threads == 0) o.threads = std::max(1, available_cores() / s.jobs);
-  s.timeout = o.timeout;
-  s.log_dir = out / "logs";
-  s.interrupt_fd = interrupt_fd;
-  s.wrapper = o.worker_wrapper;
+  WorkerSettings s = worker_settings(o, out, interrupt_fd, prefix);
   if (earlier && earlier->model) s.model = earlier->model;
   // Known failures get their heatmaps only for the HTML report: triage needs the new ones.
   s.images = [&](const Case& c) { return o.html || !baseline.expected.count(c.name); };
-  if (prefix) s.environment = mesa_environment(*prefix, out);
-  s.environment.push_back(huge_page_malloc_tunable());
 
   // What the run knows before GL (enough when every case is skipped), and again once a worker
   // has told the GL strings.

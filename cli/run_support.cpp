@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "cli/process.hpp"
 #include "core/text.hpp"
 #include "ref/tiles.hpp"
 #include "report/html.hpp"
@@ -95,6 +96,20 @@ int workers_for(const Options& o) {
     return cores;
   }
   return o.jobs;
+}
+
+WorkerSettings worker_settings(Options& o, const std::filesystem::path& out, int interrupt_fd,
+                               const std::optional<MesaPrefix>& prefix) {
+  WorkerSettings s;
+  s.jobs = workers_for(o);
+  if (o.threads == 0) o.threads = std::max(1, available_cores() / s.jobs);
+  s.timeout = o.timeout;
+  s.log_dir = out / "logs";
+  s.interrupt_fd = interrupt_fd;
+  s.wrapper = o.worker_wrapper;
+  if (prefix) s.environment = mesa_environment(*prefix, out);
+  s.environment.push_back(huge_page_malloc_tunable());
+  return s;
 }
 
 }  // namespace glrc::cli

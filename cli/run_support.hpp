@@ -4,11 +4,14 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "cli/mesa_prefix.hpp"
 #include "cli/session.hpp"
+#include "cli/workers.hpp"
 #include "core/result.hpp"
 
 namespace glrc::cli {
@@ -39,6 +42,13 @@ int available_cores();
 // --jobs, or one worker per available core; more than the cores only with --jobs-force (a
 // note says so otherwise).
 int workers_for(const Options& o);
+
+// The worker settings `run` and `fuzz` share: workers_for(o) workers, their logs in out/logs,
+// --timeout, --worker-wrapper, the interrupt pipe, the Mesa prefix's environment and the
+// huge-page malloc tunable. Sets o.threads, when 0, to each worker's share of the cores (workers
+// times threads never more than the cores). The caller adds images and the model.
+WorkerSettings worker_settings(Options& o, const std::filesystem::path& out, int interrupt_fd,
+                               const std::optional<MesaPrefix>& prefix);
 
 // results.json, results.csv, failures.csv, junit.xml (and report.html with `html`) in `out`,
 // and the line saying so.
