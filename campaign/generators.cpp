@@ -78,11 +78,35 @@ double some_w(Random& r, bool perspective) {
   return perspective ? r.binades(-2, 1) : 1.0;
 }
 
+// Every random draw of these generators is its own statement, in a fixed order: the order in
+// which a compiler evaluates function arguments or the operands of * is unspecified, so
+// f(r.uniform(..), r.uniform(..)) could give GCC and Clang builds different cases for one seed.
+
+// A framebuffer (and viewport) of width in [w0, w1] and height in [h0, h1], the height drawn
+// first.
+void set_framebuffer_drawn(Case& c, Random& r, int w0, int w1, int h0, int h1) {
+  const int height = r.between(h0, h1);
+  const int width = r.between(w0, w1);
+  set_framebuffer(c, width, height);
+}
+
+// A vertex anywhere within `margin` viewports of the viewport, z_n within ±depth, w from
+// some_w; drawn w, z_n, y, then x.
+std::array<float, 4> random_clip(const Case& c, Random& r, double margin, double depth,
+                                 bool perspective) {
+  const double vw = c.viewport.width, vh = c.viewport.height;
+  const double w = some_w(r, perspective);
+  const double z = r.uniform(-depth, depth);
+  const double y = r.uniform(-margin * vh, (1 + margin) * vh);
+  const double x = r.uniform(-margin * vw, (1 + margin) * vw);
+  return clip_at(c, x, y, z, w);
+}
+
 Case sizes(Random& r) {
   Case c;
   const uint64_t shape = r.below(10);
   if (shape < 6) {
-    set_framebuffer(c, r.between(8, 128), r.between(8, 128));
+    set_framebuffer_drawn(c, r, 8, 128, 8, 128);
   } else if (shape < 8) {
     const int a = r.between(128, 512), b = r.between(8, 64);
     r.chance(0.5) ? set_framebuffer(c, a, b) : set_framebuffer(c, b, a);
@@ -106,7 +130,8 @@ Case sizes(Random& r) {
     for (auto& q : p)
       q = {cx + size * r.uniform(-1, 1), cy + size * r.uniform(-1, 1)};
     if (r.chance(0.3)) {  // a sliver: the third vertex just off the line through the others
-      const double t01 = r.uniform(-0.5, 1.5), off = size * r.binades(-24, -4) * r.sign();
+      const double t01 = r.uniform(-0.5, 1.5), tiny = r.binades(-24, -4);
+      const double off = size * tiny * r.sign();
       const double dx = p[1][0] - p[0][0], dy = p[1][1] - p[0][1];
       p[2] = {p[0][0] + t01 * dx - off * dy, p[0][1] + t01 * dy + off * dx};
     }
@@ -114,8 +139,10 @@ Case sizes(Random& r) {
       for (auto& q : p)
         q = {std::floor(q[0] * 256) / 256, std::floor(q[1] * 256) / 256};
     std::array<std::array<float, 4>, 3> clip;
-    for (size_t k = 0; k < 3; ++k)
-      clip[k] = clip_at(c, p[k][0], p[k][1], r.uniform(-0.99, 0.99), some_w(r, perspective));
+    for (size_t k = 0; k < 3; ++k) {
+      const double w = some_w(r, perspective), z = r.uniform(-0.99, 0.99);
+      clip[k] = clip_at(c, p[k][0], p[k][1], z, w);
+    }
     add_triangle(c, clip);
   }
   if (r.chance(0.3)) c.depth_func = DepthFunc::less;
@@ -126,7 +153,7 @@ Case sizes(Random& r) {
 
 Case clip(Random& r) {
   Case c;
-  set_framebuffer(c, r.between(16, 96), r.between(16, 96));
+  set_framebuffer_drawn(c, r, 16, 96, 16, 96);
   const int count = r.between(1, 4);
   for (int t = 0; t < count; ++t) {
     std::array<std::array<float, 4>, 3> v;
@@ -134,7 +161,10 @@ Case clip(Random& r) {
       const uint64_t kind = r.below(10);
       double w = r.binades(-10, 10);
       if (kind >= 6 && kind < 8) w = -r.binades(-3, 3);
-      if (kind == 8) w = r.binades(-40, -20) * r.sign();  // tiny, either side of the eye
+      if (kind == 8) {  // tiny, either side of the eye
+        const double tiny = r.binades(-40, -20);
+        w = tiny * r.sign();
+      }
       p[3] = float(w);
       for (size_t axis = 0; axis < 3; ++axis) {
         double n;  // normalized device coordinate
@@ -145,9 +175,11 @@ Case clip(Random& r) {
           case 1:
             n = -1;
             break;
-          case 2:
-            n = r.sign() * (1 + r.sign() * r.binades(-24, -1) / 2);
-            break;  // near it
+          case 2: {  // near it
+            const double side = r.sign(), toward = r.sign();
+            n = side * (1 + toward * r.binades(-24, -1) / 2);
+            break;
+          }
           case 3:
             n = r.uniform(-40, 40);
             break;
@@ -186,7 +218,7 @@ std::array<double, 2> on_circle(double cx, double cy, double radius, double degr
 
 Case mesh(Random& r) {
   Case c;
-  set_framebuffer(c, r.between(24, 96), r.between(24, 96));
+  set_framebuffer_drawn(c, r, 24, 96, 24, 96);
   const double vw = c.viewport.width, vh = c.viewport.height;
   // w over the mesh: 1, or an affine function of the window position (a tilted plane), so a
   // shared vertex keeps one w and the mesh stays watertight in clip space.
@@ -260,15 +292,13 @@ Case mesh(Random& r) {
 
 Case attributes(Random& r) {
   Case c;
-  set_framebuffer(c, r.between(16, 64), r.between(16, 64));
-  const double vw = c.viewport.width, vh = c.viewport.height;
+  set_framebuffer_drawn(c, r, 16, 64, 16, 64);
   const bool perspective = r.chance(0.5);
   const int count = r.between(1, 3);
   for (int t = 0; t < count; ++t) {
     std::array<std::array<float, 4>, 3> v;
     for (auto& p : v)
-      p = clip_at(c, r.uniform(-0.2 * vw, 1.2 * vw), r.uniform(-0.2 * vh, 1.2 * vh),
-                  r.uniform(-0.9, 0.9), some_w(r, perspective));
+      p = random_clip(c, r, 0.2, 0.9, perspective);
     add_triangle(c, v);
   }
   // The varyings' layout from a menu of 24 (1, 2, 4 or 7 varyings; all vec4 or sizes 1 to 4
@@ -289,16 +319,20 @@ Case attributes(Random& r) {
   fill_values(c, r, [&](Random& rr, int k) {
     const uint64_t kind = rr.below(20);
     if (kind == 0) return 0.0f;
-    if (kind == 1) return float(rr.sign() * rr.binades(-149, -127));  // subnormal
+    if (kind == 1) {  // subnormal
+      const double sign = rr.sign();
+      return float(sign * rr.binades(-149, -127));
+    }
     const int e = exponent[size_t(k)] + rr.between(-3, 3);
-    return float(rr.sign() * rr.binades(e, e));
+    const double sign = rr.sign();
+    return float(sign * rr.binades(e, e));
   });
   return c;
 }
 
 Case states(Random& r) {
   Case c;
-  set_framebuffer(c, r.between(16, 200), r.between(16, 200));
+  set_framebuffer_drawn(c, r, 16, 200, 16, 200);
   if (r.chance(0.7)) {
     c.viewport.x = r.between(0, c.fb_width - 1);
     c.viewport.y = r.between(0, c.fb_height - 1);
@@ -311,14 +345,12 @@ Case states(Random& r) {
   c.depth_func = DepthFunc(r.below(2));
   c.depth_near = float(r.unit()), c.depth_far = float(r.unit());
   if (r.chance(0.3)) c.depth_near = 0, c.depth_far = 1;
-  const double vw = c.viewport.width, vh = c.viewport.height;
   const bool perspective = r.chance(0.4);
   const int count = r.between(2, 8);
   for (int t = 0; t < count; ++t) {
     std::array<std::array<float, 4>, 3> v;
     for (auto& p : v)
-      p = clip_at(c, r.uniform(-0.3 * vw, 1.3 * vw), r.uniform(-0.3 * vh, 1.3 * vh),
-                  r.uniform(-1.2, 1.2), some_w(r, perspective));
+      p = random_clip(c, r, 0.3, 1.2, perspective);
     add_triangle(c, v);
   }
   add_varying(c, 2, Interpolation::flat);
