@@ -69,7 +69,9 @@ double ConcaveEnvelope::at(double x, double y) const {
 }
 
 std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
-                                           std::vector<std::array<double, 3>>* z_clip) {
+                                           std::vector<std::array<double, 3>>* z_clip,
+                                           bool* reaches_eye) {
+  if (reaches_eye) *reaches_eye = false;
   std::vector<ClipVertex> poly;
   for (uint32_t index : t.index) {
     ClipVertex v;
@@ -128,7 +130,11 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
   const double m = viewport_magnitude(vp);
   for (const ClipVertex& v : poly) {
     const double w = v.p[3];
-    if (!(w > 0)) return {};  // only the eye itself: nothing that can be drawn
+    // After the six planes, only the eye itself: nothing the exact rasterization draws.
+    if (!(w > 0)) {
+      if (reaches_eye) *reaches_eye = true;
+      return {};
+    }
     const double xn = v.p[0] / w, yn = v.p[1] / w, zn = v.p[2] / w;
     PolygonVertex out;
     out.x_w = vp.x + half_w + xn * half_w;
@@ -149,13 +155,14 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
 PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subpixel_bits) {
   const Viewport& vp = c.viewport;
   const double m = viewport_magnitude(vp);
-  bool clipped = false, in_guard_band = true;
+  bool clipped = false, in_guard_band = true, depth_clipped = false;
   std::vector<std::array<double, 3>> whole;
   for (uint32_t index : t.index) {
     const auto& p = c.vertices[index].clip;
     const double w = p[3];
     clipped =
         clipped || !(w > 0) || std::fabs(p[0]) > w || std::fabs(p[1]) > w || std::fabs(p[2]) > w;
+    depth_clipped = depth_clipped || !(w > 0) || std::fabs(p[2]) > w;
     if (!(w > 0)) {
       in_guard_band = false;
       continue;
@@ -169,7 +176,8 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   }
   bool any = false;
   std::vector<std::array<double, 3>> z_clip;
-  const std::vector<PolygonVertex> poly_vertices = clipped_polygon(c, t, subpixel_bits, &z_clip);
+  const std::vector<PolygonVertex> poly_vertices =
+      clipped_polygon(c, t, subpixel_bits, &z_clip, &reaches_eye_);
   if (!z_clip.empty()) z_clip_ = ConcaveEnvelope(z_clip);
   if (const std::vector<PolygonVertex>& polygon = poly_vertices; !polygon.empty()) {
     any = true;
@@ -196,6 +204,11 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
       whole_.push_back({d[0], d[1]});
   }
   if (!any) delta_[0] = ConcaveEnvelope({{0, 0, snap_and_round(0, 0, m, subpixel_bits)}});
+  sliver_sources_ = polygon_;
+  sliver_sources_.insert(sliver_sources_.end(), whole_.begin(), whole_.end());
+  if (depth_clipped && !polygon_.empty())
+    for (const auto& v : z_clip)
+      sliver_sources_.push_back({v[0], v[1]});
 
   // Orientation: 2·area moves by at most Σ_j δ_j·(|E_j.x| + |E_j.y|) to first order (E_j the
   // edge opposite vertex j: the gradient of 2·area in vertex j is E_j turned by 90 degrees), and

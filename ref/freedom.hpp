@@ -84,9 +84,13 @@ struct PolygonVertex {
 // and far), each vertex with its freedom for an implementation reporting `subpixel_bits`.
 // Empty when nothing of the triangle is left. With `z_clip`, also the vertices of the polygon
 // clipped against x and y only, as {x_w, y_w, (e_z + e_w)/w_c} (window pixels, z_n units; vertices
-// with w_c <= 0 left out): the freedom of the near and far planes' cut (PositionFreedom).
+// with w_c <= 0 left out): the freedom of the near and far planes' cut (PositionFreedom). With
+// `reaches_eye`, whether the polygon left has a vertex at w_c <= 0 (then it is returned empty):
+// the triangle's plane holds the eye, its window image is a line, and that vertex's window
+// position, x_c/w_c with w_c = 0, is not defined.
 std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
-                                           std::vector<std::array<double, 3>>* z_clip = nullptr);
+                                           std::vector<std::array<double, 3>>* z_clip = nullptr,
+                                           bool* reaches_eye = nullptr);
 
 // The freedom of one triangle, per pixel: the largest of the polygons' envelopes (see above).
 class PositionFreedom {
@@ -121,16 +125,32 @@ class PositionFreedom {
   // Whether the triangle's orientation can change (it may turn over, or become degenerate)
   // when each vertex moves within its freedom: then the coverage of the pixels it may reach is
   // not decided by the specification. Needs every w_c > 0; a triangle reaching behind the eye
-  // is never that thin.
+  // is never that thin: unless its plane holds the eye, its window image reaches the window's
+  // sides where the polygon's vertices have w_c as small as the plane's distance from the eye,
+  // and the freedom as large as their rounding over that (a plane that holds it: zero area,
+  // sliver_sources).
   bool may_turn_over() const { return may_turn_over_; }
+  // For a triangle of zero area (det = 0 in setup_triangle: its window image is a segment, or a
+  // point), which the exact rasterization never draws but an implementation's rounded vertices
+  // may turn into a sliver: the window positions that sliver's vertices come from, each moved by
+  // at most largest() in x and in y. They are the clipped polygon's vertices, the guard-band
+  // triangle's, and, where the near or far plane cuts the triangle, the vertices of the polygon
+  // clipped against x and y only (where that cut lies has a freedom of its own, z_clip_at: the
+  // whole polygon before the cut bounds it). All on one line, up to the rounding of doubles.
+  const std::vector<std::array<double, 2>>& sliver_sources() const { return sliver_sources_; }
+  // Whether the clipped polygon reaches the eye (clipped_polygon): a vertex an implementation
+  // computes there in float32 has components of rounding noise, x_c/w_c anything, so its window
+  // position, and the sliver made with it, may lie anywhere. Only a triangle whose plane holds
+  // the eye (zero area in the window) reaches it.
+  bool reaches_eye() const { return reaches_eye_; }
 
  private:
   // The clipped polygon, the whole triangle in a guard band.
   std::array<ConcaveEnvelope, 2> delta_;
   ConcaveEnvelope depth_, weight_, inverse_w_, z_clip_;
-  std::vector<std::array<double, 2>> polygon_, whole_;
+  std::vector<std::array<double, 2>> polygon_, whole_, sliver_sources_;
   int generations_ = 0;
-  bool may_turn_over_ = false;
+  bool may_turn_over_ = false, reaches_eye_ = false;
 };
 
 }  // namespace glrc::ref

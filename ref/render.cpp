@@ -105,6 +105,64 @@ struct Prepared {
   FanTriangles fan;
 };
 
+// A triangle of zero area (det = 0): no pixel centre lies inside it, but the vertices an
+// implementation rasterizes may each lie up to `delta` pixels from the exact ones in x and in y
+// (freedom.hpp), and then make a sliver that covers centres near the segment its window image
+// is. The sliver lies in the convex hull of the moved vertices, so within the segment grown by
+// the square [-delta, delta]²: every centre there is edge::unstable, any primitive and any
+// fragment count being what some conforming implementation draws. A triangle through the eye
+// (PositionFreedom::reaches_eye) has a vertex of undefined position: every centre of the viewport.
+struct Sliver {
+  std::array<double, 2> a{}, b{};  // the segment's ends, window coordinates (pixels)
+  double delta = 0;                // how far the sliver's vertices may lie from it, pixels
+
+  // The ends are the farthest two of the freedom's sources: collinear in exact arithmetic, so
+  // the segment between them holds every one; `delta` grows by the doubles' rounding of them.
+  bool anywhere = false;
+
+  explicit Sliver(const PositionFreedom& freedom) : anywhere(freedom.reaches_eye()) {
+    const auto& points = freedom.sliver_sources();
+    double farthest = -1, magnitude = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      magnitude = std::max({magnitude, std::fabs(points[i][0]), std::fabs(points[i][1])});
+      for (size_t j = i; j < points.size(); ++j) {
+        const double d = std::hypot(points[j][0] - points[i][0], points[j][1] - points[i][1]);
+        if (d > farthest) farthest = d, a = points[i], b = points[j];
+      }
+    }
+    delta = freedom.largest() + std::ldexp(1 + magnitude, -30);
+  }
+
+  // Marks the centres of rows [y0, y1] within the grown segment, in columns [x0, x1].
+  void mark(int x0, int y0, int x1, int y1, int row0, Frame& f, std::vector<uint8_t>& edges) const {
+    const double dx = b[0] - a[0], dy = b[1] - a[1];
+    for (int py = y0; py <= y1; ++py) {
+      if (anywhere) {
+        for (int px = x0; px <= x1; ++px)
+          edges[f.index(px, py - row0)] |= edge::unstable;
+        continue;
+      }
+      const double y = py + 0.5;
+      // The part of the segment within delta of the row, a + t·(b - a) for t in [t0, t1].
+      double t0 = 0, t1 = 1;
+      if (dy != 0) {
+        t0 = (y - delta - a[1]) / dy, t1 = (y + delta - a[1]) / dy;
+        if (t0 > t1) std::swap(t0, t1);
+        t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
+        if (!(t0 <= t1)) continue;
+      } else if (!(std::fabs(y - a[1]) <= delta)) {
+        continue;
+      }
+      const double xa = a[0] + t0 * dx, xb = a[0] + t1 * dx;
+      const double lo = std::min(xa, xb) - delta - 0.5, hi = std::max(xa, xb) + delta - 0.5;
+      const int first = std::max(x0, int(std::clamp(std::ceil(lo), -1e9, 1e9)));
+      const int last = std::min(x1, int(std::clamp(std::floor(hi), -1e9, 1e9)));
+      for (int px = first; px <= last; ++px)
+        edges[f.index(px, py - row0)] |= edge::unstable;
+    }
+  }
+};
+
 // Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,
 // then the fragments it covers, depth-tested, with their allowances and the candidates.
 void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference& r,
@@ -258,13 +316,23 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   // A chunk of triangles prepared at a time: their work held at once, not the whole case's.
   constexpr int kChunk = 512;
   std::vector<std::unique_ptr<const Prepared>> prepared;
+  std::vector<std::optional<Sliver>> slivers;
   for (int first = 0; first < count; first += kChunk) {
     const int n = std::min(kChunk, count - first);
     prepared.clear();
     prepared.resize(size_t(n));
+    slivers.assign(size_t(n), std::nullopt);
     parallel_for(n, threads, [&](int k) {
       const int p = first + k;
       const TriangleSetup& t = setups[size_t(p)];
+      // Zero area: drawn by no model, but a sliver of some implementation's (Sliver). Its
+      // facing is either, so only culling both faces rules it out.
+      if (allowance && !t.has_edges && c.cull != CullFace::front_and_back) {
+        const PositionFreedom freedom(c, t, s.bits);
+        if (freedom.reaches_eye() || !freedom.sliver_sources().empty())
+          slivers[size_t(k)].emplace(freedom);
+        return;
+      }
       // A triangle this model does not draw (zero snapped area, culled) may still be drawn by
       // another implementation when its orientation is not decided by the freedom.
       if (!t.drawn && !(allowance && t.has_edges && c.cull != CullFace::front_and_back)) return;
@@ -277,6 +345,9 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
         if (const Prepared* w = prepared[size_t(k)].get();
             w && w->reach.y0 <= rows[size_t(b)].y1 && w->reach.y1 >= rows[size_t(b)].y0)
           draw_rows(s, *w, first + k, rows[size_t(b)], r, candidates[size_t(b)]);
+        else if (const auto& sliver = slivers[size_t(k)])
+          sliver->mark(s.viewport.x0, std::max(s.viewport.y0, rows[size_t(b)].y0), s.viewport.x1,
+                       std::min(s.viewport.y1, rows[size_t(b)].y1), s.row0, f, r.edges);
     });
   }
   // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.

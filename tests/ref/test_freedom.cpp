@@ -139,6 +139,25 @@ TEST(Freedom, ASliverThinnerThanTheFreedomMayTurnOver) {
   EXPECT_FALSE(PositionFreedom(wide, setup_triangle(wide, Model{}, 0), 8).may_turn_over());
 }
 
+TEST(Freedom, AZeroAreaTriangleThroughTheEyeReachesIt) {
+  // Vertex 0 is -2 times vertex 1 in every coordinate: the point between them at w_c = 0 is the
+  // eye, and it is left by all six planes.
+  const Case c = one_triangle({-0.5f, 1.125f, -0.25f, -2}, {0.25f, -0.5625f, 0.125f, 1},
+                              {-0.75f, -0.5625f, 0, 1});
+  const PositionFreedom f(c, setup_triangle(c, Model{}, 0), 8);
+  EXPECT_TRUE(f.reaches_eye());
+  EXPECT_TRUE(f.polygon().empty());
+  // z_c not proportional: the near plane cuts the eye away, and the polygon left lies on the
+  // window's line y_w = 32·(1 - 0.5625) = 14 of the 64x64 viewport.
+  Case cut = c;
+  cut.vertices[0].clip[2] = 1;
+  const PositionFreedom g(cut, setup_triangle(cut, Model{}, 0), 8);
+  EXPECT_FALSE(g.reaches_eye());
+  ASSERT_GE(g.sliver_sources().size(), 2u);
+  for (const auto& p : g.sliver_sources())
+    EXPECT_NEAR(p[1], 14, 1e-9);
+}
+
 // One vertex of a polygon in clip space with its smooth values.
 struct Point {
   std::array<double, 4> p;

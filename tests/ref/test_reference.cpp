@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <mpfr.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -297,6 +298,54 @@ TEST(Reference, ViewportOffsetAndEdgeBand) {
   EXPECT_EQ(re.edges[re.frame.index(15, 16)], edge::snapping | edge::tie);
   EXPECT_EQ(re.edges[re.frame.index(17, 16)], 0);
   EXPECT_EQ(re.edges[re.frame.index(13, 16)], 0);
+}
+
+// A triangle of zero area covers no centre exactly, but an implementation's rounded vertices may
+// make a sliver of it (llvmpipe does, in a campaign): the centres within the position freedom of
+// its segment are unstable, no others; one through the eye has a vertex of undefined position,
+// and every centre of the viewport is; culling both faces draws neither.
+TEST(Reference, AZeroAreaTriangleLeavesOnlyItsSliverUndecided) {
+  auto unstable = [](const Reference& r, int x, int y) {
+    return (r.edges[r.frame.index(x, y)] & edge::unstable) != 0;
+  };
+  // Collinear along the row of centres y_w = 10.5 of a 64x48 viewport, from x_w = 8.5 to 40.5,
+  // the middle vertex divided by w_c = 3.
+  Case c = base_case(64, 48);
+  const float y_n = 10.5f / 24 - 1;
+  c.vertices = {vtx(8.5f / 32 - 1, y_n, 0, 1, {}), vtx(3 * (20.5f / 32 - 1), 3 * y_n, 0, 3, {}),
+                vtx(40.5f / 32 - 1, y_n, 0, 1, {})};
+  c.triangles = {{0, 1, 2}};
+  ASSERT_FALSE(setup_triangle(c, Model{}, 0).has_edges);
+  const Reference r = render(c, Model{}, 8);
+  for (int x = 8; x <= 40; ++x)
+    EXPECT_TRUE(unstable(r, x, 10)) << x;
+  for (int x : {6, 7, 41, 42})
+    EXPECT_FALSE(unstable(r, x, 10)) << x;
+  for (int x = 0; x < 64; ++x)
+    EXPECT_FALSE(unstable(r, x, 9) || unstable(r, x, 11)) << x;
+  for (size_t i = 0; i < r.frame.pixel_count(); ++i)
+    EXPECT_EQ(r.frame.primitive[i], Frame::kNoPrimitive);
+  // Without an allowance (a driver model), nothing is undecided.
+  const Reference model = render(c, Model{});
+  EXPECT_TRUE(
+      std::all_of(model.edges.begin(), model.edges.end(), [](uint8_t e) { return e == 0; }));
+
+  // Vertex 0 is -2 times vertex 1: the triangle holds the eye (the point between them at
+  // w_c = 0). llvmpipe's clipper makes a vertex there of rounding noise and fills 1,005 pixels.
+  Case eye = base_case(64, 48);
+  eye.vertices = {vtx(-2 * 0.25f, -2 * -0.5625f, -2 * 0.125f, -2, {}),
+                  vtx(0.25f, -0.5625f, 0.125f, 1, {}), vtx(-0.75f, -0.5625f, 0, 1, {})};
+  eye.triangles = {{0, 1, 2}};
+  const Reference re = render(eye, Model{}, 8);
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x)
+      ASSERT_TRUE(unstable(re, x, y)) << x << "," << y;
+  eye.cull = CullFace::front_and_back;
+  const Reference culled = render(eye, Model{}, 8);
+  EXPECT_TRUE(
+      std::all_of(culled.edges.begin(), culled.edges.end(), [](uint8_t e) { return e == 0; }));
+  eye.cull = CullFace::back;  // its facing is either
+  EXPECT_TRUE(unstable(render(eye, Model{}, 8), 0, 0));
 }
 
 }  // namespace
