@@ -111,6 +111,20 @@ void add_gl_options(CLI::App& app, Options& o) {
                  "VERSION unpacks one into .mesa/VERSION)");
 }
 
+void add_worker_wrapper_option(CLI::App& command, Options& o) {
+  command
+      .add_option("--worker-wrapper", o.worker_wrapper,
+                  "run each worker under this command, as typed on a shell (\"valgrind -q\", "
+                  "\"taskset -c 2\", \"gdb -batch -ex run -ex bt --args\"); its processes are "
+                  "killed with the worker")
+      ->check(CLI::Validator(
+          [](const std::string& s) {
+            return s.find_first_not_of(" \t") == std::string::npos ? "expected a command"
+                                                                   : std::string();
+          },
+          "COMMAND"));
+}
+
 // `run --resume DIR` runs what DIR's journal recorded: any other option would be silently
 // overridden, so it is refused instead. --jobs only changes how fast.
 void check_resume_alone(const CLI::App& run) {
@@ -166,16 +180,7 @@ int main_impl(int argc, char** argv) {
   run->add_option("--fraction-start", o.fraction_start,
                   "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
       ->check(whole_number(1));
-  run->add_option("--worker-wrapper", o.worker_wrapper,
-                  "run each worker under this command, as typed on a shell (\"valgrind -q\", "
-                  "\"taskset -c 2\", \"gdb -batch -ex run -ex bt --args\"); its processes are "
-                  "killed with the worker")
-      ->check(CLI::Validator(
-          [](const std::string& s) {
-            return s.find_first_not_of(" \t") == std::string::npos ? "expected a command"
-                                                                   : std::string();
-          },
-          "COMMAND"));
+  add_worker_wrapper_option(*run, o);
   run->add_flag("--html", o.html, "also write report.html, a self-contained page");
   run->add_option("--resume", o.resume,
                   "continue the interrupted or killed run in this folder, with the options and "
@@ -198,6 +203,7 @@ int main_impl(int argc, char** argv) {
   fuzz->add_option("--fraction-start", o.fraction_start,
                    "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
       ->check(whole_number(1));
+  add_worker_wrapper_option(*fuzz, o);
 
   CompareOptions compare_options;
   auto* compare = add_compare_command(app, compare_options);

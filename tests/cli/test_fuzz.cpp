@@ -4,10 +4,12 @@
 // campaign drew; bad input is one line and exit 2. The campaign's logic without GL is in
 // tests/campaign/.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "campaign/generators.hpp"
 #include "casefile/casefile.hpp"
@@ -67,6 +69,36 @@ TEST_F(Fuzz, FindsAndShrinksTheClipperNaN) {
       glrefcheck("run '" + file.string() + "' --jobs 1 --out '" + (dir_ / "run").string() + "'");
   EXPECT_EQ(run.exit_code, 1) << run.out << run.err;
   EXPECT_NE(run.out.find("NaN/Inf"), std::string::npos) << run.out;
+}
+
+// SIGINT while a worker hangs on case 21: exit 130, and the campaign's results.json, CSV and
+// page are written, marked interrupted, with the cases checked before it; the worker is gone.
+TEST_F(Fuzz, AnInterruptedCampaignWritesWhatItChecked) {
+  const auto out = dir_ / "campaign", pidfile = dir_ / "worker.pid";
+  glrc::test::Outcome o;
+  std::thread campaign([&] {
+    o = glrefcheck("fuzz --seed 2 --count 64 --generator sizes --jobs 1 --no-shrink --out '" +
+                   out.string() + "'" +
+                   glrc::test::proxied_workers("--stall-case fuzz_sizes_2_21 --pidfile '" +
+                                               pidfile.string() + "'"));
+  });
+  const pid_t worker = glrc::test::wait_for_pid(pidfile);
+  ASSERT_GT(worker, 0) << "no worker reached fuzz_sizes_2_21";
+  const pid_t runner = glrc::test::parent_of(worker);
+  ASSERT_GT(runner, 1);
+  ASSERT_EQ(kill(runner, SIGINT), 0);
+  campaign.join();
+  EXPECT_TRUE(glrc::test::ended_within(worker, std::chrono::seconds(10)))
+      << "the worker outlived its runner";
+  EXPECT_EQ(o.exit_code, 130) << o.out << o.err;
+  const auto results = nlohmann::json::parse(read(out / "results.json"));
+  EXPECT_EQ(results["stats"]["interrupted"], true) << results.dump(2);
+  // Batches of 8 with one worker: the first two finished, the third held at case 21.
+  const int checked = results["stats"]["cases"].get<int>();
+  EXPECT_GE(checked, 16) << results.dump(2);
+  EXPECT_LT(checked, 64) << results.dump(2);
+  EXPECT_TRUE(std::filesystem::exists(out / "results.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out / "report.html"));
 }
 
 TEST_F(Fuzz, AFailureTheBaselineListsIsKnownAndDoesNotFailTheCampaign) {

@@ -21,8 +21,10 @@
 namespace {
 
 namespace fs = std::filesystem;
+using glrc::test::ended_within;
 using glrc::test::glrefcheck;
 using glrc::test::Outcome;
+using glrc::test::parent_of;
 using glrc::test::proxied_workers;
 using glrc::test::wait_for_pid;
 
@@ -60,32 +62,6 @@ nlohmann::json comparable(nlohmann::json results) {
 
 nlohmann::json results_of(const fs::path& dir) {
   return nlohmann::json::parse(read(dir / "results.json"));
-}
-
-pid_t parent_of(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  // pid (comm) state ppid ...: comm may hold spaces, so read after its closing parenthesis.
-  const size_t close = text.rfind(')');
-  if (close == std::string::npos) return 0;
-  char state = 0;
-  int ppid = 0;
-  if (std::sscanf(text.c_str() + close + 1, " %c %d", &state, &ppid) != 2) return 0;
-  return ppid;
-}
-
-// Gone, or a zombie waiting for init: either way no longer running.
-bool ended_within(pid_t pid, std::chrono::seconds limit) {
-  const auto until = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < until) {
-    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-    std::string text((std::istreambuf_iterator<char>(in)), {});
-    const size_t close = text.rfind(')');
-    if (!in || close == std::string::npos || text[close + 2] == 'Z' || text[close + 2] == 'X')
-      return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return false;
 }
 
 int cores() {

@@ -58,4 +58,32 @@ inline pid_t wait_for_pid(const std::filesystem::path& pidfile) {
   return pid;
 }
 
+// The parent of process `pid` (/proc), 0 if it cannot be read: the runner of a worker.
+inline pid_t parent_of(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  // pid (comm) state ppid ...: comm may hold spaces, so read after its closing parenthesis.
+  const size_t close = text.rfind(')');
+  if (close == std::string::npos) return 0;
+  char state = 0;
+  int ppid = 0;
+  if (std::sscanf(text.c_str() + close + 1, " %c %d", &state, &ppid) != 2) return 0;
+  return ppid;
+}
+
+// Whether process `pid` ended within `limit`: gone, or a zombie waiting for init, either way
+// no longer running.
+inline bool ended_within(pid_t pid, std::chrono::seconds limit) {
+  const auto until = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < until) {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t close = text.rfind(')');
+    if (!in || close == std::string::npos || text[close + 2] == 'Z' || text[close + 2] == 'X')
+      return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
+}
+
 }  // namespace glrc::test
