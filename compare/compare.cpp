@@ -168,11 +168,18 @@ std::string undetermined_message(const std::string& channel, const WorstPixel& p
     std::snprintf(buf, sizeof buf, "%g", double(v));
     return std::string(buf);
   };
+  std::string why;
+  if (std::isfinite(p.reference))
+    why.append("the triangle reaches within rounding of the eye, where the w_c of a vertex ")
+        .append("clipping makes may be 0: its values are unbounded");
+  else
+    why.append("the exact interpolation there is ")
+        .append(number(p.reference))
+        .append(": the pixel lies outside the triangle its plane comes from, beyond the plane's ")
+        .append("vanishing line");
   return "outside what GL specifies: " + channel + " at " + std::to_string(p.x) + "," +
-         std::to_string(p.y) + " has no value the specification determines (the exact " +
-         "interpolation there is " + number(p.reference) +
-         ": the pixel lies outside the triangle its plane comes from, beyond the plane's " +
-         "vanishing line), and GL drew " + number(p.gl) + " there; nothing else fails";
+         std::to_string(p.y) + " has no value the specification determines (" + why +
+         "), and GL drew " + number(p.gl) + " there; nothing else fails";
 }
 
 }  // namespace
@@ -405,8 +412,13 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
         const double ulp = st.ulps.ulp(primitive, k);
         const double allowed = judged.allowed(allowance, i, ulp, k);
         const float value = judged.value(expected, i, k);
-        // Not judged, and its unbounded allowance is not one the verdict applied.
-        if (!value_determined(value, tolerance)) {
+        // Not judged, and its unbounded allowance is not one the verdict applied. Where the
+        // value is finite but the specification's allowance unbounded (a triangle reaching the
+        // eye within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not
+        // determined either; a fixed threshold, however large, still fails NaN.
+        if (!value_determined(value, tolerance) ||
+            (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
+             !std::isfinite(gl_values[i]))) {
           acc.add_undetermined(x, y, value, gl_values[i], allowed);
           continue;
         }

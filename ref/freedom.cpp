@@ -147,6 +147,8 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
                 (v.e[2] + std::fabs(zn) * v.e[3]) / w;
     out.weight = v.e[3] / w;
     out.w_c = w;
+    // Within its rounding of the eye: the w_c an implementation computes may be 0 or negative.
+    if (reaches_eye && !(v.e[3] < w)) *reaches_eye = true;
     result.push_back(out);
   }
   return result;

@@ -85,9 +85,11 @@ struct PolygonVertex {
 // Empty when nothing of the triangle is left. With `z_clip`, also the vertices of the polygon
 // clipped against x and y only, as {x_w, y_w, (e_z + e_w)/w_c} (window pixels, z_n units; vertices
 // with w_c <= 0 left out): the freedom of the near and far planes' cut (PositionFreedom). With
-// `reaches_eye`, whether the polygon left has a vertex at w_c <= 0 (then it is returned empty):
+// `reaches_eye`, whether the polygon left has a vertex at w_c <= 0 (then it is returned empty:
 // the triangle's plane holds the eye, its window image is a line, and that vertex's window
-// position, x_c/w_c with w_c = 0, is not defined.
+// position, x_c/w_c with w_c = 0, is not defined), or one whose w_c is no larger than the
+// rounding error of its own computation (e_w >= w_c: a vertex made by cutting an edge that
+// passes within rounding of the eye, whose w_c an implementation may compute as 0 or less).
 std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
                                            std::vector<std::array<double, 3>>* z_clip = nullptr,
                                            bool* reaches_eye = nullptr);
@@ -138,10 +140,12 @@ class PositionFreedom {
   // clipped against x and y only (where that cut lies has a freedom of its own, z_clip_at: the
   // whole polygon before the cut bounds it). All on one line, up to the rounding of doubles.
   const std::vector<std::array<double, 2>>& sliver_sources() const { return sliver_sources_; }
-  // Whether the clipped polygon reaches the eye (clipped_polygon): a vertex an implementation
-  // computes there in float32 has components of rounding noise, x_c/w_c anything, so its window
-  // position, and the sliver made with it, may lie anywhere. Only a triangle whose plane holds
-  // the eye (zero area in the window) reaches it.
+  // Whether the clipped polygon reaches the eye, exactly or within the rounding of its vertices
+  // (clipped_polygon): a vertex an implementation computes there in float32 may have w_c <= 0,
+  // so its window position, z_w and 1/w_c may be anything (an infinite 1/w_c makes NaN of a
+  // value of 0): the pixels the triangle may cover, and its smooth and noperspective values and
+  // depth, are not determined. Exactly only a triangle whose plane holds the eye (zero area in
+  // the window) reaches it; within rounding, one with an edge that passes that near the eye.
   bool reaches_eye() const { return reaches_eye_; }
 
  private:

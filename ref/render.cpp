@@ -53,7 +53,9 @@ struct Prepared {
       : t(setup), shared(shared_edges), coverage(setup, s.m) {
     const Case& c = s.c;
     freedom = s.allowance ? PositionFreedom(c, t, s.bits) : PositionFreedom();
-    unstable = s.allowance && freedom.may_turn_over();
+    // Reaching the eye (within rounding), the triangle may cover anything: unstable too.
+    eye = s.allowance && freedom.reaches_eye();
+    unstable = eye || (s.allowance && freedom.may_turn_over());
     // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further
     // (the viewport bounds it anyway; the clamp keeps the conversion defined).
     largest = s.allowance ? freedom.largest() : s.model_step;
@@ -92,6 +94,9 @@ struct Prepared {
   CoverageTest coverage;
   PositionFreedom freedom;
   bool unstable = false, clipped = false;
+  // PositionFreedom::reaches_eye: every centre of the viewport is unstable, and the smooth and
+  // noperspective values and the depth it draws have no bound (an infinite allowance).
+  bool eye = false;
   int margin = 1;
   double largest = 0;   // the freedom at no pixel is larger (PositionFreedom::largest)
   double reach_px = 1;  // how far from the triangle a pixel may be classified or covered
@@ -201,14 +206,17 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     Anchors::Distances distances;  // shared by every channel
     w.anchors.distances(px, py, distances);
     auto allowed_at = [&](size_t k, float v) {
-      return planes[k].flat
-                 ? 0.0f
+      return planes[k].flat ? 0.0f
+             : w.eye
+                 ? INFINITY
                  : round_up(w.allowed[k].at(px, py, v, delta,
                                             s.component_smooth[k] ? weight * planes[k].spread : 0.0,
                                             condition, distances));
     };
-    const float z_allowed = round_up(
-        w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition, distances));
+    const float z_allowed =
+        w.eye ? INFINITY
+              : round_up(w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition,
+                                            distances));
     // Depths within each other's allowances: either fragment may win the depth test.
     auto close = [&](float other, float other_allowed) {
       return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
@@ -252,6 +260,10 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     }
   };
 
+  if (w.eye)
+    for (int py = std::max(band.y0, s.viewport.y0); py <= std::min(band.y1, s.viewport.y1); ++py)
+      for (int px = s.viewport.x0; px <= s.viewport.x1; ++px)
+        r.edges[f.index(px, py - s.row0)] |= edge::unstable;
   // Only the pixels within `margin` of the triangle, row by row (CoverageTest::row_span): a
   // thin triangle's bounding box holds a thousand times the pixels it reaches. Classifying only
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.

@@ -86,5 +86,49 @@ TEST(Undetermined, APixelWithoutADeterminedValueIsNotJudgedAndNaNThereIsNoPass) 
   EXPECT_EQ(compare(c, r, r.frame, exact).status, Status::fail);
 }
 
+// The edge v1-v2 lies within float32 rounding of the planes x = w_c, y = -w_c and z = -w_c and
+// passes within 1e-6 of the eye (v1 is -0.659 times v2 but for an ulp or two): clipping cuts
+// it into a vertex at w_c = 5.2e-7 whose own rounding error is 1.65 times that, so the w_c an
+// implementation computes may be 0 (llvmpipe's is, found by glrefcheck fuzz on Mesa 22.3.6: NaN
+// for a smooth value of 0 at every vertex, and depth 1 where the exact depth is 0.25). Found by
+// `glrefcheck fuzz --generator clip --replay 2026:34121`, shrunk.
+Case near_the_eye() {
+  Case c;
+  c.name = "near_the_eye";
+  c.fb_width = 53, c.fb_height = 1;
+  c.viewport = {0, 0, 53, 1};
+  c.varyings = {{"v", 1, Interpolation::smooth}};
+  c.vertices = {{{-1.5f, 1, 0, 1}, {0}},
+                {{-7.216813f, 7.216813f, 7.216813f, -7.216813f}, {0}},
+                {{10.947852f, -10.947854f, -10.947851f, 10.947851f}, {0}}};
+  c.triangles = {{0, 1, 2}};
+  return c;
+}
+
+TEST(Undetermined, ATriangleWithinRoundingOfTheEyeHasNoBoundOnItsValues) {
+  const Case c = near_the_eye();
+  const ref::Reference r = ref::render(c, kModel, 8);
+  const size_t at = r.frame.index(1, 0);
+  ASSERT_EQ(r.frame.primitive[at], 0);
+  EXPECT_EQ(r.frame.components[0][at], 0.0f);  // the value itself is determined: 0
+  EXPECT_EQ(r.allowed.components[0][at], INFINITY);
+  EXPECT_EQ(r.allowed.depth[at], INFINITY);
+  for (size_t i = 0; i < r.frame.pixel_count(); ++i)
+    EXPECT_TRUE(r.edges[i] & edge::unstable) << i;
+  Tolerance t;
+  t.subpixel_bits = 8;
+
+  // Any number passes; NaN (0 times an infinite 1/w_c) is outside what GL specifies.
+  Frame drawn = r.frame;
+  drawn.components[0][at] = 1e30f;
+  drawn.depth[at] = 1;
+  EXPECT_EQ(compare(c, r, drawn, t).status, Status::pass);
+  drawn.components[0][at] = NAN;
+  const CaseResult nan = compare(c, r, drawn, t);
+  EXPECT_EQ(nan.status, Status::skip) << nan.message;
+  EXPECT_NE(nan.message.find("within rounding of the eye"), std::string::npos) << nan.message;
+  EXPECT_EQ(nan.channels[1].undetermined, 1u);
+}
+
 }  // namespace
 }  // namespace glrc::compare

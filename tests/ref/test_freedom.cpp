@@ -147,6 +147,13 @@ TEST(Freedom, AZeroAreaTriangleThroughTheEyeReachesIt) {
   const PositionFreedom f(c, setup_triangle(c, Model{}, 0), 8);
   EXPECT_TRUE(f.reaches_eye());
   EXPECT_TRUE(f.polygon().empty());
+  // Within rounding: vertex 1 is -0.659 times vertex 2 but for an ulp or two, and clipping
+  // makes a vertex at w_c = 5.2e-7 whose w_c has an error bound of 8.6e-7.
+  const Case near = one_triangle({-1.5f, 1, 0, 1}, {-7.216813f, 7.216813f, 7.216813f, -7.216813f},
+                                 {10.947852f, -10.947854f, -10.947851f, 10.947851f});
+  const PositionFreedom n(near, setup_triangle(near, Model{}, 0), 8);
+  EXPECT_TRUE(n.reaches_eye());
+  EXPECT_EQ(n.polygon().size(), 3u);
   // z_c not proportional: the near plane cuts the eye away, and the polygon left lies on the
   // window's line y_w = 32·(1 - 0.5625) = 14 of the 64x64 viewport.
   Case cut = c;
