@@ -72,7 +72,12 @@ CampaignResult run_campaign(const CampaignOptions& o, const Judge& judge,
       ++st.cases;
       st.triangles += c.triangles.size();
       st.pixels += covered_pixels(r);
-      if (r.outcome == Status::skip) ++st.skipped;
+      if (r.outcome == Status::skip) {
+        ++st.skipped;
+        if (out.skipped.size() < kSkippedExamples)
+          out.skipped.push_back(
+              {index[k], std::string(generator_for(o.generators, index[k]).name), r.message});
+      }
       const std::vector<Failure> found = failures_of(c, r);
       if (found.empty()) continue;
       ++st.failing_cases;
@@ -165,7 +170,19 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                           {"checks", f.shrink_checks},
                           {"seconds", f.shrink_seconds},
                           {"complete", f.shrink_complete}}}});
-  return {{"campaign", campaign}, {"run", run}, {"stats", stats}, {"failures", failures}};
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const SkippedCase& k : r.skipped)
+    skipped.push_back(
+        {{"index", k.index},
+         {"generator", k.generator},
+         {"replay", "glrefcheck fuzz --generator " + k.generator + " --replay " +
+                        std::to_string(r.options.seed) + ":" + std::to_string(k.index)},
+         {"message", k.message}});
+  return {{"campaign", campaign},
+          {"run", run},
+          {"stats", stats},
+          {"failures", failures},
+          {"skipped", skipped}};
 }
 
 bool is_campaign_json(const nlohmann::json& results) {
@@ -207,6 +224,7 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   nlohmann::json merged = shards[0];
   nlohmann::json& stats = merged["stats"];
   nlohmann::json failures = nlohmann::json::array();
+  std::vector<nlohmann::json> skipped;
   std::map<std::string, size_t> by_signature;
   from.clear();
   for (size_t k = 0; k < shards.size(); ++k) {
@@ -241,6 +259,14 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         stats[key] = stats[key].get<double>() +
                      field(s, source, "stats", key, T::number_float).get<double>();
       stats["interrupted"] = stats["interrupted"].get<bool>() || s.value("interrupted", false);
+    }
+    // The first skipped cases of every shard; the first of them all are the unsharded ones'.
+    if (shards[k].contains("skipped")) {
+      const auto& list = field(shards[k], source, "", "skipped", T::array);
+      for (size_t i = 0; i < list.size(); ++i) {
+        field(list[i], source, "skipped[" + std::to_string(i) + "]", "index", T::number_unsigned);
+        skipped.push_back(list[i]);
+      }
     }
     const auto& list = field(shards[k], source, "", "failures", T::array);
     for (size_t i = 0; i < list.size(); ++i) {
@@ -291,6 +317,11 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   }
   from = sorted_from;
   merged["failures"] = sorted;
+  std::stable_sort(skipped.begin(), skipped.end(), [](const auto& a, const auto& b) {
+    return a["index"].template get<uint64_t>() < b["index"].template get<uint64_t>();
+  });
+  skipped.resize(std::min(skipped.size(), kSkippedExamples));
+  merged["skipped"] = skipped;
   merged["campaign"]["fraction"] = 1;
   merged["campaign"]["fraction_start"] = 1;
   merged["campaign"]["merged_shards"] = shards.size();

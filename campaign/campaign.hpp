@@ -67,10 +67,20 @@ struct CampaignStats {
   }
 };
 
+// A case the campaign did not judge (Status::skip: beyond GL's specified range, or NaN or Inf
+// where the specification determines no value), kept so that a reader can see why.
+struct SkippedCase {
+  uint64_t index = 0;
+  std::string generator, message;  // the case's generator, and the result's message
+};
+// How many skipped cases a campaign keeps: the first, by index.
+inline constexpr size_t kSkippedExamples = 16;
+
 struct CampaignResult {
   CampaignOptions options;
   CampaignStats stats;
   std::vector<FoundFailure> failures;  // in the order found
+  std::vector<SkippedCase> skipped;    // the first kSkippedExamples skipped cases, by index
 };
 
 // What the campaign reports as it goes: after every batch (for a progress line), and when a new

@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "campaign/campaign.hpp"
@@ -306,6 +307,53 @@ TEST(Campaign, FindsThePlantedFaultOnceAndCountsWhatItChecked) {
       for (const uint64_t k : f.examples)
         EXPECT_EQ(int(k % 2), start - 1);
   }
+}
+
+// Skipped cases are kept with their reasons: the first kSkippedExamples by index, as the
+// campaign's results.json lists them, and the merge of shards lists the unsharded campaign's.
+TEST(Campaign, KeepsTheFirstSkippedCasesWithTheirReasons) {
+  // A judge that skips every third case, saying which.
+  const Judge skipping = [](const std::vector<Case>& cases) {
+    std::vector<CaseResult> out;
+    for (const Case& c : cases) {
+      CaseResult r;
+      r.name = c.name;
+      const bool skip = std::stoull(c.name.substr(c.name.rfind('_') + 1)) % 3 == 0;
+      r.status = r.outcome = skip ? Status::skip : Status::pass;
+      if (skip) r.message = "outside GL's specified range: " + c.name;
+      out.push_back(r);
+    }
+    return out;
+  };
+  CampaignOptions o;
+  o.seed = 4;
+  o.count = 60;
+  o.generators = only("states");
+  o.batch = 8;
+  const CampaignResult whole = run_campaign(o, skipping);
+  EXPECT_EQ(whole.stats.skipped, 20u);
+  ASSERT_EQ(whole.skipped.size(), kSkippedExamples);
+  for (size_t k = 0; k < whole.skipped.size(); ++k) {
+    EXPECT_EQ(whole.skipped[k].index, 3 * k);
+    EXPECT_EQ(whole.skipped[k].generator, "states");
+    EXPECT_EQ(whole.skipped[k].message,
+              "outside GL's specified range: fuzz_states_4_" + std::to_string(3 * k));
+  }
+  const nlohmann::json json = campaign_json(whole, nlohmann::json::object());
+  EXPECT_EQ(json["skipped"][1]["replay"], "glrefcheck fuzz --generator states --replay 4:3");
+
+  std::vector<nlohmann::json> shards;
+  std::vector<std::string> sources;
+  for (int start = 1; start <= 2; ++start) {
+    CampaignOptions shard = o;
+    shard.fraction = 2, shard.fraction_start = start;
+    // As `merge` reads them: from their files.
+    shards.push_back(nlohmann::json::parse(
+        campaign_json(run_campaign(shard, skipping), nlohmann::json::object()).dump()));
+    sources.push_back("shard" + std::to_string(start));
+  }
+  std::vector<size_t> from;
+  EXPECT_EQ(merge_campaigns(shards, sources, from)["skipped"], json["skipped"]);
 }
 
 }  // namespace
