@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs, from Debian 12's own archive, everything glrefcheck needs to build, test and run
-# against the system Mesa. Idempotent; quiet when nothing is missing.
+# against the system Mesa, and unpacks piglit's shader_runner into .piglit/
+# (scripts/piglit-fetch.sh). Idempotent; quiet when nothing is missing.
 set -euo pipefail
 
 packages=(
@@ -19,17 +20,24 @@ packages=(
   jq python3-jsonschema
   # The HTML report test opens the report in headless Chromium to check that it renders.
   chromium
+  # piglit's shader_runner (scripts/piglit-fetch.sh, below) runs the shader_tests `glrefcheck
+  # export --format shader_test` writes (cli.export_shader_test); the libraries it links.
+  libwaffle-1-0 libxkbcommon0 libwayland-client0 libx11-6
 )
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
 
-sudo=""
-[ "$(id -u)" -ne 0 ] && sudo="sudo"
-echo "installing: ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# shader_runner alone, out of Debian's piglit package, into .piglit/ (not installed: piglit is
+# 2 GB); quiet when it is there.
+"$(dirname "$0")/piglit-fetch.sh"
