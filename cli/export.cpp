@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "campaign/reproducer.hpp"
+#include "campaign/shader_test.hpp"
 #include "casefile/casefile.hpp"
 #include "check/check.hpp"
 #include "cli/output_dir.hpp"
@@ -47,16 +48,75 @@ std::string command_line(const ExportOptions& o, const CLI::App& command) {
   return line;
 }
 
+std::string model_words(const ExportOptions& o, const check::CheckOptions& options) {
+  std::string words = options.model.describe();
+  if (!o.driver.empty()) {
+    words += " (what `identify` finds for ";
+    words += o.driver;
+    words += ")";
+  }
+  return words;
+}
+
+// --format shader_test: campaign/shader_test's file, refused with one line where shader_runner
+// cannot express the case.
+int export_shader_test(const ExportOptions& o, const CLI::App& command, const Case& c,
+                       const check::CheckOptions& options, int reported_bits) {
+  std::string out = o.out;
+  if (out.empty()) {
+    out = c.name;
+    out += ".shader_test";
+  }
+  if (!out.ends_with(".shader_test") || std::filesystem::path(out).filename() == ".shader_test") {
+    std::string why = "--out: expected a file name ending in .shader_test, got \"";
+    why += printable(out, 200);
+    why += "\"";
+    throw InputError(why);
+  }
+  // What the states alone rule out, before the reference is drawn.
+  if (const auto why = campaign::shader_test_state_refusal(c)) {
+    std::string message = printable(o.case_path, 200);
+    message += ": ";
+    message += *why;
+    throw InputError(message);
+  }
+  check_replaceable(out, "--out", campaign::kShaderTestSignature);
+  const Expectation expected = check::expectation_for(c, options, reported_bits);
+  const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
+  if (const auto why = campaign::shader_test_refusal(c, expected, tolerance)) {
+    std::string message = printable(o.case_path, 200);
+    message += ": ";
+    message += *why;
+    throw InputError(message);
+  }
+  campaign::ShaderTestSetup setup;
+  setup.file_name = std::filesystem::path(out).filename().string();
+  setup.exported_by = command_line(o, command);
+  setup.model = model_words(o, options);
+  const campaign::ShaderTest test = campaign::shader_test(c, expected, tolerance, setup);
+  report::write_file_atomically(out, test.text);
+  fmt::print(
+      "wrote {}: run with {} (values checked against their ranges at {} of {} (pixel, "
+      "triangle) pairs, for NaN and Inf everywhere; coverage at {} pixels in {} probes)\n",
+      out, campaign::shader_runner_command(out), test.value_checks, test.value_pairs,
+      test.pixels_decided, test.coverage_probes);
+  return 0;
+}
+
 }  // namespace
 
 CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
   auto* cmd = app.add_subcommand(
       "export",
-      "write one case as a self-contained C reproducer: it draws the case on GL as glrefcheck "
-      "does and checks the reference's expectation, embedded, without glrefcheck");
+      "write one case as a self-contained reproducer (a C file, or a piglit shader_test): it "
+      "draws the case on GL as glrefcheck does and checks the reference's expectation, embedded, "
+      "without glrefcheck");
   cmd->add_option("case", o.case_path, "the case file")->required();
-  cmd->add_option("--format", o.format, "c: one C99 file, built with cc alone (default)");
-  cmd->add_option("--out", o.out, "the file to write (default: <case name>.c here)");
+  cmd->add_option("--format", o.format,
+                  "c: one C99 file, built with cc alone (default); shader_test: a piglit "
+                  "shader_test for shader_runner");
+  cmd->add_option("--out", o.out,
+                  "the file to write (default: <case name>.c, or <case name>.shader_test, here)");
   cmd->add_option("--driver", o.driver,
                   "judge as for this Mesa driver: llvmpipe, softpipe or zink (the model `identify` "
                   "finds for it and the GL_SUBPIXEL_BITS it reports)");
@@ -75,8 +135,9 @@ CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
 }
 
 int cmd_export(const ExportOptions& o, const CLI::App& command) {
-  if (o.format != "c")
-    throw InputError("--format: expected c, got \"" + printable(o.format, 80) + "\"");
+  if (o.format != "c" && o.format != "shader_test")
+    throw InputError("--format: expected c or shader_test, got \"" + printable(o.format, 80) +
+                     "\"");
   check::CheckOptions options;
   int reported_bits = std::max(o.subpixel_bits, 4);
   options.model = Model{o.subpixel_bits, o.planes, o.tie_break};
@@ -102,6 +163,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   } catch (const std::exception& e) {
     throw InputError(e.what());
   }
+  if (o.format == "shader_test") return export_shader_test(o, command, c, options, reported_bits);
   const size_t values = campaign::reproducer_values(c);
   if (values > campaign::kMaxReproducerValues) {
     std::string n = std::to_string(values);

@@ -4,6 +4,8 @@
 // softpipe's gap and double hit on a shared edge (tests/cli/data/, minimal cases from
 // `glrefcheck fuzz --generator mesh --driver softpipe --seed 22`) on softpipe only. Bad input is
 // one line and exit 2. The library's text (campaign/reproducer.hpp) is checked without GL too.
+// --format shader_test's name and refusals are checked here; its text in
+// tests/campaign/test_shader_test.cpp, its runs on shader_runner in export_shader_test.sh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 #include <string>
 
 #include "campaign/reproducer.hpp"
+#include "campaign/shader_test.hpp"
 #include "casefile/casefile.hpp"
 #include "check/check.hpp"
 #include "gl_harness/first_draw.hpp"
@@ -201,8 +204,7 @@ TEST_F(Export, BadInputIsOneLineAndExit2) {
   const std::pair<std::string, std::string> cases[] = {
       {"export '" + (dir_ / "missing.json").string() + "'",
        "missing.json: expected a readable case file"},
-      {"export" + face_on + " --format xyz", "--format: expected c, got \"xyz\""},
-      {"export" + face_on + " --format shader_test", "--format: expected c, got \"shader_test\""},
+      {"export" + face_on + " --format xyz", "--format: expected c or shader_test, got \"xyz\""},
       {"export" + face_on + " --out '" + (dir_ / "mine.c").string() + "'",
        "--out: expected a new file or one glrefcheck wrote"},
       {"export" + face_on + " --out '" + (dir_ / "x.txt").string() + "'",
@@ -223,6 +225,68 @@ TEST_F(Export, BadInputIsOneLineAndExit2) {
   }
   EXPECT_EQ(read(dir_ / "mine.c"), "int main(void) { return 0; }\n");
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x.txt"));
+}
+
+// --format shader_test (campaign/shader_test.hpp; tests/cli/export_shader_test.sh runs the files
+// with piglit's shader_runner): its name, its own file replaced, and what it refuses.
+TEST_F(Export, ShaderTestDefaultNameAndItsOwnFileReplaced) {
+  const std::string cd = "cd '" + dir_.string() + "' && '" + GLRC_BINARY_DIR + "/glrefcheck' ";
+  const std::string args =
+      "export '" + source("cases/face_on.json") + "' --format shader_test --driver llvmpipe";
+  for (int k = 0; k < 2; ++k) {
+    const auto r = shell(cd + args);
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_EQ(r.out.rfind("wrote face_on.shader_test: run with PIGLIT_PLATFORM=surfaceless_egl "
+                          "shader_runner face_on.shader_test -auto -fbo (values checked against "
+                          "their ranges at 64 of ",
+                          0),
+              0u)
+        << r.out;
+  }
+  const std::string text = read(dir_ / "face_on.shader_test");
+  EXPECT_EQ(text.rfind(std::string(glrc::campaign::kShaderTestSignature) + " of case face_on\n", 0),
+            0u);
+  EXPECT_NE(text.find("\n# Written by: glrefcheck export " + source("cases/face_on.json") +
+                      " --format shader_test --driver llvmpipe\n"),
+            std::string::npos);
+  EXPECT_NE(text.find("#   Run: PIGLIT_PLATFORM=surfaceless_egl shader_runner face_on.shader_test "
+                      "-auto -fbo\n"),
+            std::string::npos);
+  for (const char* section : {"\n[require]\n", "\n[vertex shader]\n", "\n[fragment shader]\n",
+                              "\n[vertex data]\n", "\n[test]\n"})
+    EXPECT_NE(text.find(section), std::string::npos) << section;
+}
+
+TEST_F(Export, ShaderTestBadInputIsOneLineAndExit2) {
+  std::ofstream(dir_ / "mine.shader_test") << "[require]\n";
+  const std::string st = " --format shader_test";
+  const std::pair<std::string, std::string> cases[] = {
+      {"export '" + source("cases/depth_range_partial.json") + "'" + st,
+       "depth_range_partial.json: depth_range (near 0.25, far 0.75) cannot be expressed in a "
+       "shader_test: shader_runner has no glDepthRange command (only [0, 1])"},
+      {"export '" + source("cases/look_at_cube.json") + "'" + st,
+       "look_at_cube.json: cull back with depth_func less cannot be expressed in a shader_test"},
+      {"export '" + source("cases/cull_front_and_back.json") + "'" + st,
+       "cull_front_and_back.json: cull front_and_back cannot be expressed in a shader_test"},
+      {"export '" + source("cases/face_on.json") + "'" + st + " --out '" +
+           (dir_ / "mine.shader_test").string() + "'",
+       "--out: expected a new file or one glrefcheck wrote"},
+      {"export '" + source("cases/face_on.json") + "'" + st + " --out '" + (dir_ / "x.c").string() +
+           "'",
+       "--out: expected a file name ending in .shader_test"},
+      {"export '" + source("cases/face_on.json") + "'" + st + " --out '" +
+           (dir_ / ".shader_test").string() + "'",
+       "--out: expected a file name ending in .shader_test"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto e = glrefcheck(args);
+    EXPECT_EQ(e.exit_code, 2) << args << "\n" << e.out << e.err;
+    EXPECT_NE(e.err.find(message), std::string::npos) << args << "\n" << e.err;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << args << "\n" << e.err;
+    EXPECT_TRUE(e.out.empty()) << args << "\n" << e.out;
+  }
+  EXPECT_EQ(read(dir_ / "mine.shader_test"), "[require]\n");
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.c"));
 }
 
 // The library without GL: the harness's shaders and the case's floats, exactly.
