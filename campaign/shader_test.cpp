@@ -18,6 +18,7 @@
 #include <tuple>
 #include <vector>
 
+#include "campaign/expectation_shape.hpp"
 #include "compare/compare.hpp"
 
 namespace glrc::campaign {
@@ -329,32 +330,7 @@ void check_shape(const Case& c, const Expectation& e, const Tolerance& t) {
     message += why;
     throw std::invalid_argument(message);
   };
-  const Frame& f = e.frame;
-  const size_t pixels = f.pixel_count(), components = size_t(c.component_count());
-  if (f.width != c.fb_width || f.height != c.fb_height || f.components.size() != components ||
-      f.primitive.size() != pixels || f.depth.size() != pixels || e.edges.size() != pixels ||
-      (!f.fragments.empty() && f.fragments.size() != pixels))
-    fail("the expectation is not of this case's framebuffer and varyings");
-  for (const std::vector<float>& values : f.components)
-    if (values.size() != pixels) fail("the expectation's components are not the frame's size");
-  if (t.mode == ToleranceMode::spec &&
-      (e.allowed.depth.size() != pixels || e.allowed.components.size() != components))
-    fail("a spec tolerance needs the expectation's allowance");
-  for (const std::vector<float>& values : e.allowed.components)
-    if (values.size() != pixels) fail("the allowance's components are not the frame's size");
-  for (size_t k = 0; k < e.candidates.size(); ++k) {
-    const Candidate& o = e.candidates[k];
-    if (o.pixel >= pixels || o.primitive < 0 || size_t(o.primitive) >= c.triangles.size() ||
-        o.values.size() != components ||
-        (t.mode == ToleranceMode::spec && o.allowed.size() != components) ||
-        (k > 0 && e.candidates[k - 1].pixel > o.pixel))
-      fail(cat("depth-test candidate ", std::to_string(k), " is not one of this case's"));
-  }
-  for (const Vertex& v : c.vertices)
-    if (v.values.size() != components) fail("a vertex has not every varying's components");
-  for (const auto& tri : c.triangles)
-    for (uint32_t i : tri)
-      if (i >= c.vertices.size()) fail("a triangle names a vertex past the last");
+  if (const std::string why = expectation_shape_error(c, e, t); !why.empty()) fail(why);
   for (const Varying& v : c.varyings)
     if (v.size < 1 || v.size > 4) fail("a varying has not 1 to 4 components");
 }
