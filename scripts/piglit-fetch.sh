@@ -24,29 +24,9 @@ if [ -x "$dest/bin/shader_runner" ] && [ -x "$dest/lib/shader_runner" ] &&
   exit 0
 fi
 
-# The Debian archive this machine uses, as scripts/mesa-fetch.sh finds it: the URIs and
-# Signed-By of the deb822 stanza whose Suites name the release (bookworm), else a one-line
-# `deb URI bookworm main` entry.
-codename=$(. /etc/os-release && echo "${VERSION_CODENAME:-}")
-[ -n "$codename" ] || { echo "piglit-fetch: /etc/os-release names no VERSION_CODENAME" >&2; exit 2; }
-uri="" keyring=""
-for f in /etc/apt/sources.list.d/*.sources; do
-  [ -r "$f" ] || continue
-  read -r uri keyring < <(awk -v suite="$codename" '
-    function flush() { if (ok && u != "") { print u, k; found = 1; exit } ok = 0; u = ""; k = "" }
-    /^[[:space:]]*$/ { flush(); next }
-    /^#/ { next }
-    /^URIs:/ { u = $2 }
-    /^Signed-By:/ { k = $2 }
-    /^Suites:/ { for (i = 2; i <= NF; i++) if ($i == suite) ok = 1 }
-    END { if (!found) flush() }' "$f") || true
-  [ -n "$uri" ] && break
-done
-if [ -z "$uri" ] && [ -r /etc/apt/sources.list ]; then
-  uri=$(awk -v suite="$codename" '$1 == "deb" && $3 == suite { print $2; exit }' /etc/apt/sources.list)
-fi
-[ -n "$uri" ] || { echo "piglit-fetch: no Debian $codename archive in this machine's apt sources" >&2; exit 2; }
-keyring=${keyring:-/usr/share/keyrings/debian-archive-keyring.gpg}
+# The Debian archive this machine uses (scripts/debian-archive.sh).
+. "$(dirname "$0")/debian-archive.sh"
+debian_archive piglit-fetch
 
 # A private package list of the release. Nothing under /var/lib/apt or /etc/apt is touched.
 mkdir -p "$work/lists/partial" "$work/cache/archives/partial" "$work/debs"
