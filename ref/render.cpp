@@ -117,14 +117,21 @@ struct Prepared {
 // the square [-delta, delta]²: every centre there is edge::unstable, any primitive and any
 // fragment count being what some conforming implementation draws. A triangle through the eye
 // (PositionFreedom::reaches_eye) has a vertex of undefined position: every centre of the viewport.
+// Marks the centres of rows [y0, y1], columns [x0, x1] (window coordinates) edge::unstable.
+void mark_unstable(int x0, int y0, int x1, int y1, int row0, const Frame& f,
+                   std::vector<uint8_t>& edges) {
+  for (int py = y0; py <= y1; ++py)
+    for (int px = x0; px <= x1; ++px)
+      edges[f.index(px, py - row0)] |= edge::unstable;
+}
+
 struct Sliver {
   std::array<double, 2> a{}, b{};  // the segment's ends, window coordinates (pixels)
   double delta = 0;                // how far the sliver's vertices may lie from it, pixels
+  bool anywhere = false;           // through the eye: every centre
 
   // The ends are the farthest two of the freedom's sources: collinear in exact arithmetic, so
   // the segment between them holds every one; `delta` grows by the doubles' rounding of them.
-  bool anywhere = false;
-
   explicit Sliver(const PositionFreedom& freedom) : anywhere(freedom.reaches_eye()) {
     const auto& points = freedom.sliver_sources();
     double farthest = -1, magnitude = 0;
@@ -139,14 +146,11 @@ struct Sliver {
   }
 
   // Marks the centres of rows [y0, y1] within the grown segment, in columns [x0, x1].
-  void mark(int x0, int y0, int x1, int y1, int row0, Frame& f, std::vector<uint8_t>& edges) const {
+  void mark(int x0, int y0, int x1, int y1, int row0, const Frame& f,
+            std::vector<uint8_t>& edges) const {
+    if (anywhere) return mark_unstable(x0, y0, x1, y1, row0, f, edges);
     const double dx = b[0] - a[0], dy = b[1] - a[1];
     for (int py = y0; py <= y1; ++py) {
-      if (anywhere) {
-        for (int px = x0; px <= x1; ++px)
-          edges[f.index(px, py - row0)] |= edge::unstable;
-        continue;
-      }
       const double y = py + 0.5;
       // The part of the segment within delta of the row, a + t·(b - a) for t in [t0, t1].
       double t0 = 0, t1 = 1;
@@ -261,9 +265,8 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
   };
 
   if (w.eye)
-    for (int py = std::max(band.y0, s.viewport.y0); py <= std::min(band.y1, s.viewport.y1); ++py)
-      for (int px = s.viewport.x0; px <= s.viewport.x1; ++px)
-        r.edges[f.index(px, py - s.row0)] |= edge::unstable;
+    mark_unstable(s.viewport.x0, std::max(band.y0, s.viewport.y0), s.viewport.x1,
+                  std::min(band.y1, s.viewport.y1), s.row0, f, r.edges);
   // Only the pixels within `margin` of the triangle, row by row (CoverageTest::row_span): a
   // thin triangle's bounding box holds a thousand times the pixels it reaches. Classifying only
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
