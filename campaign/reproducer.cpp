@@ -16,6 +16,7 @@
 
 #include "campaign/expectation_shape.hpp"
 #include "compare/compare.hpp"
+#include "core/text.hpp"
 
 namespace glrc::campaign {
 namespace {
@@ -979,22 +980,7 @@ std::string comment_text(std::string_view text) {
 
 // `text` as comment lines " * ..." of at most `width` characters, broken at spaces.
 std::string comment_lines(std::string_view text, size_t width = 96) {
-  const std::string t = comment_text(text);
-  std::string out, line;
-  size_t start = 0;
-  while (start <= t.size()) {
-    size_t end = t.find(' ', start);
-    if (end == std::string::npos) end = t.size();
-    const std::string word = t.substr(start, end - start);
-    if (!line.empty() && line.size() + 1 + word.size() > width) {
-      out += " * " + line + "\n";
-      line.clear();
-    }
-    if (!word.empty()) line += (line.empty() ? "" : " ") + word;
-    start = end + 1;
-  }
-  if (!line.empty()) out += " * " + line + "\n";
-  return out;
+  return wrap_words(comment_text(text), width, " * ");
 }
 
 // Items separated by ", ", lines broken before 100 columns after `indent`; a lone "0" when

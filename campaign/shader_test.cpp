@@ -20,6 +20,7 @@
 
 #include "campaign/expectation_shape.hpp"
 #include "compare/compare.hpp"
+#include "core/text.hpp"
 
 namespace glrc::campaign {
 namespace {
@@ -171,31 +172,7 @@ std::string one_line(std::string_view text) {
 // `text` as "# " comment lines of at most `width` characters, broken at spaces; control
 // characters become spaces.
 std::string comment_lines(std::string_view text, size_t width = 96) {
-  const std::string t = one_line(text);
-  std::string out, line;
-  size_t start = 0;
-  while (start <= t.size()) {
-    size_t end = t.find(' ', start);
-    if (end == std::string::npos) end = t.size();
-    const std::string word = t.substr(start, end - start);
-    if (!line.empty() && line.size() + 1 + word.size() > width) {
-      out += "# ";
-      out += line;
-      out += "\n";
-      line.clear();
-    }
-    if (!word.empty()) {
-      if (!line.empty()) line += ' ';
-      line += word;
-    }
-    start = end + 1;
-  }
-  if (!line.empty()) {
-    out += "# ";
-    out += line;
-    out += "\n";
-  }
-  return out;
+  return wrap_words(one_line(text), width, "# ");
 }
 
 // `text` for a GLSL comment: printable ASCII only (GLSL's character set), others as '?'.

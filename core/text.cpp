@@ -60,4 +60,26 @@ std::string printable(std::string_view s, size_t max) {
   return out;
 }
 
+std::string wrap_words(std::string_view text, size_t width, std::string_view prefix) {
+  std::string out, line;
+  auto flush = [&] {
+    out.append(prefix).append(line).append("\n");
+    line.clear();
+  };
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t end = text.find(' ', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view word = text.substr(start, end - start);
+    if (!line.empty() && line.size() + 1 + word.size() > width) flush();
+    if (!word.empty()) {
+      if (!line.empty()) line += ' ';
+      line.append(word);
+    }
+    start = end + 1;
+  }
+  if (!line.empty()) flush();
+  return out;
+}
+
 }  // namespace glrc

@@ -11,5 +11,9 @@ bool is_utf8(std::string_view s);
 // `s` for a one-line message: control characters and bytes that are not UTF-8 as \xNN; cut
 // to at most `max` characters of `s` (then "..." and the full length in bytes).
 std::string printable(std::string_view s, size_t max = std::string_view::npos);
+// `text` as lines of words of at most `width` characters (a longer word on a line of its own),
+// each line `prefix`, the words joined by single spaces, and "\n": comment blocks of generated
+// files. Spaces alone break words; runs of them count as one.
+std::string wrap_words(std::string_view text, size_t width, std::string_view prefix);
 
 }  // namespace glrc
