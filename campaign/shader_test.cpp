@@ -137,16 +137,9 @@ const char* glsl_type(int size) {
   return kTypes[std::clamp(size, 1, 4) - 1];
 }
 
-const char* glsl_qualifier(Interpolation i) {
-  switch (i) {
-    case Interpolation::smooth:
-      return "smooth";
-    case Interpolation::flat:
-      return "flat";
-    case Interpolation::noperspective:
-      return "noperspective";
-  }
-  return "smooth";
+// A case file's qualifier names are GLSL's (core/case.hpp's Names<Interpolation>).
+std::string_view glsl_qualifier(Interpolation i) {
+  return name_of(i);
 }
 
 // Whether GL's clipper cuts triangle t: a vertex outside -w <= x, y, z <= w (w <= 0 included).

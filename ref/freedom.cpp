@@ -206,11 +206,14 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
       whole_.push_back({d[0], d[1]});
   }
   if (!any) delta_[0] = ConcaveEnvelope({{0, 0, snap_and_round(0, 0, m, subpixel_bits)}});
-  sliver_sources_ = polygon_;
-  sliver_sources_.insert(sliver_sources_.end(), whole_.begin(), whole_.end());
-  if (depth_clipped && !polygon_.empty())
-    for (const auto& v : z_clip)
-      sliver_sources_.push_back({v[0], v[1]});
+  // Only a triangle of zero area (no edges) becomes a sliver; the others need no copies.
+  if (!t.has_edges) {
+    sliver_sources_ = polygon_;
+    sliver_sources_.insert(sliver_sources_.end(), whole_.begin(), whole_.end());
+    if (depth_clipped && !polygon_.empty())
+      for (const auto& v : z_clip)
+        sliver_sources_.push_back({v[0], v[1]});
+  }
 
   // Orientation: 2·area moves by at most Σ_j δ_j·(|E_j.x| + |E_j.y|) to first order (E_j the
   // edge opposite vertex j: the gradient of 2·area in vertex j is E_j turned by 90 degrees), and

@@ -139,6 +139,7 @@ class PositionFreedom {
   // triangle's, and, where the near or far plane cuts the triangle, the vertices of the polygon
   // clipped against x and y only (where that cut lies has a freedom of its own, z_clip_at: the
   // whole polygon before the cut bounds it). All on one line, up to the rounding of doubles.
+  // Empty for a triangle with edges (TriangleSetup::has_edges).
   const std::vector<std::array<double, 2>>& sliver_sources() const { return sliver_sources_; }
   // Whether the clipped polygon reaches the eye, exactly or within the rounding of its vertices
   // (clipped_polygon): a vertex an implementation computes there in float32 may have w_c <= 0,
