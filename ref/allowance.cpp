@@ -119,6 +119,17 @@ void Anchors::distances(int px, int py, Distances& out) const {
   }
 }
 
+void Anchors::distances(const double* px, const double* py, RowDistances& out) const {
+  for (size_t i = 0; i < count_; ++i) {
+    const double ax = points_[i][0], ay = points_[i][1];
+    for (int j = 0; j < kRowBlock; ++j) {
+      const double dx = std::fabs((px[j] + 0.5) - ax), dy = std::fabs((py[j] + 0.5) - ay);
+      out.dx[i][size_t(j)] = dx, out.dy[i][size_t(j)] = dy;
+      out.most[i][size_t(j)] = std::max(dx, dy);
+    }
+  }
+}
+
 void Allowance::set_planes(const LinearForm& numerator, const LinearForm& denominator) {
   double c[6];
   normalized_doubles(numerator, denominator, c);
@@ -177,6 +188,61 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   const double evaluation = kEvaluationRoundings * kFloatUnitRoundoff * terms / std::fabs(d);
   const double set_up = kSetupRoundings * kFloatUnitRoundoff * condition * setup / std::fabs(d);
   return position + evaluation + set_up + values_ + extra;
+}
+
+void Allowance::at(const double* px, const double* py, const float* value, const double* delta,
+                   const double* extra, const double* condition,
+                   const Anchors::RowDistances& distances, double* out) const {
+  // The single pixel's at() above, lane by lane, in its order of operations: each lane's
+  // double is the same bits. Its early return (no finite value, or D = 0 at the pixel) is a
+  // choice at the end; the anchors' loop is turned inside out, each lane's maxima taken over
+  // the anchors in the same order.
+  constexpr int n = kRowBlock;
+  const double gn = abs_an_ + abs_bn_, gd = abs_ad_ + abs_bd_;
+  // Local arrays, written back at the end: no aliasing with the inputs to rule out.
+  double v[n], d[n], abs_v[n], g[n], terms[n], setup[n], result[n];
+  for (int j = 0; j < n; ++j) {
+    v[j] = double(value[j]);
+    d[j] = ad_ * px[j] + bd_ * py[j] + cd_;
+    abs_v[j] = std::fabs(v[j]);
+    g[j] = gn + abs_v[j] * gd;
+    terms[j] = 0, setup[j] = 0;
+  }
+  const Anchors& a = anchors();
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double ni = n_[i], di = d_[i];
+    const auto &dx = distances.dx[i], &dy = distances.dy[i];
+    for (int j = 0; j < n; ++j) {
+      const double en = ni + abs_an_ * dx[size_t(j)] + abs_bn_ * dy[size_t(j)];
+      const double ed = di + abs_ad_ * dx[size_t(j)] + abs_bd_ * dy[size_t(j)];
+      terms[j] = std::max(terms[j], en + abs_v[j] * ed);
+    }
+    if (a.fan(i)) {
+      const auto& most = distances.most[i];
+      for (int j = 0; j < n; ++j)
+        setup[j] = std::max(setup[j], g[j] * most[size_t(j)]);
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    const double vx = (an_ - v[j] * ad_) / d[j], vy = (bn_ - v[j] * bd_) / d[j];
+    // std::min(moved, spread_) and the early return, as selections (no branch: vectorized).
+    const double moved = 1.5 * delta[j] * (std::fabs(vx) + std::fabs(vy));
+    const double position = spread_ < moved ? spread_ : moved;
+    const double evaluation =
+        kEvaluationRoundings * kFloatUnitRoundoff * terms[j] / std::fabs(d[j]);
+    const double set_up =
+        kSetupRoundings * kFloatUnitRoundoff * condition[j] * setup[j] / std::fabs(d[j]);
+    result[j] = position + evaluation + set_up + values_ + extra[j];
+  }
+  // A loop of its own: a selection between the sum and infinity in the loop above would move
+  // the sum's divisions into a branch, which is not vectorized (they might trap).
+  for (int j = 0; j < n; ++j) {
+    // !(|d| > 0) or !isfinite(v): NaN compares false.
+    const bool undefined =
+        !(std::fabs(d[j]) > 0) | !(abs_v[j] <= std::numeric_limits<double>::max());
+    result[j] = undefined ? std::numeric_limits<double>::infinity() : result[j];
+  }
+  std::copy(result, result + n, out);
 }
 
 }  // namespace glrc::ref

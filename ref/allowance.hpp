@@ -54,6 +54,7 @@
 // the multiplication by 1/2A). Flat values are copied: allowance 0.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -71,6 +72,11 @@ inline constexpr double kFloatUnitRoundoff = 0x1p-24;
 inline constexpr double kPositionRoundings = 8, kEvaluationRoundings = 8, kValueRoundings = 8;
 inline constexpr double kDenormalFlushes = 8, kClippedValueRoundings = 5, kSetupRoundings = 4;
 
+// How many pixels the block forms below (Anchors::distances, Allowance::at) take at once: a fixed
+// count, so that their loops over the pixels are vectorized at any optimization level, each pixel's
+// arithmetic the same operations in the same order as one pixel's.
+inline constexpr int kRowBlock = 8;
+
 // A polygon an implementation may rasterize: its vertices' window positions, pixels.
 using WindowPolygon = std::vector<std::array<double, 2>>;
 
@@ -83,6 +89,25 @@ inline float round_up(double bound) {
   if (f >= 0 && f < std::numeric_limits<float>::infinity())
     return std::bit_cast<float>(std::bit_cast<uint32_t>(f) + 1);
   return std::nextafter(f, std::numeric_limits<float>::infinity());
+}
+
+// round_up() of kRowBlock bounds at once, bit for bit: the common case (a finite bound not
+// below 0) in a loop without branches, which is vectorized; any other lane one at a time.
+inline void round_up(const double* bound, float* out) {
+  // Integer flags and an added 0 or 1: no branch, no short circuit, so that it is vectorized.
+  int rest = 0;
+  float rounded[kRowBlock];
+  for (int j = 0; j < kRowBlock; ++j) {
+    const double b = bound[j];
+    const float f = float(b);
+    const int up = double(f) < b;
+    const int plain = (f >= 0) & (f < std::numeric_limits<float>::infinity());
+    rounded[j] = std::bit_cast<float>(std::bit_cast<uint32_t>(f) + uint32_t(up & plain));
+    rest |= up & (plain ^ 1);
+  }
+  if (!rest) return (void)std::copy(rounded, rounded + kRowBlock, out);
+  for (int j = 0; j < kRowBlock; ++j)
+    out[j] = round_up(bound[j]);
 }
 
 // The absolute freedom of a channel's values that does not depend on the pixel: c_v·u·s, the
@@ -135,6 +160,12 @@ class Anchors {
     std::array<double, kMost> dx, dy, most;
   };
   void distances(int px, int py, Distances& out) const;
+  // The same for the centres of kRowBlock pixels (px[j], py[j]) (integer pixel coordinates as
+  // doubles), by anchor then pixel: bit for bit what distances() gives each.
+  struct RowDistances {
+    std::array<std::array<double, kRowBlock>, kMost> dx, dy, most;
+  };
+  void distances(const double* px, const double* py, RowDistances& out) const;
 
  private:
   std::array<std::array<double, 2>, kMost> points_{};
@@ -168,6 +199,13 @@ class Allowance {
   // (Anchors::distances of the Anchors this was built with).
   double at(int px, int py, float value, double delta, double extra, double condition,
             const Anchors::Distances& distances) const;
+  // at() for kRowBlock pixels (px[j], py[j]) at once (integer pixel coordinates as doubles;
+  // each array kRowBlock long): out[j] is bit for bit at(px[j], py[j], value[j], delta[j],
+  // extra[j], condition[j], ...) with distances the Anchors::RowDistances of the same pixels.
+  // Every lane is computed; a caller with fewer pixels pads the arrays.
+  void at(const double* px, const double* py, const float* value, const double* delta,
+          const double* extra, const double* condition, const Anchors::RowDistances& distances,
+          double* out) const;
 
  private:
   void set_planes(const LinearForm& numerator, const LinearForm& denominator);

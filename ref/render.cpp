@@ -172,6 +172,176 @@ struct Sliver {
   }
 };
 
+// One triangle's fragments with their allowances, kRowBlock covered pixels at a time: each
+// per-pixel quantity for the whole block first (the allowances' arithmetic in blocks,
+// allowance.hpp), then the depth test pixel by pixel, then the values and allowances of the
+// fragments that are drawn or stay candidates. The same bits as one pixel at a time: the
+// pixels one triangle covers are different pixels of the frame, so their order among each
+// other is free.
+class FragmentBlocks {
+ public:
+  FragmentBlocks(const Settings& s, const Prepared& w, int p, Reference& r,
+                 CandidateMap& candidates)
+      : s_(s),
+        w_(w),
+        p_(p),
+        r_(r),
+        candidates_(candidates),
+        value_(w.planes.size()),
+        allowed_(w.planes.size()),
+        scratch_(w.planes.size()) {}
+  FragmentBlocks(const FragmentBlocks&) = delete;
+  FragmentBlocks& operator=(const FragmentBlocks&) = delete;
+
+  // The fragment of covered pixel (px, py), drawn by the next flush() at the latest (which
+  // must come before anything else reads or draws the frame).
+  void add(int px, int py) {
+    px_[count_] = px, py_[count_] = py;
+    if (++count_ == kRowBlock) flush();
+  }
+
+  void flush() {
+    if (count_ > 0) draw(count_);
+    count_ = 0;
+  }
+
+ private:
+  void draw(int count) {
+    constexpr int n = kRowBlock;
+    const Settings& s = s_;
+    const Prepared& w = w_;
+    const int p = p_;
+    Reference& r = r_;
+    CandidateMap& candidates = candidates_;
+    const Case& c = s.c;
+    Frame& f = r.frame;
+    const PositionFreedom& freedom = w.freedom;
+    const auto& planes = w.planes;
+    for (int j = 0; j < count; ++j) {
+      const int px = px_[j], py = py_[j];
+      x_[j] = double(px), y_[j] = double(py);
+      delta_[j] = freedom.at(px, py);
+      condition_[j] = w.fan.condition(px + 0.5, py + 0.5);
+      weight_[j] = w.clipped ? freedom.weight_at(px, py) : 0.0;
+      depth_extra_[j] = freedom.depth_at(px, py);
+      z_[j] = w.depth.at(px, py);
+    }
+    // Lanes past `count` repeat the last pixel: computed, never used.
+    for (int j = count; j < n; ++j) {
+      x_[j] = x_[count - 1], y_[j] = y_[count - 1], delta_[j] = delta_[count - 1];
+      condition_[j] = condition_[count - 1], weight_[j] = weight_[count - 1];
+      depth_extra_[j] = depth_extra_[count - 1], z_[j] = z_[count - 1];
+    }
+    w.anchors.distances(x_, y_, distances_);
+    if (w.eye) {
+      std::fill(std::begin(z_allowed_), std::end(z_allowed_), INFINITY);
+    } else {
+      w.depth_allowed.at(x_, y_, z_, delta_, depth_extra_, condition_, distances_, bound_);
+      round_up(bound_, z_allowed_);
+    }
+    // The depth test, pixel by pixel: which fragments need their values and allowances.
+    int needed = 0;
+    for (int j = 0; j < count; ++j) {
+      const int px = px_[j], py = py_[j];
+      const size_t i = f.index(px, py - s.row0);
+      role_[j] = Role::none;
+      // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
+      // no pixel centre is; but they move with its vertices, inwards too.
+      if (w.clipped && viewport_side_distance(c.viewport, px, py) <= delta_[j])
+        r.edges[i] |= edge::snapping;
+      const float z = z_[j], z_allowed = z_allowed_[j];
+      // Depths within each other's allowances: either fragment may win the depth test.
+      auto close = [&](float other, float other_allowed) {
+        return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
+      };
+      const bool ordered = c.depth_func != DepthFunc::always && f.fragments[i] > 0;
+      const bool contested = ordered && close(f.depth[i], r.allowed.depth[i]);
+      if (!depth_test(c.depth_func, z, f.depth[i])) {
+        if (!contested) continue;
+        role_[j] = Role::loser;
+        ++needed;
+        continue;
+      }
+      // Keep the candidates that may still win against the new winner (looked up, not
+      // inserted: a pixel drawn over by a clear winner needs no entry).
+      if (const auto it = candidates.find(i); it != candidates.end())
+        std::erase_if(it->second,
+                      [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
+      // The old winner is one when it was close.
+      if (contested) {
+        Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
+        for (size_t k = 0; k < planes.size(); ++k) {
+          old.values.push_back(f.components[k][i]);
+          old.allowed.push_back(r.allowed.components[k][i]);
+        }
+        candidates[i].push_back(std::move(old));
+      }
+      f.primitive[i] = p;
+      f.depth[i] = z;
+      ++f.fragments[i];
+      r.allowed.primitive[i] = p;
+      r.allowed.depth[i] = z_allowed;
+      role_[j] = Role::winner;
+      ++needed;
+    }
+    if (needed == 0) return;
+    // The values, component by component over the block; then their allowances.
+    for (int j = 0; j < count; ++j) {
+      if (role_[j] == Role::none) continue;
+      w.values.values(px_[j], py_[j], scratch_.data());
+      for (size_t k = 0; k < planes.size(); ++k)
+        value_[k][size_t(j)] = scratch_[k];
+    }
+    for (size_t k = 0; k < planes.size(); ++k) {
+      auto& allowed = allowed_[k];
+      if (planes[k].flat || w.eye) {
+        allowed.fill(planes[k].flat ? 0.0f : INFINITY);
+        continue;
+      }
+      // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
+      const bool smooth = s.component_smooth[k];
+      for (int j = 0; j < n; ++j)
+        extra_[j] = smooth ? weight_[j] * planes[k].spread : 0.0;
+      w.allowed[k].at(x_, y_, value_[k].data(), delta_, extra_, condition_, distances_, bound_);
+      round_up(bound_, allowed.data());
+    }
+    for (int j = 0; j < count; ++j) {
+      if (role_[j] == Role::none) continue;
+      const size_t i = f.index(px_[j], py_[j] - s.row0);
+      if (role_[j] == Role::winner) {
+        for (size_t k = 0; k < planes.size(); ++k) {
+          f.components[k][i] = value_[k][size_t(j)];
+          r.allowed.components[k][i] = allowed_[k][size_t(j)];
+        }
+        continue;
+      }
+      Candidate loser{i, p, z_[j], z_allowed_[j], {}, {}};
+      for (size_t k = 0; k < planes.size(); ++k) {
+        loser.values.push_back(value_[k][size_t(j)]);
+        loser.allowed.push_back(allowed_[k][size_t(j)]);
+      }
+      candidates[i].push_back(std::move(loser));
+    }
+  }
+
+  enum class Role : uint8_t { none, winner, loser };
+  const Settings& s_;
+  const Prepared& w_;
+  const int p_;
+  Reference& r_;
+  CandidateMap& candidates_;
+  int count_ = 0;
+  int px_[kRowBlock]{}, py_[kRowBlock]{};
+  double x_[kRowBlock]{}, y_[kRowBlock]{}, delta_[kRowBlock]{}, condition_[kRowBlock]{},
+      weight_[kRowBlock]{};
+  double depth_extra_[kRowBlock]{}, extra_[kRowBlock]{}, bound_[kRowBlock]{};
+  float z_[kRowBlock]{}, z_allowed_[kRowBlock]{};
+  Role role_[kRowBlock]{};
+  Anchors::RowDistances distances_{};
+  std::vector<std::array<float, kRowBlock>> value_, allowed_;  // by component, then lane
+  std::vector<float> scratch_;
+};
+
 // Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,
 // then the fragments it covers, depth-tested, with their allowances and the candidates.
 void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference& r,
@@ -184,85 +354,22 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
 
   const auto& planes = w.planes;
   std::vector<float> value(planes.size());  // the fragment's components
-  // One fragment of the triangle at pixel (px, py), which it covers: depth-tested, with its
-  // allowances and the candidates.
+  // One fragment of the triangle at pixel (px, py), which it covers, without an allowance:
+  // depth-tested, drawn.
   auto draw = [&](int px, int py) {
     const size_t i = f.index(px, py - s.row0);
     const float z = w.depth.at(px, py);
-    if (!s.allowance) {
-      if (!depth_test(c.depth_func, z, f.depth[i])) return;
-      f.primitive[i] = p;
-      f.depth[i] = z;
-      ++f.fragments[i];
-      w.values.values(px, py, value.data());
-      for (size_t k = 0; k < planes.size(); ++k)
-        f.components[k][i] = value[k];
-      return;
-    }
-    const double delta = freedom.at(px, py);
-    // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
-    // no pixel centre is; but they move with its vertices, inwards too.
-    if (w.clipped && viewport_side_distance(c.viewport, px, py) <= delta)
-      r.edges[i] |= edge::snapping;
-    // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
-    const double weight = w.clipped ? freedom.weight_at(px, py) : 0.0;
-    const double condition = w.fan.condition(px + 0.5, py + 0.5);
-    Anchors::Distances distances;  // shared by every channel
-    w.anchors.distances(px, py, distances);
-    auto allowed_at = [&](size_t k, float v) {
-      return planes[k].flat ? 0.0f
-             : w.eye
-                 ? INFINITY
-                 : round_up(w.allowed[k].at(px, py, v, delta,
-                                            s.component_smooth[k] ? weight * planes[k].spread : 0.0,
-                                            condition, distances));
-    };
-    const float z_allowed =
-        w.eye ? INFINITY
-              : round_up(w.depth_allowed.at(px, py, z, delta, freedom.depth_at(px, py), condition,
-                                            distances));
-    // Depths within each other's allowances: either fragment may win the depth test.
-    auto close = [&](float other, float other_allowed) {
-      return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
-    };
-    const bool ordered = c.depth_func != DepthFunc::always && f.fragments[i] > 0;
-    const bool contested = ordered && close(f.depth[i], r.allowed.depth[i]);
-    if (!depth_test(c.depth_func, z, f.depth[i])) {
-      if (!contested) return;
-      Candidate loser{i, p, z, z_allowed, {}, {}};
-      w.values.values(px, py, value.data());
-      for (size_t k = 0; k < planes.size(); ++k) {
-        loser.values.push_back(value[k]);
-        loser.allowed.push_back(allowed_at(k, loser.values.back()));
-      }
-      candidates[i].push_back(std::move(loser));
-      return;
-    }
-    // Keep the candidates that may still win against the new winner (looked up, not
-    // inserted: a pixel drawn over by a clear winner needs no entry).
-    if (const auto it = candidates.find(i); it != candidates.end())
-      std::erase_if(it->second,
-                    [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
-    // The old winner is one when it was close.
-    if (contested) {
-      Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
-      for (size_t k = 0; k < planes.size(); ++k) {
-        old.values.push_back(f.components[k][i]);
-        old.allowed.push_back(r.allowed.components[k][i]);
-      }
-      candidates[i].push_back(std::move(old));
-    }
+    if (!depth_test(c.depth_func, z, f.depth[i])) return;
     f.primitive[i] = p;
     f.depth[i] = z;
     ++f.fragments[i];
-    r.allowed.primitive[i] = p;
-    r.allowed.depth[i] = z_allowed;
     w.values.values(px, py, value.data());
-    for (size_t k = 0; k < planes.size(); ++k) {
+    for (size_t k = 0; k < planes.size(); ++k)
       f.components[k][i] = value[k];
-      r.allowed.components[k][i] = allowed_at(k, value[k]);
-    }
   };
+  // With an allowance, the covered pixels a block at a time (FragmentBlocks).
+  std::optional<FragmentBlocks> blocks;
+  if (s.allowance) blocks.emplace(s, w, p, r, candidates);
 
   if (w.eye)
     mark_unstable(s.viewport.x0, std::max(band.y0, s.viewport.y0), s.viewport.x1,
@@ -281,9 +388,15 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
             w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable,
                                 s.allowance ? freedom.z_clip_at(px, py) : 0.0);
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
+    if (!s.allowance) {
+      w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
+                                  [&](int px) { draw(px, py); });
+      continue;
+    }
     w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
-                                [&](int px) { draw(px, py); });
+                                [&](int px) { blocks->add(px, py); });
   }
+  if (blocks) blocks->flush();
 }
 
 }  // namespace

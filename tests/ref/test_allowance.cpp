@@ -3,7 +3,9 @@
 // every value that moves must stay within the allowance of the unmoved reference.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "ref/allowance.hpp"
 #include "ref/mesh.hpp"
@@ -95,6 +97,61 @@ TEST(Allowance, FlatIsExactAndDepthIsPositive) {
   // plus a little arithmetic (evaluation and setup: under 2%).
   EXPECT_GT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64));
   EXPECT_LT(r.allowed.depth[i], 1.5 * 0x1p-8 * (1.0 / 64 + 1.0 / 64) * 1.02);
+}
+
+// The block forms (kRowBlock pixels at once, render.cpp's fragments) must give every bit the
+// single-pixel forms give, for ordinary lanes and for the lanes that return early there: a
+// NaN or infinite value, D = 0 at the pixel.
+TEST(Allowance, BlocksGiveTheSingularFormsBits) {
+  // N = 3x - 2y + 7/3, D = x - y (0 on the diagonal), a fan polygon and a guard-band triangle.
+  const LinearForm n{mpq_class(3), mpq_class(-2), mpq_class(7, 3)};
+  const LinearForm d{mpq_class(1), mpq_class(-1), mpq_class(0)};
+  const WindowPolygon polygon = {{0.25, 0.5}, {40.5, 3.75}, {7.125, 30.5}, {1.5, 20}};
+  const WindowPolygon guard = {{-100, -3}, {300, 2}, {5, 400}};
+  const Anchors anchors(polygon, guard);
+  for (double spread : {2.5, double(INFINITY)}) {
+    const Allowance a(n, d, spread, 1e-7, anchors);
+    double px[kRowBlock], py[kRowBlock], delta[kRowBlock], extra[kRowBlock], cond[kRowBlock];
+    float value[kRowBlock];
+    for (int j = 0; j < kRowBlock; ++j) {
+      px[j] = 3 + 5 * j, py[j] = j % 3 == 0 ? px[j] : 11 - j;  // lanes 0, 3, 6: D = 0
+      delta[j] = 0x1p-8 * (1 + j), extra[j] = j * 1e-6, cond[j] = 5 + 3 * j;
+      value[j] = float(1.0 / (j + 1) - 0.3);
+    }
+    value[1] = NAN, value[4] = INFINITY, value[7] = -1e30f;
+    Anchors::RowDistances blocks;
+    anchors.distances(px, py, blocks);
+    double out[kRowBlock];
+    a.at(px, py, value, delta, extra, cond, blocks, out);
+    for (int j = 0; j < kRowBlock; ++j) {
+      Anchors::Distances one;
+      anchors.distances(int(px[j]), int(py[j]), one);
+      for (size_t i = 0; i < anchors.size(); ++i) {
+        EXPECT_EQ(std::bit_cast<uint64_t>(one.dx[i]), std::bit_cast<uint64_t>(blocks.dx[i][j]));
+        EXPECT_EQ(std::bit_cast<uint64_t>(one.dy[i]), std::bit_cast<uint64_t>(blocks.dy[i][j]));
+        EXPECT_EQ(std::bit_cast<uint64_t>(one.most[i]), std::bit_cast<uint64_t>(blocks.most[i][j]));
+      }
+      const double single =
+          a.at(int(px[j]), int(py[j]), value[j], delta[j], extra[j], cond[j], one);
+      EXPECT_EQ(std::bit_cast<uint64_t>(single), std::bit_cast<uint64_t>(out[j])) << "lane " << j;
+    }
+    EXPECT_EQ(out[0], INFINITY);  // D = 0
+    EXPECT_EQ(out[1], INFINITY);  // NaN
+    EXPECT_TRUE(std::isfinite(out[2]));
+  }
+  // round_up: bounds that round up, down, exactly, negative, infinite, NaN and beyond float.
+  const double bounds[kRowBlock] = {0.1, 1.0, 1e-45, -0.1, INFINITY, NAN, 1e300, 3.4028235e38};
+  float block[kRowBlock];
+  round_up(bounds, block);
+  for (int j = 0; j < kRowBlock; ++j)
+    EXPECT_EQ(std::bit_cast<uint32_t>(round_up(bounds[j])), std::bit_cast<uint32_t>(block[j]))
+        << "lane " << j;
+  const double ordinary[kRowBlock] = {0.1, 1.0, 1e-45, 0, 2.5e-300, 7, 1e38, 3.4028235e38};
+  round_up(ordinary, block);
+  for (int j = 0; j < kRowBlock; ++j) {
+    EXPECT_EQ(std::bit_cast<uint32_t>(round_up(ordinary[j])), std::bit_cast<uint32_t>(block[j]));
+    EXPECT_GE(double(block[j]), ordinary[j]);
+  }
 }
 
 TEST(Allowance, GrowsWithDistanceFromTheOrigin) {
