@@ -63,6 +63,7 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "ref/blocks.hpp"
 #include "ref/exact.hpp"
 #include "ref/setup.hpp"
 
@@ -71,11 +72,6 @@ namespace glrc::ref {
 inline constexpr double kFloatUnitRoundoff = 0x1p-24;
 inline constexpr double kPositionRoundings = 8, kEvaluationRoundings = 8, kValueRoundings = 8;
 inline constexpr double kDenormalFlushes = 8, kClippedValueRoundings = 5, kSetupRoundings = 4;
-
-// How many pixels the block forms below (Anchors::distances, Allowance::at) take at once: a fixed
-// count, so that their loops over the pixels are vectorized at any optimization level, each pixel's
-// arithmetic the same operations in the same order as one pixel's.
-inline constexpr int kRowBlock = 8;
 
 // A polygon an implementation may rasterize: its vertices' window positions, pixels.
 using WindowPolygon = std::vector<std::array<double, 2>>;

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 
 namespace glrc::ref {
@@ -145,6 +146,56 @@ void ComponentValues::values(long px, long py, float* out) const {
         }
       }
       out[num.component] = planes[num.component].ratio.exact_at(px, py);
+    }
+  }
+}
+
+void ComponentValues::values(const double* px, const double* py, float* out) const {
+  constexpr int n = kRowBlock;
+  const std::vector<ComponentPlane>& planes = *planes_;
+  for (size_t k = 0; k < planes.size(); ++k)
+    if (planes[k].flat) std::fill(out + k * n, out + (k + 1) * n, planes[k].flat_value);
+  for (size_t k : slow_)
+    for (int j = 0; j < n; ++j)
+      out[k * n + size_t(j)] = planes[k].ratio.exact_at(long(px[j]), long(py[j]));
+  // values()'s fast path and its proof, lane by lane, every lane's quantities 64 bits wide so
+  // that the loops are vectorized; a lane it does not decide takes the exact path afterwards.
+  constexpr double u = 0x1p-53;
+  double x[n], y[n], ax[n], ay[n], d[n], ed[n], inverse_d[n], inverse_margin[n], value[n];
+  double fast[n], decided[n];  // 1 or 0: as wide as the doubles, for the vectorizer
+  for (int j = 0; j < n; ++j)
+    x[j] = px[j], y[j] = py[j], ax[j] = std::fabs(px[j]), ay[j] = std::fabs(py[j]);
+  for (const Denominator& den : shared_) {
+    for (int j = 0; j < n; ++j) {
+      d[j] = den.a * x[j] + den.b * y[j] + den.c;
+      ed[j] = 8 * u * (std::fabs(den.a) * ax[j] + std::fabs(den.b) * ay[j] + std::fabs(den.c));
+      const double ad = std::fabs(d[j]);
+      fast[j] = ad > 4 * ed[j] ? 1.0 : 0.0;
+      inverse_d[j] = 1 / d[j], inverse_margin[j] = 1 / (ad - ed[j]);
+    }
+    for (const Numerator& num : den.numerators) {
+      for (int j = 0; j < n; ++j) {
+        const double nv = num.a * x[j] + num.b * y[j] + num.c;
+        const double en =
+            8 * u * (std::fabs(num.a) * ax[j] + std::fabs(num.b) * ay[j] + std::fabs(num.c));
+        const double q = nv * inverse_d[j];
+        const double err =
+            ((en + std::fabs(q) * ed[j]) * inverse_margin[j] + 6 * u * std::fabs(q)) * 1.01 +
+            0x1p-1000;
+        // The two ends rounded to float and back (exact, one to one): the same float when they
+        // compare equal with the same sign (-0 and +0 compare equal; NaN never does).
+        const double lo = double(float(q - err)), hi = double(float(q + err));
+        const bool same = (lo == hi) & (std::copysign(1.0, lo) == std::copysign(1.0, hi));
+        const bool finite = std::fabs(lo) <= double(std::numeric_limits<float>::max());
+        decided[j] = same ? (finite ? fast[j] : 0.0) : 0.0;
+        value[j] = lo;
+      }
+      float* column = out + num.component * n;
+      for (int j = 0; j < n; ++j)
+        column[j] = float(value[j]);
+      for (int j = 0; j < n; ++j)
+        if (decided[j] != 1)
+          column[j] = planes[num.component].ratio.exact_at(long(px[j]), long(py[j]));
     }
   }
 }

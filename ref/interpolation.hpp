@@ -21,6 +21,7 @@
 
 #include "core/case.hpp"
 #include "core/model.hpp"
+#include "ref/blocks.hpp"
 #include "ref/exact.hpp"
 #include "ref/setup.hpp"
 
@@ -63,6 +64,11 @@ class ComponentValues {
   // out[k] = component k's value at pixel (px, py), for every k of `planes` (which must
   // outlive this).
   void values(long px, long py, float* out) const;
+  // The same for kRowBlock pixels (px[j], py[j]) at once (integer pixel coordinates as
+  // doubles): out[k·kRowBlock + j] is component k's value at pixel j, bit for bit what values()
+  // gives (every value is the float nearest its exact ratio either way); the fast path's
+  // arithmetic in loops over the lanes.
+  void values(const double* px, const double* py, float* out) const;
 
  private:
   struct Numerator {

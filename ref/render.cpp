@@ -189,7 +189,8 @@ class FragmentBlocks {
         candidates_(candidates),
         value_(w.planes.size()),
         allowed_(w.planes.size()),
-        scratch_(w.planes.size()) {}
+        scratch_(w.planes.size()),
+        block_values_(w.planes.size() * kRowBlock) {}
   FragmentBlocks(const FragmentBlocks&) = delete;
   FragmentBlocks& operator=(const FragmentBlocks&) = delete;
 
@@ -285,12 +286,19 @@ class FragmentBlocks {
       ++needed;
     }
     if (needed == 0) return;
-    // The values, component by component over the block; then their allowances.
-    for (int j = 0; j < count; ++j) {
-      if (role_[j] == Role::none) continue;
-      w.values.values(px_[j], py_[j], scratch_.data());
+    // The values: of the whole block at once when every pixel needs them (padding lanes
+    // repeat a pixel), else of those that do; then their allowances.
+    if (needed == count) {
+      w.values.values(x_, y_, block_values_.data());
       for (size_t k = 0; k < planes.size(); ++k)
-        value_[k][size_t(j)] = scratch_[k];
+        std::copy_n(block_values_.data() + k * n, n, value_[k].data());
+    } else {
+      for (int j = 0; j < count; ++j) {
+        if (role_[j] == Role::none) continue;
+        w.values.values(px_[j], py_[j], scratch_.data());
+        for (size_t k = 0; k < planes.size(); ++k)
+          value_[k][size_t(j)] = scratch_[k];
+      }
     }
     for (size_t k = 0; k < planes.size(); ++k) {
       auto& allowed = allowed_[k];
@@ -339,7 +347,7 @@ class FragmentBlocks {
   Role role_[kRowBlock]{};
   Anchors::RowDistances distances_{};
   std::vector<std::array<float, kRowBlock>> value_, allowed_;  // by component, then lane
-  std::vector<float> scratch_;
+  std::vector<float> scratch_, block_values_;
 };
 
 // Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,

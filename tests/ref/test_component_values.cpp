@@ -40,18 +40,30 @@ LinearForm random_form(std::mt19937_64& rng, int spread) {
   return {r(), r(), r()};
 }
 
-// Every component at every sampled pixel against RatioEvaluator::exact_at, bit for bit.
+// Every component at every sampled pixel against RatioEvaluator::exact_at, bit for bit: one
+// pixel at a time, and kRowBlock sampled pixels at a time (the block form; lanes from two rows
+// where a row's samples run out).
 int disagreements(const std::vector<ComponentPlane>& planes, long step) {
   const ComponentValues values(planes);
-  std::vector<float> out(planes.size());
-  int wrong = 0;
+  std::vector<float> out(planes.size()), block(planes.size() * kRowBlock);
+  double bx[kRowBlock], by[kRowBlock];
+  int lanes = 0, wrong = 0;
+  auto want = [&](size_t k, long px, long py) {
+    return planes[k].flat ? planes[k].flat_value : planes[k].ratio.exact_at(px, py);
+  };
   for (long py = 0; py < 1000; py += step)
     for (long px = 0; px < 1000; px += step + 4) {
       values.values(px, py, out.data());
-      for (size_t k = 0; k < planes.size(); ++k) {
-        const float want = planes[k].flat ? planes[k].flat_value : planes[k].ratio.exact_at(px, py);
-        wrong += std::bit_cast<uint32_t>(out[k]) != std::bit_cast<uint32_t>(want);
-      }
+      for (size_t k = 0; k < planes.size(); ++k)
+        wrong += std::bit_cast<uint32_t>(out[k]) != std::bit_cast<uint32_t>(want(k, px, py));
+      bx[lanes] = double(px), by[lanes] = double(py);
+      if (++lanes < kRowBlock) continue;
+      lanes = 0;
+      values.values(bx, by, block.data());
+      for (size_t k = 0; k < planes.size(); ++k)
+        for (int j = 0; j < kRowBlock; ++j)
+          wrong += std::bit_cast<uint32_t>(block[k * kRowBlock + size_t(j)]) !=
+                   std::bit_cast<uint32_t>(want(k, long(bx[j]), long(by[j])));
     }
   return wrong;
 }
