@@ -3,13 +3,17 @@
 #include <fcntl.h>
 #include <link.h>
 #include <openssl/evp.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 namespace glrc::identify {
 
@@ -122,6 +126,84 @@ std::string files_digest(const std::vector<std::string>& files) {
   return hex(md, len);
 }
 
+namespace {
+
+// A file's identity as remembered_files_digest compares it; nullopt when it cannot be stat'ed.
+std::optional<json> file_identity(const std::string& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0) return std::nullopt;
+  auto ns = [](const timespec& t) { return int64_t(t.tv_sec) * 1000000000 + t.tv_nsec; };
+  return json{{"path", path},
+              {"device", uint64_t(st.st_dev)},
+              {"inode", uint64_t(st.st_ino)},
+              {"size", int64_t(st.st_size)},
+              {"modified_ns", ns(st.st_mtim)},
+              {"changed_ns", ns(st.st_ctim)}};
+}
+
+}  // namespace
+
+std::string remembered_files_digest(const std::vector<std::string>& files,
+                                    const std::filesystem::path& store,
+                                    std::filesystem::file_time_type now) {
+  json identities = json::array();
+  for (const std::string& f : files) {
+    auto id = file_identity(f);
+    if (!id) return files_digest(files);
+    identities.push_back(std::move(*id));
+  }
+  json kept = json::array();
+  try {
+    std::ifstream in(store);
+    const json j = in ? json::parse(in, nullptr, /*allow_exceptions=*/false) : json();
+    if (j.is_object() && j.value("format", 0) == kFormat && j.contains("digests") &&
+        j["digests"].is_array())
+      for (const json& entry : j["digests"]) {
+        if (!entry.is_object() || !entry.contains("files") || !entry.contains("sha256") ||
+            !entry["sha256"].is_string())
+          continue;
+        if (entry["files"] == identities) return entry["sha256"].get<std::string>();
+        kept.push_back(entry);
+      }
+  } catch (const std::exception&) {
+    // Unreadable is a miss.
+  }
+  const std::string digest = files_digest(files);
+  if (digest.empty() || files.empty()) return digest;
+  // The store's clock is the filesystem's: `now` in nanoseconds since the same epoch as the
+  // files' times (file_time_type's clock on Linux is the system clock).
+  const int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                             std::chrono::file_clock::to_sys(now).time_since_epoch())
+                             .count();
+  for (const json& id : identities)
+    if (id["changed_ns"].get<int64_t>() > now_ns - 1000000000 ||
+        id["modified_ns"].get<int64_t>() > now_ns - 1000000000)
+      return digest;
+  try {
+    kept.push_back({{"files", identities}, {"sha256", digest}});
+    if (kept.size() > kMaxEntries) kept.erase(kept.begin(), kept.end() - kMaxEntries);
+    std::error_code ec;
+    std::filesystem::create_directories(store.parent_path(), ec);
+    if (ec) return digest;
+    const std::filesystem::path tmp =
+        store.string() + ".tmp." + std::to_string(static_cast<long>(getpid()));
+    {
+      std::ofstream out(tmp);
+      out << json{{"format", kFormat}, {"digests", kept}}.dump(2) << "\n";
+      if (!out) {
+        out.close();
+        std::filesystem::remove(tmp, ec);
+        return digest;
+      }
+    }
+    std::filesystem::rename(tmp, store, ec);
+    if (ec) std::filesystem::remove(tmp, ec);
+  } catch (const std::exception&) {
+    // Not remembered this time.
+  }
+  return digest;
+}
+
 std::vector<std::string> driver_files(const gl::GlInfo& gl) {
   if (gl.library.empty()) return {};
   std::vector<std::string> files{gl.library};
@@ -147,7 +229,9 @@ ModelCacheSlot model_cache_slot(const std::string& renderer, const std::string& 
   s.file = file;
   s.renderer = renderer;
   s.version = version;
-  if (!file.empty()) s.driver_digest = files_digest(driver_files);
+  if (!file.empty())
+    s.driver_digest =
+        remembered_files_digest(driver_files, file.parent_path() / "driver_digests.json");
   return s;
 }
 

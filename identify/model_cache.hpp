@@ -38,7 +38,8 @@ struct ModelCacheSlot {
 // XDG_CACHE_HOME is unset or not an absolute path; empty when neither variable helps.
 std::filesystem::path model_cache_file();
 
-// The slot of an implementation whose driver code is `driver_files` (driver_files()).
+// The slot of an implementation whose driver code is `driver_files` (driver_files()), its
+// digest remembered_files_digest's with the store beside `file`.
 ModelCacheSlot model_cache_slot(const std::string& renderer, const std::string& version,
                                 const std::vector<std::string>& driver_files,
                                 const std::filesystem::path& file = model_cache_file());
@@ -46,6 +47,18 @@ ModelCacheSlot model_cache_slot(const std::string& renderer, const std::string& 
 // A SHA-256 (hex) over the contents of `files`, in the order given; "" when the list is empty
 // or a file cannot be read.
 std::string files_digest(const std::vector<std::string>& files);
+
+// files_digest(files), remembered in `store` (JSON, next to the models: driver_digests.json)
+// with every file's identity: device, inode, size, and modification and status-change times in
+// nanoseconds. Hashing a driver (libOSMesa is 12 MB, libgallium more) costs every run 15 to 30
+// ms; a file changed since has another change time (no user can set it back), so a remembered
+// digest is used only where every file's identity is the same. Recorded only for files last
+// changed a second or more before `now` (the filesystem's clock is coarse: a change within the
+// same tick as the hashing could keep the change time). `store` unreadable or not ours: the
+// digest is computed, and the store rewritten when possible; never an error.
+std::string remembered_files_digest(
+    const std::vector<std::string>& files, const std::filesystem::path& store,
+    std::filesystem::file_time_type now = std::filesystem::file_time_type::clock::now());
 
 // The driver's code in this process: gl.library (libOSMesa, libEGL_mesa, ...) and the Mesa
 // driver modules the loader mapped (swrast_dri.so, libgallium-*.so, and for zink the Vulkan

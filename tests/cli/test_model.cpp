@@ -4,11 +4,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/session.hpp"
 #include "identify/model_cache.hpp"
@@ -126,6 +128,37 @@ TEST_F(ModelCache, UnwritableOrUnknownMeansNoCache) {
           .usable());
   EXPECT_FALSE(glrc::identify::model_cache_slot("softpipe", "3.3", {}, file_).usable());
   EXPECT_TRUE(glrc::identify::driver_files(glrc::gl::GlInfo{}).empty());
+}
+
+// The driver's digest is remembered with its files' identities, and used only while they hold.
+TEST_F(ModelCache, RemembersTheDriverDigestWhileTheFilesAreTheSame) {
+  const fs::path store = dir_ / "glrefcheck" / "driver_digests.json";
+  const std::vector<std::string> files = {lib_.string()};
+  const std::string real = glrc::identify::files_digest(files);
+  ASSERT_EQ(real.size(), 64u);
+  // Changed within the last second: hashed, not remembered.
+  EXPECT_EQ(glrc::identify::remembered_files_digest(files, store), real);
+  EXPECT_FALSE(fs::exists(store));
+  // As seen a minute later: remembered. Then the store's digest is what comes back, proven by
+  // planting another one there.
+  const auto later = fs::file_time_type::clock::now() + std::chrono::minutes(1);
+  EXPECT_EQ(glrc::identify::remembered_files_digest(files, store, later), real);
+  ASSERT_TRUE(fs::exists(store));
+  auto j = nlohmann::json::parse(std::ifstream(store));
+  ASSERT_EQ(j["digests"].size(), 1u);
+  j["digests"][0]["sha256"] = "planted";
+  std::ofstream(store) << j.dump();
+  EXPECT_EQ(glrc::identify::remembered_files_digest(files, store, later), "planted");
+  // The library rewritten (same size, same inode): its change time moves, it is hashed again.
+  std::ofstream(lib_) << "driver code, version 2";
+  const std::string rebuilt = glrc::identify::files_digest(files);
+  EXPECT_NE(rebuilt, real);
+  EXPECT_EQ(glrc::identify::remembered_files_digest(files, store, later + std::chrono::minutes(1)),
+            rebuilt);
+  // A store that is not ours, or a file that is gone: hashed as before, never an error.
+  std::ofstream(store) << "{ not json";
+  EXPECT_EQ(glrc::identify::remembered_files_digest(files, store, later), rebuilt);
+  EXPECT_EQ(glrc::identify::remembered_files_digest({(dir_ / "missing.so").string()}, store), "");
 }
 
 TEST_F(ModelCache, FileFollowsXdgCacheHome) {
