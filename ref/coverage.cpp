@@ -60,30 +60,6 @@ std::pair<int, int> CoverageTest::row_span(int py, double reach, int x0, int x1)
   return {int(std::ceil(lo)), int(std::floor(hi))};
 }
 
-bool CoverageTest::classifies_nothing(int px, int py, double largest, bool unstable,
-                                      double largest_z) const {
-  // classify's own tests with the band of `largest`, which is the widest: a centre outside it
-  // is outside every narrower one; one inside every edge's and the near and far planes' bands
-  // from within is inside every narrower one too.
-  bool inside = !unstable;
-  for (int i = 0; i < 3; ++i) {
-    const double d = edges_[size_t(i)].distance(px, py), band = largest * band_scale_[size_t(i)];
-    if (d < -band) return true;
-    inside = inside && d > band;
-  }
-  if (clip_.crosses_near) {
-    const double d = clip_.near.distance(px, py), b = largest + largest_z * clip_.near_scale;
-    if (d < -b) return true;
-    inside = inside && d > b;
-  }
-  if (clip_.crosses_far) {
-    const double d = clip_.far.distance(px, py), b = largest + largest_z * clip_.far_scale;
-    if (d < -b) return true;
-    inside = inside && d > b;
-  }
-  return inside;
-}
-
 uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
                                bool unstable, double z_freedom) const {
   uint8_t bits = 0;

@@ -37,6 +37,7 @@ class CoverageTest {
   // outside a band, or inside every band with nothing else to mark), so that the freedom at the
   // pixel need not be computed. False says nothing.
   // largest_z: the largest z_freedom of the triangle.
+  // Inline: once per pixel within reach of every triangle.
   bool classifies_nothing(int px, int py, double largest, bool unstable,
                           double largest_z = 0) const;
   // The pixels [first, last] of row py within [x0, x1] whose centre may be within `reach`
@@ -56,6 +57,30 @@ class CoverageTest {
   std::array<bool, 3> tie_inside_{};    // a centre exactly on edge i is covered
   std::array<double, 3> band_scale_{};  // (|n_x| + |n_y|) of each exact edge's unit normal
 };
+
+inline bool CoverageTest::classifies_nothing(int px, int py, double largest, bool unstable,
+                                             double largest_z) const {
+  // classify's own tests with the band of `largest`, which is the widest: a centre outside it
+  // is outside every narrower one; one inside every edge's and the near and far planes' bands
+  // from within is inside every narrower one too.
+  bool inside = !unstable;
+  for (int i = 0; i < 3; ++i) {
+    const double d = edges_[size_t(i)].distance(px, py), band = largest * band_scale_[size_t(i)];
+    if (d < -band) return true;
+    inside = inside && d > band;
+  }
+  if (clip_.crosses_near) {
+    const double d = clip_.near.distance(px, py), b = largest + largest_z * clip_.near_scale;
+    if (d < -b) return true;
+    inside = inside && d > b;
+  }
+  if (clip_.crosses_far) {
+    const double d = clip_.far.distance(px, py), b = largest + largest_z * clip_.far_scale;
+    if (d < -b) return true;
+    inside = inside && d > b;
+  }
+  return inside;
+}
 
 template <class F>
 void CoverageTest::for_each_covered(int py, int x0, int x1, F&& f) const {

@@ -104,10 +104,6 @@ int SignEvaluator::sign(long px, long py) const {
   return sgn(form_.at(px, py));
 }
 
-double SignEvaluator::distance(long px, long py) const {
-  return (da_ * double(px) + db_ * double(py) + dc_) * inv_norm_;
-}
-
 std::pair<double, double> SignEvaluator::row_interval(long py, double grow, long x_lo,
                                                       long x_hi) const {
   constexpr double inf = std::numeric_limits<double>::infinity();

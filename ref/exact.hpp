@@ -43,7 +43,9 @@ class SignEvaluator {
   int sign(long px, long py) const;  // -1, 0, +1
   // The form divided by the length of its gradient: the signed distance in pixels of the pixel
   // centre from the line f = 0 (approximate, for classification only).
-  double distance(long px, long py) const;
+  double distance(long px, long py) const {  // inline: per pixel of every band
+    return (da_ * double(px) + db_ * double(py) + dc_) * inv_norm_;
+  }
   // The pixels of row py whose centre is at least -grow pixels from the line (distance() >=
   // -grow), as an interval [lo, hi] of px that may hold more but never misses one: widened for
   // the rounding of both this and distance(), by a pixel and more. lo = -infinity or hi =
