@@ -44,26 +44,37 @@ int side(const TriangleSetup& t, int i, const WindowVertex& v) {
   return sgn(e.a * (v.x_h - half * v.w_c) + e.b * (v.y_h - half * v.w_c) + e.c * v.w_c);
 }
 
-}  // namespace
-
-std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles) {
-  std::vector<std::array<bool, 3>> shared(triangles.size(), {false, false, false});
-  // Each drawn triangle's three window points, computed once (an edge names two of them).
-  std::vector<std::array<WindowPoint, 3>> points(triangles.size());
+// shared_edges over n triangles, triangle(t) the t-th.
+template <class Triangle>
+std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& triangle) {
+  std::vector<std::array<bool, 3>> shared(n, {false, false, false});
+  // Each vertex's window point, computed once for all the drawn triangles that use it (a mesh
+  // shares its vertices; an edge names two of them), by the vertex's index in the case.
+  // Sized once, before any point is taken: EdgeUse keeps pointers into it.
+  size_t vertices = 0;
+  for (size_t t = 0; t < n; ++t)
+    for (uint32_t index : triangle(t).index)
+      vertices = std::max(vertices, size_t(index) + 1);
+  std::vector<std::optional<WindowPoint>> points(vertices);
   std::vector<EdgeUse> uses;
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const TriangleSetup& s = triangles[t];
+  for (size_t t = 0; t < n; ++t) {
+    const TriangleSetup& s = triangle(t);
     if (!s.drawn) continue;
     if (!std::all_of(s.v.begin(), s.v.end(), [](const WindowVertex& v) { return sgn(v.w_c) > 0; }))
       continue;
+    const WindowPoint* corner[3];
     for (size_t j = 0; j < 3; ++j) {
-      WindowPoint& p = points[t][j];
-      p.x = s.v[j].x_h / s.v[j].w_c, p.y = s.v[j].y_h / s.v[j].w_c;
-      p.dx = p.x.get_d(), p.dy = p.y.get_d();
+      std::optional<WindowPoint>& p = points[s.index[j]];
+      if (!p) {
+        p.emplace();
+        p->x = s.v[j].x_h / s.v[j].w_c, p->y = s.v[j].y_h / s.v[j].w_c;
+        p->dx = p->x.get_d(), p->dy = p->y.get_d();
+      }
+      corner[j] = &*p;
     }
     for (int i = 0; i < 3; ++i) {
-      const WindowPoint* a = &points[t][size_t((i + 1) % 3)];
-      const WindowPoint* b = &points[t][size_t((i + 2) % 3)];
+      const WindowPoint* a = corner[(i + 1) % 3];
+      const WindowPoint* b = corner[(i + 2) % 3];
       if (compare(*b, *a) < 0) std::swap(a, b);
       uses.push_back({a, b, t, i});
     }
@@ -94,7 +105,7 @@ std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& 
       const EdgeUse& k = uses[u];
       rel[u - first] =
           u == first ? 1
-                     : side(triangles[r.triangle], r.edge, triangles[k.triangle].v[size_t(k.edge)]);
+                     : side(triangle(r.triangle), r.edge, triangle(k.triangle).v[size_t(k.edge)]);
       positive = positive || rel[u - first] > 0;
       negative = negative || rel[u - first] < 0;
     }
@@ -103,6 +114,19 @@ std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& 
       if (rel[u - first] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
   }
   return shared;
+}
+
+}  // namespace
+
+std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles) {
+  return shared_edges_of(triangles.size(),
+                         [&](size_t t) -> const TriangleSetup& { return triangles[t]; });
+}
+
+std::vector<std::array<bool, 3>> shared_edges(
+    const std::vector<std::optional<TriangleSetup>>& triangles) {
+  return shared_edges_of(triangles.size(),
+                         [&](size_t t) -> const TriangleSetup& { return *triangles[t]; });
 }
 
 }  // namespace glrc::ref

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "core/case.hpp"
@@ -15,5 +16,8 @@ namespace glrc::ref {
 // drawn triangle lying on its other side. Both ends must have identical clip coordinates and
 // w_c > 0; a culled or zero-area neighbour leaves the edge outer.
 std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles);
+// The same for triangles set up in place (render.cpp); every element must hold one.
+std::vector<std::array<bool, 3>> shared_edges(
+    const std::vector<std::optional<TriangleSetup>>& triangles);
 
 }  // namespace glrc::ref

@@ -443,8 +443,24 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   threads = thread_count(threads);
 
   const int count = int(c.triangles.size());
-  std::vector<TriangleSetup> setups(static_cast<size_t>(count));
-  parallel_for(count, threads, [&](int p) { setups[size_t(p)] = setup_triangle(c, m, p); });
+  // Each vertex to the window once (a mesh's vertices are shared), then each triangle set up
+  // in its place: a TriangleSetup default-constructed first costs 24 rationals' allocations.
+  std::vector<WindowVertex> window(c.vertices.size());
+  parallel_for(int(c.vertices.size()), threads,
+               [&](int i) { window[size_t(i)] = to_window(c.vertices[size_t(i)], c); });
+  std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
+  parallel_for(count, threads, [&](int p) {
+    // Constructed from the returned value directly (no default construction, no move).
+    struct SetUp {
+      const Case& c;
+      const Model& m;
+      int p;
+      const std::vector<WindowVertex>& window;
+      operator TriangleSetup() const { return setup_triangle(c, m, p, window); }
+    };
+    setups[size_t(p)].emplace(SetUp{c, m, p, window});
+  });
+  window.clear();
   const std::vector<std::array<bool, 3>> shared = shared_edges(setups);
 
   const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
@@ -460,7 +476,7 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
     slivers.assign(size_t(n), std::nullopt);
     parallel_for(n, threads, [&](int k) {
       const int p = first + k;
-      const TriangleSetup& t = setups[size_t(p)];
+      const TriangleSetup& t = *setups[size_t(p)];
       // Zero area: drawn by no model, but a sliver of some implementation's (Sliver). Its
       // facing is either, so only culling both faces rules it out.
       if (allowance && !t.has_edges && c.cull != CullFace::front_and_back) {

@@ -72,13 +72,10 @@ PixelBox viewport_box(const Case& c) {
   return b;
 }
 
-TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
-  TriangleSetup t;
-  t.primitive = primitive;
-  t.index = c.triangles[primitive];
-  for (int i = 0; i < 3; ++i)
-    t.v[i] = to_window(c.vertices[t.index[i]], c);
+namespace {
 
+// Everything setup_triangle does once the window vertices t.v are known.
+void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   // Homogeneous edge functions: E_i(p) = (col_j × col_k) · p with p = (x_w, y_w, 1) and
   // x_w = px + 1/2; det = col_0 · (col_1 × col_2) is 2·area·w_0·w_1·w_2 when all w_c > 0, and
   // its sign is the facing in every case (the Jacobian of the projective map has the sign of
@@ -122,7 +119,7 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
       t.snapped_edges[i] = e;
     }
   }
-  if (det_sign == 0) return t;  // zero area: nothing is drawn, by any implementation
+  if (det_sign == 0) return;  // zero area: nothing is drawn, by any implementation
   t.has_edges = true;
   for (int i = 0; i < 3; ++i) {
     LinearForm& e = t.homogeneous_edges[i];
@@ -164,10 +161,32 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
     t.box.y1 = std::min(t.box.y1, clamp_int(std::ceil(hi[1] - 0.5) + 1));
   }
 
-  if (facing_sign == 0) return t;  // zero snapped area: this model draws nothing
+  if (facing_sign == 0) return;  // zero snapped area: this model draws nothing
   t.front_facing = (facing_sign > 0) == (c.front_face == FrontFace::ccw);
-  if (culled(c, t.front_facing)) return t;
+  if (culled(c, t.front_facing)) return;
   t.drawn = true;
+}
+
+}  // namespace
+
+TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
+  TriangleSetup t;
+  t.primitive = primitive;
+  t.index = c.triangles[size_t(primitive)];
+  for (size_t i = 0; i < 3; ++i)
+    t.v[i] = to_window(c.vertices[t.index[i]], c);
+  set_up(c, m, t);
+  return t;
+}
+
+TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
+                             const std::vector<WindowVertex>& window) {
+  TriangleSetup t;
+  t.primitive = primitive;
+  t.index = c.triangles[size_t(primitive)];
+  for (size_t i = 0; i < 3; ++i)
+    t.v[i] = window[t.index[i]];
+  set_up(c, m, t);
   return t;
 }
 

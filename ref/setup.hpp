@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/case.hpp"
 #include "core/model.hpp"
@@ -51,6 +52,10 @@ struct TriangleSetup {
 };
 
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive);
+// The same with every vertex's window position given (window[i] = to_window(c.vertices[i], c)):
+// a mesh's vertex is shared by several triangles, and is transformed once, not once per corner.
+TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
+                             const std::vector<WindowVertex>& window);
 
 // The window-pixel region of the viewport inside the framebuffer.
 PixelBox viewport_box(const Case& c);
