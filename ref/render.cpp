@@ -60,9 +60,16 @@ struct Prepared {
     // (the viewport bounds it anyway; the clamp keeps the conversion defined).
     largest = s.allowance ? freedom.largest() : s.model_step;
     margin = 1 + int(std::min(std::ceil(largest * 1.5), 1e6));
-    // What row_span needs, 1 + largest·sqrt(2), and a little more for its arithmetic; never
-    // beyond the margin of the box.
-    reach_px = std::min(double(margin), 1 + largest * 1.5);
+    // How far outside the exact triangle a centre may be classified or covered, and a little
+    // more (sqrt(2) < 1.5), never beyond the margin of the box: classified within the largest
+    // band, largest·sqrt(2); covered only on the snapped path, where each vertex moved by at
+    // most half a subpixel step along x and y, so every point of the snapped triangle is that
+    // close to a point of the exact one (a convex combination of the moves), 2^-(bits+1)·sqrt(2)
+    // away at most. (The homogeneous path covers only centres inside the exact triangle.)
+    // row_span widens by a pixel more for its own arithmetic.
+    const double snapping =
+        t.path == CoveragePath::snapped ? std::ldexp(1.0, -(s.m.subpixel_bits + 1)) : 0.0;
+    reach_px = std::min(double(margin), std::max(largest, snapping) * 1.5);
     reach = {std::max(s.viewport.x0, t.box.x0 - margin), std::max(s.viewport.y0, t.box.y0 - margin),
              std::min(s.viewport.x1, t.box.x1 + margin),
              std::min(s.viewport.y1, t.box.y1 + margin)};
@@ -460,7 +467,7 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
     };
     setups[size_t(p)].emplace(SetUp{c, m, p, window});
   });
-  window.clear();
+  window = {};  // freed: the setups hold their own copies
   const std::vector<std::array<bool, 3>> shared = shared_edges(setups);
 
   const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
