@@ -93,6 +93,23 @@ double FanTriangles::condition(double x, double y) const {
   return g;
 }
 
+void FanTriangles::condition(const double* x, const double* y, double* out) const {
+  // condition()'s steps lane by lane, its skips and tests turned into one choice per triangle.
+  constexpr int n = kRowBlock;
+  double g[n] = {};
+  for (const Triangle& t : triangles_)
+    for (int j = 0; j < n; ++j) {
+      const bool skipped = t.condition <= g[j];
+      const bool outside_box =
+          (x[j] < t.box[0]) | (x[j] > t.box[2]) | (y[j] < t.box[1]) | (y[j] > t.box[3]);
+      bool inside = true;
+      for (const auto& e : t.edge)
+        inside = inside & (e[0] * x[j] + e[1] * y[j] + e[2] >= 0);
+      g[j] = !skipped & !outside_box & inside ? t.condition : g[j];
+    }
+  std::copy(g, g + n, out);
+}
+
 Anchors::Anchors(const WindowPolygon& polygon, const WindowPolygon& guard_band) {
   // A point given twice (an unclipped triangle is its own guard-band triangle) counts once,
   // a fan anchor if either is: the largest terms over the anchors are the same.

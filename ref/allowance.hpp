@@ -125,6 +125,8 @@ class FanTriangles {
   // G(p) above: the largest shape factor G of the triangles that hold the window point (x, y)
   // within the margin; 0 when none does.
   double condition(double x, double y) const;
+  // condition() of kRowBlock points (x[j], y[j]) at once, bit for bit: the same largest G.
+  void condition(const double* x, const double* y, double* out) const;
 
  private:
   struct Triangle {

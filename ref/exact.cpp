@@ -186,4 +186,35 @@ float RatioEvaluator::at(long px, long py) const {
   return exact_at(px, py);
 }
 
+void RatioEvaluator::at(const double* px, const double* py, float* out) const {
+  constexpr int n = kRowBlock;
+  double decided[n] = {};
+  if (fast_) {
+    // at()'s fast path and its bound, lane by lane; every quantity 64 bits wide.
+    double value[n];
+    for (int j = 0; j < n; ++j) {
+      const double x = px[j], y = py[j];
+      const double nv = fan_ * x + fbn_ * y + fcn_;
+      const double d = fad_ * x + fbd_ * y + fcd_;
+      const double en = 8 * kU * (std::fabs(fan_ * x) + std::fabs(fbn_ * y) + std::fabs(fcn_));
+      const double ed = 8 * kU * (std::fabs(fad_ * x) + std::fabs(fbd_ * y) + std::fabs(fcd_));
+      const double ad = std::fabs(d);
+      const double q = nv / d;
+      const double err =
+          ((en + std::fabs(q) * ed) / (ad - ed) + 4 * kU * std::fabs(q)) * 1.01 + 0x1p-1000;
+      // Both ends rounded to float and back (exact, one to one): the same float when equal
+      // with the same sign (-0 and +0 compare equal; NaN never does).
+      const double lo = double(float(q - err)), hi = double(float(q + err));
+      const bool same = (lo == hi) & (std::copysign(1.0, lo) == std::copysign(1.0, hi));
+      const bool finite = std::fabs(lo) <= double(std::numeric_limits<float>::max());
+      decided[j] = (ad > 4 * ed) & same & finite ? 1.0 : 0.0;
+      value[j] = lo;
+    }
+    for (int j = 0; j < n; ++j)
+      out[j] = float(value[j]);
+  }
+  for (int j = 0; j < n; ++j)
+    if (decided[j] != 1) out[j] = exact_at(long(px[j]), long(py[j]));
+}
+
 }  // namespace glrc::ref

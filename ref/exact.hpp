@@ -5,6 +5,8 @@
 
 #include <gmpxx.h>
 
+#include "ref/blocks.hpp"
+
 #include <cstdint>
 #include <utility>
 
@@ -72,6 +74,10 @@ class RatioEvaluator {
   RatioEvaluator() = default;
   RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator);
   float at(long px, long py) const;
+  // at() of kRowBlock pixels (px[j], py[j]) (integer pixel coordinates as doubles) at once:
+  // the same floats (each the float nearest its exact ratio), the fast path in loops over the
+  // lanes (ref/blocks.hpp), the exact path for a lane it leaves undecided.
+  void at(const double* px, const double* py, float* out) const;
   float exact_at(long px, long py) const;  // the exact path alone, for tests
   // The double copies the fast path uses (N's a, b, c, then D's), each within a relative 2^-52
   // of the exact coefficient; false when there is no fast path.

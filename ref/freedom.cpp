@@ -68,6 +68,20 @@ double ConcaveEnvelope::at(double x, double y) const {
   return std::clamp(v, lo_, hi_);
 }
 
+void ConcaveEnvelope::at(const double* x, const double* y, double* out) const {
+  constexpr int n = kRowBlock;
+  if (planes_.empty()) return (void)std::fill(out, out + n, hi_);
+  double v[n];
+  std::fill(v, v + n, INFINITY);
+  for (const auto& p : planes_)
+    for (int j = 0; j < n; ++j) {
+      const double t = p[0] * x[j] + p[1] * y[j] + p[2];
+      v[j] = t < v[j] ? t : v[j];  // std::min(v, t)
+    }
+  for (int j = 0; j < n; ++j)  // std::clamp(v, lo_, hi_)
+    out[j] = v[j] < lo_ ? lo_ : hi_ < v[j] ? hi_ : v[j];
+}
+
 std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
                                            std::vector<std::array<double, 3>>* z_clip,
                                            bool* reaches_eye) {
@@ -252,6 +266,44 @@ double PositionFreedom::depth_at(int px, int py) const {
 double PositionFreedom::weight_at(int px, int py) const {
   const double inverse_w = inverse_w_.at(px + 0.5, py + 0.5);
   return inverse_w > 0 ? weight_.at(px + 0.5, py + 0.5) / inverse_w : 0.0;
+}
+
+namespace {
+
+// The centres of kRowBlock pixels: px + 1/2, as the single-pixel forms compute them.
+void centres(const double* px, const double* py, double* x, double* y) {
+  for (int j = 0; j < kRowBlock; ++j)
+    x[j] = px[j] + 0.5, y[j] = py[j] + 0.5;
+}
+
+}  // namespace
+
+void PositionFreedom::at(const double* px, const double* py, double* out) const {
+  double x[kRowBlock], y[kRowBlock], a[kRowBlock], b[kRowBlock];
+  centres(px, py, x, y);
+  delta_[0].at(x, y, a);
+  delta_[1].at(x, y, b);
+  for (int j = 0; j < kRowBlock; ++j)
+    out[j] = a[j] < b[j] ? b[j] : a[j];  // std::max(a, b)
+}
+
+void PositionFreedom::depth_at(const double* px, const double* py, double* out) const {
+  double x[kRowBlock], y[kRowBlock];
+  centres(px, py, x, y);
+  depth_.at(x, y, out);
+}
+
+void PositionFreedom::weight_at(const double* px, const double* py, double* out) const {
+  double x[kRowBlock], y[kRowBlock], inverse_w[kRowBlock], weight[kRowBlock];
+  centres(px, py, x, y);
+  inverse_w_.at(x, y, inverse_w);
+  weight_.at(x, y, weight);
+  // The quotient in a loop of its own, the choice in another: a division inside the choice
+  // would become a branch (it might trap), which is not vectorized.
+  for (int j = 0; j < kRowBlock; ++j)
+    weight[j] = weight[j] / inverse_w[j];
+  for (int j = 0; j < kRowBlock; ++j)
+    out[j] = inverse_w[j] > 0 ? weight[j] : 0.0;
 }
 
 double PositionFreedom::largest() const {

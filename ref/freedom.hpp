@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "ref/blocks.hpp"
 #include "ref/setup.hpp"
 
 namespace glrc::ref {
@@ -63,6 +64,8 @@ class ConcaveEnvelope {
   ConcaveEnvelope() = default;
   explicit ConcaveEnvelope(const std::vector<std::array<double, 3>>& points);
   double at(double x, double y) const;
+  // at() of kRowBlock points (x[j], y[j]) at once, bit for bit (ref/blocks.hpp).
+  void at(const double* x, const double* y, double* out) const;
   double largest() const { return hi_; }
 
  private:
@@ -101,6 +104,11 @@ class PositionFreedom {
   PositionFreedom(const Case& c, const TriangleSetup& t, int subpixel_bits);
   // δ at the centre of pixel (px, py), pixels.
   double at(int px, int py) const;
+  // at(), depth_at() and weight_at() of kRowBlock pixels (px[j], py[j]) (integer pixel
+  // coordinates as doubles) at once, bit for bit (ref/blocks.hpp).
+  void at(const double* px, const double* py, double* out) const;
+  void depth_at(const double* px, const double* py, double* out) const;
+  void weight_at(const double* px, const double* py, double* out) const;
   // Freedom of z_w at the pixel from the clipping of depth (0 for an unclipped triangle).
   double depth_at(int px, int py) const;
   // Freedom of z_n at the pixel where the near and far planes decide coverage: clipping

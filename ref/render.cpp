@@ -225,21 +225,22 @@ class FragmentBlocks {
     Frame& f = r.frame;
     const PositionFreedom& freedom = w.freedom;
     const auto& planes = w.planes;
-    for (int j = 0; j < count; ++j) {
-      const int px = px_[j], py = py_[j];
-      x_[j] = double(px), y_[j] = double(py);
-      delta_[j] = freedom.at(px, py);
-      condition_[j] = w.fan.condition(px + 0.5, py + 0.5);
-      weight_[j] = w.clipped ? freedom.weight_at(px, py) : 0.0;
-      depth_extra_[j] = freedom.depth_at(px, py);
-      z_[j] = w.depth.at(px, py);
-    }
     // Lanes past `count` repeat the last pixel: computed, never used.
-    for (int j = count; j < n; ++j) {
-      x_[j] = x_[count - 1], y_[j] = y_[count - 1], delta_[j] = delta_[count - 1];
-      condition_[j] = condition_[count - 1], weight_[j] = weight_[count - 1];
-      depth_extra_[j] = depth_extra_[count - 1], z_[j] = z_[count - 1];
+    for (int j = 0; j < n; ++j) {
+      const int k = std::min(j, count - 1);
+      x_[j] = double(px_[k]), y_[j] = double(py_[k]);
     }
+    freedom.at(x_, y_, delta_);
+    double centre_x[n], centre_y[n];
+    for (int j = 0; j < n; ++j)
+      centre_x[j] = x_[j] + 0.5, centre_y[j] = y_[j] + 0.5;
+    w.fan.condition(centre_x, centre_y, condition_);
+    if (w.clipped)
+      freedom.weight_at(x_, y_, weight_);
+    else
+      std::fill(std::begin(weight_), std::end(weight_), 0.0);
+    freedom.depth_at(x_, y_, depth_extra_);
+    w.depth.at(x_, y_, z_);
     w.anchors.distances(x_, y_, distances_);
     if (w.eye) {
       std::fill(std::begin(z_allowed_), std::end(z_allowed_), INFINITY);

@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <random>
+#include <vector>
 
 #include "ref/allowance.hpp"
 #include "ref/freedom.hpp"
@@ -294,6 +297,49 @@ TEST(Freedom, AClippedTriangleIsJudgedAsTightlyAsItsClippedPolygon) {
   EXPECT_LE(worst, 40.0);
   EXPECT_LT(median, 1.2);
   EXPECT_GT(median, 0.8);
+}
+
+// The block forms (render.cpp's blocks of kRowBlock pixels) give the single-pixel forms' bits:
+// the freedom, its depth and weight parts, the fan's condition and the depth's exact ratio, on
+// a triangle clipped by the viewport's sides and the near plane, at pixels inside, outside and
+// far outside it.
+TEST(PositionFreedom, BlocksGiveTheSingularFormsBits) {
+  const std::vector<Case> cases = {
+      one_triangle({-1.6f, -0.4f, -2.0f, 1}, {1.3f, -1.2f, 0.3f, 1.5f}, {0.1f, 2.5f, 0.9f, 2}),
+      far_vertex(0x1p-20f)};
+  for (Case c : cases) {
+    c.fb_width = c.fb_height = 32;
+    c.viewport = {0, 0, 32, 32};
+    const TriangleSetup t = setup_triangle(c, Model{}, 0);
+    const PositionFreedom f(c, t, 8);
+    ASSERT_GT(f.generations(), 0) << "clipped";
+    const FanTriangles fan(f.polygon(), f.largest());
+    const RatioEvaluator depth(t.homogeneous_edges[0], t.homogeneous_edges[1]);
+    for (int first = -40; first < 80; first += kRowBlock) {
+      double px[kRowBlock], py[kRowBlock], cx[kRowBlock], cy[kRowBlock];
+      for (int j = 0; j < kRowBlock; ++j) {
+        px[j] = first + j, py[j] = (first * 7 + j * 3) % 45 - 5;
+        cx[j] = px[j] + 0.5, cy[j] = py[j] + 0.5;
+      }
+      double delta[kRowBlock], depth_part[kRowBlock], weight[kRowBlock], g[kRowBlock];
+      float ratio[kRowBlock];
+      f.at(px, py, delta);
+      f.depth_at(px, py, depth_part);
+      f.weight_at(px, py, weight);
+      fan.condition(cx, cy, g);
+      depth.at(px, py, ratio);
+      for (int j = 0; j < kRowBlock; ++j) {
+        const int x = int(px[j]), y = int(py[j]);
+        auto bits = [](double v) { return std::bit_cast<uint64_t>(v); };
+        EXPECT_EQ(bits(f.at(x, y)), bits(delta[j])) << x << "," << y;
+        EXPECT_EQ(bits(f.depth_at(x, y)), bits(depth_part[j])) << x << "," << y;
+        EXPECT_EQ(bits(f.weight_at(x, y)), bits(weight[j])) << x << "," << y;
+        EXPECT_EQ(bits(fan.condition(x + 0.5, y + 0.5)), bits(g[j])) << x << "," << y;
+        EXPECT_EQ(std::bit_cast<uint32_t>(depth.at(x, y)), std::bit_cast<uint32_t>(ratio[j]))
+            << x << "," << y;
+      }
+    }
+  }
 }
 
 }  // namespace
