@@ -14,7 +14,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -56,17 +55,21 @@ def bench_parts(build, scene, reps):
 
 
 def timed_run(build, args, reps, outdir):
-    """Median wall seconds and largest peak RSS (bytes) of `glrefcheck run ARGS`."""
+    """Median wall seconds and largest peak RSS (bytes) of `glrefcheck run ARGS`.
+
+    The probe, a Python process of its own so that RUSAGE_CHILDREN holds glrefcheck's processes
+    alone, times glrefcheck from its start to its exit: not the probe's own interpreter start."""
     walls, peaks = [], []
-    probe = ("import resource, subprocess, sys\n"
+    probe = ("import resource, subprocess, sys, time\n"
+             "start = time.monotonic()\n"
              "subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)\n"
-             "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+             "wall = time.monotonic() - start\n"
+             "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, wall)")
     for _ in range(reps):
-        start = time.monotonic()
-        kb = subprocess.run([sys.executable, "-c", probe, os.path.join(build, "glrefcheck"), "run"]
-                            + args + ["--out", outdir], check=True, capture_output=True,
-                            text=True).stdout
-        walls.append(time.monotonic() - start)
+        kb, wall = subprocess.run([sys.executable, "-c", probe, os.path.join(build, "glrefcheck"),
+                                   "run"] + args + ["--out", outdir], check=True,
+                                  capture_output=True, text=True).stdout.split()
+        walls.append(float(wall))
         peaks.append(int(kb) * 1024)
     return statistics.median(walls), max(peaks)
 
