@@ -16,6 +16,8 @@ namespace glrc::compare {
 namespace {
 
 constexpr size_t kWorstPerChannel = 10;
+// Comparator::State::judgement's values.
+constexpr uint8_t kNotCompared = 0, kOwn = 1, kCandidate = 2;
 constexpr size_t kMismatchesKept = 64;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -329,6 +331,9 @@ struct Comparator::State {
   std::vector<ChannelAccumulator> channels;  // depth, then each component
   std::vector<double> largest_allowance_ulps;
   std::vector<std::optional<double>> fixed_ulps;  // a channel's fixed allowance, if not per pixel
+  // Per pixel of the band add_rows compares: whether its values are compared, and against the
+  // reference's own fragment or a candidate (judged_against), found once for every channel.
+  std::vector<uint8_t> judgement;
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height)
@@ -354,10 +359,11 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   st.next_row += reference.height;
 
   // Coverage first, then the values where both frames name the same triangle (or GL a
-  // candidate of the depth test), channel by channel. Which pixels those are is asked again in
-  // each channel's pass rather than kept: two primitive ids per pixel read again cost less than
-  // a list of the compared pixels written and read (16 bytes and more per pixel, a fresh
-  // allocation per case).
+  // candidate of the depth test), channel by channel. Which pixels those are is kept as one
+  // byte per pixel of the band (Judgement), kept between bands; a candidate is looked up again
+  // in each channel's pass (rare: only where the depth test's order is free).
+  std::vector<uint8_t>& judgement = st.judgement;
+  judgement.resize(reference.pixel_count());
   auto& cov = st.r.coverage;
   cov.fragments_checked = cov.fragments_checked &&
                           reference.fragments.size() == reference.pixel_count() &&
@@ -367,9 +373,11 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     for (int x = 0; x < reference.width; ++x) {
       const size_t i = reference.index(x, y);
       const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
+      const Judged judged = judged_against(c, expected, gl, i, tolerance);
+      judgement[i] = !judged.compared ? kNotCompared : judged.candidate ? kCandidate : kOwn;
       if (pr == pg && pr == Frame::kNoPrimitive) {
         ++cov.neither;
-      } else if (judged_against(c, expected, gl, i, tolerance).compared) {
+      } else if (judged.compared) {
         ++cov.both;
       } else if (pg == Frame::kNoPrimitive) {
         ++cov.reference_only;
@@ -405,8 +413,9 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     for (int row = 0; row < reference.height; ++row)
       for (int x = 0; x < reference.width; ++x) {
         const size_t i = reference.index(x, row);
-        const Judged judged = judged_against(c, expected, gl, i, tolerance);
-        if (!judged.compared) continue;
+        if (judgement[i] == kNotCompared) continue;
+        const Judged judged = judgement[i] == kOwn ? Judged{true, nullptr}
+                                                   : judged_against(c, expected, gl, i, tolerance);
         const int y = y0 + row;
         const int32_t primitive = judged.primitive(expected, i);
         const double ulp = st.ulps.ulp(primitive, k);
