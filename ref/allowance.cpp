@@ -105,7 +105,7 @@ void FanTriangles::condition(const double* x, const double* y, double* out) cons
       bool inside = true;
       for (const auto& e : t.edge)
         inside = inside & (e[0] * x[j] + e[1] * y[j] + e[2] >= 0);
-      g[j] = !skipped & !outside_box & inside ? t.condition : g[j];
+      g[j] = (!skipped & !outside_box & inside) ? t.condition : g[j];
     }
   std::copy(g, g + n, out);
 }

@@ -207,7 +207,7 @@ void RatioEvaluator::at(const double* px, const double* py, float* out) const {
       const double lo = double(float(q - err)), hi = double(float(q + err));
       const bool same = (lo == hi) & (std::copysign(1.0, lo) == std::copysign(1.0, hi));
       const bool finite = std::fabs(lo) <= double(std::numeric_limits<float>::max());
-      decided[j] = (ad > 4 * ed) & same & finite ? 1.0 : 0.0;
+      decided[j] = ((ad > 4 * ed) & same & finite) ? 1.0 : 0.0;
       value[j] = lo;
     }
     for (int j = 0; j < n; ++j)
