@@ -44,6 +44,28 @@ json read_entries(const std::filesystem::path& file) {
   return j["models"];
 }
 
+// Writes `j` to a new file and renames it over `file`, so that a concurrent run reads the old
+// file or the new one, never half of one; best effort: a folder that cannot be made or written
+// leaves `file` as it was.
+void write_whole(const std::filesystem::path& file, const json& j) {
+  std::error_code ec;
+  std::filesystem::create_directories(file.parent_path(), ec);
+  if (ec) return;
+  const std::filesystem::path tmp =
+      file.string() + ".tmp." + std::to_string(static_cast<long>(getpid()));
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    if (!out) {
+      out.close();
+      std::filesystem::remove(tmp, ec);
+      return;
+    }
+  }
+  std::filesystem::rename(tmp, file, ec);
+  if (ec) std::filesystem::remove(tmp, ec);
+}
+
 bool same_key(const json& entry, const ModelCacheSlot& s) {
   const auto text = [&](const char* key) {
     return entry.is_object() && entry.contains(key) && entry[key].is_string()
@@ -182,22 +204,7 @@ std::string remembered_files_digest(const std::vector<std::string>& files,
   try {
     kept.push_back({{"files", identities}, {"sha256", digest}});
     if (kept.size() > kMaxEntries) kept.erase(kept.begin(), kept.end() - kMaxEntries);
-    std::error_code ec;
-    std::filesystem::create_directories(store.parent_path(), ec);
-    if (ec) return digest;
-    const std::filesystem::path tmp =
-        store.string() + ".tmp." + std::to_string(static_cast<long>(getpid()));
-    {
-      std::ofstream out(tmp);
-      out << json{{"format", kFormat}, {"digests", kept}}.dump(2) << "\n";
-      if (!out) {
-        out.close();
-        std::filesystem::remove(tmp, ec);
-        return digest;
-      }
-    }
-    std::filesystem::rename(tmp, store, ec);
-    if (ec) std::filesystem::remove(tmp, ec);
+    write_whole(store, json{{"format", kFormat}, {"digests", kept}});
   } catch (const std::exception&) {
     // Not remembered this time.
   }
@@ -258,22 +265,7 @@ void ModelCacheSlot::save(const Model& m) const {
                     {"model", model_json(m)},
                     {"describe", m.describe()}});
     if (kept.size() > kMaxEntries) kept.erase(kept.begin(), kept.end() - kMaxEntries);
-    std::error_code ec;
-    std::filesystem::create_directories(file.parent_path(), ec);
-    if (ec) return;
-    const std::filesystem::path tmp =
-        file.string() + ".tmp." + std::to_string(static_cast<long>(getpid()));
-    {
-      std::ofstream out(tmp);
-      out << json{{"format", kFormat}, {"models", kept}}.dump(2) << "\n";
-      if (!out) {
-        out.close();
-        std::filesystem::remove(tmp, ec);
-        return;
-      }
-    }
-    std::filesystem::rename(tmp, file, ec);
-    if (ec) std::filesystem::remove(tmp, ec);
+    write_whole(file, json{{"format", kFormat}, {"models", kept}});
   } catch (const std::exception&) {
     // No cache this time.
   }
