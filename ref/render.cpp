@@ -451,11 +451,17 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   threads = thread_count(threads);
 
   const int count = int(c.triangles.size());
-  // Each vertex to the window once (a mesh's vertices are shared), then each triangle set up
-  // in its place: a TriangleSetup default-constructed first costs 24 rationals' allocations.
-  std::vector<WindowVertex> window(c.vertices.size());
-  parallel_for(int(c.vertices.size()), threads,
-               [&](int i) { window[size_t(i)] = to_window(c.vertices[size_t(i)], c); });
+  // Each vertex used by several corners to the window once (a mesh's vertices are shared; the
+  // others are transformed by setup_triangle), then each triangle set up in its place: a
+  // TriangleSetup default-constructed first costs 24 rationals' allocations.
+  std::vector<uint8_t> uses(c.vertices.size(), 0);
+  for (const auto& triangle : c.triangles)
+    for (uint32_t i : triangle)
+      uses[i] = uint8_t(std::min(2, uses[i] + 1));
+  std::vector<std::optional<WindowVertex>> window(c.vertices.size());
+  parallel_for(int(c.vertices.size()), threads, [&](int i) {
+    if (uses[size_t(i)] > 1) window[size_t(i)] = to_window(c.vertices[size_t(i)], c);
+  });
   std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
   parallel_for(count, threads, [&](int p) {
     // Constructed from the returned value directly (no default construction, no move).
@@ -463,7 +469,7 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
       const Case& c;
       const Model& m;
       int p;
-      const std::vector<WindowVertex>& window;
+      const std::vector<std::optional<WindowVertex>>& window;
       operator TriangleSetup() const { return setup_triangle(c, m, p, window); }
     };
     setups[size_t(p)].emplace(SetUp{c, m, p, window});

@@ -180,12 +180,12 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
 }
 
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
-                             const std::vector<WindowVertex>& window) {
+                             const std::vector<std::optional<WindowVertex>>& window) {
   TriangleSetup t;
   t.primitive = primitive;
   t.index = c.triangles[size_t(primitive)];
   for (size_t i = 0; i < 3; ++i)
-    t.v[i] = window[t.index[i]];
+    t.v[i] = window[t.index[i]] ? *window[t.index[i]] : to_window(c.vertices[t.index[i]], c);
   set_up(c, m, t);
   return t;
 }

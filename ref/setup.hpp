@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/case.hpp"
@@ -52,10 +53,11 @@ struct TriangleSetup {
 };
 
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive);
-// The same with every vertex's window position given (window[i] = to_window(c.vertices[i], c)):
-// a mesh's vertex is shared by several triangles, and is transformed once, not once per corner.
+// The same with the window positions of shared vertices given (window[i], when it holds one, is
+// to_window(c.vertices[i], c)): a mesh's vertex is used by several triangles and transformed
+// once, not once per corner; a vertex used once is transformed here (a copy would cost more).
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
-                             const std::vector<WindowVertex>& window);
+                             const std::vector<std::optional<WindowVertex>>& window);
 
 // The window-pixel region of the viewport inside the framebuffer.
 PixelBox viewport_box(const Case& c);
