@@ -5,7 +5,7 @@
 //   reference/<case>  the exact reference with the specification's allowance, as `run` renders
 //                     it (check::expectation_for with llvmpipe's subpixel bits and default model),
 //                     on every core, as llvmpipe draws on every core;
-//   compare/<case>    the comparison of llvmpipe's frame with it;
+//   compare/<case>    the comparison of llvmpipe's frame with it, its channels on every core;
 //   check/<case>      all three, as one case of `run` in a worker.
 // Usage: glrc_bench [--benchmark_* flags] CASE.json... (bench/scenes.py writes the scenes).
 #include <benchmark/benchmark.h>
@@ -47,15 +47,15 @@ void register_case(const Case& c) {
         for (auto _ : state)
           benchmark::DoNotOptimize(check::expectation_for(c, options, bits));
       }));
-  ms(benchmark::RegisterBenchmark(("compare/" + c.name).c_str(),
-                                  [c, options](benchmark::State& state) {
-                                    const int bits = llvmpipe().info().subpixel_bits;
-                                    const Expectation e = check::expectation_for(c, options, bits);
-                                    const Frame gl = llvmpipe().render(c);
-                                    const Tolerance t = check::tolerance_for(c, options, bits);
-                                    for (auto _ : state)
-                                      benchmark::DoNotOptimize(compare::compare(c, e, gl, t));
-                                  }));
+  ms(benchmark::RegisterBenchmark(
+      ("compare/" + c.name).c_str(), [c, options](benchmark::State& state) {
+        const int bits = llvmpipe().info().subpixel_bits;
+        const Expectation e = check::expectation_for(c, options, bits);
+        const Frame gl = llvmpipe().render(c);
+        const Tolerance t = check::tolerance_for(c, options, bits);
+        for (auto _ : state)
+          benchmark::DoNotOptimize(compare::compare(c, e, gl, t, options.threads));
+      }));
   ms(benchmark::RegisterBenchmark(
       ("check/" + c.name).c_str(), [c, options](benchmark::State& state) {
         for (auto _ : state)

@@ -37,8 +37,8 @@ struct CheckOptions {
   std::optional<int> spec_subpixel_bits;
   // Coverage differences within the snapping band fail too (GL allows them).
   bool strict_coverage = false;
-  // Threads drawing the reference (ref::render; the same bits for any number); 0: every core
-  // this process may use.
+  // Threads drawing the reference (ref::render) and judging the channels (compare::compare); the
+  // same bits for any number; 0: every core this process may use.
   int threads = 1;
   // A case whose frame (frame_bytes) is larger than this is checked band of rows by band of
   // rows (streamed): the reference rendered, GL's frame read back and the two compared one band

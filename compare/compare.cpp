@@ -2,6 +2,8 @@
 // agree on the primitive, every varying component and depth, in ULPs of the attribute's scale.
 #include "compare/compare.hpp"
 
+#include "core/parallel.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -21,9 +23,19 @@ constexpr uint8_t kNotCompared = 0, kOwn = 1, kCandidate = 2;
 constexpr size_t kMismatchesKept = 64;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The running figures of one channel: plain numbers, which a channel's loop keeps in a local
+// copy (registers, where the accumulator's members would be stored and reloaded per pixel)
+// and hands back after each band. Every sum still runs in pixel order.
+struct Tally {
+  uint64_t compared = 0, differing = 0, over_tolerance = 0, non_finite = 0, finite = 0;
+  double sum = 0, sum_sq = 0, max_abs = 0, max_ulps = 0, max_ratio = 0;
+  double largest_allowance_ulps = 0;  // the largest allowance applied, ULPs
+};
+
 // One channel's errors, gathered over the pixels both frames cover with the same primitive.
 struct ChannelAccumulator {
   ChannelStats stats;
+  Tally tally;
   // The largest errors and shares of the allowance, enough of them for the percentiles; float
   // is ample for a statistic.
   explicit ChannelAccumulator(size_t most_compared) : ulps(most_compared), ratios(most_compared) {}
@@ -31,8 +43,6 @@ struct ChannelAccumulator {
   bool exact = false;  // exact mode: any differing bit is over
   // The kWorstPerChannel largest errors as a min-heap: memory does not grow with the frame.
   std::vector<WorstPixel> worst;
-  double sum = 0, sum_sq = 0;
-  uint64_t finite = 0;
 
   static bool larger(const WorstPixel& a, const WorstPixel& b) {
     if (a.ratio != b.ratio) return a.ratio > b.ratio;
@@ -52,25 +62,26 @@ struct ChannelAccumulator {
       undetermined_non_finite = WorstPixel{x, y, reference, gl, kInf, kInf, allowed, kInf};
   }
 
-  void add(int x, int y, float reference, float gl, double ulp, double inverse_ulp,
+  // One compared pixel; `t` is the channel loop's local copy of `tally`.
+  void add(Tally& t, int x, int y, float reference, float gl, double ulp, double inverse_ulp,
            double allowed) {
     const PixelError e = pixel_error(reference, gl, ulp, inverse_ulp);
-    ++stats.compared;
+    ++t.compared;
     const bool differs = std::bit_cast<uint32_t>(reference) != std::bit_cast<uint32_t>(gl);
-    stats.differing += differs;
+    t.differing += differs;
     // NaN and Inf are over any tolerance, an infinite one included; in exact mode every bit
     // counts (-0 against +0 too).
     const bool over = exact ? differs : e.non_finite || !(e.abs_error <= allowed);
-    if (over) ++stats.over_tolerance;
+    t.over_tolerance += over;
     // GL's NaN never passes, even where the reference (a driver model) has the same NaN.
-    if (!std::isfinite(gl)) ++stats.non_finite;
+    t.non_finite += !std::isfinite(gl);
     if (std::isfinite(e.ulps)) {
-      sum += e.ulps;
-      sum_sq += e.ulps * e.ulps;
-      ++finite;
+      t.sum += e.ulps;
+      t.sum_sq += e.ulps * e.ulps;
+      ++t.finite;
     }
-    stats.max_abs = std::max(stats.max_abs, e.abs_error);
-    stats.max_ulps = std::max(stats.max_ulps, e.ulps);
+    t.max_abs = std::max(t.max_abs, e.abs_error);
+    t.max_ulps = std::max(t.max_ulps, e.ulps);
     ulps.add(float(e.ulps));
     // The share of the allowance is divided out only where it can matter: a ratio LargestValues
     // certainly drops is below every ratio it keeps, and so below the largest and the worst
@@ -80,7 +91,7 @@ struct ChannelAccumulator {
       return;
     }
     const double ratio = e.abs_error == 0 ? 0.0 : allowed > 0 ? e.abs_error / allowed : kInf;
-    stats.max_ratio = std::max(stats.max_ratio, ratio);
+    t.max_ratio = std::max(t.max_ratio, ratio);
     ratios.add(float(ratio));
     if (e.ulps == 0) return;
     const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps, allowed, ratio};
@@ -95,11 +106,19 @@ struct ChannelAccumulator {
   }
 
   ChannelStats finish() {
+    const Tally& t = tally;
+    stats.compared = t.compared;
+    stats.differing = t.differing;
+    stats.over_tolerance = t.over_tolerance;
+    stats.non_finite = t.non_finite;
+    stats.max_abs = t.max_abs;
+    stats.max_ulps = t.max_ulps;
+    stats.max_ratio = t.max_ratio;
     // Mean and RMS over the finite errors; non-finite ones are counted in non_finite and make
     // max_ulps infinite, so they cannot hide.
-    if (finite > 0) {
-      stats.mean_ulps = sum / double(finite);
-      stats.rms_ulps = std::sqrt(sum_sq / double(finite));
+    if (t.finite > 0) {
+      stats.mean_ulps = t.sum / double(t.finite);
+      stats.rms_ulps = std::sqrt(t.sum_sq / double(t.finite));
     }
     stats.p99_ulps = ulps.p99();
     stats.p99_ratio = ratios.p99();
@@ -308,8 +327,8 @@ std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, 
 
 // What a Comparator gathers between bands.
 struct Comparator::State {
-  State(const Case& the_case, const Tolerance& t, int w, int h)
-      : c(the_case), ulps(the_case), width(w), height(h) {
+  State(const Case& the_case, const Tolerance& t, int w, int h, int threads_)
+      : c(the_case), ulps(the_case), width(w), height(h), threads(threads_) {
     r.name = c.name;
     r.description = c.description;
     r.tolerance = t;
@@ -320,24 +339,24 @@ struct Comparator::State {
       acc.exact = t.mode == ToleranceMode::exact;
       acc.stats.name = k == kDepth ? "depth" : names[size_t(k)];
     }
-    largest_allowance_ulps.assign(channels.size(), 0.0);
     fixed_ulps.assign(channels.size(), std::nullopt);
   }
 
   const Case& c;
   const UlpTable ulps;
   int width, height, next_row = 0;
+  int threads;  // channels judged at once
   CaseResult r;
-  std::vector<ChannelAccumulator> channels;  // depth, then each component
-  std::vector<double> largest_allowance_ulps;
+  std::vector<ChannelAccumulator> channels;       // depth, then each component
   std::vector<std::optional<double>> fixed_ulps;  // a channel's fixed allowance, if not per pixel
   // Per pixel of the band add_rows compares: whether its values are compared, and against the
   // reference's own fragment or a candidate (judged_against), found once for every channel.
   std::vector<uint8_t> judgement;
 };
 
-Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height)
-    : state_(std::make_unique<State>(c, tolerance, width, height)) {}
+Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height,
+                       int threads)
+    : state_(std::make_unique<State>(c, tolerance, width, height, thread_count(threads))) {}
 
 Comparator::~Comparator() = default;
 
@@ -401,42 +420,53 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     }
   }
 
-  // Then one channel at a time (depth, then each component), each in pixel order.
-  for (int k = kDepth; k < int(st.channels.size()) - 1; ++k) {
-    const size_t slot = size_t(k + 1);
-    ChannelAccumulator& acc = st.channels[slot];
-    const bool depth = k == kDepth;
-    const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
-    const ChannelAllowance allowance(c, expected, tolerance, k);
-    if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
-    double& largest_allowance_ulps = st.largest_allowance_ulps[slot];
-    for (int row = 0; row < reference.height; ++row)
-      for (int x = 0; x < reference.width; ++x) {
-        const size_t i = reference.index(x, row);
-        if (judgement[i] == kNotCompared) continue;
-        const Judged judged = judgement[i] == kOwn ? Judged{true, nullptr}
-                                                   : judged_against(c, expected, gl, i, tolerance);
-        const int y = y0 + row;
-        const int32_t primitive = judged.primitive(expected, i);
-        const double ulp = st.ulps.ulp(primitive, k);
-        const double allowed = judged.allowed(allowance, i, ulp, k);
-        const float value = judged.value(expected, i, k);
-        // Not judged, and its unbounded allowance is not one the verdict applied. Where the
-        // value is finite but the specification's allowance unbounded (a triangle reaching the
-        // eye within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not
-        // determined either; a fixed threshold, however large, still fails NaN.
-        if (!value_determined(value, tolerance) ||
-            (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
-             !std::isfinite(gl_values[i]))) {
-          acc.add_undetermined(x, y, value, gl_values[i], allowed);
-          continue;
-        }
-        // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
-        const double inverse_ulp = st.ulps.inverse_ulp(primitive, k);
-        largest_allowance_ulps = std::max(largest_allowance_ulps, allowed * inverse_ulp);
-        acc.add(x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
+  // Then the values, channel by channel (depth, then each component), each in pixel order. The
+  // channels share nothing but what they read, so several threads take one each: every
+  // channel's figures are the same bits for any number of threads.
+  parallel_for(int(st.channels.size()), st.threads,
+               [&](int slot) { add_channel(expected, gl, y0, slot - 1); });
+}
+
+void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
+  State& st = *state_;
+  const Case& c = st.c;
+  const Tolerance& tolerance = st.r.tolerance;
+  const Frame& reference = expected.frame;
+  const std::vector<uint8_t>& judgement = st.judgement;
+  const size_t slot = size_t(k + 1);
+  ChannelAccumulator& acc = st.channels[slot];
+  Tally t = acc.tally;
+  const bool depth = k == kDepth;
+  const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
+  const ChannelAllowance allowance(c, expected, tolerance, k);
+  if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
+  for (int row = 0; row < reference.height; ++row)
+    for (int x = 0; x < reference.width; ++x) {
+      const size_t i = reference.index(x, row);
+      if (judgement[i] == kNotCompared) continue;
+      const Judged judged = judgement[i] == kOwn ? Judged{true, nullptr}
+                                                 : judged_against(c, expected, gl, i, tolerance);
+      const int y = y0 + row;
+      const int32_t primitive = judged.primitive(expected, i);
+      const double ulp = st.ulps.ulp(primitive, k);
+      const double allowed = judged.allowed(allowance, i, ulp, k);
+      const float value = judged.value(expected, i, k);
+      // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
+      // is finite but the specification's allowance unbounded (a triangle reaching the eye
+      // within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not determined
+      // either; a fixed threshold, however large, still fails NaN.
+      if (!value_determined(value, tolerance) ||
+          (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
+           !std::isfinite(gl_values[i]))) {
+        acc.add_undetermined(x, y, value, gl_values[i], allowed);
+        continue;
       }
-  }
+      // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
+      const double inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+      t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
+      acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
+    }
+  acc.tally = t;
 }
 
 CaseResult Comparator::finish() {
@@ -445,7 +475,7 @@ CaseResult Comparator::finish() {
   for (size_t slot = 0; slot < st.channels.size(); ++slot) {
     ChannelAccumulator& acc = st.channels[slot];
     acc.stats.tolerance_ulps =
-        st.fixed_ulps[slot] ? *st.fixed_ulps[slot] : st.largest_allowance_ulps[slot];
+        st.fixed_ulps[slot] ? *st.fixed_ulps[slot] : acc.tally.largest_allowance_ulps;
     r.channels.push_back(acc.finish());
   }
   const Case& c = st.c;
@@ -474,8 +504,8 @@ CaseResult Comparator::finish() {
 }
 
 CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
-                   const Tolerance& tolerance) {
-  Comparator comparator(c, tolerance, expected.frame.width, expected.frame.height);
+                   const Tolerance& tolerance, int threads) {
+  Comparator comparator(c, tolerance, expected.frame.width, expected.frame.height, threads);
   comparator.add_rows(expected, gl, 0);
   return comparator.finish();
 }

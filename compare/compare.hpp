@@ -20,9 +20,10 @@ namespace glrc::compare {
 // expected.allowed; coverage mismatches are labelled from expected.edges; fragment counts are
 // checked for watertightness where both frames have them. Sets status to pass or fail, or to
 // skip for a failing case outside the range GL specifies (outside_specified_range, with the
-// reason in the message), and fills the statistics.
+// reason in the message), and fills the statistics. `threads`: how many judge the channels at
+// once (0: every core the process may use); the result is the same for any number.
 CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
-                   const Tolerance& tolerance);
+                   const Tolerance& tolerance, int threads = 1);
 
 // The same comparison, band of rows by band of rows, so that neither frame need be held whole:
 // the result of adding a frame's bands in order, top row of each following the last, is the
@@ -31,8 +32,8 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
 // not the frames. c must outlive it.
 class Comparator {
  public:
-  // For frames of width × height pixels.
-  Comparator(const Case& c, const Tolerance& tolerance, int width, int height);
+  // For frames of width × height pixels; `threads` as compare()'s.
+  Comparator(const Case& c, const Tolerance& tolerance, int width, int height, int threads = 1);
   ~Comparator();
   Comparator(const Comparator&) = delete;
   Comparator& operator=(const Comparator&) = delete;
@@ -45,6 +46,8 @@ class Comparator {
   CaseResult finish();
 
  private:
+  // The values of channel k (kDepth or a component) in the band add_rows is comparing.
+  void add_channel(const Expectation& expected, const Frame& gl, int y0, int k);
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -184,15 +184,18 @@ TEST(Comparator, BandsGiveTheWholeFramesResult) {
   for (const Tolerance& t : {Tolerance{}, Tolerance{ToleranceMode::exact}}) {
     const CaseResult whole = compare(c, e, gl, t);
     ASSERT_EQ(whole.status, Status::fail);
-    for (int rows : {1, 4, 7, c.fb_height}) {
-      Comparator comparator(c, t, c.fb_width, c.fb_height);
-      for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
-        const int n = std::min(rows, c.fb_height - y0);
-        comparator.add_rows(rows_of(e, y0, n), gl.rows(y0, n), y0);
+    // The channels judged on several threads at once: the same figures, bit for bit.
+    for (int threads : {1, 2, 5})
+      for (int rows : {1, 4, 7, c.fb_height}) {
+        Comparator comparator(c, t, c.fb_width, c.fb_height, threads);
+        for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
+          const int n = std::min(rows, c.fb_height - y0);
+          comparator.add_rows(rows_of(e, y0, n), gl.rows(y0, n), y0);
+        }
+        SCOPED_TRACE("bands of " + std::to_string(rows) + " rows on " + std::to_string(threads) +
+                     " threads");
+        expect_same(comparator.finish(), whole);
       }
-      SCOPED_TRACE("bands of " + std::to_string(rows) + " rows");
-      expect_same(comparator.finish(), whole);
-    }
   }
 }
 
