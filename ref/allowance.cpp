@@ -93,7 +93,7 @@ double FanTriangles::condition(double x, double y) const {
   return g;
 }
 
-void FanTriangles::condition(const double* x, const double* y, double* out) const {
+GLRC_BLOCK_FORM void FanTriangles::condition(const double* x, const double* y, double* out) const {
   // condition()'s steps lane by lane, its skips and tests turned into one choice per triangle.
   constexpr int n = kRowBlock;
   double g[n] = {};
@@ -136,7 +136,8 @@ void Anchors::distances(int px, int py, Distances& out) const {
   }
 }
 
-void Anchors::distances(const double* px, const double* py, RowDistances& out) const {
+GLRC_BLOCK_FORM void Anchors::distances(const double* px, const double* py,
+                                        RowDistances& out) const {
   for (size_t i = 0; i < count_; ++i) {
     const double ax = points_[i][0], ay = points_[i][1];
     for (int j = 0; j < kRowBlock; ++j) {
@@ -207,9 +208,10 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   return position + evaluation + set_up + values_ + extra;
 }
 
-void Allowance::at(const double* px, const double* py, const float* value, const double* delta,
-                   const double* extra, const double* condition,
-                   const Anchors::RowDistances& distances, double* out) const {
+GLRC_BLOCK_FORM void Allowance::at(const double* px, const double* py, const float* value,
+                                   const double* delta, const double* extra,
+                                   const double* condition, const Anchors::RowDistances& distances,
+                                   double* out) const {
   // The single pixel's at() above, lane by lane, in its order of operations: each lane's
   // double is the same bits. Its early return (no finite value, or D = 0 at the pixel) is a
   // choice at the end; the anchors' loop is turned inside out, each lane's maxima taken over

@@ -9,4 +9,14 @@ namespace glrc::ref {
 
 inline constexpr int kRowBlock = 8;
 
+// On the definitions of the block forms: on x86-64, a second copy of the function for AVX2
+// (four doubles per instruction, SSE2 has two), chosen at load time when the processor has
+// it. The lanes' operations are the same IEEE operations either way, and AVX2 alone brings no
+// fused multiply-add (that is FMA, not asked for), so both copies give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(GLRC_NO_BLOCK_CLONES)
+#define GLRC_BLOCK_FORM __attribute__((target_clones("avx2", "default")))
+#else
+#define GLRC_BLOCK_FORM
+#endif
+
 }  // namespace glrc::ref

@@ -186,7 +186,7 @@ float RatioEvaluator::at(long px, long py) const {
   return exact_at(px, py);
 }
 
-void RatioEvaluator::at(const double* px, const double* py, float* out) const {
+GLRC_BLOCK_FORM void RatioEvaluator::at(const double* px, const double* py, float* out) const {
   constexpr int n = kRowBlock;
   double decided[n] = {};
   if (fast_) {

@@ -68,7 +68,7 @@ double ConcaveEnvelope::at(double x, double y) const {
   return std::clamp(v, lo_, hi_);
 }
 
-void ConcaveEnvelope::at(const double* x, const double* y, double* out) const {
+GLRC_BLOCK_FORM void ConcaveEnvelope::at(const double* x, const double* y, double* out) const {
   constexpr int n = kRowBlock;
   if (planes_.empty()) return (void)std::fill(out, out + n, hi_);
   double v[n];
@@ -278,7 +278,7 @@ void centres(const double* px, const double* py, double* x, double* y) {
 
 }  // namespace
 
-void PositionFreedom::at(const double* px, const double* py, double* out) const {
+GLRC_BLOCK_FORM void PositionFreedom::at(const double* px, const double* py, double* out) const {
   double x[kRowBlock], y[kRowBlock], a[kRowBlock], b[kRowBlock];
   centres(px, py, x, y);
   delta_[0].at(x, y, a);
@@ -287,13 +287,15 @@ void PositionFreedom::at(const double* px, const double* py, double* out) const 
     out[j] = a[j] < b[j] ? b[j] : a[j];  // std::max(a, b)
 }
 
-void PositionFreedom::depth_at(const double* px, const double* py, double* out) const {
+GLRC_BLOCK_FORM void PositionFreedom::depth_at(const double* px, const double* py,
+                                               double* out) const {
   double x[kRowBlock], y[kRowBlock];
   centres(px, py, x, y);
   depth_.at(x, y, out);
 }
 
-void PositionFreedom::weight_at(const double* px, const double* py, double* out) const {
+GLRC_BLOCK_FORM void PositionFreedom::weight_at(const double* px, const double* py,
+                                                double* out) const {
   double x[kRowBlock], y[kRowBlock], inverse_w[kRowBlock], weight[kRowBlock];
   centres(px, py, x, y);
   inverse_w_.at(x, y, inverse_w);

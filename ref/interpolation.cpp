@@ -150,7 +150,7 @@ void ComponentValues::values(long px, long py, float* out) const {
   }
 }
 
-void ComponentValues::values(const double* px, const double* py, float* out) const {
+GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py, float* out) const {
   constexpr int n = kRowBlock;
   const std::vector<ComponentPlane>& planes = *planes_;
   for (size_t k = 0; k < planes.size(); ++k)

@@ -214,7 +214,7 @@ class FragmentBlocks {
   }
 
  private:
-  void draw(int count) {
+  GLRC_BLOCK_FORM void draw(int count) {
     constexpr int n = kRowBlock;
     const Settings& s = s_;
     const Prepared& w = w_;
