@@ -50,6 +50,14 @@ bool CoverageTest::covers(int px, int py) const {
   return true;
 }
 
+CoverageTest::RowSpans CoverageTest::row_spans(double reach, int x0, int x1, int y0, int y1) const {
+  RowSpans spans;
+  spans.x0_ = x0, spans.x1_ = x1;
+  for (size_t i = 0; i < 3; ++i)
+    spans.bounds_[i] = edges_[i].row_bound(reach, x0, x1, y0, y1);
+  return spans;
+}
+
 std::pair<int, int> CoverageTest::row_span(int py, double reach, int x0, int x1) const {
   double lo = x0, hi = x1;
   for (const SignEvaluator& e : edges_) {

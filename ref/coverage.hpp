@@ -2,7 +2,9 @@
 // exactly on an edge so that triangles sharing an edge cover each of its pixels exactly once.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "core/frame.hpp"
 #include "core/model.hpp"
@@ -43,12 +45,33 @@ class CoverageTest {
   // The pixels [first, last] of row py within [x0, x1] whose centre may be within `reach`
   // pixels of the exact triangle (inside every exact edge's line grown by `reach`), as a span
   // that may hold more but never misses one (SignEvaluator::row_interval); first > last for
-  // none. With reach >= 1 + freedom·sqrt(2) for the largest freedom passed to classify, no pixel
-  // outside it is covered (a snapped vertex moves by at most half a pixel along x and y) or
-  // classified (every bit needs the centre inside the triangle grown by its bands): walking only
+  // none. With reach >= sqrt(2)·max(freedom, s) for the largest freedom passed to classify and
+  // s half the model's subpixel step on the snapped path (0 on the homogeneous one), no pixel
+  // outside it is covered (a snapped vertex moves by at most s along x and y) or classified
+  // (every bit needs the centre inside the triangle grown by its bands): walking only
   // the spans visits pixels in proportion to the triangle's area and perimeter, not to its
   // bounding box, and changes no bit.
   std::pair<int, int> row_span(int py, double reach, int x0, int x1) const;
+  // row_span() for every row of [y0, y1], each edge's bound walked from row to row
+  // (SignEvaluator::row_bound): at(py) holds every pixel row_span(py, ...) must.
+  class RowSpans {
+   public:
+    std::pair<int, int> at(int py) const {  // inline: per row of every triangle
+      double lo = x0_, hi = x1_;
+      for (const SignEvaluator::RowBound& b : bounds_) {
+        const auto [l, h] = b.at(double(py));
+        lo = std::max(lo, l), hi = std::min(hi, h);
+      }
+      if (!(lo <= hi)) return {x0_, x0_ - 1};
+      return {int(std::ceil(lo)), int(std::floor(hi))};
+    }
+
+   private:
+    friend class CoverageTest;
+    std::array<SignEvaluator::RowBound, 3> bounds_;
+    int x0_ = 0, x1_ = -1;
+  };
+  RowSpans row_spans(double reach, int x0, int x1, int y0, int y1) const;
 
  private:
   const TriangleSetup& t_;

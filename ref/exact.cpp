@@ -89,6 +89,7 @@ SignEvaluator::SignEvaluator(const LinearForm& f) : form_(f) {
            std::isfinite(dc_);
   scale_ = spans_ ? 1 / inv_norm_ : 0.0;
   inverse_abs_da_ = da_ != 0 ? 1 / std::fabs(da_) : 0.0;
+  inverse_da_ = da_ != 0 ? 1 / da_ : 0.0;
 }
 
 int SignEvaluator::sign(long px, long py) const {
@@ -104,29 +105,55 @@ int SignEvaluator::sign(long px, long py) const {
   return sgn(form_.at(px, py));
 }
 
+SignEvaluator::RowBound SignEvaluator::row_bound(double grow, long x_lo, long x_hi, long y_lo,
+                                                 long y_hi) const {
+  RowBound every;  // kind every
+  if (!spans_) return every;
+  const double x_max = std::max(std::fabs(double(x_lo)), std::fabs(double(x_hi)));
+  const double y_max = std::max(std::fabs(double(y_lo)), std::fabs(double(y_hi)));
+  // With F = da·x + db·y + dc (exact, of the double coefficients) and S = |da·x| + |db·y| +
+  // |dc| <= terms over the rows: distance() is F computed (off by at most 4u·S, fused or not)
+  // times inv_norm_ (u more), and F is off from the exact form by u·S (its coefficients'
+  // rounding). Beyond a quarter pixel the walk takes every pixel.
+  const double terms = std::fabs(da_) * x_max + std::fabs(db_) * y_max + std::fabs(dc_);
+  if (8 * kU * terms * inv_norm_ > 0.25) return every;
+  // So every pixel with distance() >= -grow, and every one within grow of the exact line, has
+  //   da·x >= -grow·scale·(1 + 4u) - (db·y + dc) - 5u·terms
+  // with scale = 1/inv_norm_ (scale_ rounded it), which is x >= x(y) - (4u·grow·scale +
+  // 5u·terms)/|da| for da > 0 (<= and + for da < 0), with x(y) = alpha·y + beta:
+  //   alpha = -db/da,   beta = (-grow·scale - dc)/da.
+  const double scale = scale_;
+  const double gs = grow * scale;
+  if (da_ == 0) {
+    // No x bound: every pixel of a row or none, by the row's value of db·y + dc, which is
+    // checked at both ends of the rows (linear in y: between them too).
+    RowBound none;
+    none.kind = RowBound::none;
+    const double slack = 16 * kU * (gs + terms);
+    for (const double y : {double(y_lo), double(y_hi)})
+      if (-gs - (db_ * y + dc_) - slack <= 0) return every;
+    return none;
+  }
+  RowBound b;
+  b.kind = da_ > 0 ? RowBound::from : RowBound::to;
+  // Each computed by the reciprocal of da: beta off by at most 4u·(gs + |dc|)/|da|, alpha·y by
+  // 3u·|db·y|/|da|, their sum and the step by widen by u·|x| and u·widen more: with T = gs +
+  // |dc| + |db|·y_max, under 10u·T/|da| + u·widen in all, on top of the slack above. widen
+  // takes 32u·(T + terms)/|da|, more than twice that, and 2^-20 pixel for underflow.
+  b.alpha = -db_ * inverse_da_;
+  b.beta = (-gs - dc_) * inverse_da_;
+  const double t = gs + std::fabs(dc_) + std::fabs(db_) * y_max;
+  b.widen = 32 * kU * (t + terms) * inverse_abs_da_ + 0x1p-20;
+  // Every x(y) over the rows finite, no larger than t/|da|.
+  if (!std::isfinite(b.alpha) || !std::isfinite(b.beta) || !std::isfinite(b.widen) ||
+      !std::isfinite(t * inverse_abs_da_ * 2))
+    return every;
+  return b;
+}
+
 std::pair<double, double> SignEvaluator::row_interval(long py, double grow, long x_lo,
                                                       long x_hi) const {
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  constexpr std::pair<double, double> every = {-inf, inf}, none = {inf, -inf};
-  if (!spans_) return every;
-  const double y = double(py);
-  const double x_max = std::max(std::fabs(double(x_lo)), std::fabs(double(x_hi)));
-  // distance() rounds three products and sums and a product: off by at most 8u·S·inv_norm_
-  // (S the sum of the terms' magnitudes). Beyond a quarter pixel the walk takes every pixel.
-  const double terms = std::fabs(da_) * x_max + std::fabs(db_ * y) + std::fabs(dc_);
-  if (8 * kU * terms * inv_norm_ > 0.25) return every;
-  // distance(x) >= -grow  <=>  da·x >= -grow/inv_norm - (db·y + dc) =: bound, up to rounding:
-  // `slack` (in the form's units) bounds the rounding of bound here, and the quarter pixel
-  // above that of distance(); both are covered by widening by their sum plus a pixel.
-  const double scale = scale_;
-  const double bound = -grow * scale - (db_ * y + dc_);
-  const double slack = 8 * kU * (grow * scale + std::fabs(db_ * y) + std::fabs(dc_)) + 0.25 * scale;
-  if (da_ == 0) return bound - slack <= 0 ? every : none;
-  const double x = bound / da_;
-  // slack·(1/|da|) rounds twice where slack/|da| rounded once: the extra pixel covers it.
-  const double widen = 1 + slack * inverse_abs_da_ + 8 * kU * std::fabs(x);
-  if (!std::isfinite(x) || !std::isfinite(widen)) return every;
-  return da_ > 0 ? std::pair{x - widen, inf} : std::pair{-inf, x + widen};
+  return row_bound(grow, x_lo, x_hi, py, py).at(double(py));
 }
 
 RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator) {

@@ -8,6 +8,7 @@
 #include "ref/blocks.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 namespace glrc::ref {
@@ -50,18 +51,41 @@ class SignEvaluator {
   }
   // The pixels of row py whose centre is at least -grow pixels from the line (distance() >=
   // -grow), as an interval [lo, hi] of px that may hold more but never misses one: widened for
-  // the rounding of both this and distance(), by a pixel and more. lo = -infinity or hi =
+  // the rounding of both this and distance(), by their error bounds (a few ulps of the terms),
+  // not by a pixel: a thin triangle's rows are then walked over the pixels it reaches. It holds
+  // every pixel whose centre is within grow of the exact line too. lo = -infinity or hi =
   // +infinity for an unbounded side, lo > hi for no pixel. Where distance() itself may be off by
   // a quarter pixel or more over px in [x_lo, x_hi] (coefficients beyond 2^40 pixels), or the
   // form has no gradient, every px: the caller then tests each pixel as before. For walking
   // only the pixels a triangle can reach (render.cpp).
   std::pair<double, double> row_interval(long py, double grow, long x_lo, long x_hi) const;
+  // row_interval() of every row py in [y_lo, y_hi] at once, as a bound linear in py: the line's
+  // x-intercept walked from row to row, widened once for its rounding over all those rows.
+  // at(py) holds every pixel row_interval() must.
+  struct RowBound {
+    enum Kind : uint8_t { every, none, from, to } kind = every;
+    double alpha = 0, beta = 0, widen = 0;  // from: px >= alpha·py + beta - widen; to: <= ... +
+    std::pair<double, double> at(double py) const {  // inline: per row of every triangle
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      switch (kind) {
+        case from:
+          return {alpha * py + beta - widen, inf};
+        case to:
+          return {-inf, alpha * py + beta + widen};
+        case none:
+          return {inf, -inf};
+        default:
+          return {-inf, inf};
+      }
+    }
+  };
+  RowBound row_bound(double grow, long x_lo, long x_hi, long y_lo, long y_hi) const;
 
  private:
   LinearForm form_;
   double a_ = 0, b_ = 0, c_ = 0;                    // range-checked copies for the fast sign
   double da_ = 0, db_ = 0, dc_ = 0, inv_norm_ = 0;  // unchecked copies for distance()
-  double scale_ = 0, inverse_abs_da_ = 0;           // 1 / inv_norm_, 1 / |da_|
+  double scale_ = 0, inverse_abs_da_ = 0, inverse_da_ = 0;  // 1 / inv_norm_, 1 / |da_|, 1 / da_
   bool spans_ = false;  // row_interval can bound a span: finite copies and a gradient
   bool fast_ = false;
 };

@@ -66,7 +66,7 @@ struct Prepared {
     // most half a subpixel step along x and y, so every point of the snapped triangle is that
     // close to a point of the exact one (a convex combination of the moves), 2^-(bits+1)·sqrt(2)
     // away at most. (The homogeneous path covers only centres inside the exact triangle.)
-    // row_span widens by a pixel more for its own arithmetic.
+    // row_span widens by its own arithmetic's error bounds (SignEvaluator::row_interval).
     const double snapping =
         t.path == CoveragePath::snapped ? std::ldexp(1.0, -(s.m.subpixel_bits + 1)) : 0.0;
     reach_px = std::min(double(margin), std::max(largest, snapping) * 1.5);
@@ -394,8 +394,11 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
   // thin triangle's bounding box holds a thousand times the pixels it reaches. Classifying only
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
   const bool draws = t.drawn && !t.box.empty();
-  for (int py = std::max(band.y0, w.reach.y0); py <= std::min(band.y1, w.reach.y1); ++py) {
-    const auto [x0, x1] = w.coverage.row_span(py, w.reach_px, w.reach.x0, w.reach.x1);
+  const int y0 = std::max(band.y0, w.reach.y0), y1 = std::min(band.y1, w.reach.y1);
+  const CoverageTest::RowSpans spans =
+      w.coverage.row_spans(w.reach_px, w.reach.x0, w.reach.x1, y0, y1);
+  for (int py = y0; py <= y1; ++py) {
+    const auto [x0, x1] = spans.at(py);
     for (int px = x0; px <= x1; ++px)
       // Most pixels are beyond or deep within every band: no freedom to compute for them.
       if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable,

@@ -1,8 +1,10 @@
-// CoverageTest::row_span (ref/coverage.hpp): the reference walks only the pixels of each row a
-// triangle can reach, so the span must never miss a pixel that covers() or classify() would
-// mark. Checked against every pixel of the framebuffer for random triangles of every kind the
-// cases hold: thin, large, nearly horizontal or vertical, reaching behind the eye, far outside
-// the viewport, snapped and unsnapped, with freedoms from a model step to several pixels.
+// CoverageTest::row_span and row_spans (ref/coverage.hpp): the reference walks only the pixels
+// of each row a triangle can reach, so the span must never miss a pixel that covers() or
+// classify() would mark, with render.cpp's reach, which is no wider than the freedom's bands
+// and the snapping need. Checked against every pixel of the framebuffer for random triangles of
+// every kind the cases hold: thin, large, nearly horizontal or vertical, reaching behind the eye,
+// far outside the viewport, snapped and unsnapped, with freedoms from a model step to several
+// pixels.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,7 +36,12 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
   const TriangleSetup t = setup_triangle(c, m, 0);
   if (!t.has_edges) return 0;
   const CoverageTest coverage(t, m);
-  const double reach = 1 + freedom * 1.5;  // render.cpp's reach_px
+  // render.cpp's reach_px: the largest band, or on the snapped path half a subpixel step (how
+  // far a snapped vertex moves along x and y), times 1.5 > sqrt(2).
+  const double snapping =
+      t.path == CoveragePath::snapped ? std::ldexp(1.0, -(m.subpixel_bits + 1)) : 0.0;
+  const double reach = std::max(freedom, snapping) * 1.5;
+  const CoverageTest::RowSpans spans = coverage.row_spans(reach, 0, kSize - 1, 0, kSize - 1);
   size_t held = 0;
   for (int py = 0; py < kSize; ++py) {
     // for_each_covered steps the edge functions along the row: the very pixels covers() gives.
@@ -52,6 +59,14 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
     }
     EXPECT_EQ(stepped, tested) << "row " << py;
     const auto [x0, x1] = coverage.row_span(py, reach, 0, kSize - 1);
+    // The walked spans hold at least the pixels the row's own does not leave out.
+    const auto [w0, w1] = spans.at(py);
+    for (int px = 0; px < kSize; ++px)
+      if (coverage.covers(px, py) ||
+          coverage.classify(px, py, freedom, {true, false, true}, true)) {
+        EXPECT_TRUE(px >= w0 && px <= w1)
+            << "pixel " << px << "," << py << " outside the walked span";
+      }
     EXPECT_GE(x0, 0);
     EXPECT_LE(x1, kSize - 1);
     held += size_t(std::max(0, x1 - x0 + 1));
@@ -99,12 +114,12 @@ TEST(RowSpan, HugeCoordinatesTakeEveryPixel) {
 
 TEST(RowSpan, AThinTriangleIsWalkedAlongItsLengthOnly) {
   // A sliver from corner to corner: its bounding box is the whole framebuffer (1,600 pixels),
-  // its spans under ten pixels per row (its width, twice the reach of 2 pixels across a
-  // diagonal, and a pixel of rounding each side).
+  // its spans one or two pixels per row (its width, under half a pixel, the reach, 1.5/256
+  // pixel, and the rounding of the spans, a few ulps: none a whole pixel).
   const Case c = triangle({{{-1, -1, 0, 1}, {1, 1, 0, 1}, {1, 0.98f, 0, 1}}});
   const size_t held = check_spans(c, Model{}, std::ldexp(1.0, -8));
-  EXPECT_GT(held, size_t(kSize));
-  EXPECT_LT(held, size_t(10 * kSize));
+  EXPECT_GE(held, size_t(kSize));
+  EXPECT_LT(held, size_t(2 * kSize));
 }
 
 }  // namespace
