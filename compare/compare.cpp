@@ -90,10 +90,18 @@ struct ChannelAccumulator {
       ratios.count_dropped();
       return;
     }
+    t.max_ratio = std::max(t.max_ratio, keep_ratio(x, y, reference, gl, e, allowed));
+  }
+
+  // The share of the allowance of a pixel whose ratio LargestValues may keep, kept, and the
+  // pixel among the worst if it is one of them. Out of line: after the first compaction few
+  // pixels get here, and inlined into the channel's loop its registers would crowd out the
+  // tally's.
+  [[gnu::noinline]] double keep_ratio(int x, int y, float reference, float gl, const PixelError& e,
+                                      double allowed) {
     const double ratio = e.abs_error == 0 ? 0.0 : allowed > 0 ? e.abs_error / allowed : kInf;
-    t.max_ratio = std::max(t.max_ratio, ratio);
     ratios.add(float(ratio));
-    if (e.ulps == 0) return;
+    if (e.ulps == 0) return ratio;
     const WorstPixel p{x, y, reference, gl, e.abs_error, e.ulps, allowed, ratio};
     if (worst.size() < kWorstPerChannel) {
       worst.push_back(p);
@@ -103,6 +111,7 @@ struct ChannelAccumulator {
       worst.back() = p;
       std::push_heap(worst.begin(), worst.end(), larger);
     }
+    return ratio;
   }
 
   ChannelStats finish() {
@@ -213,6 +222,11 @@ double p99(const std::vector<float>& values) {
 }
 
 LargestValues::LargestValues(size_t most) : keep_(most / 100 + 16) {}
+
+void LargestValues::keep(uint32_t key) {
+  keys_.push_back(key);
+  if (keys_.size() >= 2 * keep_) compact();
+}
 
 void LargestValues::compact() {
   // The keep_ largest keys, the smallest of them last: everything not above it may go.

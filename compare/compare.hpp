@@ -203,12 +203,11 @@ double p99(const std::vector<float>& values);
 class LargestValues {
  public:
   explicit LargestValues(size_t most);
-  void add(float v) {
+  void add(float v) {  // inline: once per compared value; most are dropped here
     ++count_;
     const uint32_t key = order_key(v);
     if (compacted_ && key <= floor_) return;
-    keys_.push_back(key);
-    if (keys_.size() >= 2 * keep_) compact();
+    keep(key);
   }
   // Whether add(float(a / b)) certainly drops the value, for a >= 0 and b > 0, without the
   // division: once compacted, when a < floor·b·(1 - 2^-20) as computed, so that a/b <
@@ -227,6 +226,7 @@ class LargestValues {
   double p99();
 
  private:
+  void keep(uint32_t key);  // out of line: it may grow or compact the keys
   void compact();
 
   size_t keep_, count_ = 0;
