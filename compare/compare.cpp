@@ -446,25 +446,51 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   const Case& c = st.c;
   const Tolerance& tolerance = st.r.tolerance;
   const Frame& reference = expected.frame;
-  const std::vector<uint8_t>& judgement = st.judgement;
   const size_t slot = size_t(k + 1);
   ChannelAccumulator& acc = st.channels[slot];
   Tally t = acc.tally;
   const bool depth = k == kDepth;
-  const std::vector<float>& gl_values = depth ? gl.depth : gl.components[size_t(k)];
   const ChannelAllowance allowance(c, expected, tolerance, k);
   if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
+  // The reference's own fragments (nearly every compared pixel) read through pointers taken
+  // once: the loop's stores (the tally, LargestValues) could alias a vector's members, and its
+  // data pointer would be loaded again at every pixel. A candidate goes through Judged.
+  const float* gl_values = depth ? gl.depth.data() : gl.components[size_t(k)].data();
+  const float* own_values = depth ? reference.depth.data() : reference.components[size_t(k)].data();
+  const int32_t* own_primitive = reference.primitive.data();
+  const uint8_t* judged_as = st.judgement.data();
+  const float* own_allowed = allowance.per_pixel_values();
+  const double fixed_ulps = allowance.fixed_ulps();
+  // The ulp of the last primitive seen: along a row it rarely changes.
+  int32_t ulp_primitive = -1;
+  double own_ulp = 0, own_inverse_ulp = 0;
   for (int row = 0; row < reference.height; ++row)
     for (int x = 0; x < reference.width; ++x) {
       const size_t i = reference.index(x, row);
-      if (judgement[i] == kNotCompared) continue;
-      const Judged judged = judgement[i] == kOwn ? Judged{true, nullptr}
-                                                 : judged_against(c, expected, gl, i, tolerance);
+      if (judged_as[i] == kNotCompared) continue;
       const int y = y0 + row;
-      const int32_t primitive = judged.primitive(expected, i);
-      const double ulp = st.ulps.ulp(primitive, k);
-      const double allowed = judged.allowed(allowance, i, ulp, k);
-      const float value = judged.value(expected, i, k);
+      int32_t primitive;
+      double ulp, inverse_ulp, allowed;
+      float value;
+      if (judged_as[i] == kOwn) {
+        primitive = own_primitive[i];
+        if (primitive != ulp_primitive) {
+          ulp_primitive = primitive;
+          own_ulp = st.ulps.ulp(primitive, k);
+          own_inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+        }
+        ulp = own_ulp, inverse_ulp = own_inverse_ulp;
+        // ChannelAllowance::at
+        allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
+        value = own_values[i];
+      } else {
+        const Judged judged = judged_against(c, expected, gl, i, tolerance);
+        primitive = judged.primitive(expected, i);
+        ulp = st.ulps.ulp(primitive, k);
+        inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+        allowed = judged.allowed(allowance, i, ulp, k);
+        value = judged.value(expected, i, k);
+      }
       // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
       // is finite but the specification's allowance unbounded (a triangle reaching the eye
       // within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not determined
@@ -476,7 +502,6 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
         continue;
       }
       // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
-      const double inverse_ulp = st.ulps.inverse_ulp(primitive, k);
       t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
       acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
     }

@@ -94,6 +94,8 @@ class ChannelAllowance {
     return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
   }
   bool per_pixel() const { return per_pixel_ != nullptr; }
+  // The per-pixel allowances (at() of pixel i is element i), or nullptr when fixed.
+  const float* per_pixel_values() const { return per_pixel_ ? per_pixel_->data() : nullptr; }
   double fixed_ulps() const { return fixed_ulps_; }
 
  private:
