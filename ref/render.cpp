@@ -321,10 +321,10 @@ class FragmentBlocks {
       w.allowed[k].at(x_, y_, value_[k].data(), delta_, extra_, condition_, distances_, bound_);
       round_up(bound_, allowed.data());
     }
-    // The winners' values and allowances, channel by channel: each channel's frames get the
-    // block's pixels (mostly neighbours in a row) together, not one pixel of every channel in
-    // turn, which kept twice as many write streams open as there are channels (and took over
-    // half of this function's time on a 17-channel frame). A block's pixels are distinct.
+    // The winners' values and allowances, channel by channel: each channel's two frames get the
+    // block's pixels (mostly neighbours in a row) together. These stores are most of this
+    // function's time on a frame of many channels: every one is a write to memory that nothing
+    // here reads again. A block's pixels are distinct, so the order changes no value.
     size_t index[n];
     for (int j = 0; j < count; ++j)
       index[j] = f.index(px_[j], py_[j] - s.row0);
