@@ -23,6 +23,7 @@ DepthClip depth_clip(const TriangleSetup& t) {
   };
   if (clip.crosses_near) clip.near = form(1);
   if (clip.crosses_far) clip.far = form(-1);
+  if (!clip.crosses_near && !clip.crosses_far) return clip;  // most triangles: no exact work
   // 1 ± z_n at a pixel is form / Δ with Δ = Σ E'_i·w_c,i, constant over the window; the scale
   // is |Δ| over the form's gradient (doubles: it sizes a band, it decides no bit).
   LinearForm w;
