@@ -15,10 +15,11 @@ DepthClip depth_clip(const TriangleSetup& t) {
   // b_i is proportional to E'_i with a positive factor, so sign(z_c + w_c) at the pixel is
   // sign(sum E'_i (z_i + w_i)); likewise for the far plane. Built only for a plane crossed:
   // exact products, per triangle.
+  mpq_class scratch;
   auto form = [&](int plane) {
     LinearForm f;
     for (int i = 0; i < 3; ++i)
-      f += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c + plane * t.v[i].z_c);
+      f.add_product(t.homogeneous_edges[i], mpq_class(t.v[i].w_c + plane * t.v[i].z_c), scratch);
     return SignEvaluator(f);
   };
   if (clip.crosses_near) clip.near = form(1);
@@ -28,11 +29,11 @@ DepthClip depth_clip(const TriangleSetup& t) {
   // is |Δ| over the form's gradient (doubles: it sizes a band, it decides no bit).
   LinearForm w;
   for (int i = 0; i < 3; ++i)
-    w += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c);
+    w.add_product(t.homogeneous_edges[i], t.v[i].w_c, scratch);
   auto scale = [&](int plane) {
     LinearForm f;
     for (int i = 0; i < 3; ++i)
-      f += t.homogeneous_edges[i] * mpq_class(t.v[i].w_c + plane * t.v[i].z_c);
+      f.add_product(t.homogeneous_edges[i], mpq_class(t.v[i].w_c + plane * t.v[i].z_c), scratch);
     const double g = std::hypot(f.a.get_d(), f.b.get_d());
     return g > 0 ? std::fabs(w.c.get_d()) / g : 0.0;
   };

@@ -35,6 +35,16 @@ struct LinearForm {
     return *this;
   }
   LinearForm operator*(const mpq_class& s) const { return {a * s, b * s, c * s}; }
+  // *this += o·s, the products made in `scratch`: one rational's storage reused, where
+  // += o * s makes a form of three temporaries (six allocations) per term.
+  void add_product(const LinearForm& o, const mpq_class& s, mpq_class& scratch) {
+    mpq_mul(scratch.get_mpq_t(), o.a.get_mpq_t(), s.get_mpq_t());
+    a += scratch;
+    mpq_mul(scratch.get_mpq_t(), o.b.get_mpq_t(), s.get_mpq_t());
+    b += scratch;
+    mpq_mul(scratch.get_mpq_t(), o.c.get_mpq_t(), s.get_mpq_t());
+    c += scratch;
+  }
 };
 
 // The sign of a LinearForm at integer pixels. Fast path: the form in double, with an error

@@ -25,12 +25,13 @@ Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
 
 LinearForm sum(const Barycentrics& b, const std::array<mpq_class, 3>& alpha) {
   LinearForm f;
+  mpq_class scratch;
   for (int i = 0; i < 3; ++i)
     // Most weights are 1 (beta of smooth or noperspective planes): a sum, no product.
     if (alpha[i] == 1)
       f += b.l[i];
     else
-      f += b.l[i] * alpha[i];
+      f.add_product(b.l[i], alpha[i], scratch);
   return f;
 }
 
