@@ -6,24 +6,36 @@ namespace glrc::ref {
 
 namespace {
 
-// x_c·(width/2) + w_c·(x + width/2) = (x_c·width + w_c·(2x + width)) / 2, exactly, into `out`,
-// without a rational product: x_c and w_c are floats (24-bit significands), so with |width| and
-// |2x + width| below 2^29 both products are exact doubles, and their sum is s + e exactly
-// (Knuth's TwoSum, exact in round-to-nearest binary64 barring overflow, which these
-// magnitudes cannot reach; no product, so nothing for a compiler to fuse). False, and `out`
-// untouched, outside those bounds or for a value that is not finite: the caller then
-// computes it in rationals. The rational is the same either way: GMP keeps it canonical.
-bool window_coordinate(double x_c, double w_c, long width, long x, mpq_class& out) {
-  constexpr long kExact = 1L << 29;
-  const long sum = 2 * x + width;
-  if (!(std::abs(width) < kExact && std::abs(sum) < kExact && std::isfinite(x_c) &&
-        std::isfinite(w_c)))
-    return false;
-  const double a = x_c * double(width), b = w_c * double(sum);
-  const double s = a + b;
+// Whether d has at most 29 significant bits, so that its product with a float (24) is exact in
+// a double (53). False for a value that is not finite.
+bool short_significand(double d) {
+  if (!std::isfinite(d)) return false;
+  int e = 0;
+  const double m = std::ldexp(std::frexp(d, &e), 29);  // |m| < 2^29, exact
+  return m == std::trunc(m);
+}
+
+// s = a + b rounded, and whether that is exact: TwoSum's error term is 0. For finite a and b.
+bool exact_sum(double a, double b, double& s) {
+  s = a + b;
   const double bb = s - a;
-  const double e = (a - (s - bb)) + (b - bb);
+  return std::isfinite(s) && (a - (s - bb)) + (b - bb) == 0;
+}
+
+// (a·p + b·q) / 2 exactly, into `out`, without a rational product, for floats a and b and
+// doubles p and q of at most 29 significant bits: both products are exact doubles, and their
+// sum is s + e exactly (Knuth's TwoSum, exact in round-to-nearest binary64 barring overflow;
+// a product fused into a sum changes nothing, every product being exact). False, and `out`
+// untouched, when p or q is longer, or a value is not finite: the caller then computes it in
+// rationals. The rational is the same either way: GMP keeps it canonical.
+bool exact_half_sum(float a, double p, float b, double q, mpq_class& out) {
+  if (!short_significand(p) || !short_significand(q) || !std::isfinite(a) || !std::isfinite(b))
+    return false;
+  const double x = double(a) * p, y = double(b) * q;
+  const double s = x + y;
   if (!std::isfinite(s)) return false;
+  const double yy = s - x;
+  const double e = (x - (s - yy)) + (y - yy);
   out = s;
   if (e != 0) out += mpq_class(e);
   mpq_div_2exp(out.get_mpq_t(), out.get_mpq_t(), 1);
@@ -36,19 +48,28 @@ WindowVertex to_window(const Vertex& v, const Case& c) {
   const mpq_class x_c(double(v.clip[0])), y_c(double(v.clip[1])), z_c(double(v.clip[2])),
       w_c(double(v.clip[3]));
   const Viewport& vp = c.viewport;
-  const mpq_class n(double(c.depth_near)), f(double(c.depth_far));
   WindowVertex out;
-  if (!window_coordinate(v.clip[0], v.clip[3], vp.width, vp.x, out.x_h)) {
+  // x_h = x_c·(width/2) + w_c·(x + width/2) = (x_c·width + w_c·(2x + width)) / 2; integers
+  // below 2^29 have short significands.
+  if (!exact_half_sum(v.clip[0], double(vp.width), v.clip[3], 2.0 * vp.x + vp.width, out.x_h)) {
     const mpq_class half_w = mpq_class(vp.width) / 2;
     out.x_h = x_c * half_w + w_c * (vp.x + half_w);
   }
-  if (!window_coordinate(v.clip[1], v.clip[3], vp.height, vp.y, out.y_h)) {
+  if (!exact_half_sum(v.clip[1], double(vp.height), v.clip[3], 2.0 * vp.y + vp.height, out.y_h)) {
     const mpq_class half_h = mpq_class(vp.height) / 2;
     out.y_h = y_c * half_h + w_c * (vp.y + half_h);
   }
   out.z_c = z_c;
   out.w_c = w_c;
-  out.wz_w = z_c * (f - n) / 2 + w_c * (n + f) / 2;
+  // w_c·z_w = (z_c·(f − n) + w_c·(n + f)) / 2, with f − n and n + f doubles that must be exact
+  // (TwoSum's error 0) and short.
+  const double n = c.depth_near, f = c.depth_far;
+  double difference = 0, sum = 0;
+  const bool exact = exact_sum(f, -n, difference) && exact_sum(n, f, sum);
+  if (!exact || !exact_half_sum(v.clip[2], difference, v.clip[3], sum, out.wz_w)) {
+    const mpq_class qn(n), qf(f);
+    out.wz_w = z_c * (qf - qn) / 2 + w_c * (qn + qf) / 2;
+  }
   for (mpq_class* q : {&out.x_h, &out.y_h, &out.wz_w})
     q->canonicalize();
   return out;
