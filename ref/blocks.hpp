@@ -12,7 +12,11 @@ inline constexpr int kRowBlock = 8;
 // On the definitions of the block forms: on x86-64, a second copy of the function for AVX2
 // (four doubles per instruction, SSE2 has two), chosen at load time when the processor has
 // it. The lanes' operations are the same IEEE operations either way, and AVX2 alone brings no
-// fused multiply-add (that is FMA, not asked for), so both copies give the same bits.
+// fused multiply-add (that is FMA, not asked for), so both copies give the same bits. (Built
+// with FMA in the base flags, -march=native say, both copies may fuse, each its own way: the
+// frames stay the same, their fast paths' bounds holding fused or not, which the -O3
+// -march=native -ffp-contract=fast digest test checks; allowances may then differ in the
+// last bits, as they would without the copies.)
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(GLRC_NO_BLOCK_CLONES)
 #define GLRC_BLOCK_FORM __attribute__((target_clones("avx2", "default")))
 #else

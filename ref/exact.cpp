@@ -113,8 +113,10 @@ SignEvaluator::RowBound SignEvaluator::row_bound(double grow, long x_lo, long x_
   const double y_max = std::max(std::fabs(double(y_lo)), std::fabs(double(y_hi)));
   // With F = da·x + db·y + dc (exact, of the double coefficients) and S = |da·x| + |db·y| +
   // |dc| <= terms over the rows: distance() is F computed (off by at most 4u·S, fused or not)
-  // times inv_norm_ (u more), and F is off from the exact form by u·S (its coefficients'
-  // rounding). Beyond a quarter pixel the walk takes every pixel.
+  // times inv_norm_ (u more), and F is off from the exact form by 2u·S (its coefficients,
+  // which get_d truncates), the norm by a few u (hypot's and the reciprocal's roundings): the
+  // widening below takes over twice all of it. Beyond a quarter pixel the walk takes every
+  // pixel.
   const double terms = std::fabs(da_) * x_max + std::fabs(db_) * y_max + std::fabs(dc_);
   if (8 * kU * terms * inv_norm_ > 0.25) return every;
   // So every pixel with distance() >= -grow, and every one within grow of the exact line, has
