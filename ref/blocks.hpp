@@ -17,7 +17,14 @@ inline constexpr int kRowBlock = 8;
 // frames stay the same, their fast paths' bounds holding fused or not, which the -O3
 // -march=native -ffp-contract=fast digest test checks; allowances may then differ in the
 // last bits, as they would without the copies.)
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(GLRC_NO_BLOCK_CLONES)
+//
+// GCC only: GCC makes the function's own name the load-time choice, so a caller in another
+// file, which sees a plain declaration, gets the right copy. Clang 14 names the choice apart
+// (".ifunc") and leaves the plain name undefined, so that such a caller does not link; and with
+// the attribute on the declarations too, GCC calls the other file's copies by names it never
+// defines. Built with clang, the block forms are the default copies alone.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && \
+    !defined(GLRC_NO_BLOCK_CLONES)
 #define GLRC_BLOCK_FORM __attribute__((target_clones("avx2", "default")))
 #else
 #define GLRC_BLOCK_FORM
