@@ -59,13 +59,7 @@ CoverageTest::RowSpans CoverageTest::row_spans(double reach, int x0, int x1, int
 }
 
 std::pair<int, int> CoverageTest::row_span(int py, double reach, int x0, int x1) const {
-  double lo = x0, hi = x1;
-  for (const SignEvaluator& e : edges_) {
-    const auto [l, h] = e.row_interval(py, reach, x0, x1);
-    lo = std::max(lo, l), hi = std::min(hi, h);
-  }
-  if (!(lo <= hi)) return {x0, x0 - 1};
-  return {int(std::ceil(lo)), int(std::floor(hi))};
+  return row_spans(reach, x0, x1, py, py).at(py);
 }
 
 uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
