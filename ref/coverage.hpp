@@ -44,7 +44,7 @@ class CoverageTest {
                           double largest_z = 0) const;
   // The pixels [first, last] of row py within [x0, x1] whose centre may be within `reach`
   // pixels of the exact triangle (inside every exact edge's line grown by `reach`), as a span
-  // that may hold more but never misses one (SignEvaluator::row_interval); first > last for
+  // that may hold more but never misses one (SignEvaluator::row_bound); first > last for
   // none. With reach >= sqrt(2)·max(freedom, s) for the largest freedom passed to classify and
   // s half the model's subpixel step on the snapped path (0 on the homogeneous one), no pixel
   // outside it is covered (a snapped vertex moves by at most s along x and y) or classified

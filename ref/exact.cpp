@@ -84,7 +84,7 @@ SignEvaluator::SignEvaluator(const LinearForm& f) : form_(f) {
   da_ = f.a.get_d(), db_ = f.b.get_d(), dc_ = f.c.get_d();
   const double norm = std::hypot(da_, db_);
   inv_norm_ = norm > 0 ? 1.0 / norm : 0.0;
-  // What row_interval needs of the form on every row, once.
+  // What row_bound needs of the form on every row, once.
   spans_ = inv_norm_ > 0 && std::isfinite(inv_norm_) && std::isfinite(da_) && std::isfinite(db_) &&
            std::isfinite(dc_);
   scale_ = spans_ ? 1 / inv_norm_ : 0.0;
@@ -151,11 +151,6 @@ SignEvaluator::RowBound SignEvaluator::row_bound(double grow, long x_lo, long x_
       !std::isfinite(t * inverse_abs_da_ * 2))
     return every;
   return b;
-}
-
-std::pair<double, double> SignEvaluator::row_interval(long py, double grow, long x_lo,
-                                                      long x_hi) const {
-  return row_bound(grow, x_lo, x_hi, py, py).at(double(py));
 }
 
 RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& denominator) {

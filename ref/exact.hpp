@@ -59,19 +59,17 @@ class SignEvaluator {
   double distance(long px, long py) const {  // inline: per pixel of every band
     return (da_ * double(px) + db_ * double(py) + dc_) * inv_norm_;
   }
-  // The pixels of row py whose centre is at least -grow pixels from the line (distance() >=
-  // -grow), as an interval [lo, hi] of px that may hold more but never misses one: widened for
-  // the rounding of both this and distance(), by their error bounds (a few ulps of the terms),
-  // not by a pixel: a thin triangle's rows are then walked over the pixels it reaches. It holds
-  // every pixel whose centre is within grow of the exact line too. lo = -infinity or hi =
-  // +infinity for an unbounded side, lo > hi for no pixel. Where distance() itself may be off by
-  // a quarter pixel or more over px in [x_lo, x_hi] (coefficients beyond 2^40 pixels), or the
-  // form has no gradient, every px: the caller then tests each pixel as before. For walking
-  // only the pixels a triangle can reach (render.cpp).
-  std::pair<double, double> row_interval(long py, double grow, long x_lo, long x_hi) const;
-  // row_interval() of every row py in [y_lo, y_hi] at once, as a bound linear in py: the line's
-  // x-intercept walked from row to row, widened once for its rounding over all those rows.
-  // at(py) holds every pixel row_interval() must.
+  // For every row py in [y_lo, y_hi], the pixels whose centre is at least -grow pixels from the
+  // line (distance() >= -grow), as an interval RowBound::at(py) = [lo, hi] of px that may hold
+  // more but never misses one; it holds every pixel whose centre is within grow of the exact
+  // line too. The bound is linear in py (the line's x-intercept walked from row to row),
+  // widened for the rounding of both this and distance() over all those rows by their error
+  // bounds (a few ulps of the terms), not by a pixel: a thin triangle's rows are then walked
+  // over the pixels it reaches. lo = -infinity or hi = +infinity for an unbounded side, lo > hi
+  // for no pixel. Where distance() itself may be off by a quarter pixel or more over px in
+  // [x_lo, x_hi] (coefficients beyond 2^40 pixels), or the form has no gradient, every px: the
+  // caller then tests each pixel as before. For walking only the pixels a triangle can reach
+  // (render.cpp).
   struct RowBound {
     enum Kind : uint8_t { every, none, from, to } kind = every;
     double alpha = 0, beta = 0, widen = 0;  // from: px >= alpha·py + beta - widen; to: <= ... +
@@ -96,7 +94,7 @@ class SignEvaluator {
   double a_ = 0, b_ = 0, c_ = 0;                    // range-checked copies for the fast sign
   double da_ = 0, db_ = 0, dc_ = 0, inv_norm_ = 0;  // unchecked copies for distance()
   double scale_ = 0, inverse_abs_da_ = 0, inverse_da_ = 0;  // 1 / inv_norm_, 1 / |da_|, 1 / da_
-  bool spans_ = false;  // row_interval can bound a span: finite copies and a gradient
+  bool spans_ = false;  // row_bound can bound a span: finite copies and a gradient
   bool fast_ = false;
 };
 

@@ -68,7 +68,7 @@ struct Prepared {
     // most half a subpixel step along x and y, so every point of the snapped triangle is that
     // close to a point of the exact one (a convex combination of the moves), 2^-(bits+1)·sqrt(2)
     // away at most. (The homogeneous path covers only centres inside the exact triangle.)
-    // row_span widens by its own arithmetic's error bounds (SignEvaluator::row_interval).
+    // row_span widens by its own arithmetic's error bounds (SignEvaluator::row_bound).
     const double snapping =
         t.path == CoveragePath::snapped ? std::ldexp(1.0, -(s.m.subpixel_bits + 1)) : 0.0;
     reach_px = std::min(double(margin), std::max(largest, snapping) * 1.5);
