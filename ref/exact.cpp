@@ -66,6 +66,68 @@ float round_to_float(const mpz_class& num, const mpz_class& den) {
   return sign * float(magnitude);
 }
 
+bool Dyadic::of(const mpq_class& q, Dyadic& out) {
+  const mpz_srcptr den = q.get_den_mpz_t();
+  const mp_bitcnt_t zeros = mpz_scan1(den, 0);  // den >= 1: a power of two iff one bit is set
+  if (mpz_sizeinbase(den, 2) != zeros + 1) return false;
+  out.m = q.get_num();
+  out.e = -long(zeros);
+  return true;
+}
+
+mpq_class Dyadic::rational() const {
+  mpq_class q;  // 0/1
+  if (sgn(m) == 0) return q;
+  if (e >= 0) {
+    mpz_mul_2exp(mpq_numref(q.get_mpq_t()), m.get_mpz_t(), mp_bitcnt_t(e));
+    return q;
+  }
+  // m/2^-e in lowest terms: the twos they share cancel (m's trailing zeros, at most -e of them).
+  const mp_bitcnt_t shared = std::min<mp_bitcnt_t>(mpz_scan1(m.get_mpz_t(), 0), mp_bitcnt_t(-e));
+  mpz_tdiv_q_2exp(mpq_numref(q.get_mpq_t()), m.get_mpz_t(), shared);
+  mpz_set_ui(mpq_denref(q.get_mpq_t()), 1);
+  mpz_mul_2exp(mpq_denref(q.get_mpq_t()), mpq_denref(q.get_mpq_t()), mp_bitcnt_t(-e) - shared);
+  return q;
+}
+
+void sum_of_products(Dyadic& out, const Dyadic* const* a, const Dyadic* const* b, int n) {
+  // Each product exactly, then every one shifted up to the smallest exponent among the nonzero
+  // ones and added: integers throughout.
+  mpz_class product[3];
+  long exponent[3] = {};
+  long smallest = std::numeric_limits<long>::max();
+  for (int i = 0; i < n; ++i) {
+    mpz_mul(product[i].get_mpz_t(), a[i]->m.get_mpz_t(), b[i]->m.get_mpz_t());
+    exponent[i] = a[i]->e + b[i]->e;
+    if (sgn(product[i]) != 0) smallest = std::min(smallest, exponent[i]);
+  }
+  out.m = 0;
+  out.e = 0;
+  if (smallest == std::numeric_limits<long>::max()) return;  // every product 0
+  for (int i = 0; i < n; ++i) {
+    if (sgn(product[i]) == 0) continue;
+    mpz_mul_2exp(product[i].get_mpz_t(), product[i].get_mpz_t(),
+                 mp_bitcnt_t(exponent[i] - smallest));
+    out.m += product[i];
+  }
+  out.e = smallest;
+}
+
+void cross_term(Dyadic& out, const Dyadic& a, const Dyadic& b, const Dyadic& c, const Dyadic& d) {
+  // As sum_of_products, the second product subtracted.
+  mpz_class first, second;
+  mpz_mul(first.get_mpz_t(), a.m.get_mpz_t(), b.m.get_mpz_t());
+  mpz_mul(second.get_mpz_t(), c.m.get_mpz_t(), d.m.get_mpz_t());
+  long e1 = a.e + b.e, e2 = c.e + d.e;
+  if (sgn(first) == 0) e1 = e2;
+  if (sgn(second) == 0) e2 = e1;
+  const long smallest = std::min(e1, e2);
+  mpz_mul_2exp(first.get_mpz_t(), first.get_mpz_t(), mp_bitcnt_t(e1 - smallest));
+  mpz_mul_2exp(second.get_mpz_t(), second.get_mpz_t(), mp_bitcnt_t(e2 - smallest));
+  mpz_sub(out.m.get_mpz_t(), first.get_mpz_t(), second.get_mpz_t());
+  out.e = smallest;
+}
+
 mpz_class to_mpz(int128 v) {
   const bool negative = v < 0;
   const uint128 u = negative ? -uint128(v) : uint128(v);

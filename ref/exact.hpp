@@ -25,6 +25,27 @@ mpz_class to_mpz(int128 v);
 float round_to_float(const mpz_class& num, const mpz_class& den);
 float round_to_float(const mpq_class& q);
 
+// m·2^e exactly: a dyadic rational. Every number of an unsnapped plane is one (a float32 clip
+// coordinate or value, the viewport's halves, their products and sums), and products and sums
+// of them need neither the gcd that mpq_class takes after every operation nor a common
+// denominator: the mantissas are multiplied, or shifted to the smaller exponent and added.
+// rational() gives the canonical mpq_class, the same rational mpq_class arithmetic gives, so
+// whatever is built from it has the same bits.
+struct Dyadic {
+  mpz_class m;  // 0: the value 0, whatever e is
+  long e = 0;
+
+  // q as m·2^e when its denominator is a power of two (always true of 0); false otherwise.
+  static bool of(const mpq_class& q, Dyadic& out);
+  mpq_class rational() const;
+  int sign() const { return sgn(m); }
+};
+
+// out = Σ_i a_i·b_i, exactly, over n <= 3 terms (out may be none of the inputs).
+void sum_of_products(Dyadic& out, const Dyadic* const* a, const Dyadic* const* b, int n);
+// out = a·b - c·d exactly (a cross product's component).
+void cross_term(Dyadic& out, const Dyadic& a, const Dyadic& b, const Dyadic& c, const Dyadic& d);
+
 // f(px, py) = a·px + b·py + c with exact rational coefficients.
 struct LinearForm {
   mpq_class a, b, c;

@@ -20,11 +20,29 @@ Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
   } else {
     b.l = t.homogeneous_edges;
   }
+  b.is_dyadic = true;
+  for (int i = 0; i < 3 && b.is_dyadic; ++i)
+    b.is_dyadic = Dyadic::of(b.l[i].a, b.dyadic[i][0]) && Dyadic::of(b.l[i].b, b.dyadic[i][1]) &&
+                  Dyadic::of(b.l[i].c, b.dyadic[i][2]);
   return b;
 }
 
 LinearForm sum(const Barycentrics& b, const std::array<mpq_class, 3>& alpha) {
   LinearForm f;
+  // Dyadic forms and weights (every weight of an unsnapped plane: a float32 value, w_c, w_c·z_w
+  // or 1): each coefficient as one sum of products of integers, then made a rational once.
+  if (Dyadic weight[3]; b.is_dyadic && Dyadic::of(alpha[0], weight[0]) &&
+                        Dyadic::of(alpha[1], weight[1]) && Dyadic::of(alpha[2], weight[2])) {
+    const Dyadic* weights[3] = {&weight[0], &weight[1], &weight[2]};
+    mpq_class* coefficient[3] = {&f.a, &f.b, &f.c};
+    Dyadic total;
+    for (int k = 0; k < 3; ++k) {
+      const Dyadic* terms[3] = {&b.dyadic[0][k], &b.dyadic[1][k], &b.dyadic[2][k]};
+      sum_of_products(total, terms, weights, 3);
+      *coefficient[k] = total.rational();
+    }
+    return f;
+  }
   mpq_class scratch;
   for (int i = 0; i < 3; ++i)
     // Most weights are 1 (beta of smooth or noperspective planes): a sum, no product.

@@ -30,6 +30,10 @@ namespace glrc::ref {
 struct Barycentrics {
   std::array<LinearForm, 3> l;
   bool screen_space = false;  // snapped planes
+  // l's coefficients (a, b, c of each) as Dyadic, when every one is dyadic (always, for planes
+  // of float32 clip coordinates): sum() then multiplies and adds without gcds.
+  std::array<std::array<Dyadic, 3>, 3> dyadic;
+  bool is_dyadic = false;
 };
 
 Barycentrics barycentrics(const TriangleSetup& t, const Model& m);

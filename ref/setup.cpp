@@ -80,14 +80,51 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   // x_w = px + 1/2; det = col_0 · (col_1 × col_2) is 2·area·w_0·w_1·w_2 when all w_c > 0, and
   // its sign is the facing in every case (the Jacobian of the projective map has the sign of
   // det wherever w > 0).
-  const Column col[3] = {{t.v[0].x_h, t.v[0].y_h, t.v[0].w_c},
-                         {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
-                         {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
+  //
+  // In dyadic arithmetic (exact.hpp) when every coordinate is dyadic, which those of float32
+  // clip coordinates and an integer viewport always are: the same rationals as mpq_class
+  // arithmetic gives, without its gcd after every product and sum.
+  Dyadic xyw[3][3];  // x_h, y_h, w_c of each vertex
+  bool dyadic = true;
+  for (int i = 0; i < 3 && dyadic; ++i)
+    dyadic = Dyadic::of(t.v[i].x_h, xyw[i][0]) && Dyadic::of(t.v[i].y_h, xyw[i][1]) &&
+             Dyadic::of(t.v[i].w_c, xyw[i][2]);
   H3 g[3];
-  for (int i = 0; i < 3; ++i)
-    g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
-  const mpq_class det = g[0].x * col[0].x + g[0].y * col[0].y + g[0].w * col[0].w;
-  const int det_sign = sgn(det);
+  mpq_class centre_term[3];  // E_i's value at pixel (0, 0), whose centre is (1/2, 1/2)
+  int det_sign = 0;
+  if (dyadic) {
+    Dyadic gd[3][3];
+    for (int i = 0; i < 3; ++i) {
+      const Dyadic(&u)[3] = xyw[(i + 1) % 3];
+      const Dyadic(&v)[3] = xyw[(i + 2) % 3];
+      cross_term(gd[i][0], u[1], v[2], u[2], v[1]);
+      cross_term(gd[i][1], u[2], v[0], u[0], v[2]);
+      cross_term(gd[i][2], u[0], v[1], u[1], v[0]);
+    }
+    Dyadic det;
+    const Dyadic* gs[3] = {&gd[0][0], &gd[0][1], &gd[0][2]};
+    const Dyadic* cs[3] = {&xyw[0][0], &xyw[0][1], &xyw[0][2]};
+    sum_of_products(det, gs, cs, 3);
+    det_sign = det.sign();
+    const Dyadic half{1, -1}, one{1, 0};
+    const Dyadic* weights[3] = {&half, &half, &one};
+    for (int i = 0; i < 3; ++i) {
+      g[i].x = gd[i][0].rational(), g[i].y = gd[i][1].rational();  // w only in centre_term
+      Dyadic c0;
+      const Dyadic* terms[3] = {&gd[i][0], &gd[i][1], &gd[i][2]};
+      sum_of_products(c0, terms, weights, 3);
+      centre_term[i] = c0.rational();
+    }
+  } else {
+    const Column col[3] = {{t.v[0].x_h, t.v[0].y_h, t.v[0].w_c},
+                           {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
+                           {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
+    for (int i = 0; i < 3; ++i)
+      g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
+    det_sign = sgn(mpq_class(g[0].x * col[0].x + g[0].y * col[0].y + g[0].w * col[0].w));
+    for (int i = 0; i < 3; ++i)
+      centre_term[i] = (g[i].x + g[i].y) / 2 + g[i].w;
+  }
 
   const bool all_w_positive =
       std::all_of(t.v.begin(), t.v.end(), [](const WindowVertex& v) { return sgn(v.w_c) > 0; });
@@ -123,7 +160,7 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   t.has_edges = true;
   for (int i = 0; i < 3; ++i) {
     LinearForm& e = t.homogeneous_edges[i];
-    e.c = (g[i].x + g[i].y) / 2 + g[i].w;
+    e.c = std::move(centre_term[i]);
     e.a = std::move(g[i].x), e.b = std::move(g[i].y);
     if (det_sign < 0)
       for (mpq_class* q : {&e.a, &e.b, &e.c})

@@ -116,3 +116,45 @@ TEST(ComponentValues, NearATieTheExactPathDecides) {
 
 }  // namespace
 }  // namespace glrc::ref
+
+namespace glrc::ref {
+namespace {
+
+// sum(): the dyadic path (every form and weight dyadic) against the rational one, which a
+// Barycentrics without its dyadic copy takes; and a non-dyadic weight (a snapped plane's v/w)
+// falls back to the rational path with the same result.
+TEST(Interpolation, DyadicSumsAreTheRationalSums) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> e(-140, 140);
+  auto dyadic = [&]() -> mpq_class {
+    if (rng() % 10 == 0) return 0;
+    return mpq_class(std::ldexp(u(rng), e(rng)));
+  };
+  for (int n = 0; n < 500; ++n) {
+    Barycentrics b;
+    for (auto& l : b.l)
+      l = {dyadic() * dyadic() - dyadic() * dyadic(), dyadic() * dyadic(),
+           (dyadic() + dyadic()) / 2};
+    b.is_dyadic = true;
+    for (int i = 0; i < 3; ++i)
+      ASSERT_TRUE(Dyadic::of(b.l[i].a, b.dyadic[i][0]) && Dyadic::of(b.l[i].b, b.dyadic[i][1]) &&
+                  Dyadic::of(b.l[i].c, b.dyadic[i][2]));
+    Barycentrics rational = b;
+    rational.is_dyadic = false;
+    std::array<mpq_class, 3> alpha{dyadic(), dyadic(), n % 4 == 0 ? mpq_class(1) : dyadic()};
+    if (n % 7 == 0) alpha[1] = mpq_class(3, 7) * alpha[1];  // not dyadic unless 0
+    const LinearForm fast = sum(b, alpha), exact = sum(rational, alpha);
+    EXPECT_EQ(fast.a, exact.a);
+    EXPECT_EQ(fast.b, exact.b);
+    EXPECT_EQ(fast.c, exact.c);
+    // And both the rational Σ l_i·alpha_i itself.
+    mpq_class want = 0;
+    for (int i = 0; i < 3; ++i)
+      want += b.l[i].c * alpha[i];
+    EXPECT_EQ(fast.c, want);
+  }
+}
+
+}  // namespace
+}  // namespace glrc::ref

@@ -94,6 +94,71 @@ TEST(RatioEvaluator, ExactQuotientNearATie) {
   EXPECT_EQ(tie.at(3, 5), 1.0f);
 }
 
+// A random dyadic rational: 0 one time in eight, else a signed mantissa of up to 120 bits times
+// 2^e for e in [-300, 300] (float32's range and beyond, so that sums align across it).
+mpq_class random_dyadic(std::mt19937_64& rng) {
+  if (rng() % 8 == 0) return 0;
+  mpz_class m = 0;
+  const int words = 1 + int(rng() % 2);
+  for (int w = 0; w < words; ++w)
+    m = (m << 60) + mpz_class(static_cast<unsigned long>(rng() >> 4));
+  m >>= int(rng() % 100);
+  if (m == 0) m = 1;
+  if (rng() % 2) m = -m;
+  return mpq_class(m) * pow2(int(rng() % 601) - 300);
+}
+
+TEST(Dyadic, OfAndRationalAreTheRationalItself) {
+  std::mt19937_64 rng(7);
+  for (int n = 0; n < 2000; ++n) {
+    const mpq_class q = random_dyadic(rng);
+    Dyadic d;
+    ASSERT_TRUE(Dyadic::of(q, d)) << q;
+    const mpq_class back = d.rational();
+    EXPECT_EQ(back, q);
+    // Canonical as mpq_class keeps it: no factor shared by numerator and denominator.
+    EXPECT_EQ(gcd(back.get_num(), back.get_den()), 1);
+    EXPECT_EQ(d.sign(), sgn(q));
+  }
+  Dyadic d;
+  EXPECT_FALSE(Dyadic::of(mpq_class(1, 3), d));
+  EXPECT_FALSE(Dyadic::of(mpq_class(5, 12), d));  // 12 = 4·3
+  EXPECT_TRUE(Dyadic::of(mpq_class(5, 16), d));
+  EXPECT_EQ(d.m, 5);
+  EXPECT_EQ(d.e, -4);
+  EXPECT_TRUE(Dyadic::of(mpq_class(-48), d));  // an integer: 2^0 below
+  EXPECT_EQ(d.rational(), -48);
+  EXPECT_EQ((Dyadic{mpz_class(12), -2}.rational()), 3);  // twos cancelled: 12/4 = 3/1
+  EXPECT_EQ((Dyadic{mpz_class(0), -7}.rational()), 0);
+  EXPECT_EQ((Dyadic{mpz_class(-3), 5}.rational()), -96);
+}
+
+TEST(Dyadic, SumsOfProductsAreTheRationalOnes) {
+  std::mt19937_64 rng(11);
+  for (int n = 0; n < 3000; ++n) {
+    mpq_class a[3], b[3];
+    Dyadic da[3], db[3];
+    const int terms = 1 + int(n % 3);
+    mpq_class expected = 0;
+    for (int i = 0; i < terms; ++i) {
+      a[i] = random_dyadic(rng), b[i] = random_dyadic(rng);
+      // Now and then a sum that cancels exactly: the last term the negated first.
+      if (i == 2 && n % 5 == 0) a[2] = -a[0], b[2] = b[0];
+      ASSERT_TRUE(Dyadic::of(a[i], da[i]) && Dyadic::of(b[i], db[i]));
+      expected += a[i] * b[i];
+    }
+    const Dyadic* left[3] = {&da[0], &da[1], &da[2]};
+    const Dyadic* right[3] = {&db[0], &db[1], &db[2]};
+    Dyadic out;
+    sum_of_products(out, left, right, terms);
+    EXPECT_EQ(out.rational(), expected);
+    EXPECT_EQ(out.sign(), sgn(expected));
+    Dyadic cross;
+    cross_term(cross, da[0], db[0], da[1 % terms], db[1 % terms]);
+    EXPECT_EQ(cross.rational(), mpq_class(a[0] * b[0] - a[1 % terms] * b[1 % terms]));
+  }
+}
+
 TEST(SignEvaluator, ExactNearZero) {
   // f = px - py·(1 + 2^-60): zero nowhere on the integer grid except (0,0), tiny elsewhere.
   const SignEvaluator s({1, -(1 + pow2(-60)), 0});
