@@ -90,10 +90,20 @@ mpq_class Dyadic::rational() const {
   return q;
 }
 
+double truncated_quotient(const mpq_class& n, const mpq_class& d) {
+  // (n.num·d.den) / (n.den·d.num), not in lowest terms: mpq_get_d divides the two integers and
+  // truncates, which gives the same double for any pair of the same ratio.
+  thread_local mpq_class q;
+  mpz_mul(mpq_numref(q.get_mpq_t()), n.get_num_mpz_t(), d.get_den_mpz_t());
+  mpz_mul(mpq_denref(q.get_mpq_t()), n.get_den_mpz_t(), d.get_num_mpz_t());
+  return mpq_get_d(q.get_mpq_t());
+}
+
 void sum_of_products(Dyadic& out, const Dyadic* const* a, const Dyadic* const* b, int n) {
   // Each product exactly, then every one shifted up to the smallest exponent among the nonzero
-  // ones and added: integers throughout.
-  mpz_class product[3];
+  // ones and added: integers throughout. The products and the total in integers kept per
+  // thread, which soon hold enough limbs: no allocation per call but out's own.
+  thread_local mpz_class product[3], total;
   long exponent[3] = {};
   long smallest = std::numeric_limits<long>::max();
   for (int i = 0; i < n; ++i) {
@@ -101,21 +111,25 @@ void sum_of_products(Dyadic& out, const Dyadic* const* a, const Dyadic* const* b
     exponent[i] = a[i]->e + b[i]->e;
     if (sgn(product[i]) != 0) smallest = std::min(smallest, exponent[i]);
   }
-  out.m = 0;
-  out.e = 0;
-  if (smallest == std::numeric_limits<long>::max()) return;  // every product 0
+  if (smallest == std::numeric_limits<long>::max()) {  // every product 0
+    out.m = 0;
+    out.e = 0;
+    return;
+  }
+  mpz_set_ui(total.get_mpz_t(), 0);
   for (int i = 0; i < n; ++i) {
     if (sgn(product[i]) == 0) continue;
     mpz_mul_2exp(product[i].get_mpz_t(), product[i].get_mpz_t(),
                  mp_bitcnt_t(exponent[i] - smallest));
-    out.m += product[i];
+    mpz_add(total.get_mpz_t(), total.get_mpz_t(), product[i].get_mpz_t());
   }
+  mpz_set(out.m.get_mpz_t(), total.get_mpz_t());
   out.e = smallest;
 }
 
 void cross_term(Dyadic& out, const Dyadic& a, const Dyadic& b, const Dyadic& c, const Dyadic& d) {
   // As sum_of_products, the second product subtracted.
-  mpz_class first, second;
+  thread_local mpz_class first, second;
   mpz_mul(first.get_mpz_t(), a.m.get_mpz_t(), b.m.get_mpz_t());
   mpz_mul(second.get_mpz_t(), c.m.get_mpz_t(), d.m.get_mpz_t());
   long e1 = a.e + b.e, e2 = c.e + d.e;

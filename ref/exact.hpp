@@ -41,6 +41,10 @@ struct Dyadic {
   int sign() const { return sgn(m); }
 };
 
+// n/d (d > 0) truncated to a double, as mpq_class(n / d).get_d() gives it, without the gcds
+// of the division's canonical form: the quotient's truncation depends on its value alone.
+double truncated_quotient(const mpq_class& n, const mpq_class& d);
+
 // out = Σ_i a_i·b_i, exactly, over n <= 3 terms (out may be none of the inputs).
 void sum_of_products(Dyadic& out, const Dyadic* const* a, const Dyadic* const* b, int n);
 // out = a·b - c·d exactly (a cross product's component).

@@ -7,19 +7,21 @@ namespace glrc::ref {
 
 namespace {
 
-// A vertex's exact window position (x_h/w_c, y_h/w_c), canonical, with double copies that order
-// like it: get_d truncates, so it never reverses an order, and two points whose copies differ
-// are ordered by the copies alone. Equal copies fall back to the exact values.
+// A vertex's exact window position (x_h/w_c, y_h/w_c), with double copies that order like it:
+// get_d truncates, so it never reverses an order, and two points whose copies differ are
+// ordered by the copies alone. Equal copies fall back to the exact values, compared as
+// x_h·w_c' against x_h'·w_c (w_c, w_c' > 0): no division, no canonical form.
 struct WindowPoint {
-  mpq_class x, y;
+  const WindowVertex* v = nullptr;
   double dx = 0, dy = 0;
 };
 
 int compare(const WindowPoint& p, const WindowPoint& q) {
   if (p.dx != q.dx) return p.dx < q.dx ? -1 : 1;
-  if (const int c = cmp(p.x, q.x); c != 0) return c;
+  if (const int c = cmp(mpq_class(p.v->x_h * q.v->w_c), mpq_class(q.v->x_h * p.v->w_c)); c != 0)
+    return c;
   if (p.dy != q.dy) return p.dy < q.dy ? -1 : 1;
-  return cmp(p.y, q.y);
+  return cmp(mpq_class(p.v->y_h * q.v->w_c), mpq_class(q.v->y_h * p.v->w_c));
 }
 
 // One drawn triangle's edge: its ends, the smaller first, so that triangles naming the same two
@@ -65,11 +67,9 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
     const WindowPoint* corner[3];
     for (size_t j = 0; j < 3; ++j) {
       std::optional<WindowPoint>& p = points[s.index[j]];
-      if (!p) {
-        p.emplace();
-        p->x = s.v[j].x_h / s.v[j].w_c, p->y = s.v[j].y_h / s.v[j].w_c;
-        p->dx = p->x.get_d(), p->dy = p->y.get_d();
-      }
+      if (!p)
+        p = WindowPoint{&s.v[j], truncated_quotient(s.v[j].x_h, s.v[j].w_c),
+                        truncated_quotient(s.v[j].y_h, s.v[j].w_c)};
       corner[j] = &*p;
     }
     for (int i = 0; i < 3; ++i) {

@@ -23,11 +23,12 @@ H3 cross(const Column& u, const Column& v) {
   return {u.y * v.w - u.w * v.y, u.w * v.x - u.x * v.w, u.x * v.y - u.y * v.x};
 }
 
-// round_half_even(num / den) for den != 0.
-mpz_class round_half_even(const mpq_class& q) {
+// num / den rounded to an integer, ties to even, for den > 0.
+mpz_class round_half_even(const mpz_class& num, const mpz_class& den) {
   mpz_class fl, r;
-  mpz_fdiv_qr(fl.get_mpz_t(), r.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
-  const int c = cmp(mpz_class(2 * r), q.get_den());
+  mpz_fdiv_qr(fl.get_mpz_t(), r.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+  r <<= 1;
+  const int c = cmp(r, den);
   if (c > 0 || (c == 0 && mpz_odd_p(fl.get_mpz_t()))) fl += 1;
   return fl;
 }
@@ -36,11 +37,24 @@ constexpr long kGuardBand = 1L << 40;  // in subpixel steps
 
 // The snapped window position of a vertex with w_c > 0, or nothing outside the guard band.
 std::optional<std::array<long, 2>> snap(const WindowVertex& v, int bits) {
-  const mpq_class scale = mpq_class(mpz_class(1) << bits);
   std::array<long, 2> s{};
   const mpq_class* h[2] = {&v.x_h, &v.y_h};
+  Dyadic w, hd;
+  const bool dyadic = Dyadic::of(v.w_c, w);
   for (int k = 0; k < 2; ++k) {
-    const mpz_class r = round_half_even(mpq_class(*h[k] * scale / v.w_c));
+    mpz_class r;
+    if (dyadic && Dyadic::of(*h[k], hd)) {
+      // h·2^bits / w = (h.m / w.m)·2^shift: the power of two moved onto one side of the
+      // integer quotient, whose rounding does not depend on a common factor (w.m > 0).
+      const long shift = hd.e - w.e + bits;
+      if (shift >= 0)
+        r = round_half_even(mpz_class(hd.m << mp_bitcnt_t(shift)), w.m);
+      else
+        r = round_half_even(hd.m, mpz_class(w.m << mp_bitcnt_t(-shift)));
+    } else {
+      const mpq_class q = *h[k] * mpq_class(mpz_class(1) << bits) / v.w_c;
+      r = round_half_even(q.get_num(), q.get_den());
+    }
     if (abs(r) >= kGuardBand) return std::nullopt;
     s[k] = r.get_si();
   }

@@ -159,6 +159,23 @@ TEST(Dyadic, SumsOfProductsAreTheRationalOnes) {
   }
 }
 
+TEST(TruncatedQuotient, IsTheCanonicalQuotientsDouble) {
+  std::mt19937_64 rng(13);
+  for (int n = 0; n < 3000; ++n) {
+    // Numerators and positive denominators with common factors (3·5·7 and powers of two), so
+    // that the pair divided is far from lowest terms; now and then one third, not dyadic.
+    const mpz_class common = mpz_class(105) << int(rng() % 40);
+    mpq_class a = random_dyadic(rng) * mpq_class(common), b = abs(random_dyadic(rng));
+    if (b == 0) b = mpq_class(common);
+    if (n % 3 == 0) a /= 3;
+    const double want = mpq_class(a / b).get_d();
+    EXPECT_EQ(truncated_quotient(a, b), want) << a << " / " << b;
+  }
+  EXPECT_EQ(truncated_quotient(mpq_class(1), mpq_class(3)), mpq_class(1, 3).get_d());
+  EXPECT_EQ(truncated_quotient(mpq_class(-2), mpq_class(6)), mpq_class(-1, 3).get_d());
+  EXPECT_EQ(truncated_quotient(mpq_class(0), mpq_class(5)), 0.0);
+}
+
 TEST(SignEvaluator, ExactNearZero) {
   // f = px - py·(1 + 2^-60): zero nowhere on the integer grid except (0,0), tiny elsewhere.
   const SignEvaluator s({1, -(1 + pow2(-60)), 0});
