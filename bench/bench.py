@@ -27,12 +27,15 @@ def progress(text):
 
 
 def worker_environment():
-    """The environment `run` gives its GL workers (cli/process.hpp, huge_page_malloc_tunable):
-    the parts are timed as a worker runs them."""
+    """The environment `run` gives its GL workers (cli/process.hpp, huge_page_malloc_tunable
+    and huge_page_jemalloc_conf): the parts are timed as a worker runs them."""
     env = dict(os.environ)
     tunables = env.get("GLIBC_TUNABLES", "")
     if "glibc.malloc.hugetlb" not in tunables:
         env["GLIBC_TUNABLES"] = (tunables + ":" if tunables else "") + "glibc.malloc.hugetlb=1"
+    conf = env.get("MALLOC_CONF", "")
+    if "thp:" not in conf:
+        env["MALLOC_CONF"] = (conf + "," if conf else "") + "thp:always"
     return env
 
 

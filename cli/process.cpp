@@ -60,6 +60,14 @@ std::pair<std::string, std::string> huge_page_malloc_tunable() {
   return {"GLIBC_TUNABLES", value};
 }
 
+std::pair<std::string, std::string> huge_page_jemalloc_conf() {
+  const char* given = std::getenv("MALLOC_CONF");
+  std::string value = given ? given : "";
+  if (value.find("thp:") == std::string::npos)
+    value += std::string(value.empty() ? "" : ",") + "thp:always";
+  return {"MALLOC_CONF", value};
+}
+
 ChildProcess::ChildProcess(const std::vector<std::string>& argv_text,
                            const std::vector<std::string>& env_text,
                            const std::filesystem::path& log)

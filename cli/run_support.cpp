@@ -109,6 +109,7 @@ WorkerSettings worker_settings(Options& o, const std::filesystem::path& out, int
   s.wrapper = o.worker_wrapper;
   if (prefix) s.environment = mesa_environment(*prefix, out);
   s.environment.push_back(huge_page_malloc_tunable());
+  s.environment.push_back(huge_page_jemalloc_conf());
   return s;
 }
 

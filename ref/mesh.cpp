@@ -17,6 +17,7 @@ struct WindowPoint {
 };
 
 int compare(const WindowPoint& p, const WindowPoint& q) {
+  if (&p == &q) return 0;  // one case vertex: a triangle's edges share their ends
   if (p.dx != q.dx) return p.dx < q.dx ? -1 : 1;
   if (const int c = cmp(mpq_class(p.v->x_h * q.v->w_c), mpq_class(q.v->x_h * p.v->w_c)); c != 0)
     return c;

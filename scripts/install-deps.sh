@@ -13,7 +13,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev libgmp-dev libmpfr-dev libssl-dev libre2-dev
   libgtest-dev libgmock-dev libbenchmark-dev fonts-dejavu-core
   # The programs' allocator (CMakeLists.txt, GLRC_MALLOC).
-  libmimalloc-dev
+  libjemalloc-dev
   # libFuzzer targets and sanitizer builds (scripts/fuzz.sh, scripts/sanitize.sh).
   clang libclang-rt-14-dev
   # scripts/format.sh: the tree is formatted by .clang-format, checked in CI.

@@ -220,6 +220,24 @@ TEST(WorkerEnvironment, HugePageMallocIsAddedToTheUsersTunables) {
     unsetenv("GLIBC_TUNABLES");
 }
 
+// And jemalloc's (the programs' allocator where linked): thp:always added to the user's
+// MALLOC_CONF, never overriding a thp setting of theirs.
+TEST(WorkerEnvironment, HugePageJemallocConfIsAddedToTheUsersConf) {
+  const char* before = std::getenv("MALLOC_CONF");
+  const std::string saved = before ? before : "";
+  using glrc::cli::huge_page_jemalloc_conf;
+  unsetenv("MALLOC_CONF");
+  EXPECT_EQ(huge_page_jemalloc_conf().first, "MALLOC_CONF");
+  EXPECT_EQ(huge_page_jemalloc_conf().second, "thp:always");
+  setenv("MALLOC_CONF", "narenas:2", 1);
+  EXPECT_EQ(huge_page_jemalloc_conf().second, "narenas:2,thp:always");
+  setenv("MALLOC_CONF", "thp:never", 1);
+  EXPECT_EQ(huge_page_jemalloc_conf().second, "thp:never");
+  if (before)
+    setenv("MALLOC_CONF", saved.c_str(), 1);
+  else
+    unsetenv("MALLOC_CONF");
+}
 }  // namespace
 
 namespace {
