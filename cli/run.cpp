@@ -78,13 +78,20 @@ int cmd_run(const Options& given) {
          {std::pair{"baseline", &o.baseline}, {"flakes", &o.flakes}, {"skips", &o.skips}})
       if (!file->empty()) inputs.files.emplace_back(name, read_file(*file));
     out = output_folder(o.out);
-    // The run replaces its own outputs; case files among them would go with them.
-    for (const Case& c : all)
-      for (const std::string& name : run_output_names())
-        if (inside(c.source_path, out / name))
+    // The run replaces its own outputs; case files among them would go with them. Each path
+    // resolved once (a resolution is a system call per folder of the path).
+    std::error_code ec;
+    std::vector<std::pair<std::string, std::filesystem::path>> outputs;
+    for (const std::string& name : run_output_names())
+      outputs.emplace_back(name, std::filesystem::weakly_canonical(out / name, ec));
+    for (const Case& c : all) {
+      const auto source = std::filesystem::weakly_canonical(c.source_path, ec);
+      for (const auto& [name, output] : outputs)
+        if (inside_resolved(source, output))
           throw InputError("--out " + o.out + ": " + (out / name).string() +
                            " holds this run's case files (" + c.source_path +
                            "), and a run replaces it: name another --out");
+    }
     clear_run_outputs(out);
     if (!inputs.files.empty()) std::filesystem::create_directories(out / kInputsFolder);
     for (const auto& [name, text] : inputs.files)

@@ -81,9 +81,12 @@ std::string read_file(const std::filesystem::path& file) {
 
 bool inside(const std::filesystem::path& inner, const std::filesystem::path& outer) {
   std::error_code ec;
-  const auto a = std::filesystem::weakly_canonical(inner, ec);
-  const auto b = std::filesystem::weakly_canonical(outer, ec);
-  const auto rel = a.lexically_relative(b);
+  return inside_resolved(std::filesystem::weakly_canonical(inner, ec),
+                         std::filesystem::weakly_canonical(outer, ec));
+}
+
+bool inside_resolved(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+  const auto rel = inner.lexically_relative(outer);
   return !rel.empty() && *rel.begin() != "..";
 }
 

@@ -29,6 +29,9 @@ void check_paths_utf8(const Options& o);
 std::string read_file(const std::filesystem::path& file);
 // Whether `inner` is `outer` or lies inside it (both as they resolve now).
 bool inside(const std::filesystem::path& inner, const std::filesystem::path& outer);
+// The same for paths resolved already (std::filesystem::weakly_canonical): each of many paths
+// resolved once, not once per comparison (a suite's cases against the run's outputs).
+bool inside_resolved(const std::filesystem::path& inner, const std::filesystem::path& outer);
 
 // The expectation files as this run read them: copied into the run folder, since --resume must
 // judge by the same ones (a --baseline may be this folder's failures.csv, which the run

@@ -72,6 +72,8 @@ class Pool {
 
   // worker_messages.cpp: the protocol.
   void handle(Worker& w, const std::string& line);
+  // Case k's result from worker w: recorded, then w's heatmaps (`images`) or its next case.
+  void result_in(Worker& w, size_t k, CaseResult r, bool images);
   void hello(Worker& w, const nlohmann::json& hello);
   void assign(Worker& w);
   void begin_model(Worker& w, const std::vector<std::string>& driver_files);

@@ -12,6 +12,7 @@
 #include "cli/process.hpp"
 #include "cli/worker_pool.hpp"
 #include "cli/workers.hpp"
+#include "report/report.hpp"
 #include "tests/support/temp_dir_test.hpp"
 
 namespace {
@@ -156,6 +157,32 @@ TEST_F(WorkerPool, HeatmapsNotWrittenKeepTheVerdict) {
   const auto again = run({"--images-fail", "alpha"});
   EXPECT_EQ(again.at("alpha").status, Status::fail);
   EXPECT_TRUE(lost.empty());
+}
+
+// Result lines as the real worker writes them (--compact), which the runner reads without
+// parsing them whole: the same results, the same refusals, the same heatmap hand-off.
+TEST_F(WorkerPool, CompactResultLinesAreReadAsTheOthers) {
+  const auto plain = run({});
+  const auto compact = run({"--compact"});
+  ASSERT_EQ(compact.size(), cases_.size());
+  for (const auto& [name, r] : compact) {
+    EXPECT_EQ(r.status, Status::pass) << name;
+    EXPECT_EQ(glrc::report::case_result_json(r), glrc::report::case_result_json(plain.at(name)));
+  }
+  try {
+    run({"--compact", "--wrong-index-at", "gamma"});
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(
+        std::string(e.what()).rfind("a worker sent a result for a case it was not given: ", 0), 0u)
+        << e.what();
+  }
+  std::map<size_t, std::string> lost;
+  s_.images_lost = [&](size_t k, const std::string& why) { lost[k] = why; };
+  s_.images = [](const Case&) { return true; };
+  const auto r = run({"--compact", "--images-fail", "beta"});
+  EXPECT_EQ(r.at("beta").status, Status::fail);
+  EXPECT_EQ(lost, (std::map<size_t, std::string>{{1, "heatmaps not written: fake: disk full"}}));
 }
 
 TEST_F(WorkerPool, TheFirstWorkerIdentifiesAndTheModelIsCached) {

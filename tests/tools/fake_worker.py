@@ -4,7 +4,11 @@ own tests (tests/cli/test_worker_pool.cpp): each case passes unless a flag says 
 
   fake_worker.py [--no-context] [--die-at-start] [--crash-at NAME] [--hang-at NAME]
                  [--garbage-at NAME] [--wrong-index-at NAME] [--images-fail NAME]
-                 [--identify-fails] [--log-at-start TEXT]
+                 [--identify-fails] [--log-at-start TEXT] [--compact]
+
+--compact writes each result line as the real worker does (worker.cpp, send_raw_result): no
+spaces, "images" only when true, "result" last; the runner reads those without parsing the
+line whole.
 """
 import argparse
 import json
@@ -22,6 +26,7 @@ parser.add_argument("--wrong-index-at")
 parser.add_argument("--images-fail")
 parser.add_argument("--identify-fails", action="store_true")
 parser.add_argument("--log-at-start", default="")
+parser.add_argument("--compact", action="store_true")
 args = parser.parse_args()
 
 
@@ -79,7 +84,12 @@ for line in sys.stdin:
     if name == args.wrong_index_at:
         index += 1000
     failing = name == args.images_fail
-    send({"index": index, "images": failing and job["images"],
-          "result": result(name, "Fail" if failing else "Pass")})
+    verdict = result(name, "Fail" if failing else "Pass")
+    images = failing and job["images"]
+    if args.compact:
+        send('{"index":%d%s,"result":%s}' % (index, ',"images":true' if images else "",
+                                             json.dumps(verdict, separators=(",", ":"))))
+    else:
+        send({"index": index, "images": images, "result": verdict})
     if failing and job["images"]:
         send({"images_done": index, "images_error": "fake: disk full"})
