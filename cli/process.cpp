@@ -52,20 +52,27 @@ std::vector<std::string> environment_with(
   return env;
 }
 
-std::pair<std::string, std::string> huge_page_malloc_tunable() {
-  const char* given = std::getenv("GLIBC_TUNABLES");
+namespace {
+
+// The variable `name` as this process has it, with `setting` appended after `separator` unless
+// its value names `key` already (the user's own choice stays).
+std::pair<std::string, std::string> with_setting(const std::string& name, const std::string& key,
+                                                 const std::string& separator,
+                                                 const std::string& setting) {
+  const char* given = std::getenv(name.c_str());
   std::string value = given ? given : "";
-  if (value.find("glibc.malloc.hugetlb") == std::string::npos)
-    value += std::string(value.empty() ? "" : ":") + "glibc.malloc.hugetlb=1";
-  return {"GLIBC_TUNABLES", value};
+  if (value.find(key) == std::string::npos) value += (value.empty() ? "" : separator) + setting;
+  return {name, value};
+}
+
+}  // namespace
+
+std::pair<std::string, std::string> huge_page_malloc_tunable() {
+  return with_setting("GLIBC_TUNABLES", "glibc.malloc.hugetlb", ":", "glibc.malloc.hugetlb=1");
 }
 
 std::pair<std::string, std::string> huge_page_jemalloc_conf() {
-  const char* given = std::getenv("MALLOC_CONF");
-  std::string value = given ? given : "";
-  if (value.find("thp:") == std::string::npos)
-    value += std::string(value.empty() ? "" : ",") + "thp:always";
-  return {"MALLOC_CONF", value};
+  return with_setting("MALLOC_CONF", "thp:", ",", "thp:always");
 }
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv_text,
