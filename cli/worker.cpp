@@ -30,11 +30,7 @@ class Channel {
     send_line(j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
   void send_raw_result(size_t index, const std::string& result_json, bool images) const {
-    // The CaseResult is already JSON: splice it rather than parse it again.
-    const std::string line = "{\"index\":" + std::to_string(index) +
-                             (images ? ",\"images\":true" : "") + ",\"result\":" + result_json +
-                             "}";
-    send_line(line);
+    send_line(result_line(index, result_json, images));
   }
 
  private:

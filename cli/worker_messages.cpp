@@ -2,9 +2,6 @@
 // means, what it gets next, and how the run's one model is chosen.
 #include <nlohmann/json.hpp>
 
-#include <optional>
-#include <string_view>
-
 #include "cli/worker_pool.hpp"
 #include "cli/worker_protocol.hpp"
 #include "report/report.hpp"
@@ -19,41 +16,13 @@ namespace {
   throw std::runtime_error("a worker sent " + why + ": " + line.substr(0, 200));
 }
 
-// A result line as the worker writes it (worker.cpp, send_raw_result):
-// {"index":N,"result":{...}} or {"index":N,"images":true,"result":{...}}. The case's index,
-// whether heatmaps follow, and the result's own text, which the report's reader reads
-// directly; nothing for any other line, which the general parse below takes.
-struct RawResult {
-  size_t index = 0;
-  bool images = false;
-  std::string_view result;
-};
-
-std::optional<RawResult> raw_result(std::string_view line) {
-  constexpr std::string_view head = "{\"index\":", images = ",\"images\":true",
-                             result = ",\"result\":";
-  if (!line.starts_with(head) || !line.ends_with('}')) return std::nullopt;
-  size_t at = head.size(), digits = 0;
-  RawResult r;
-  for (; at < line.size() && line[at] >= '0' && line[at] <= '9' && digits < 18; ++at, ++digits)
-    r.index = r.index * 10 + size_t(line[at] - '0');
-  if (digits == 0) return std::nullopt;
-  line.remove_prefix(at);
-  if (line.starts_with(images)) r.images = true, line.remove_prefix(images.size());
-  if (!line.starts_with(result)) return std::nullopt;
-  line.remove_prefix(result.size());
-  line.remove_suffix(1);  // the line's closing brace
-  r.result = line;
-  return r;
-}
-
 }  // namespace
 
 void Pool::handle(Worker& w, const std::string& line) {
   // The common line, a result, is read once: not parsed whole, its result dumped and parsed
   // again (that was half of the runner's time in a suite of small cases, which it takes from
   // the workers on a machine of as many cores as workers).
-  if (const auto raw = raw_result(line)) {
+  if (const auto raw = read_result_line(line)) {
     if (w.job != raw->index) unexpected(line, "a result for a case it was not given");
     CaseResult r = report::case_result_from_json(std::string(raw->result), "worker result");
     return result_in(w, raw->index, std::move(r), raw->images);

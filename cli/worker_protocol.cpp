@@ -59,4 +59,27 @@ CaseResult unfinished_result(const Case& c, Status status, const std::string& me
   return r;
 }
 
+std::string result_line(size_t index, const std::string& result_json, bool images) {
+  return "{\"index\":" + std::to_string(index) + (images ? ",\"images\":true" : "") +
+         ",\"result\":" + result_json + "}";
+}
+
+std::optional<ResultLine> read_result_line(std::string_view line) {
+  constexpr std::string_view head = "{\"index\":", images = ",\"images\":true",
+                             result = ",\"result\":";
+  if (!line.starts_with(head) || !line.ends_with('}')) return std::nullopt;
+  size_t at = head.size(), digits = 0;
+  ResultLine r;
+  for (; at < line.size() && line[at] >= '0' && line[at] <= '9' && digits < 18; ++at, ++digits)
+    r.index = r.index * 10 + size_t(line[at] - '0');
+  if (digits == 0) return std::nullopt;
+  line.remove_prefix(at);
+  if (line.starts_with(images)) r.images = true, line.remove_prefix(images.size());
+  if (!line.starts_with(result)) return std::nullopt;
+  line.remove_prefix(result.size());
+  line.remove_suffix(1);  // the line's closing brace
+  r.result = line;
+  return r;
+}
+
 }  // namespace glrc::cli

@@ -3,7 +3,9 @@
 // job line, and the result a case gets when its worker gave none.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -30,6 +32,19 @@ nlohmann::json hello_message(const gl::GlInfo& info, const std::vector<std::stri
 // The job line for case `index`: the case whole (casefile/wire.hpp), whether heatmaps follow a
 // failure, and the model that judges it.
 std::string job_line(size_t index, const Case& c, bool images, const Model& model);
+
+// Case `index`'s result line, its CaseResult already JSON (report::case_result_json) and
+// spliced in, not parsed again: {"index":N,"result":{...}}, with "images":true before "result"
+// when heatmaps follow. No newline.
+std::string result_line(size_t index, const std::string& result_json, bool images);
+// A line in result_line's form, taken apart without parsing the result, which the runner's
+// report reader then reads once; nothing for any other line (the runner parses those whole).
+struct ResultLine {
+  size_t index = 0;
+  bool images = false;
+  std::string_view result;  // into the line
+};
+std::optional<ResultLine> read_result_line(std::string_view line);
 
 // The result of a case whose worker gave none (Crash, Timeout): its status and why.
 CaseResult unfinished_result(const Case& c, Status status, const std::string& message,

@@ -55,5 +55,27 @@ TEST(WorkerProtocol, AJobCarriesItsCaseAndModel) {
   EXPECT_EQ(r.seconds, 2.5);
 }
 
+// A result line is JSON of the protocol's fields, and read_result_line takes back what
+// result_line put in; any other line is not a result line.
+TEST(WorkerProtocol, ResultLinesRoundTrip) {
+  const std::string result = R"({"name":"a","channels":[{"x":1}]})";
+  for (const bool images : {false, true}) {
+    const std::string line = result_line(40213, result, images);
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_EQ(j.at("index").get<size_t>(), 40213u);
+    EXPECT_EQ(j.value("images", false), images);
+    EXPECT_EQ(j.at("result"), nlohmann::json::parse(result));
+    const auto back = read_result_line(line);
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->index, 40213u);
+    EXPECT_EQ(back->images, images);
+    EXPECT_EQ(back->result, result);
+  }
+  for (const char* other : {R"({"hello":{}})", R"({"images_done":3})", R"({"index":,"result":{}})",
+                            R"({"index":3,"images":false,"result":{}})", R"({"index":3})",
+                            R"({"index": 3, "result": {}})", "not JSON"})
+    EXPECT_FALSE(read_result_line(other)) << other;
+}
+
 }  // namespace
 }  // namespace glrc::cli
