@@ -36,16 +36,16 @@ mpz_class round_half_even(const mpz_class& num, const mpz_class& den) {
 constexpr long kGuardBand = 1L << 40;  // in subpixel steps
 
 // The snapped window position of a vertex with w_c > 0, or nothing outside the guard band.
-std::optional<std::array<long, 2>> snap(const WindowVertex& v, int bits) {
+// `xyw`: its x_h, y_h and w_c as Dyadic, when set_up had them so (else null).
+std::optional<std::array<long, 2>> snap(const WindowVertex& v, const Dyadic* xyw, int bits) {
   std::array<long, 2> s{};
   const mpq_class* h[2] = {&v.x_h, &v.y_h};
-  Dyadic w, hd;
-  const bool dyadic = Dyadic::of(v.w_c, w);
   for (int k = 0; k < 2; ++k) {
     mpz_class r;
-    if (dyadic && Dyadic::of(*h[k], hd)) {
+    if (xyw) {
       // h·2^bits / w = (h.m / w.m)·2^shift: the power of two moved onto one side of the
       // integer quotient, whose rounding does not depend on a common factor (w.m > 0).
+      const Dyadic &hd = xyw[k], &w = xyw[2];
       const long shift = hd.e - w.e + bits;
       if (shift >= 0)
         r = round_half_even(mpz_class(hd.m << mp_bitcnt_t(shift)), w.m);
@@ -145,7 +145,7 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   std::optional<std::array<long, 2>> s[3];
   if (m.subpixel_bits > 0 && all_w_positive) {
     for (int i = 0; i < 3; ++i)
-      s[i] = snap(t.v[i], m.subpixel_bits);
+      s[i] = snap(t.v[i], dyadic ? xyw[i] : nullptr, m.subpixel_bits);
     if (s[0] && s[1] && s[2]) t.path = CoveragePath::snapped;
   }
 
