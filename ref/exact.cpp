@@ -310,8 +310,13 @@ GLRC_BLOCK_FORM void RatioEvaluator::at(const double* px, const double* py, floa
       decided[j] = ((ad > 4 * ed) & same & finite) ? 1.0 : 0.0;
       value[j] = lo;
     }
-    for (int j = 0; j < n; ++j)
+    // Whether any lane is undecided, as an integer OR (vectorized; a branch per lane is not).
+    int64_t undecided = 0;
+    for (int j = 0; j < n; ++j) {
       out[j] = float(value[j]);
+      undecided |= int64_t(decided[j] != 1);
+    }
+    if (undecided == 0) return;
   }
   for (int j = 0; j < n; ++j)
     if (decided[j] != 1) out[j] = exact_at(long(px[j]), long(py[j]));

@@ -210,8 +210,14 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
         value[j] = lo;
       }
       float* column = out + num.component * n;
-      for (int j = 0; j < n; ++j)
+      // Whether any lane is undecided, as an integer OR over the lanes (vectorized, unlike a
+      // branch per lane): nearly always none.
+      int64_t undecided = 0;
+      for (int j = 0; j < n; ++j) {
         column[j] = float(value[j]);
+        undecided |= int64_t(decided[j] != 1);
+      }
+      if (undecided == 0) continue;
       for (int j = 0; j < n; ++j)
         if (decided[j] != 1)
           column[j] = planes[num.component].ratio.exact_at(long(px[j]), long(py[j]));

@@ -369,34 +369,103 @@ class FragmentBlocks {
   std::vector<float> scratch_, block_values_;
 };
 
+// One triangle's fragments without an allowance (`digest`, the driver models' edge bits),
+// kRowBlock covered pixels at a time: the block's depths at once, the depth test pixel by
+// pixel, then the values of the whole block at once when every fragment is drawn (padding
+// lanes repeat a pixel), else of those drawn. The same bits as one pixel at a time: the block
+// forms give the float nearest each exact ratio as the single-pixel ones do, and the pixels
+// one triangle covers are different pixels of the frame, so their order is free.
+class FrameBlocks {
+ public:
+  FrameBlocks(const Settings& s, const Prepared& w, int p, Frame& f)
+      : s_(s), w_(w), p_(p), f_(f), block_values_(w.planes.size() * kRowBlock) {}
+  FrameBlocks(const FrameBlocks&) = delete;
+  FrameBlocks& operator=(const FrameBlocks&) = delete;
+
+  // As FragmentBlocks::add.
+  void add(int px, int py) {
+    px_[count_] = px, py_[count_] = py;
+    if (++count_ == kRowBlock) flush();
+  }
+
+  void flush() {
+    if (count_ > 0) draw(count_);
+    count_ = 0;
+  }
+
+ private:
+  GLRC_BLOCK_FORM void draw(int count) {
+    constexpr int n = kRowBlock;
+    const Prepared& w = w_;
+    Frame& f = f_;
+    const size_t components = w.planes.size();
+    for (int j = 0; j < n; ++j) {
+      const int k = std::min(j, count - 1);
+      x_[j] = double(px_[k]), y_[j] = double(py_[k]);
+    }
+    w.depth.at(x_, y_, z_);
+    int drawn = 0;
+    for (int j = 0; j < count; ++j) {
+      const size_t i = f.index(px_[j], py_[j] - s_.row0);
+      index_[j] = i;
+      drawn_[j] = depth_test(s_.c.depth_func, z_[j], f.depth[i]);
+      if (!drawn_[j]) continue;
+      ++drawn;
+      f.primitive[i] = p_;
+      f.depth[i] = z_[j];
+      ++f.fragments[i];
+    }
+    if (drawn == 0) return;
+    if (drawn == count) {
+      w.values.values(x_, y_, block_values_.data());
+    } else {
+      float* scratch = block_values_.data();  // lane j's components at j·components
+      for (int j = 0; j < count; ++j)
+        if (drawn_[j]) w.values.values(px_[j], py_[j], scratch + size_t(j) * components);
+      for (size_t k = 0; k < components; ++k) {
+        float* values = f.components[k].data();
+        for (int j = 0; j < count; ++j)
+          if (drawn_[j]) values[index_[j]] = scratch[size_t(j) * components + k];
+      }
+      return;
+    }
+    for (size_t k = 0; k < components; ++k) {
+      float* values = f.components[k].data();
+      const float* column = block_values_.data() + k * n;
+      for (int j = 0; j < count; ++j)
+        values[index_[j]] = column[j];
+    }
+  }
+
+  const Settings& s_;
+  const Prepared& w_;
+  const int p_;
+  Frame& f_;
+  int count_ = 0;
+  int px_[kRowBlock]{}, py_[kRowBlock]{};
+  double x_[kRowBlock]{}, y_[kRowBlock]{};
+  float z_[kRowBlock]{};
+  size_t index_[kRowBlock]{};
+  bool drawn_[kRowBlock]{};
+  std::vector<float> block_values_;
+};
+
 // Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,
 // then the fragments it covers, depth-tested, with their allowances and the candidates.
 void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference& r,
                CandidateMap& candidates) {
-  const Case& c = s.c;
   const TriangleSetup& t = w.t;
   Frame& f = r.frame;
   const PositionFreedom& freedom = w.freedom;
   auto delta_at = [&](int px, int py) { return s.allowance ? freedom.at(px, py) : s.model_step; };
 
-  const auto& planes = w.planes;
-  std::vector<float> value(planes.size());  // the fragment's components
-  // One fragment of the triangle at pixel (px, py), which it covers, without an allowance:
-  // depth-tested, drawn.
-  auto draw = [&](int px, int py) {
-    const size_t i = f.index(px, py - s.row0);
-    const float z = w.depth.at(px, py);
-    if (!depth_test(c.depth_func, z, f.depth[i])) return;
-    f.primitive[i] = p;
-    f.depth[i] = z;
-    ++f.fragments[i];
-    w.values.values(px, py, value.data());
-    for (size_t k = 0; k < planes.size(); ++k)
-      f.components[k][i] = value[k];
-  };
-  // With an allowance, the covered pixels a block at a time (FragmentBlocks).
+  // The covered pixels a block at a time: with their allowances (FragmentBlocks) or without.
   std::optional<FragmentBlocks> blocks;
-  if (s.allowance) blocks.emplace(s, w, p, r, candidates);
+  std::optional<FrameBlocks> frame_blocks;
+  if (s.allowance)
+    blocks.emplace(s, w, p, r, candidates);
+  else
+    frame_blocks.emplace(s, w, p, f);
 
   if (w.eye)
     mark_unstable(s.viewport.x0, std::max(band.y0, s.viewport.y0), s.viewport.x1,
@@ -420,13 +489,14 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
     if (!s.allowance) {
       w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
-                                  [&](int px) { draw(px, py); });
+                                  [&](int px) { frame_blocks->add(px, py); });
       continue;
     }
     w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
                                 [&](int px) { blocks->add(px, py); });
   }
   if (blocks) blocks->flush();
+  if (frame_blocks) frame_blocks->flush();
 }
 
 }  // namespace
