@@ -2,9 +2,12 @@
 // their ratios mean something (scripts/bench.sh prints them against issue 13's targets):
 //   gl/<case>         llvmpipe (OSMesa) drawing the case and reading the frame back, through
 //                     gl_harness as `run` does it (program, FBO, draw, glReadPixels), warm;
+//   frame/<case>      the exact reference's frame alone, as `glrefcheck digest` renders it:
+//                     coverage, every varying and depth, no allowance (what llvmpipe computes),
+//                     on every core, as llvmpipe draws on every core;
 //   reference/<case>  the exact reference with the specification's allowance, as `run` renders
 //                     it (check::expectation_for with llvmpipe's subpixel bits and default model),
-//                     on every core, as llvmpipe draws on every core;
+//                     on every core;
 //   compare/<case>    the comparison of llvmpipe's frame with it, its channels on every core;
 //   check/<case>      all three, as one case of `run` in a worker.
 // Usage: glrc_bench [--benchmark_* flags] CASE.json... (bench/scenes.py writes the scenes).
@@ -12,6 +15,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +23,7 @@
 #include "check/check.hpp"
 #include "compare/compare.hpp"
 #include "gl_harness/gl_harness.hpp"
+#include "ref/reference.hpp"
 
 namespace {
 
@@ -41,6 +46,11 @@ void register_case(const Case& c) {
     for (auto _ : state)
       benchmark::DoNotOptimize(llvmpipe().render(c));
   }));
+  ms(benchmark::RegisterBenchmark(
+      ("frame/" + c.name).c_str(), [c, options](benchmark::State& state) {
+        for (auto _ : state)
+          benchmark::DoNotOptimize(ref::render(c, options.model, std::nullopt, options.threads));
+      }));
   ms(benchmark::RegisterBenchmark(
       ("reference/" + c.name).c_str(), [c, options](benchmark::State& state) {
         const int bits = llvmpipe().info().subpixel_bits;

@@ -40,11 +40,11 @@ def worker_environment():
 
 
 def bench_parts(build, scene, reps):
-    """Median real seconds of gl/, reference/, compare/ and check/ for one scene."""
+    """Median real seconds of gl/, frame/, reference/, compare/ and check/ for one scene."""
     name = os.path.splitext(os.path.basename(scene))[0]
     out = subprocess.run(
         [os.path.join(build, "bench", "glrc_bench"), scene,
-         "--benchmark_filter=^(gl|reference|compare|check)/%s(/|$)" % name,
+         "--benchmark_filter=^(gl|frame|reference|compare|check)/%s(/|$)" % name,
          "--benchmark_repetitions=%d" % reps, "--benchmark_min_time=0.2",
          "--benchmark_format=json"], check=True, capture_output=True, text=True,
         env=worker_environment()).stdout
@@ -127,11 +127,14 @@ def main():
     progress("")
 
     print("median of %d, seconds; ratios from this one run" % args.reps)
-    print("%-18s %9s %9s %9s %9s %9s %9s" % ("scene", "gl", "reference", "compare", "check",
-                                             "run", "peak MB"))
+    # frame: the reference's frame alone, as `glrefcheck digest` renders it (what llvmpipe
+    # computes: coverage, values, depth); reference: with the specification's allowance, as
+    # `run` renders it.
+    print("%-18s %9s %9s %9s %9s %9s %9s %9s" % ("scene", "gl", "frame", "reference", "compare",
+                                                 "check", "run", "peak MB"))
     for s, f in figures.items():
-        print("%-18s %9.3f %9.3f %9.3f %9.3f %9.3f %9.0f" % (
-            s, f["gl"], f["reference"], f["compare"], f["check"], f["run"],
+        print("%-18s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.0f" % (
+            s, f["gl"], f["frame"], f["reference"], f["compare"], f["check"], f["run"],
             f["peak_bytes"] / 2**20))
     print()
     print("%-62s %12s %12s  %s" % ("target (issue 13)", "measured", "target", ""))
@@ -139,15 +142,22 @@ def main():
     def target(what, measured, goal, fmt, ok):
         print("%-62s %12s %12s  %s" % (what, fmt % measured, fmt % goal, "met" if ok else "NOT met"))
 
+    def reference_targets(scene, f):
+        # "The reference alone": issue 13 measured it with `glrefcheck digest`, which renders
+        # the frame without the allowance. The allowance too, as `run` needs it, is printed
+        # beside it against the same 1x: it is not met yet, and nobody should have to guess.
+        target("%s: reference frame / llvmpipe draw+readback" % scene, f["frame"] / f["gl"], 1.0,
+               "%.2fx", f["frame"] <= f["gl"])
+        target("%s: reference with allowance / llvmpipe" % scene, f["reference"] / f["gl"], 1.0,
+               "%.2fx", f["reference"] <= f["gl"])
+
     if "fan_1000" in figures:
         f = figures["fan_1000"]
         target("fan_1000: whole run, s", f["run"], 0.5, "%.3f", f["run"] <= 0.5)
-        target("fan_1000: reference / llvmpipe draw+readback", f["reference"] / f["gl"], 1.0,
-               "%.2fx", f["reference"] <= f["gl"])
+        reference_targets("fan_1000", f)
     if "quad_1024_4vec4" in figures:
         f = figures["quad_1024_4vec4"]
-        target("quad_1024_4vec4: reference / llvmpipe draw+readback", f["reference"] / f["gl"],
-               1.0, "%.2fx", f["reference"] <= f["gl"])
+        reference_targets("quad_1024_4vec4", f)
         target("quad_1024_4vec4: whole case (check) / llvmpipe", f["check"] / f["gl"], 3.0,
                "%.2fx", f["check"] <= 3 * f["gl"])
     if "random_10k_256" in figures:
