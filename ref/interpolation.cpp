@@ -179,24 +179,36 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
       out[k * n + size_t(j)] = planes[k].ratio.exact_at(long(px[j]), long(py[j]));
   // values()'s fast path and its proof, lane by lane, every lane's quantities 64 bits wide so
   // that the loops are vectorized; a lane it does not decide takes the exact path afterwards.
+  // The bounds en and ed are taken once for the block, at its largest |x| and |y|: each is a sum
+  // of products of non-negative numbers, and rounding is monotone, so it is at least every
+  // lane's own. A larger en or ed only widens a lane's interval (err grows with both, and the
+  // fast path needs |d| > 4·ed), so the proof holds as it stands; a lane it decides gets the
+  // one float both ends round to, the same bits. The block's pixels are neighbours in a row:
+  // it widens the bound by a few pixels' worth of 8u, and decides as many lanes.
   constexpr double u = 0x1p-53;
-  double x[n], y[n], ax[n], ay[n], d[n], ed[n], inverse_d[n], inverse_margin[n], value[n];
+  double x[n], y[n], d[n], ed[n], inverse_d[n], inverse_margin[n], value[n];
   double fast[n], decided[n];  // 1 or 0: as wide as the doubles, for the vectorizer
-  for (int j = 0; j < n; ++j)
-    x[j] = px[j], y[j] = py[j], ax[j] = std::fabs(px[j]), ay[j] = std::fabs(py[j]);
+  double largest_x = 0, largest_y = 0;
+  for (int j = 0; j < n; ++j) {
+    x[j] = px[j], y[j] = py[j];
+    largest_x = std::max(largest_x, std::fabs(px[j]));
+    largest_y = std::max(largest_y, std::fabs(py[j]));
+  }
   for (const Denominator& den : shared_) {
+    const double block_ed =
+        8 * u * (std::fabs(den.a) * largest_x + std::fabs(den.b) * largest_y + std::fabs(den.c));
     for (int j = 0; j < n; ++j) {
       d[j] = den.a * x[j] + den.b * y[j] + den.c;
-      ed[j] = 8 * u * (std::fabs(den.a) * ax[j] + std::fabs(den.b) * ay[j] + std::fabs(den.c));
+      ed[j] = block_ed;
       const double ad = std::fabs(d[j]);
       fast[j] = ad > 4 * ed[j] ? 1.0 : 0.0;
       inverse_d[j] = 1 / d[j], inverse_margin[j] = 1 / (ad - ed[j]);
     }
     for (const Numerator& num : den.numerators) {
+      const double en =
+          8 * u * (std::fabs(num.a) * largest_x + std::fabs(num.b) * largest_y + std::fabs(num.c));
       for (int j = 0; j < n; ++j) {
         const double nv = num.a * x[j] + num.b * y[j] + num.c;
-        const double en =
-            8 * u * (std::fabs(num.a) * ax[j] + std::fabs(num.b) * ay[j] + std::fabs(num.c));
         const double q = nv * inverse_d[j];
         const double err =
             ((en + std::fabs(q) * ed[j]) * inverse_margin[j] + 6 * u * std::fabs(q)) * 1.01 +
