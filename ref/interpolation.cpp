@@ -197,12 +197,69 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
   for (const Denominator& den : shared_) {
     const double block_ed =
         8 * u * (std::fabs(den.a) * largest_x + std::fabs(den.b) * largest_y + std::fabs(den.c));
+    double smallest_d = INFINITY;
     for (int j = 0; j < n; ++j) {
       d[j] = den.a * x[j] + den.b * y[j] + den.c;
       ed[j] = block_ed;
       const double ad = std::fabs(d[j]);
+      smallest_d = std::min(smallest_d, ad);
       fast[j] = ad > 4 * ed[j] ? 1.0 : 0.0;
       inverse_d[j] = 1 / d[j], inverse_margin[j] = 1 / (ad - ed[j]);
+    }
+    // Every lane on the fast path (nearly always): err of the whole block at once, from the
+    // block's smallest |d| and largest |q|. Each is a sum and products of non-negative
+    // quantities, and rounding is monotone: 1/(smallest |d| - ed) is at least every lane's
+    // 1/(|d| - ed), and the block's err at least every lane's own, so each lane's interval
+    // [q - err, q + err] only widens (its ends are rounded monotonically too) and still holds
+    // N/D. Where both ends round to one float it is the float nearest N/D, as before: the same
+    // bits, for about half the arithmetic per lane. (A NaN q may or may not be the largest |q|: its
+    // own ends are NaN, not finite, and it takes the exact path either way.)
+    if (smallest_d > 4 * block_ed) {
+      const double block_inverse_margin = 1 / (smallest_d - block_ed);
+      // Lanes some component leaves undecided, ORed over the components as integers (one
+      // horizontal test per block, not one per component): nearly always none.
+      int32_t undecided[n] = {};
+      for (const Numerator& num : den.numerators) {
+        const double en =
+            8 * u *
+            (std::fabs(num.a) * largest_x + std::fabs(num.b) * largest_y + std::fabs(num.c));
+        double magnitude[n];
+        for (int j = 0; j < n; ++j) {
+          value[j] = (num.a * x[j] + num.b * y[j] + num.c) * inverse_d[j];
+          magnitude[j] = std::fabs(value[j]);
+        }
+        // The largest |q| by halving the lanes (a tree the vectorizer takes, where a running
+        // std::max over doubles is not reassociated).
+        for (int width = n / 2; width >= 1; width /= 2)
+          for (int j = 0; j < width; ++j)
+            magnitude[j] =
+                magnitude[j] < magnitude[j + width] ? magnitude[j + width] : magnitude[j];
+        const double largest_q = magnitude[0];
+        const double err =
+            ((en + largest_q * block_ed) * block_inverse_margin + 6 * u * largest_q) * 1.01 +
+            0x1p-1000;
+        float* column = out + num.component * n;
+        // Decided: the same float at both ends (bit for bit: -0 and +0 differ, as they
+        // should), and finite (NaN is not).
+        for (int j = 0; j < n; ++j) {
+          const float lo = float(value[j] - err), hi = float(value[j] + err);
+          column[j] = lo;
+          undecided[j] |= int32_t(std::bit_cast<int32_t>(lo) != std::bit_cast<int32_t>(hi)) |
+                          int32_t(!(std::fabs(lo) <= std::numeric_limits<float>::max()));
+        }
+      }
+      int32_t any = 0;
+      for (int j = 0; j < n; ++j)
+        any |= undecided[j];
+      // A lane some component left undecided: every shared component of it by the exact path
+      // (which gives a decided one the same float).
+      if (any != 0)
+        for (int j = 0; j < n; ++j)
+          if (undecided[j] != 0)
+            for (const Numerator& num : den.numerators)
+              out[num.component * n + size_t(j)] =
+                  planes[num.component].ratio.exact_at(long(px[j]), long(py[j]));
+      continue;
     }
     for (const Numerator& num : den.numerators) {
       const double en =

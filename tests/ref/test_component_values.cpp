@@ -114,6 +114,29 @@ TEST(ComponentValues, NearATieTheExactPathDecides) {
   EXPECT_EQ(out[2], 1.0f);
 }
 
+TEST(ComponentValues, NearATieTheExactPathDecidesInABlock) {
+  // The same three ties in the block form, beside a component the fast path decides on its own
+  // (N/D = 0.75 + x/1024): every lane of the block has an undecided component, and each of its
+  // components must still be the exact float.
+  const LinearForm d{0, 0, 3};
+  const std::vector<ComponentPlane> planes = {
+      ratio_plane({0, 0, 3 * (1 + pow2(-24) + pow2(-80))}, d),
+      ratio_plane({mpq_class(3, 1024), 0, mpq_class(9, 4)}, d),
+      ratio_plane({0, 0, 3 * (1 + pow2(-24))}, d),
+      ratio_plane({0, 0, 3 * (1 + pow2(-24) - pow2(-80))}, d)};
+  double px[kRowBlock], py[kRowBlock];
+  for (int j = 0; j < kRowBlock; ++j)
+    px[j] = 100 + j, py[j] = 7;
+  std::vector<float> out(planes.size() * kRowBlock);
+  ComponentValues(planes).values(px, py, out.data());
+  for (int j = 0; j < kRowBlock; ++j) {
+    EXPECT_EQ(out[0 * kRowBlock + size_t(j)], std::nextafter(1.0f, 2.0f)) << j;
+    EXPECT_EQ(out[1 * kRowBlock + size_t(j)], 0.75f + float(100 + j) / 1024) << j;
+    EXPECT_EQ(out[2 * kRowBlock + size_t(j)], 1.0f) << j;
+    EXPECT_EQ(out[3 * kRowBlock + size_t(j)], 1.0f) << j;
+  }
+}
+
 }  // namespace
 }  // namespace glrc::ref
 
