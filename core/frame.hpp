@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/large_buffer.hpp"
+#include "core/parallel.hpp"
 
 namespace glrc {
 
@@ -25,12 +26,19 @@ struct Frame {
   std::vector<uint16_t> fragments;
 
   Frame() = default;
-  Frame(int w, int h, int component_count)
+  // w×h pixels, every one cleared (no primitive, depth 1, components 0). `threads`: how many
+  // threads fill the buffers (each buffer by one thread; parallel_for's count), for a large
+  // frame of many channels, whose filling is otherwise a serial part of drawing it.
+  Frame(int w, int h, int component_count, int threads = 1)
       : width(w), height(h), components(size_t(std::max(component_count, 0))) {
-    assign_large(primitive, pixel_count(), kNoPrimitive);
-    assign_large(depth, pixel_count(), 1.0f);
-    for (std::vector<float>& c : components)
-      assign_large(c, pixel_count(), 0.0f);
+    parallel_for(2 + int(components.size()), threads, [&](int b) {
+      if (b == 0)
+        assign_large(primitive, pixel_count(), kNoPrimitive);
+      else if (b == 1)
+        assign_large(depth, pixel_count(), 1.0f);
+      else
+        assign_large(components[size_t(b - 2)], pixel_count(), 0.0f);
+    });
   }
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }

@@ -511,12 +511,19 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
                                 ") outside a framebuffer " + std::to_string(c.fb_height) + " high");
-  Reference r{Frame(c.fb_width, row_count, c.component_count()), {}, Frame()};
+  threads = thread_count(threads);
+  // The frames cleared on every thread, a buffer each: on a large frame of many channels,
+  // filling them is otherwise a serial part of drawing it.
+  Reference r{Frame(c.fb_width, row_count, c.component_count(), threads), {}, Frame()};
   Frame& f = r.frame;
-  assign_large(r.edges, f.pixel_count(), uint8_t(0));
-  assign_large(f.fragments, f.pixel_count(), uint16_t(0));
+  parallel_for(2, threads, [&](int b) {
+    if (b == 0)
+      assign_large(r.edges, f.pixel_count(), uint8_t(0));
+    else
+      assign_large(f.fragments, f.pixel_count(), uint16_t(0));
+  });
   const bool allowance = freedom_bits.has_value();
-  if (allowance) r.allowed = Frame(c.fb_width, row_count, c.component_count());
+  if (allowance) r.allowed = Frame(c.fb_width, row_count, c.component_count(), threads);
   // Without an allowance, coverage may legally differ within one model subpixel step of an
   // edge (1/256 pixel when the model does not snap).
   Settings s{c,
@@ -532,7 +539,6 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);
   for (int v : component_varying(c))
     s.component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
-  threads = thread_count(threads);
 
   const int count = int(c.triangles.size());
   // Each vertex used by several corners to the window once (a mesh's vertices are shared; the
