@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/parallel.hpp"
+
 namespace glrc::ref {
 
 namespace {
@@ -19,9 +21,15 @@ struct WindowPoint {
 int compare(const WindowPoint& p, const WindowPoint& q) {
   if (&p == &q) return 0;  // one case vertex: a triangle's edges share their ends
   if (p.dx != q.dx) return p.dx < q.dx ? -1 : 1;
-  if (const int c = cmp(mpq_class(p.v->x_h * q.v->w_c), mpq_class(q.v->x_h * p.v->w_c)); c != 0)
-    return c;
+  // Vertices given apart with the same clip coordinates (a fan written triangle by triangle
+  // repeats its centre in each) are equal without a product: comparing rationals for equality
+  // allocates nothing.
+  const bool same_w = p.v->w_c == q.v->w_c;
+  if (!(same_w && p.v->x_h == q.v->x_h))
+    if (const int c = cmp(mpq_class(p.v->x_h * q.v->w_c), mpq_class(q.v->x_h * p.v->w_c)); c != 0)
+      return c;
   if (p.dy != q.dy) return p.dy < q.dy ? -1 : 1;
+  if (same_w && p.v->y_h == q.v->y_h) return 0;
   return cmp(mpq_class(p.v->y_h * q.v->w_c), mpq_class(q.v->y_h * p.v->w_c));
 }
 
@@ -49,7 +57,7 @@ int side(const TriangleSetup& t, int i, const WindowVertex& v) {
 
 // shared_edges over n triangles, triangle(t) the t-th.
 template <class Triangle>
-std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& triangle) {
+std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& triangle, int threads) {
   std::vector<std::array<bool, 3>> shared(n, {false, false, false});
   // Each vertex's window point, computed once for all the drawn triangles that use it (a mesh
   // shares its vertices; an edge names two of them), by the vertex's index in the case.
@@ -93,14 +101,20 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
   // side(r, v_u) and side(r, v_k) differ, r being any one user. One exact evaluation per user
   // decides every pair: linear in the users, where comparing all pairs was quadratic (10,000
   // copies of one triangle took minutes).
-  std::vector<int> rel;
+  std::vector<std::pair<size_t, size_t>> groups;  // [first, end) of uses with the same ends
   for (size_t first = 0, end = 0; first < uses.size(); first = end) {
     end = first + 1;
     while (end < uses.size() && compare(uses[first], uses[end]) == 0)
       ++end;
-    if (end - first < 2) continue;
+    if (end - first >= 2) groups.emplace_back(first, end);
+  }
+  // The groups on every thread: each side() is exact rational arithmetic (a fan of 4,400
+  // triangles has 4,400 shared edges), and each (triangle, edge) is in one group, so each
+  // writes its own elements of `shared` only.
+  parallel_for(int(groups.size()), threads, [&](int g) {
+    const auto [first, end] = groups[size_t(g)];
     const EdgeUse& r = uses[first];
-    rel.assign(end - first, 0);
+    std::vector<int> rel(end - first, 0);
     bool positive = false, negative = false;
     for (size_t u = first; u < end; ++u) {
       const EdgeUse& k = uses[u];
@@ -110,24 +124,25 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
       positive = positive || rel[u - first] > 0;
       negative = negative || rel[u - first] < 0;
     }
-    if (!positive || !negative) continue;
+    if (!positive || !negative) return;
     for (size_t u = first; u < end; ++u)
       if (rel[u - first] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
-  }
+  });
   return shared;
 }
 
 }  // namespace
 
-std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles) {
-  return shared_edges_of(triangles.size(),
-                         [&](size_t t) -> const TriangleSetup& { return triangles[t]; });
+std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles,
+                                              int threads) {
+  return shared_edges_of(
+      triangles.size(), [&](size_t t) -> const TriangleSetup& { return triangles[t]; }, threads);
 }
 
 std::vector<std::array<bool, 3>> shared_edges(
-    const std::vector<std::optional<TriangleSetup>>& triangles) {
-  return shared_edges_of(triangles.size(),
-                         [&](size_t t) -> const TriangleSetup& { return *triangles[t]; });
+    const std::vector<std::optional<TriangleSetup>>& triangles, int threads) {
+  return shared_edges_of(
+      triangles.size(), [&](size_t t) -> const TriangleSetup& { return *triangles[t]; }, threads);
 }
 
 }  // namespace glrc::ref

@@ -14,10 +14,12 @@ namespace glrc::ref {
 
 // shared[t][i]: edge i of triangle t (the edge opposite vertex i) is also an edge of another
 // drawn triangle lying on its other side. Both ends must have identical clip coordinates and
-// w_c > 0; a culled or zero-area neighbour leaves the edge outer.
-std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles);
+// w_c > 0; a culled or zero-area neighbour leaves the edge outer. `threads`: how many threads
+// decide the shared ends' sides (parallel_for's count); the result is the same for any.
+std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles,
+                                              int threads = 1);
 // The same for triangles set up in place (render.cpp); every element must hold one.
 std::vector<std::array<bool, 3>> shared_edges(
-    const std::vector<std::optional<TriangleSetup>>& triangles);
+    const std::vector<std::optional<TriangleSetup>>& triangles, int threads = 1);
 
 }  // namespace glrc::ref

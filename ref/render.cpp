@@ -565,7 +565,7 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
     setups[size_t(p)].emplace(SetUp{c, m, p, window});
   });
   window = {};  // freed: the setups hold their own copies
-  const std::vector<std::array<bool, 3>> shared = shared_edges(setups);
+  const std::vector<std::array<bool, 3>> shared = shared_edges(setups, threads);
 
   const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
   std::vector<CandidateMap> candidates(rows.size());

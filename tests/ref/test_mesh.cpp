@@ -66,8 +66,9 @@ std::vector<TriangleSetup> setups(const Case& c, const Model& m) {
 }
 
 // Random triangles over a 4x4 grid of window points, each point also written with w = 2 and
-// w = 0.5 (the same window point from other clip coordinates), some repeated, both windings,
-// some culled: many edges with many users on both sides.
+// w = 0.5 (the same window point from other clip coordinates) and each of those three times
+// (the same clip coordinates), some repeated, both windings, some culled: many edges with many
+// users on both sides. On one thread and on three.
 TEST(SharedEdges, SameAsEveryPairOnRandomMeshes) {
   for (unsigned seed = 1; seed <= 6; ++seed) {
     std::mt19937 rng(seed);
@@ -77,6 +78,12 @@ TEST(SharedEdges, SameAsEveryPairOnRandomMeshes) {
         for (float w : {1.0f, 2.0f, 0.5f})
           c.vertices.push_back(
               {{(-0.75f + 0.5f * float(x)) * w, (-0.75f + 0.5f * float(y)) * w, 0.0f, w}, {}});
+    // Every vertex written twice more, with the same clip coordinates (a mesh given triangle by
+    // triangle repeats its shared vertices): equal window points under other indices.
+    const size_t given = c.vertices.size();
+    for (int copy = 0; copy < 2; ++copy)
+      for (size_t i = 0; i < given; ++i)
+        c.vertices.push_back(c.vertices[i]);
     std::uniform_int_distribution<uint32_t> vertex(0, uint32_t(c.vertices.size() - 1));
     for (int t = 0; t < 400; ++t)
       c.triangles.push_back({vertex(rng), vertex(rng), vertex(rng)});
@@ -93,6 +100,7 @@ TEST(SharedEdges, SameAsEveryPairOnRandomMeshes) {
       n_shared += size_t(e[0]) + size_t(e[1]) + size_t(e[2]);
     EXPECT_GT(n_shared, 50u) << "seed " << seed;  // the meshes do share edges
     EXPECT_EQ(got, want) << "seed " << seed;
+    EXPECT_EQ(shared_edges(s, 3), want) << "seed " << seed << ", 3 threads";
   }
 }
 
