@@ -19,7 +19,8 @@ class CoverageTest {
   bool covers(int px, int py) const;
   // f(px) for every px in [x0, x1] whose pixel of row py covers() holds, in order. The snapped
   // edge functions are stepped by their integer a from pixel to pixel: exact, the same values
-  // as evaluating each pixel, for a fraction of the 128-bit products.
+  // as evaluating each pixel, for a fraction of the 128-bit products; on a wide row, the run of
+  // covered pixels is found by dividing instead (exact too).
   template <class F>
   void for_each_covered(int py, int x0, int x1, F&& f) const;
   // What this triangle's boundary means for the centre of pixel (px, py), as edge:: bits.
@@ -112,9 +113,34 @@ void CoverageTest::for_each_covered(int py, int x0, int x1, F&& f) const {
       if (covers(px, py)) f(px);
     return;
   }
+  if (x1 < x0) return;
   std::array<int128, 3> e;
   for (int i = 0; i < 3; ++i)
     e[size_t(i)] = t_.snapped_edges[size_t(i)].at(x0, py);
+  // A wide row: the covered pixels are one run, found exactly by dividing. Edge i covers pixel
+  // x0 + k when e_i + a_i·k >= need_i (e > 0, or e >= 0 on a tie-inside edge: integers), so k
+  // >= ceil((need - e)/a) for a > 0, k <= floor((e - need)/-a) for a < 0, and every k or none
+  // for a = 0. Three 128-bit divisions per row, where stepping costs a few operations per pixel
+  // (a thin triangle's short rows keep stepping). The near and far planes are tested per pixel.
+  constexpr int kWideRow = 32;
+  if (x1 - x0 >= kWideRow && !clip_.crosses_near && !clip_.crosses_far) {
+    // floor and ceiling of n/d for d > 0 (C++ division truncates toward zero).
+    auto floor_div = [](int128 n, int128 d) { return n >= 0 ? n / d : -((-n + d - 1) / d); };
+    auto ceil_div = [](int128 n, int128 d) { return n >= 0 ? (n + d - 1) / d : -(-n / d); };
+    int128 lo = 0, hi = x1 - x0;
+    for (size_t i = 0; i < 3; ++i) {
+      const int128 a = t_.snapped_edges[i].a, need = tie_inside_[i] ? 0 : 1;
+      if (a > 0)
+        lo = std::max(lo, ceil_div(need - e[i], a));
+      else if (a < 0)
+        hi = std::min(hi, floor_div(e[i] - need, -a));
+      else if (e[i] < need)
+        return;
+    }
+    for (int128 k = lo; k <= hi; ++k)
+      f(x0 + int(k));
+    return;
+  }
   for (int px = x0; px <= x1; ++px) {
     bool inside = true;
     for (size_t i = 0; i < 3; ++i) {

@@ -58,6 +58,14 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
         }
     }
     EXPECT_EQ(stepped, tested) << "row " << py;
+    // Parts of the row, narrower than the run found by dividing (stepped) and not (divided).
+    for (const auto& [from, to] : {std::pair(3, 36), std::pair(5, 20), std::pair(30, 31)}) {
+      std::vector<int> part, want;
+      coverage.for_each_covered(py, from, to, [&](int px) { part.push_back(px); });
+      for (int px : tested)
+        if (px >= from && px <= to) want.push_back(px);
+      EXPECT_EQ(part, want) << "row " << py << " pixels " << from << " to " << to;
+    }
     const auto [x0, x1] = coverage.row_span(py, reach, 0, kSize - 1);
     // The walked spans hold at least the pixels the row's own does not leave out.
     const auto [w0, w1] = spans.at(py);
