@@ -219,33 +219,49 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
       // Lanes some component leaves undecided, ORed over the components as integers (one
       // horizontal test per block, not one per component): nearly always none.
       int32_t undecided[n] = {};
-      for (const Numerator& num : den.numerators) {
-        const double en =
-            8 * u *
-            (std::fabs(num.a) * largest_x + std::fabs(num.b) * largest_y + std::fabs(num.c));
-        double magnitude[n];
-        for (int j = 0; j < n; ++j) {
-          value[j] = (num.a * x[j] + num.b * y[j] + num.c) * inverse_d[j];
-          magnitude[j] = std::fabs(value[j]);
+      // A group of components at a time, in three passes (the quotients and their largest
+      // magnitudes; every err; the ends), so that the components' chains of dependent scalar
+      // operations overlap instead of each waiting for the last.
+      constexpr size_t kGroup = 8;
+      const std::vector<Numerator>& numerators = den.numerators;
+      for (size_t first = 0; first < numerators.size(); first += kGroup) {
+        const size_t count = std::min(kGroup, numerators.size() - first);
+        double quotient[kGroup][n], err[kGroup];
+        for (size_t k = 0; k < count; ++k) {
+          const Numerator& num = numerators[first + k];
+          double magnitude[n];
+          for (int j = 0; j < n; ++j) {
+            quotient[k][j] = (num.a * x[j] + num.b * y[j] + num.c) * inverse_d[j];
+            magnitude[j] = std::fabs(quotient[k][j]);
+          }
+          // The largest |q| by halving the lanes (a tree the vectorizer takes, where a
+          // running std::max over doubles is not reassociated).
+#pragma GCC unroll 4
+          for (int width = n / 2; width >= 1; width /= 2)
+            for (int j = 0; j < width; ++j)
+              magnitude[j] =
+                  magnitude[j] < magnitude[j + width] ? magnitude[j + width] : magnitude[j];
+          err[k] = magnitude[0];
         }
-        // The largest |q| by halving the lanes (a tree the vectorizer takes, where a running
-        // std::max over doubles is not reassociated).
-        for (int width = n / 2; width >= 1; width /= 2)
-          for (int j = 0; j < width; ++j)
-            magnitude[j] =
-                magnitude[j] < magnitude[j + width] ? magnitude[j + width] : magnitude[j];
-        const double largest_q = magnitude[0];
-        const double err =
-            ((en + largest_q * block_ed) * block_inverse_margin + 6 * u * largest_q) * 1.01 +
-            0x1p-1000;
-        float* column = out + num.component * n;
-        // Decided: the same float at both ends (bit for bit: -0 and +0 differ, as they
-        // should), and finite (NaN is not).
-        for (int j = 0; j < n; ++j) {
-          const float lo = float(value[j] - err), hi = float(value[j] + err);
-          column[j] = lo;
-          undecided[j] |= int32_t(std::bit_cast<int32_t>(lo) != std::bit_cast<int32_t>(hi)) |
-                          int32_t(!(std::fabs(lo) <= std::numeric_limits<float>::max()));
+        for (size_t k = 0; k < count; ++k) {
+          const Numerator& num = numerators[first + k];
+          const double en =
+              8 * u *
+              (std::fabs(num.a) * largest_x + std::fabs(num.b) * largest_y + std::fabs(num.c));
+          const double largest_q = err[k];
+          err[k] = ((en + largest_q * block_ed) * block_inverse_margin + 6 * u * largest_q) * 1.01 +
+                   0x1p-1000;
+        }
+        for (size_t k = 0; k < count; ++k) {
+          float* column = out + numerators[first + k].component * n;
+          // Decided: the same float at both ends (bit for bit: -0 and +0 differ, as they
+          // should), and finite (NaN is not).
+          for (int j = 0; j < n; ++j) {
+            const float lo = float(quotient[k][j] - err[k]), hi = float(quotient[k][j] + err[k]);
+            column[j] = lo;
+            undecided[j] |= int32_t(std::bit_cast<int32_t>(lo) != std::bit_cast<int32_t>(hi)) |
+                            int32_t(!(std::fabs(lo) <= std::numeric_limits<float>::max()));
+          }
         }
       }
       int32_t any = 0;

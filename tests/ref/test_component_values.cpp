@@ -86,6 +86,19 @@ TEST(ComponentValues, SharedDenominatorsGiveTheExactBits) {
   }
 }
 
+TEST(ComponentValues, ManyComponentsOfOneDenominator) {
+  // 19 smooth components over one denominator: the block form takes them in groups (8, 8, 3).
+  std::mt19937_64 rng(15);
+  for (int t = 0; t < 10; ++t) {
+    LinearForm d = random_form(rng, 20);
+    d.c = abs(d.a) * 2000 + abs(d.b) * 2000 + 1;
+    std::vector<ComponentPlane> planes;
+    for (int k = 0; k < 19; ++k)
+      planes.push_back(ratio_plane(random_form(rng, 20), d));
+    ASSERT_EQ(disagreements(planes, 41), 0) << t;
+  }
+}
+
 TEST(ComponentValues, DenominatorsCrossingZeroAndWideMagnitudes) {
   std::mt19937_64 rng(14);
   for (int t = 0; t < 60; ++t) {
