@@ -93,6 +93,57 @@ struct ChannelAccumulator {
     t.max_ratio = std::max(t.max_ratio, keep_ratio(x, y, reference, gl, e, allowed));
   }
 
+  // add() of a run of n <= kRun pixels (x, y) ... (x + n - 1, y) of one primitive, whose
+  // reference and GL values are all finite: reference[j], gl[j], allowed[j] (`allowed` null: the
+  // fixed `fixed_allowed` for every pixel). The same figures, bit for bit: what does not depend
+  // on the order (counts, maxima of non-NaN numbers: a NaN is skipped by std::max(t, NaN) in
+  // either) over the whole run in loops the vectorizer takes; the sums and the kept values in
+  // pixel order, as add() makes them.
+  static constexpr int kRun = 64;
+  void add_run(Tally& t, int x, int y, int n, const float* reference, const float* gl,
+               const float* allowed, double fixed_allowed, double ulp, double inverse_ulp) {
+    double abs_error[kRun], ulps_of[kRun], allowed_of[kRun];
+    uint32_t differing = 0, over = 0;
+    double largest_allowance = 0, max_abs = 0, max_ulps = 0;
+    for (int j = 0; j < n; ++j) {
+      allowed_of[j] = allowed ? double(allowed[j]) : fixed_allowed;
+      // pixel_error's finite branch: both values are finite floats, so their difference is
+      // exact in double and the ulps finite.
+      abs_error[j] = std::fabs(double(gl[j]) - double(reference[j]));
+      ulps_of[j] = inverse_ulp > 0 ? abs_error[j] * inverse_ulp : abs_error[j] / ulp;
+      const uint32_t differs =
+          std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
+      differing += differs;
+      over += exact ? differs : uint32_t(!(abs_error[j] <= allowed_of[j]));
+      const double allowance_ulps = allowed_of[j] * inverse_ulp;
+      largest_allowance = largest_allowance < allowance_ulps ? allowance_ulps : largest_allowance;
+      max_abs = max_abs < abs_error[j] ? abs_error[j] : max_abs;
+      max_ulps = max_ulps < ulps_of[j] ? ulps_of[j] : max_ulps;
+    }
+    t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, largest_allowance);
+    t.compared += uint64_t(n);
+    t.differing += differing;
+    t.over_tolerance += over;
+    t.finite += uint64_t(n);
+    t.max_abs = std::max(t.max_abs, max_abs);
+    t.max_ulps = std::max(t.max_ulps, max_ulps);
+    for (int j = 0; j < n; ++j) {
+      t.sum += ulps_of[j];
+      t.sum_sq += ulps_of[j] * ulps_of[j];
+    }
+    for (int j = 0; j < n; ++j)
+      ulps.add(float(ulps_of[j]));
+    for (int j = 0; j < n; ++j) {
+      if (ratios.certainly_dropped(abs_error[j], allowed_of[j])) {
+        ratios.count_dropped();
+        continue;
+      }
+      const PixelError e{abs_error[j], ulps_of[j], false};
+      t.max_ratio =
+          std::max(t.max_ratio, keep_ratio(x + j, y, reference[j], gl[j], e, allowed_of[j]));
+    }
+  }
+
   // The share of the allowance of a pixel whose ratio LargestValues may keep, kept, and the
   // pixel among the worst if it is one of them. Out of line: after the first compaction few
   // pixels get here, and inlined into the channel's loop its registers would crowd out the
@@ -366,6 +417,10 @@ struct Comparator::State {
   // Per pixel of the band add_rows compares: whether its values are compared, and against the
   // reference's own fragment or a candidate (judged_against), found once for every channel.
   std::vector<uint8_t> judgement;
+  // Per run of ChannelAccumulator::kRun pixels of each row of the band (the last of a row may
+  // be shorter): the primitive when every pixel of it is compared against the reference's own
+  // fragment of that primitive, else -1. The same for every channel, so found once.
+  std::vector<int32_t> plain_runs;
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height,
@@ -434,6 +489,23 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     }
   }
 
+  {
+    constexpr int kRun = ChannelAccumulator::kRun;
+    const int runs = (reference.width + kRun - 1) / kRun;
+    st.plain_runs.assign(size_t(runs) * size_t(std::max(reference.height, 0)), -1);
+    for (int y = 0; y < reference.height; ++y)
+      for (int r = 0; r < runs; ++r) {
+        const size_t first = reference.index(r * kRun, y);
+        const int n = std::min(kRun, reference.width - r * kRun);
+        const int32_t p = reference.primitive[first];
+        bool plain = true;
+        for (int j = 0; j < n; ++j)
+          plain = plain && judgement[first + size_t(j)] == kOwn &&
+                  reference.primitive[first + size_t(j)] == p;
+        if (plain) st.plain_runs[size_t(y) * size_t(runs) + size_t(r)] = p;
+      }
+  }
+
   // Then the values, channel by channel (depth, then each component), each in pixel order. The
   // channels share nothing but what they read, so several threads take one each: every
   // channel's figures are the same bits for any number of threads.
@@ -464,46 +536,74 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   // The ulp of the last primitive seen: along a row it rarely changes.
   int32_t ulp_primitive = -1;
   double own_ulp = 0, own_inverse_ulp = 0;
+  constexpr int kRun = ChannelAccumulator::kRun;
+  const int runs = (reference.width + kRun - 1) / kRun;
+  auto finite = [](float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) != 0x7f800000u; };
   for (int row = 0; row < reference.height; ++row)
-    for (int x = 0; x < reference.width; ++x) {
-      const size_t i = reference.index(x, row);
-      if (judged_as[i] == kNotCompared) continue;
-      const int y = y0 + row;
-      int32_t primitive;
-      double ulp, inverse_ulp, allowed;
-      float value;
-      if (judged_as[i] == kOwn) {
-        primitive = own_primitive[i];
-        if (primitive != ulp_primitive) {
-          ulp_primitive = primitive;
-          own_ulp = st.ulps.ulp(primitive, k);
-          own_inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+    for (int x = 0; x < reference.width;) {
+      // Runs of pixels compared against the reference's own fragment of one primitive, every
+      // value finite (nearly all of a frame): add_run, whose loops are vectorized. Any other
+      // run pixel by pixel below.
+      const int n = std::min(kRun, reference.width - x);
+      const size_t first = reference.index(x, row);
+      const int32_t run_primitive = st.plain_runs[size_t(row) * size_t(runs) + size_t(x / kRun)];
+      uint32_t plain = run_primitive >= 0;
+      if (plain)
+        for (int j = 0; j < n; ++j)
+          plain &= uint32_t(finite(own_values[first + size_t(j)])) &
+                   uint32_t(finite(gl_values[first + size_t(j)]));
+      if (plain) {
+        if (run_primitive != ulp_primitive) {
+          ulp_primitive = run_primitive;
+          own_ulp = st.ulps.ulp(run_primitive, k);
+          own_inverse_ulp = st.ulps.inverse_ulp(run_primitive, k);
         }
-        ulp = own_ulp, inverse_ulp = own_inverse_ulp;
-        // ChannelAllowance::at
-        allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
-        value = own_values[i];
-      } else {
-        const Judged judged = judged_against(c, expected, gl, i, tolerance);
-        primitive = judged.primitive(expected, i);
-        ulp = st.ulps.ulp(primitive, k);
-        inverse_ulp = st.ulps.inverse_ulp(primitive, k);
-        allowed = judged.allowed(allowance, i, ulp, k);
-        value = judged.value(expected, i, k);
-      }
-      // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
-      // is finite but the specification's allowance unbounded (a triangle reaching the eye
-      // within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not determined
-      // either; a fixed threshold, however large, still fails NaN.
-      if (!value_determined(value, tolerance) ||
-          (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
-           !std::isfinite(gl_values[i]))) {
-        acc.add_undetermined(x, y, value, gl_values[i], allowed);
+        acc.add_run(t, x, y0 + row, n, own_values + first, gl_values + first,
+                    own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,
+                    own_inverse_ulp);
+        x += n;
         continue;
       }
-      // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
-      t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
-      acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
+      for (const int end = x + n; x < end; ++x) {
+        const size_t i = reference.index(x, row);
+        if (judged_as[i] == kNotCompared) continue;
+        const int y = y0 + row;
+        int32_t primitive;
+        double ulp, inverse_ulp, allowed;
+        float value;
+        if (judged_as[i] == kOwn) {
+          primitive = own_primitive[i];
+          if (primitive != ulp_primitive) {
+            ulp_primitive = primitive;
+            own_ulp = st.ulps.ulp(primitive, k);
+            own_inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+          }
+          ulp = own_ulp, inverse_ulp = own_inverse_ulp;
+          // ChannelAllowance::at
+          allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
+          value = own_values[i];
+        } else {
+          const Judged judged = judged_against(c, expected, gl, i, tolerance);
+          primitive = judged.primitive(expected, i);
+          ulp = st.ulps.ulp(primitive, k);
+          inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+          allowed = judged.allowed(allowance, i, ulp, k);
+          value = judged.value(expected, i, k);
+        }
+        // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
+        // is finite but the specification's allowance unbounded (a triangle reaching the eye
+        // within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not determined
+        // either; a fixed threshold, however large, still fails NaN.
+        if (!value_determined(value, tolerance) ||
+            (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
+             !std::isfinite(gl_values[i]))) {
+          acc.add_undetermined(x, y, value, gl_values[i], allowed);
+          continue;
+        }
+        // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
+        t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
+        acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
+      }
     }
   acc.tally = t;
 }

@@ -362,3 +362,109 @@ TEST(Compare, P99OfALargeFrameIsTheNearestRankElement) {
   std::vector<float> none;
   EXPECT_EQ(glrc::compare::p99(none), 0.0);
 }
+
+namespace glrc::compare {
+namespace {
+
+// Every figure of a channel against a count made here pixel by pixel, in pixel order, on a
+// frame 150 pixels wide (runs of 64, 64 and 22 in the comparator's fast path) where rows mix
+// two primitives, pixels neither covers, pixels GL covers with the other primitive, and random
+// errors within and beyond random allowances: the runs the comparator takes at once and the
+// pixels it takes one by one must give the same figures, bit for bit.
+TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
+  Case c;
+  c.name = "runs";
+  c.fb_width = 150, c.fb_height = 40;
+  c.viewport = {0, 0, 150, 40};
+  c.varyings = {{"v", 1, Interpolation::smooth}};
+  c.vertices = {{{-1, -1, 0, 1}, {0.25f}}, {{1, -1, 0, 1}, {3.0f}},   {{-1, 1, 0, 1}, {1.0f}},
+                {{1, 1, 0, 1}, {700.0f}},  {{1, -1, 0, 1}, {-90.0f}}, {{-1, 1, 0, 1}, {5.0f}}};
+  c.triangles = {{0, 1, 2}, {3, 4, 5}};
+  std::mt19937 random(21);
+  std::uniform_real_distribution<float> unit(0, 1);
+  Frame ref(c.fb_width, c.fb_height, 1), allowed(c.fb_width, c.fb_height, 1);
+  for (int y = 0; y < ref.height; ++y)
+    for (int x = 0; x < ref.width; ++x) {
+      const size_t i = ref.index(x, y);
+      // Uncovered where x + 3y is 7 mod 97 (a few per row); primitive 1 right of a slanted line.
+      if ((x + 3 * y) % 97 == 7) continue;
+      ref.primitive[i] = x > 60 + y ? 1 : 0;
+      ref.depth[i] = unit(random);
+      ref.components[0][i] = (ref.primitive[i] ? 700.0f : 3.0f) * (unit(random) - 0.3f);
+      allowed.depth[i] = 1e-6f * unit(random);
+      allowed.components[0][i] = (ref.primitive[i] ? 1e-4f : 1e-6f) * unit(random);
+    }
+  allowed.primitive = ref.primitive;
+  Frame gl = ref;
+  for (size_t i = 0; i < gl.pixel_count(); ++i) {
+    if (ref.primitive[i] < 0) continue;
+    if (random() % 211 == 0) gl.primitive[i] = 1 - ref.primitive[i];  // another triangle
+    for (float* v : {&gl.depth[i], &gl.components[0][i]}) {
+      const uint32_t kind = random() % 4;  // exact, a few ulps, about the allowance, far
+      const float steps = kind == 0 ? 0.0f : kind == 1 ? float(random() % 5) : unit(random) * 300;
+      const float scale = kind == 3 ? 1e-3f : 1e-7f;
+      *v += (random() % 2 ? steps : -steps) * scale * (v == &gl.depth[i] ? 0.01f : 1.0f);
+    }
+  }
+  const std::vector<uint8_t> edges(ref.pixel_count(), 0);
+  const CaseResult r = compare(c, expect(ref, edges, allowed), gl, Tolerance{});
+
+  const UlpTable table(c);
+  for (int k : {kDepth, 0}) {
+    const std::vector<float>& rv = k == kDepth ? ref.depth : ref.components[0];
+    const std::vector<float>& gv = k == kDepth ? gl.depth : gl.components[0];
+    const std::vector<float>& av = k == kDepth ? allowed.depth : allowed.components[0];
+    uint64_t compared = 0, differing = 0, over = 0;
+    double sum = 0, sum_sq = 0, max_abs = 0, max_ulps = 0, max_ratio = 0, largest_allowance = 0;
+    std::vector<float> ulps, ratios;
+    WorstPixel worst{};
+    for (size_t i = 0; i < ref.pixel_count(); ++i) {
+      if (!same_primitive(c, ref.primitive[i], gl.primitive[i])) continue;
+      const double ulp = table.ulp(ref.primitive[i], k);
+      const double abs_error = std::fabs(double(gv[i]) - double(rv[i]));
+      const double e_ulps = abs_error * (1 / ulp), allow = double(av[i]);
+      const double ratio = abs_error == 0 ? 0.0 : allow > 0 ? abs_error / allow : INFINITY;
+      ++compared;
+      differing += rv[i] != gv[i];
+      over += !(abs_error <= allow);
+      sum += e_ulps, sum_sq += e_ulps * e_ulps;
+      max_abs = std::max(max_abs, abs_error), max_ulps = std::max(max_ulps, e_ulps);
+      largest_allowance = std::max(largest_allowance, allow * (1 / ulp));
+      ulps.push_back(float(e_ulps));
+      ratios.push_back(float(ratio));
+      if (ratio > max_ratio) {
+        max_ratio = ratio;
+        worst = {int(i % size_t(ref.width)),
+                 int(i / size_t(ref.width)),
+                 rv[i],
+                 gv[i],
+                 abs_error,
+                 e_ulps,
+                 allow,
+                 ratio};
+      }
+    }
+    const ChannelStats& ch = channel(r, k == kDepth ? "depth" : "v.x");
+    ASSERT_GT(compared, 5000u);
+    ASSERT_GT(over, 100u);  // some beyond their allowance
+    EXPECT_EQ(ch.compared, compared) << ch.name;
+    EXPECT_EQ(ch.differing, differing) << ch.name;
+    EXPECT_EQ(ch.over_tolerance, over) << ch.name;
+    EXPECT_EQ(ch.non_finite, 0u) << ch.name;
+    EXPECT_EQ(ch.max_abs, max_abs) << ch.name;
+    EXPECT_EQ(ch.max_ulps, max_ulps) << ch.name;
+    EXPECT_EQ(ch.max_ratio, max_ratio) << ch.name;
+    EXPECT_EQ(ch.mean_ulps, sum / double(compared)) << ch.name;
+    EXPECT_EQ(ch.rms_ulps, std::sqrt(sum_sq / double(compared))) << ch.name;
+    EXPECT_EQ(ch.p99_ulps, p99(ulps)) << ch.name;
+    EXPECT_EQ(ch.p99_ratio, p99(ratios)) << ch.name;
+    EXPECT_EQ(ch.tolerance_ulps, largest_allowance) << ch.name;
+    ASSERT_FALSE(ch.worst.empty());
+    EXPECT_EQ(ch.worst[0].x, worst.x) << ch.name;
+    EXPECT_EQ(ch.worst[0].y, worst.y) << ch.name;
+    EXPECT_EQ(ch.worst[0].ratio, worst.ratio) << ch.name;
+  }
+}
+
+}  // namespace
+}  // namespace glrc::compare
