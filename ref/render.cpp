@@ -330,9 +330,19 @@ class FragmentBlocks {
     size_t index[n];
     for (int j = 0; j < count; ++j)
       index[j] = f.index(px_[j], py_[j] - s.row0);
+    // Nearly always: a whole block of winners, neighbours in a row. Then each frame gets the
+    // block's values as one contiguous copy.
+    bool run = count == n;
+    for (int j = 0; j < count; ++j)
+      run = run && role_[j] == Role::winner && index[j] == index[0] + size_t(j);
     for (size_t k = 0; k < planes.size(); ++k) {
       float* values = f.components[k].data();
       float* allowances = r.allowed.components[k].data();
+      if (run) {
+        std::copy_n(value_[k].data(), n, values + index[0]);
+        std::copy_n(allowed_[k].data(), n, allowances + index[0]);
+        continue;
+      }
       for (int j = 0; j < count; ++j)
         if (role_[j] == Role::winner) {
           values[index[j]] = value_[k][size_t(j)];
