@@ -457,36 +457,54 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
                           reference.fragments.size() == reference.pixel_count() &&
                           gl.fragments.size() == gl.pixel_count();
   using Label = CoverageStats::Label;
-  for (int y = 0; y < reference.height; ++y) {
-    for (int x = 0; x < reference.width; ++x) {
-      const size_t i = reference.index(x, y);
-      const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
-      const Judged judged = judged_against(c, expected, gl, i, tolerance);
-      judgement[i] = !judged.compared ? kNotCompared : judged.candidate ? kCandidate : kOwn;
-      if (pr == pg && pr == Frame::kNoPrimitive) {
-        ++cov.neither;
-      } else if (judged.compared) {
-        ++cov.both;
-      } else if (pg == Frame::kNoPrimitive) {
-        ++cov.reference_only;
-      } else if (pr == Frame::kNoPrimitive) {
-        ++cov.gl_only;
-      } else {
-        ++cov.other_primitive;
+  // Blocks of rows on every thread, each counted apart and added in order: the counts are
+  // sums, and the first mismatches kept are the first of the blocks' own first ones, in order.
+  const int blocks = std::clamp(4 * st.threads, 1, std::max(reference.height, 1));
+  std::vector<CoverageStats> part(static_cast<size_t>(blocks));
+  parallel_for(blocks, st.threads, [&](int b) {
+    CoverageStats& cv = part[size_t(b)];
+    const int first = int(int64_t(reference.height) * b / blocks);
+    const int end = int(int64_t(reference.height) * (b + 1) / blocks);
+    for (int y = first; y < end; ++y) {
+      for (int x = 0; x < reference.width; ++x) {
+        const size_t i = reference.index(x, y);
+        const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
+        const Judged judged = judged_against(c, expected, gl, i, tolerance);
+        judgement[i] = !judged.compared ? kNotCompared : judged.candidate ? kCandidate : kOwn;
+        if (pr == pg && pr == Frame::kNoPrimitive) {
+          ++cv.neither;
+        } else if (judged.compared) {
+          ++cv.both;
+        } else if (pg == Frame::kNoPrimitive) {
+          ++cv.reference_only;
+        } else if (pr == Frame::kNoPrimitive) {
+          ++cv.gl_only;
+        } else {
+          ++cv.other_primitive;
+        }
+        const std::optional<Label> label = coverage_label(expected, gl, i);
+        if (!label) continue;
+        ++(*label == Label::exact_tie         ? cv.exact_tie
+           : *label == Label::within_snapping ? cv.within_snapping
+           : *label == Label::gap             ? cv.gaps
+           : *label == Label::double_hit      ? cv.double_hits
+                                              : cv.fill_rule);
+        const bool free = explained(*label);
+        if (free) ++cv.boundary;
+        if (!free || !tolerance.allow_boundary || exact) ++cv.failures;
+        if (cv.mismatches.size() < kMismatchesKept)
+          cv.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
       }
-      const std::optional<Label> label = coverage_label(expected, gl, i);
-      if (!label) continue;
-      ++(*label == Label::exact_tie         ? cov.exact_tie
-         : *label == Label::within_snapping ? cov.within_snapping
-         : *label == Label::gap             ? cov.gaps
-         : *label == Label::double_hit      ? cov.double_hits
-                                            : cov.fill_rule);
-      const bool free = explained(*label);
-      if (free) ++cov.boundary;
-      if (!free || !tolerance.allow_boundary || exact) ++cov.failures;
-      if (cov.mismatches.size() < kMismatchesKept)
-        cov.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
     }
+  });
+  for (const CoverageStats& cv : part) {
+    cov.neither += cv.neither, cov.both += cv.both, cov.reference_only += cv.reference_only;
+    cov.gl_only += cv.gl_only, cov.other_primitive += cv.other_primitive;
+    cov.exact_tie += cv.exact_tie, cov.within_snapping += cv.within_snapping;
+    cov.gaps += cv.gaps, cov.double_hits += cv.double_hits, cov.fill_rule += cv.fill_rule;
+    cov.boundary += cv.boundary, cov.failures += cv.failures;
+    for (const CoverageStats::Pixel& m : cv.mismatches)
+      if (cov.mismatches.size() < kMismatchesKept) cov.mismatches.push_back(m);
   }
 
   {

@@ -468,3 +468,58 @@ TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
 
 }  // namespace
 }  // namespace glrc::compare
+
+namespace glrc::compare {
+namespace {
+
+// The coverage pass runs on blocks of rows at once: its figures, and the first mismatches kept
+// (in pixel order), are the same on any number of threads.
+TEST(Compare, CoverageFiguresAreTheSameOnAnyThreadCount) {
+  Case c;
+  c.name = "coverage";
+  c.fb_width = 90, c.fb_height = 70;
+  c.viewport = {0, 0, 90, 70};
+  c.varyings = {{"v", 1, Interpolation::smooth}};
+  c.vertices = {{{-1, -1, 0, 1}, {1.0f}}, {{1, -1, 0, 1}, {2.0f}}, {{-1, 1, 0, 1}, {3.0f}}};
+  c.triangles = {{0, 1, 2}, {0, 1, 2}};
+  std::mt19937 random(5);
+  Frame ref(c.fb_width, c.fb_height, 1), allowed(c.fb_width, c.fb_height, 1);
+  std::vector<uint8_t> edges(ref.pixel_count(), 0);
+  for (size_t i = 0; i < ref.pixel_count(); ++i) {
+    ref.primitive[i] = int32_t(random() % 3) - 1;  // none, 0 or 1
+    edges[i] = random() % 4 == 0 ? edge::snapping : 0;
+    allowed.components[0][i] = 1e-3f;
+  }
+  allowed.primitive = ref.primitive;
+  Frame gl = ref;
+  for (size_t i = 0; i < gl.pixel_count(); ++i)
+    if (random() % 7 == 0) gl.primitive[i] = int32_t(random() % 3) - 1;
+  const Expectation e = expect(ref, edges, allowed);
+  const CoverageStats one = compare(c, e, gl, Tolerance{}, 1).coverage;
+  ASSERT_GT(one.failures + one.boundary, 200u);
+  ASSERT_EQ(one.mismatches.size(), 64u);
+  for (size_t k = 1; k < one.mismatches.size(); ++k)
+    EXPECT_LT(std::pair(one.mismatches[k - 1].y, one.mismatches[k - 1].x),
+              std::pair(one.mismatches[k].y, one.mismatches[k].x));
+  for (int threads : {2, 3, 5}) {
+    const CoverageStats many = compare(c, e, gl, Tolerance{}, threads).coverage;
+    EXPECT_EQ(many.both, one.both) << threads;
+    EXPECT_EQ(many.neither, one.neither) << threads;
+    EXPECT_EQ(many.reference_only, one.reference_only) << threads;
+    EXPECT_EQ(many.gl_only, one.gl_only) << threads;
+    EXPECT_EQ(many.other_primitive, one.other_primitive) << threads;
+    EXPECT_EQ(many.within_snapping, one.within_snapping) << threads;
+    EXPECT_EQ(many.fill_rule, one.fill_rule) << threads;
+    EXPECT_EQ(many.boundary, one.boundary) << threads;
+    EXPECT_EQ(many.failures, one.failures) << threads;
+    ASSERT_EQ(many.mismatches.size(), one.mismatches.size()) << threads;
+    for (size_t k = 0; k < one.mismatches.size(); ++k) {
+      EXPECT_EQ(many.mismatches[k].x, one.mismatches[k].x) << threads;
+      EXPECT_EQ(many.mismatches[k].y, one.mismatches[k].y) << threads;
+      EXPECT_EQ(many.mismatches[k].label, one.mismatches[k].label) << threads;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace glrc::compare
