@@ -366,17 +366,23 @@ TEST(Compare, P99OfALargeFrameIsTheNearestRankElement) {
 namespace glrc::compare {
 namespace {
 
+// A width×height framebuffer and viewport, one smooth float varying "v"; no vertices yet.
+Case float_case(const char* name, int width, int height) {
+  Case c;
+  c.name = name;
+  c.fb_width = width, c.fb_height = height;
+  c.viewport = {0, 0, width, height};
+  c.varyings = {{"v", 1, Interpolation::smooth}};
+  return c;
+}
+
 // Every figure of a channel against a count made here pixel by pixel, in pixel order, on a
 // frame 150 pixels wide (runs of 64, 64 and 22 in the comparator's fast path) where rows mix
 // two primitives, pixels neither covers, pixels GL covers with the other primitive, and random
 // errors within and beyond random allowances: the runs the comparator takes at once and the
 // pixels it takes one by one must give the same figures, bit for bit.
 TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
-  Case c;
-  c.name = "runs";
-  c.fb_width = 150, c.fb_height = 40;
-  c.viewport = {0, 0, 150, 40};
-  c.varyings = {{"v", 1, Interpolation::smooth}};
+  Case c = float_case("runs", 150, 40);
   c.vertices = {{{-1, -1, 0, 1}, {0.25f}}, {{1, -1, 0, 1}, {3.0f}},   {{-1, 1, 0, 1}, {1.0f}},
                 {{1, 1, 0, 1}, {700.0f}},  {{1, -1, 0, 1}, {-90.0f}}, {{-1, 1, 0, 1}, {5.0f}}};
   c.triangles = {{0, 1, 2}, {3, 4, 5}};
@@ -466,20 +472,10 @@ TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
   }
 }
 
-}  // namespace
-}  // namespace glrc::compare
-
-namespace glrc::compare {
-namespace {
-
 // The coverage pass runs on blocks of rows at once: its figures, and the first mismatches kept
 // (in pixel order), are the same on any number of threads.
 TEST(Compare, CoverageFiguresAreTheSameOnAnyThreadCount) {
-  Case c;
-  c.name = "coverage";
-  c.fb_width = 90, c.fb_height = 70;
-  c.viewport = {0, 0, 90, 70};
-  c.varyings = {{"v", 1, Interpolation::smooth}};
+  Case c = float_case("coverage", 90, 70);
   c.vertices = {{{-1, -1, 0, 1}, {1.0f}}, {{1, -1, 0, 1}, {2.0f}}, {{-1, 1, 0, 1}, {3.0f}}};
   c.triangles = {{0, 1, 2}, {0, 1, 2}};
   std::mt19937 random(5);
