@@ -461,6 +461,9 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   // sums, and the first mismatches kept are the first of the blocks' own first ones, in order.
   const int blocks = std::clamp(4 * st.threads, 1, std::max(reference.height, 1));
   std::vector<CoverageStats> part(static_cast<size_t>(blocks));
+  constexpr int kRun = ChannelAccumulator::kRun;
+  const int runs = (reference.width + kRun - 1) / kRun;
+  st.plain_runs.assign(size_t(runs) * size_t(std::max(reference.height, 0)), -1);
   parallel_for(blocks, st.threads, [&](int b) {
     CoverageStats& cv = part[size_t(b)];
     const int first = int(int64_t(reference.height) * b / blocks);
@@ -495,6 +498,17 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
         if (cv.mismatches.size() < kMismatchesKept)
           cv.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
       }
+      // The row's plain runs, now that its judgement is known.
+      for (int r = 0; r < runs; ++r) {
+        const size_t first_pixel = reference.index(r * kRun, y);
+        const int n = std::min(kRun, reference.width - r * kRun);
+        const int32_t p = reference.primitive[first_pixel];
+        bool plain = true;
+        for (int j = 0; j < n; ++j)
+          plain = plain && judgement[first_pixel + size_t(j)] == kOwn &&
+                  reference.primitive[first_pixel + size_t(j)] == p;
+        if (plain) st.plain_runs[size_t(y) * size_t(runs) + size_t(r)] = p;
+      }
     }
   });
   for (const CoverageStats& cv : part) {
@@ -505,23 +519,6 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     cov.boundary += cv.boundary, cov.failures += cv.failures;
     for (const CoverageStats::Pixel& m : cv.mismatches)
       if (cov.mismatches.size() < kMismatchesKept) cov.mismatches.push_back(m);
-  }
-
-  {
-    constexpr int kRun = ChannelAccumulator::kRun;
-    const int runs = (reference.width + kRun - 1) / kRun;
-    st.plain_runs.assign(size_t(runs) * size_t(std::max(reference.height, 0)), -1);
-    for (int y = 0; y < reference.height; ++y)
-      for (int r = 0; r < runs; ++r) {
-        const size_t first = reference.index(r * kRun, y);
-        const int n = std::min(kRun, reference.width - r * kRun);
-        const int32_t p = reference.primitive[first];
-        bool plain = true;
-        for (int j = 0; j < n; ++j)
-          plain = plain && judgement[first + size_t(j)] == kOwn &&
-                  reference.primitive[first + size_t(j)] == p;
-        if (plain) st.plain_runs[size_t(y) * size_t(runs) + size_t(r)] = p;
-      }
   }
 
   // Then the values, channel by channel (depth, then each component), each in pixel order. The
@@ -554,14 +551,55 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   // The ulp of the last primitive seen: along a row it rarely changes.
   int32_t ulp_primitive = -1;
   double own_ulp = 0, own_inverse_ulp = 0;
+  auto own_ulps = [&](int32_t primitive) {
+    if (primitive == ulp_primitive) return;
+    ulp_primitive = primitive;
+    own_ulp = st.ulps.ulp(primitive, k);
+    own_inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+  };
+  // One pixel of row `row`, whatever it is judged against.
+  auto add_pixel = [&](int x, int row) {
+    const size_t i = reference.index(x, row);
+    if (judged_as[i] == kNotCompared) return;
+    const int y = y0 + row;
+    double ulp, inverse_ulp, allowed;
+    float value;
+    if (judged_as[i] == kOwn) {
+      own_ulps(own_primitive[i]);
+      ulp = own_ulp, inverse_ulp = own_inverse_ulp;
+      // ChannelAllowance::at
+      allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
+      value = own_values[i];
+    } else {
+      const Judged judged = judged_against(c, expected, gl, i, tolerance);
+      const int32_t primitive = judged.primitive(expected, i);
+      ulp = st.ulps.ulp(primitive, k);
+      inverse_ulp = st.ulps.inverse_ulp(primitive, k);
+      allowed = judged.allowed(allowance, i, ulp, k);
+      value = judged.value(expected, i, k);
+    }
+    // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
+    // is finite but the specification's allowance unbounded (a triangle reaching the eye
+    // within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not determined
+    // either; a fixed threshold, however large, still fails NaN.
+    if (!value_determined(value, tolerance) ||
+        (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
+         !std::isfinite(gl_values[i]))) {
+      acc.add_undetermined(x, y, value, gl_values[i], allowed);
+      return;
+    }
+    // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
+    t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
+    acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
+  };
   constexpr int kRun = ChannelAccumulator::kRun;
   const int runs = (reference.width + kRun - 1) / kRun;
   auto finite = [](float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) != 0x7f800000u; };
   for (int row = 0; row < reference.height; ++row)
-    for (int x = 0; x < reference.width;) {
+    for (int x = 0; x < reference.width; x += kRun) {
       // Runs of pixels compared against the reference's own fragment of one primitive, every
       // value finite (nearly all of a frame): add_run, whose loops are vectorized. Any other
-      // run pixel by pixel below.
+      // run pixel by pixel.
       const int n = std::min(kRun, reference.width - x);
       const size_t first = reference.index(x, row);
       const int32_t run_primitive = st.plain_runs[size_t(row) * size_t(runs) + size_t(x / kRun)];
@@ -570,58 +608,15 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
         for (int j = 0; j < n; ++j)
           plain &= uint32_t(finite(own_values[first + size_t(j)])) &
                    uint32_t(finite(gl_values[first + size_t(j)]));
-      if (plain) {
-        if (run_primitive != ulp_primitive) {
-          ulp_primitive = run_primitive;
-          own_ulp = st.ulps.ulp(run_primitive, k);
-          own_inverse_ulp = st.ulps.inverse_ulp(run_primitive, k);
-        }
-        acc.add_run(t, x, y0 + row, n, own_values + first, gl_values + first,
-                    own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,
-                    own_inverse_ulp);
-        x += n;
+      if (!plain) {
+        for (int j = 0; j < n; ++j)
+          add_pixel(x + j, row);
         continue;
       }
-      for (const int end = x + n; x < end; ++x) {
-        const size_t i = reference.index(x, row);
-        if (judged_as[i] == kNotCompared) continue;
-        const int y = y0 + row;
-        int32_t primitive;
-        double ulp, inverse_ulp, allowed;
-        float value;
-        if (judged_as[i] == kOwn) {
-          primitive = own_primitive[i];
-          if (primitive != ulp_primitive) {
-            ulp_primitive = primitive;
-            own_ulp = st.ulps.ulp(primitive, k);
-            own_inverse_ulp = st.ulps.inverse_ulp(primitive, k);
-          }
-          ulp = own_ulp, inverse_ulp = own_inverse_ulp;
-          // ChannelAllowance::at
-          allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
-          value = own_values[i];
-        } else {
-          const Judged judged = judged_against(c, expected, gl, i, tolerance);
-          primitive = judged.primitive(expected, i);
-          ulp = st.ulps.ulp(primitive, k);
-          inverse_ulp = st.ulps.inverse_ulp(primitive, k);
-          allowed = judged.allowed(allowance, i, ulp, k);
-          value = judged.value(expected, i, k);
-        }
-        // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
-        // is finite but the specification's allowance unbounded (a triangle reaching the eye
-        // within rounding, ref/freedom.hpp), any number passes, and NaN or Inf is not determined
-        // either; a fixed threshold, however large, still fails NaN.
-        if (!value_determined(value, tolerance) ||
-            (tolerance.mode == ToleranceMode::spec && std::isinf(allowed) &&
-             !std::isfinite(gl_values[i]))) {
-          acc.add_undetermined(x, y, value, gl_values[i], allowed);
-          continue;
-        }
-        // allowed·(1/ulp) is allowed/ulp: ulps are powers of two (UlpTable::inverse_ulp).
-        t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
-        acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
-      }
+      own_ulps(run_primitive);
+      acc.add_run(t, x, y0 + row, n, own_values + first, gl_values + first,
+                  own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,
+                  own_inverse_ulp);
     }
   acc.tally = t;
 }

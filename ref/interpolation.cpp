@@ -186,25 +186,24 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
   // one float both ends round to, the same bits. The block's pixels are neighbours in a row:
   // it widens the bound by a few pixels' worth of 8u, and decides as many lanes.
   constexpr double u = 0x1p-53;
-  double x[n], y[n], d[n], ed[n], inverse_d[n], inverse_margin[n], value[n];
-  double fast[n], decided[n];  // 1 or 0: as wide as the doubles, for the vectorizer
+  double x[n], y[n], d[n], inverse_d[n], value[n];
   double largest_x = 0, largest_y = 0;
   for (int j = 0; j < n; ++j) {
     x[j] = px[j], y[j] = py[j];
     largest_x = std::max(largest_x, std::fabs(px[j]));
     largest_y = std::max(largest_y, std::fabs(py[j]));
   }
+  // The bound en or ed of a form a·x + b·y + c over the block.
+  auto block_bound = [&](double a, double b, double c) {
+    return 8 * u * (std::fabs(a) * largest_x + std::fabs(b) * largest_y + std::fabs(c));
+  };
   for (const Denominator& den : shared_) {
-    const double block_ed =
-        8 * u * (std::fabs(den.a) * largest_x + std::fabs(den.b) * largest_y + std::fabs(den.c));
+    const double ed = block_bound(den.a, den.b, den.c);
     double smallest_d = INFINITY;
     for (int j = 0; j < n; ++j) {
       d[j] = den.a * x[j] + den.b * y[j] + den.c;
-      ed[j] = block_ed;
-      const double ad = std::fabs(d[j]);
-      smallest_d = std::min(smallest_d, ad);
-      fast[j] = ad > 4 * ed[j] ? 1.0 : 0.0;
-      inverse_d[j] = 1 / d[j], inverse_margin[j] = 1 / (ad - ed[j]);
+      smallest_d = std::min(smallest_d, std::fabs(d[j]));
+      inverse_d[j] = 1 / d[j];
     }
     // Every lane on the fast path (nearly always): err of the whole block at once, from the
     // block's smallest |d| and largest |q|. Each is a sum and products of non-negative
@@ -214,8 +213,8 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
     // N/D. Where both ends round to one float it is the float nearest N/D, as before: the same
     // bits, for about half the arithmetic per lane. (A NaN q may or may not be the largest |q|: its
     // own ends are NaN, not finite, and it takes the exact path either way.)
-    if (smallest_d > 4 * block_ed) {
-      const double block_inverse_margin = 1 / (smallest_d - block_ed);
+    if (smallest_d > 4 * ed) {
+      const double block_inverse_margin = 1 / (smallest_d - ed);
       // Lanes some component leaves undecided, ORed over the components as integers (one
       // horizontal test per block, not one per component): nearly always none.
       int32_t undecided[n] = {};
@@ -226,7 +225,7 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
       const std::vector<Numerator>& numerators = den.numerators;
       for (size_t first = 0; first < numerators.size(); first += kGroup) {
         const size_t count = std::min(kGroup, numerators.size() - first);
-        double quotient[kGroup][n], err[kGroup];
+        double quotient[kGroup][n], largest_q[kGroup], err[kGroup];
         for (size_t k = 0; k < count; ++k) {
           const Numerator& num = numerators[first + k];
           double magnitude[n];
@@ -241,15 +240,12 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
             for (int j = 0; j < width; ++j)
               magnitude[j] =
                   magnitude[j] < magnitude[j + width] ? magnitude[j + width] : magnitude[j];
-          err[k] = magnitude[0];
+          largest_q[k] = magnitude[0];
         }
         for (size_t k = 0; k < count; ++k) {
           const Numerator& num = numerators[first + k];
-          const double en =
-              8 * u *
-              (std::fabs(num.a) * largest_x + std::fabs(num.b) * largest_y + std::fabs(num.c));
-          const double largest_q = err[k];
-          err[k] = ((en + largest_q * block_ed) * block_inverse_margin + 6 * u * largest_q) * 1.01 +
+          const double en = block_bound(num.a, num.b, num.c);
+          err[k] = ((en + largest_q[k] * ed) * block_inverse_margin + 6 * u * largest_q[k]) * 1.01 +
                    0x1p-1000;
         }
         for (size_t k = 0; k < count; ++k) {
@@ -277,14 +273,21 @@ GLRC_BLOCK_FORM void ComponentValues::values(const double* px, const double* py,
                   planes[num.component].ratio.exact_at(long(px[j]), long(py[j]));
       continue;
     }
+    // Some lane's denominator too near 0 for the block's bound: each lane its own margin, and
+    // the lanes off the fast path exact.
+    double fast[n], decided[n], inverse_margin[n];  // fast, decided: 1 or 0, as wide as doubles
+    for (int j = 0; j < n; ++j) {
+      const double ad = std::fabs(d[j]);
+      fast[j] = ad > 4 * ed ? 1.0 : 0.0;
+      inverse_margin[j] = 1 / (ad - ed);
+    }
     for (const Numerator& num : den.numerators) {
-      const double en =
-          8 * u * (std::fabs(num.a) * largest_x + std::fabs(num.b) * largest_y + std::fabs(num.c));
+      const double en = block_bound(num.a, num.b, num.c);
       for (int j = 0; j < n; ++j) {
         const double nv = num.a * x[j] + num.b * y[j] + num.c;
         const double q = nv * inverse_d[j];
         const double err =
-            ((en + std::fabs(q) * ed[j]) * inverse_margin[j] + 6 * u * std::fabs(q)) * 1.01 +
+            ((en + std::fabs(q) * ed) * inverse_margin[j] + 6 * u * std::fabs(q)) * 1.01 +
             0x1p-1000;
         // The two ends rounded to float and back (exact, one to one): the same float when they
         // compare equal with the same sign (-0 and +0 compare equal; NaN never does).

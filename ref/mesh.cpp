@@ -110,23 +110,23 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
   }
   // The groups on every thread: each side() is exact rational arithmetic (a fan of 4,400
   // triangles has 4,400 shared edges), and each (triangle, edge) is in one group, so each
-  // writes its own elements of `shared` only.
+  // writes its own elements of `shared` and of `rel` (each use's side) only.
+  std::vector<int> rel(uses.size(), 0);
   parallel_for(int(groups.size()), threads, [&](int g) {
     const auto [first, end] = groups[size_t(g)];
     const EdgeUse& r = uses[first];
-    std::vector<int> rel(end - first, 0);
     bool positive = false, negative = false;
     for (size_t u = first; u < end; ++u) {
       const EdgeUse& k = uses[u];
-      rel[u - first] =
-          u == first ? 1
-                     : side(triangle(r.triangle), r.edge, triangle(k.triangle).v[size_t(k.edge)]);
-      positive = positive || rel[u - first] > 0;
-      negative = negative || rel[u - first] < 0;
+      rel[u] = u == first
+                   ? 1
+                   : side(triangle(r.triangle), r.edge, triangle(k.triangle).v[size_t(k.edge)]);
+      positive = positive || rel[u] > 0;
+      negative = negative || rel[u] < 0;
     }
     if (!positive || !negative) return;
     for (size_t u = first; u < end; ++u)
-      if (rel[u - first] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
+      if (rel[u] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
   });
   return shared;
 }
