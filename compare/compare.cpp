@@ -3,6 +3,7 @@
 #include "compare/compare.hpp"
 
 #include "core/parallel.hpp"
+#include "core/vector_clones.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -93,55 +94,125 @@ struct ChannelAccumulator {
     t.max_ratio = std::max(t.max_ratio, keep_ratio(x, y, reference, gl, e, allowed));
   }
 
-  // add() of a run of n <= kRun pixels (x, y) ... (x + n - 1, y) of one primitive, whose
-  // reference and GL values are all finite: reference[j], gl[j], allowed[j] (`allowed` null: the
-  // fixed `fixed_allowed` for every pixel). The same figures, bit for bit: what does not depend
-  // on the order (counts, maxima of non-NaN numbers: a NaN is skipped by std::max(t, NaN) in
-  // either) over the whole run in loops the vectorizer takes; the sums and the kept values in
-  // pixel order, as add() makes them.
+  // add() of a run of kRun pixels (x, y) ... (x + kRun - 1, y) of one primitive:
+  // reference[j], gl[j], allowed[j] (`allowed` null: the fixed `fixed_allowed` for every pixel).
+  // False, having changed nothing, when a value of the run is NaN or Inf: the caller adds it
+  // pixel by pixel. The same figures, bit for bit, as add() of each pixel in turn: what does
+  // not depend on the order (counts, maxima) over the whole run in loops without a branch, which
+  // the vectorizer takes; the sums in pixel order; LargestValues fed pixel by pixel only where
+  // one value of the run may be kept. A fixed count: GCC's -O2 vectorizes only loops that need
+  // no remainder; and an AVX2 copy, which vectorizes the counts of double comparisons and the
+  // maxima of 64-bit keys.
   static constexpr int kRun = 64;
-  void add_run(Tally& t, int x, int y, int n, const float* reference, const float* gl,
-               const float* allowed, double fixed_allowed, double ulp, double inverse_ulp) {
+  GLRC_VECTOR_CLONES bool add_run(Tally& t, int x, int y, const float* reference, const float* gl,
+                                  const float* allowed, double fixed_allowed, double ulp,
+                                  double inverse_ulp) {
+    constexpr int n = kRun;
+    constexpr uint32_t kExponent = 0x7f800000u;
+    uint32_t non_finite = 0;
+    for (int j = 0; j < n; ++j)
+      non_finite |= uint32_t((std::bit_cast<uint32_t>(reference[j]) & kExponent) == kExponent) |
+                    uint32_t((std::bit_cast<uint32_t>(gl[j]) & kExponent) == kExponent);
+    if (non_finite) return false;
     double abs_error[kRun], ulps_of[kRun], allowed_of[kRun];
-    uint32_t differing = 0, over = 0;
-    double largest_allowance = 0, max_abs = 0, max_ulps = 0;
-    for (int j = 0; j < n; ++j) {
-      allowed_of[j] = allowed ? double(allowed[j]) : fixed_allowed;
-      // pixel_error's finite branch: both values are finite floats, so their difference is
-      // exact in double and the ulps finite.
+    // pixel_error's finite branch: both values are finite floats, so their difference is exact
+    // in double, and the ulps finite.
+    for (int j = 0; j < n; ++j)
       abs_error[j] = std::fabs(double(gl[j]) - double(reference[j]));
-      ulps_of[j] = inverse_ulp > 0 ? abs_error[j] * inverse_ulp : abs_error[j] / ulp;
-      const uint32_t differs =
-          std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
-      differing += differs;
-      over += exact ? differs : uint32_t(!(abs_error[j] <= allowed_of[j]));
+    if (allowed)
+      for (int j = 0; j < n; ++j)
+        allowed_of[j] = double(allowed[j]);
+    else
+      std::fill(allowed_of, allowed_of + n, fixed_allowed);
+    if (inverse_ulp > 0)
+      for (int j = 0; j < n; ++j)
+        ulps_of[j] = abs_error[j] * inverse_ulp;
+    else
+      for (int j = 0; j < n; ++j)
+        ulps_of[j] = abs_error[j] / ulp;
+    // No branch in the loop, or it is not vectorized: the maxima of doubles that are +0 or
+    // above (or skipped, as std::max(m, x) skips a NaN, a negative and -0 when m starts at +0)
+    // as the maxima of their bits as integers, which order them the same (a maximum of doubles
+    // is vectorized only under -ffast-math); selections as masks.
+    // Counts of double comparisons in 64 bits: the comparisons' masks are 64-bit lanes.
+    const uint64_t exact_mask = exact ? ~uint64_t(0) : 0;
+    uint64_t differing = 0, over = 0;
+    int64_t largest_allowance = 0, max_abs = 0, max_ulps = 0;
+    const bool ratios_droppable = ratios.may_drop();
+    const double ratio_floor = ratios.floor_value();
+    // One figure a loop: GCC vectorizes no loop that mixes them.
+    for (int j = 0; j < n; ++j)
+      differing += std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
+    for (int j = 0; j < n; ++j)
+      over += !(abs_error[j] <= allowed_of[j]);
+    over = (differing & exact_mask) | (over & ~exact_mask);
+    for (int j = 0; j < n; ++j) {
       const double allowance_ulps = allowed_of[j] * inverse_ulp;
-      largest_allowance = largest_allowance < allowance_ulps ? allowance_ulps : largest_allowance;
-      max_abs = max_abs < abs_error[j] ? abs_error[j] : max_abs;
-      max_ulps = max_ulps < ulps_of[j] ? ulps_of[j] : max_ulps;
+      const int64_t a = allowance_ulps > 0 ? std::bit_cast<int64_t>(allowance_ulps) : 0;
+      largest_allowance = largest_allowance < a ? a : largest_allowance;
     }
-    t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, largest_allowance);
+    for (int j = 0; j < n; ++j) {
+      const int64_t e = std::bit_cast<int64_t>(abs_error[j]);
+      max_abs = max_abs < e ? e : max_abs;
+    }
+    for (int j = 0; j < n; ++j) {
+      const int64_t u = std::bit_cast<int64_t>(ulps_of[j]);
+      max_ulps = max_ulps < u ? u : max_ulps;
+    }
+    // LargestValues' work is in the lanes whose values it may keep: at the 99th percentile a
+    // run of 64 has one in about half the runs. Which lanes those are is found for every lane
+    // at once, against the floors as they are now; a floor only rises (a value kept may
+    // compact the kept ones), so a lane left out would be dropped later in the run too, and a
+    // lane taken is tested again against the floor as it is when its turn comes.
+    uint32_t keys[kRun], may_keep_ulps[kRun];
+    int64_t may_keep_ratio[kRun];
+    const uint32_t ulps_floor = ulps.floor_key();
+    for (int j = 0; j < n; ++j) {
+      // order_key of a float that is +0 or above: never 0, so above a floor_key of 0.
+      keys[j] = std::bit_cast<uint32_t>(float(ulps_of[j])) | 0x80000000u;
+      may_keep_ulps[j] = keys[j] > ulps_floor;
+    }
+    const int64_t keeps_every_ratio = !ratios_droppable;
+    for (int j = 0; j < n; ++j)
+      may_keep_ratio[j] =
+          int64_t(!LargestValues::below_drop_bound(abs_error[j], allowed_of[j], ratio_floor)) |
+          keeps_every_ratio;
+    uint32_t ulps_taken = 0;
+    uint64_t ratios_taken = 0;
+    for (int j = 0; j < n; ++j)
+      ulps_taken += may_keep_ulps[j];
+    for (int j = 0; j < n; ++j)
+      ratios_taken += uint64_t(may_keep_ratio[j]);
+    t.largest_allowance_ulps =
+        std::max(t.largest_allowance_ulps, std::bit_cast<double>(largest_allowance));
     t.compared += uint64_t(n);
     t.differing += differing;
     t.over_tolerance += over;
     t.finite += uint64_t(n);
-    t.max_abs = std::max(t.max_abs, max_abs);
-    t.max_ulps = std::max(t.max_ulps, max_ulps);
+    t.max_abs = std::max(t.max_abs, std::bit_cast<double>(max_abs));
+    t.max_ulps = std::max(t.max_ulps, std::bit_cast<double>(max_ulps));
     for (int j = 0; j < n; ++j) {
       t.sum += ulps_of[j];
       t.sum_sq += ulps_of[j] * ulps_of[j];
     }
-    for (int j = 0; j < n; ++j)
-      ulps.add(float(ulps_of[j]));
-    for (int j = 0; j < n; ++j) {
-      if (ratios.certainly_dropped(abs_error[j], allowed_of[j])) {
-        ratios.count_dropped();
-        continue;
+    // In pixel order, as add() of each pixel offers them.
+    ulps.count_dropped(size_t(n));
+    if (ulps_taken > 0)
+      for (int j = 0; j < n; ++j)
+        if (may_keep_ulps[j]) ulps.offer(keys[j]);
+    ratios.count_dropped(size_t(n) - ratios_taken);
+    if (ratios_taken > 0)
+      for (int j = 0; j < n; ++j) {
+        if (!may_keep_ratio[j]) continue;
+        if (ratios.certainly_dropped(abs_error[j], allowed_of[j])) {
+          ratios.count_dropped();
+          continue;
+        }
+        const PixelError pe{abs_error[j], ulps_of[j], false};
+        t.max_ratio =
+            std::max(t.max_ratio, keep_ratio(x + j, y, reference[j], gl[j], pe, allowed_of[j]));
       }
-      const PixelError e{abs_error[j], ulps_of[j], false};
-      t.max_ratio =
-          std::max(t.max_ratio, keep_ratio(x + j, y, reference[j], gl[j], e, allowed_of[j]));
-    }
+    return true;
   }
 
   // The share of the allowance of a pixel whose ratio LargestValues may keep, kept, and the
@@ -594,29 +665,23 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   };
   constexpr int kRun = ChannelAccumulator::kRun;
   const int runs = (reference.width + kRun - 1) / kRun;
-  auto finite = [](float v) { return (std::bit_cast<uint32_t>(v) & 0x7f800000u) != 0x7f800000u; };
   for (int row = 0; row < reference.height; ++row)
     for (int x = 0; x < reference.width; x += kRun) {
-      // Runs of pixels compared against the reference's own fragment of one primitive, every
-      // value finite (nearly all of a frame): add_run, whose loops are vectorized. Any other
-      // run pixel by pixel.
+      // Whole runs of pixels compared against the reference's own fragment of one primitive,
+      // every value finite (nearly all of a frame): add_run, whose loops are vectorized. Any
+      // other run (a row's last, shorter one too) pixel by pixel.
       const int n = std::min(kRun, reference.width - x);
       const size_t first = reference.index(x, row);
       const int32_t run_primitive = st.plain_runs[size_t(row) * size_t(runs) + size_t(x / kRun)];
-      uint32_t plain = run_primitive >= 0;
-      if (plain)
-        for (int j = 0; j < n; ++j)
-          plain &= uint32_t(finite(own_values[first + size_t(j)])) &
-                   uint32_t(finite(gl_values[first + size_t(j)]));
-      if (!plain) {
-        for (int j = 0; j < n; ++j)
-          add_pixel(x + j, row);
-        continue;
+      if (run_primitive >= 0 && n == kRun) {
+        own_ulps(run_primitive);
+        if (acc.add_run(t, x, y0 + row, own_values + first, gl_values + first,
+                        own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,
+                        own_inverse_ulp))
+          continue;
       }
-      own_ulps(run_primitive);
-      acc.add_run(t, x, y0 + row, n, own_values + first, gl_values + first,
-                  own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,
-                  own_inverse_ulp);
+      for (int j = 0; j < n; ++j)
+        add_pixel(x + j, row);
     }
   acc.tally = t;
 }

@@ -207,10 +207,16 @@ class LargestValues {
   explicit LargestValues(size_t most);
   void add(float v) {  // inline: once per compared value; most are dropped here
     ++count_;
-    const uint32_t key = order_key(v);
+    offer(order_key(v));
+  }
+  // add() in two parts, for a loop over many values: count_dropped(n) counts them, and offer()
+  // of each value's order_key, in order, keeps it if add() would. offer() may be left out for
+  // a key not above floor_key() (for a key above 0): add() drops it.
+  void offer(uint32_t key) {
     if (compacted_ && key <= floor_) return;
     keep(key);
   }
+  uint32_t floor_key() const { return compacted_ ? floor_ : 0; }
   // Whether add(float(a / b)) certainly drops the value, for a >= 0 and b > 0, without the
   // division: once compacted, when a < floor·b·(1 - 2^-20) as computed, so that a/b <
   // floor·(1 - 2^-22) and neither rounding, the division's nor float's, can carry it up to the
@@ -219,10 +225,17 @@ class LargestValues {
   // least floor·(1 - 2^-24) before its rounding to float. False (always for a NaN, an infinite
   // a or a zero b) says nothing: add it.
   bool certainly_dropped(double a, double b) const {
-    return compacted_ && floor_value_ >= 0x1p-100 && a < floor_value_ * b * (1 - 0x1p-20);
+    return may_drop() && below_drop_bound(a, b, floor_value_);
   }
-  // Counts a value certainly_dropped said is dropped.
-  void count_dropped() { ++count_; }
+  // certainly_dropped(a, b) is may_drop() && below_drop_bound(a, b, floor_value()): apart, for
+  // a loop over many values that tests the one once and the other without a branch.
+  bool may_drop() const { return compacted_ && floor_value_ >= 0x1p-100; }
+  double floor_value() const { return floor_value_; }
+  static bool below_drop_bound(double a, double b, double floor_value) {
+    return a < floor_value * b * (1 - 0x1p-20);
+  }
+  // Counts n values: dropped (certainly_dropped said so), or offered apart.
+  void count_dropped(size_t n = 1) { count_ += n; }
   size_t count() const { return count_; }
   // The nearest-rank 99th percentile of every value added; 0 for none.
   double p99();
