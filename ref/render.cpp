@@ -5,6 +5,7 @@
 // order, so a pixel sees the same triangles in the same order on any number of threads.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
@@ -181,6 +182,14 @@ struct Sliver {
   }
 };
 
+// kRowBlock floats from `from` to `to` (apart), a block's lanes to a frame: a copy of a size
+// the compiler sees, which becomes one or two vector moves (std::copy_n, not seeing its count
+// as fixed, calls memmove: a call per block and channel; a loop, the source possibly
+// overlapping, copies float by float).
+inline void copy_block(const float* from, float* to) {
+  std::memcpy(to, from, kRowBlock * sizeof(float));
+}
+
 // One triangle's fragments with their allowances, kRowBlock covered pixels at a time: each
 // per-pixel quantity for the whole block first (the allowances' arithmetic in blocks,
 // allowance.hpp), then the depth test pixel by pixel, then the values and allowances of the
@@ -301,7 +310,7 @@ class FragmentBlocks {
     if (needed == count) {
       w.values.values(x_, y_, block_values_.data());
       for (size_t k = 0; k < planes.size(); ++k)
-        std::copy_n(block_values_.data() + k * n, n, value_[k].data());
+        copy_block(block_values_.data() + k * n, value_[k].data());
     } else {
       for (int j = 0; j < count; ++j) {
         if (role_[j] == Role::none) continue;
@@ -339,8 +348,8 @@ class FragmentBlocks {
       float* values = f.components[k].data();
       float* allowances = r.allowed.components[k].data();
       if (run) {
-        std::copy_n(value_[k].data(), n, values + index[0]);
-        std::copy_n(allowed_[k].data(), n, allowances + index[0]);
+        copy_block(value_[k].data(), values + index[0]);
+        copy_block(allowed_[k].data(), allowances + index[0]);
         continue;
       }
       for (int j = 0; j < count; ++j)
@@ -439,9 +448,17 @@ class FrameBlocks {
       }
       return;
     }
+    // Nearly always a whole block of neighbours in a row: one contiguous copy per channel.
+    bool run = count == n;
+    for (int j = 0; j < count; ++j)
+      run = run && index_[j] == index_[0] + size_t(j);
     for (size_t k = 0; k < components; ++k) {
       float* values = f.components[k].data();
       const float* column = block_values_.data() + k * n;
+      if (run) {
+        copy_block(column, values + index_[0]);
+        continue;
+      }
       for (int j = 0; j < count; ++j)
         values[index_[j]] = column[j];
     }
