@@ -208,10 +208,13 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   return position + evaluation + set_up + values_ + extra;
 }
 
-GLRC_BLOCK_FORM void Allowance::at(const double* px, const double* py, const float* value,
-                                   const double* delta, const double* extra,
-                                   const double* condition, const Anchors::RowDistances& distances,
-                                   double* out) const {
+// Inlined into each block form's own copies (GLRC_BLOCK_FORM), which are vectorized for their
+// own target: one body, two outputs.
+[[gnu::always_inline]] inline void Allowance::block_at(const double* px, const double* py,
+                                                       const float* value, const double* delta,
+                                                       const double* extra, const double* condition,
+                                                       const Anchors::RowDistances& distances,
+                                                       double* result) const {
   // The single pixel's at() above, lane by lane, in its order of operations: each lane's
   // double is the same bits. Its early return (no finite value, or D = 0 at the pixel) is a
   // choice at the end; the anchors' loop is turned inside out, each lane's maxima taken over
@@ -219,7 +222,7 @@ GLRC_BLOCK_FORM void Allowance::at(const double* px, const double* py, const flo
   constexpr int n = kRowBlock;
   const double gn = abs_an_ + abs_bn_, gd = abs_ad_ + abs_bd_;
   // Local arrays, written back at the end: no aliasing with the inputs to rule out.
-  double v[n], d[n], abs_v[n], g[n], terms[n], setup[n], result[n];
+  double v[n], d[n], abs_v[n], g[n], terms[n], setup[n];
   for (int j = 0; j < n; ++j) {
     v[j] = double(value[j]);
     d[j] = ad_ * px[j] + bd_ * py[j] + cd_;
@@ -261,7 +264,26 @@ GLRC_BLOCK_FORM void Allowance::at(const double* px, const double* py, const flo
         !(std::fabs(d[j]) > 0) | !(abs_v[j] <= std::numeric_limits<double>::max());
     result[j] = undefined ? std::numeric_limits<double>::infinity() : result[j];
   }
-  std::copy(result, result + n, out);
+}
+
+GLRC_BLOCK_FORM void Allowance::at(const double* px, const double* py, const float* value,
+                                   const double* delta, const double* extra,
+                                   const double* condition, const Anchors::RowDistances& distances,
+                                   double* out) const {
+  double result[kRowBlock];
+  block_at(px, py, value, delta, extra, condition, distances, result);
+  std::copy(result, result + kRowBlock, out);
+}
+
+GLRC_BLOCK_FORM void Allowance::at_rounded_up(const double* px, const double* py,
+                                              const float* value, const double* delta,
+                                              const double* extra, const double* condition,
+                                              const Anchors::RowDistances& distances,
+                                              float* out) const {
+  // The bounds go to round_up from registers or this frame, not through the caller's memory.
+  double result[kRowBlock];
+  block_at(px, py, value, delta, extra, condition, distances, result);
+  round_up(result, out);
 }
 
 }  // namespace glrc::ref

@@ -204,9 +204,17 @@ class Allowance {
   void at(const double* px, const double* py, const float* value, const double* delta,
           const double* extra, const double* condition, const Anchors::RowDistances& distances,
           double* out) const;
+  // The block at() above with each lane's bound rounded up to a float (round_up): the
+  // allowances a frame stores, bit for bit round_up() of at()'s.
+  void at_rounded_up(const double* px, const double* py, const float* value, const double* delta,
+                     const double* extra, const double* condition,
+                     const Anchors::RowDistances& distances, float* out) const;
 
  private:
   void set_planes(const LinearForm& numerator, const LinearForm& denominator);
+  void block_at(const double* px, const double* py, const float* value, const double* delta,
+                const double* extra, const double* condition,
+                const Anchors::RowDistances& distances, double* result) const;
 
   double an_ = 0, bn_ = 0, cn_ = 0, ad_ = 0, bd_ = 0, cd_ = 0;
   double abs_an_ = 0, abs_bn_ = 0, abs_ad_ = 0, abs_bd_ = 0;

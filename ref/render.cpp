@@ -256,8 +256,8 @@ class FragmentBlocks {
     if (w.eye) {
       std::fill(std::begin(z_allowed_), std::end(z_allowed_), INFINITY);
     } else {
-      w.depth_allowed.at(x_, y_, z_, delta_, depth_extra_, condition_, distances_, bound_);
-      round_up(bound_, z_allowed_);
+      w.depth_allowed.at_rounded_up(x_, y_, z_, delta_, depth_extra_, condition_, distances_,
+                                    z_allowed_);
     }
     // The depth test, pixel by pixel: which fragments need their values and allowances.
     int needed = 0;
@@ -329,8 +329,8 @@ class FragmentBlocks {
       const bool smooth = s.component_smooth[k];
       for (int j = 0; j < n; ++j)
         extra_[j] = smooth ? weight_[j] * planes[k].spread : 0.0;
-      w.allowed[k].at(x_, y_, value_[k].data(), delta_, extra_, condition_, distances_, bound_);
-      round_up(bound_, allowed.data());
+      w.allowed[k].at_rounded_up(x_, y_, value_[k].data(), delta_, extra_, condition_, distances_,
+                                 allowed.data());
     }
     // The winners' values and allowances, channel by channel: each channel's two frames get the
     // block's pixels (mostly neighbours in a row) together. These stores are most of this
@@ -380,7 +380,7 @@ class FragmentBlocks {
   int px_[kRowBlock]{}, py_[kRowBlock]{};
   double x_[kRowBlock]{}, y_[kRowBlock]{}, delta_[kRowBlock]{}, condition_[kRowBlock]{},
       weight_[kRowBlock]{};
-  double depth_extra_[kRowBlock]{}, extra_[kRowBlock]{}, bound_[kRowBlock]{};
+  double depth_extra_[kRowBlock]{}, extra_[kRowBlock]{};
   float z_[kRowBlock]{}, z_allowed_[kRowBlock]{};
   Role role_[kRowBlock]{};
   Anchors::RowDistances distances_{};

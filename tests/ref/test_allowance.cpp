@@ -135,6 +135,12 @@ TEST(Allowance, BlocksGiveTheSingularFormsBits) {
           a.at(int(px[j]), int(py[j]), value[j], delta[j], extra[j], cond[j], one);
       EXPECT_EQ(std::bit_cast<uint64_t>(single), std::bit_cast<uint64_t>(out[j])) << "lane " << j;
     }
+    // What the frames store: each lane's bound rounded up to a float, bit for bit.
+    float stored[kRowBlock];
+    a.at_rounded_up(px, py, value, delta, extra, cond, blocks, stored);
+    for (int j = 0; j < kRowBlock; ++j)
+      EXPECT_EQ(std::bit_cast<uint32_t>(stored[j]), std::bit_cast<uint32_t>(round_up(out[j])))
+          << "lane " << j;
     EXPECT_EQ(out[0], INFINITY);  // D = 0
     EXPECT_EQ(out[1], INFINITY);  // NaN
     EXPECT_TRUE(std::isfinite(out[2]));
