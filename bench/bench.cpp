@@ -2,9 +2,10 @@
 // their ratios mean something (scripts/bench.sh prints them against issue 13's targets):
 //   gl/<case>         llvmpipe (OSMesa) drawing the case and reading the frame back, through
 //                     gl_harness as `run` does it (program, FBO, draw, glReadPixels), warm;
-//   frame/<case>      the exact reference's frame alone, as `glrefcheck digest` renders it:
-//                     coverage, every varying and depth, no allowance (what llvmpipe computes),
-//                     on every core, as llvmpipe draws on every core;
+//   frame/<case>      the exact reference's frame alone, as `glrefcheck digest` renders it
+//                     (ref::render_frame): coverage, every varying and depth, no allowance and
+//                     no edge bits (what llvmpipe computes), on every core, as llvmpipe draws on
+//                     every core;
 //   reference/<case>  the exact reference with the specification's allowance, as `run` renders
 //                     it (check::expectation_for with llvmpipe's subpixel bits and default model),
 //                     on every core;
@@ -49,7 +50,7 @@ void register_case(const Case& c) {
   ms(benchmark::RegisterBenchmark(
       ("frame/" + c.name).c_str(), [c, options](benchmark::State& state) {
         for (auto _ : state)
-          benchmark::DoNotOptimize(ref::render(c, options.model, std::nullopt, options.threads));
+          benchmark::DoNotOptimize(ref::render_frame(c, options.model, options.threads));
       }));
   ms(benchmark::RegisterBenchmark(
       ("reference/" + c.name).c_str(), [c, options](benchmark::State& state) {

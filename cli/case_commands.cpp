@@ -59,7 +59,7 @@ int cmd_digest(const Options& o) {
   for (const Case& c : load_cases(o))
     fmt::print("{}  {}\n",
                ref::digest(driver ? driver_models::render(c, *driver)
-                                  : ref::render(c, model_of(o), std::nullopt, o.threads).frame),
+                                  : ref::render_frame(c, model_of(o), o.threads)),
                c.name);
   return 0;
 }

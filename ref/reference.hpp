@@ -28,6 +28,10 @@ using Reference = Expectation;
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt,
                  int threads = 1);
 
+// render(c, m, std::nullopt, threads).frame, bit for bit, without the edge bits (which `digest`
+// does not hash): neither the edges triangles share nor the bands along them are looked for.
+Frame render_frame(const Case& c, const Model& m, int threads = 1);
+
 // Rows [y0, y0 + rows) of render()'s result, for a frame too large to hold whole (check.hpp's
 // streamed comparison): the same bits, in frames `rows` high whose row 0 is window row y0, the
 // edge bits and candidates' pixels indexed within them. Every triangle is set up and prepared

@@ -39,6 +39,7 @@ struct Settings {
   const Case& c;
   const Model& m;
   bool allowance;
+  bool edges;         // the edge bits too (render_frame: only the frame)
   int bits;           // subpixel bits of the position freedom (with an allowance)
   double model_step;  // the edge band without an allowance
   PixelBox viewport;  // its rows cut to the ones drawn
@@ -479,8 +480,8 @@ class FrameBlocks {
 
 // Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,
 // then the fragments it covers, depth-tested, with their allowances and the candidates.
-void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference& r,
-               CandidateMap& candidates) {
+GLRC_BLOCK_FORM void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference& r,
+                               CandidateMap& candidates) {
   const TriangleSetup& t = w.t;
   Frame& f = r.frame;
   const PositionFreedom& freedom = w.freedom;
@@ -506,7 +507,7 @@ void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference
       w.coverage.row_spans(w.reach_px, w.reach.x0, w.reach.x1, y0, y1);
   for (int py = y0; py <= y1; ++py) {
     const auto [x0, x1] = spans.at(py);
-    for (int px = x0; px <= x1; ++px)
+    for (int px = x0; px <= x1 && s.edges; ++px)
       // Most pixels are beyond or deep within every band: no freedom to compute for them.
       if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable,
                                          s.allowance ? freedom.z_clip_largest() : 0.0))
@@ -532,8 +533,12 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
   return render_rows(c, m, freedom_bits, threads, 0, c.fb_height);
 }
 
-Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                      int y0, int row_count) {
+namespace {
+
+// render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
+// the shared edges nor the bands are looked for.
+Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
+               int row_count, bool edges) {
   if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
@@ -543,8 +548,8 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   // filling them is otherwise a serial part of drawing it.
   Reference r{Frame(c.fb_width, row_count, c.component_count(), threads), {}, Frame()};
   Frame& f = r.frame;
-  parallel_for(2, threads, [&](int b) {
-    if (b == 0)
+  parallel_for(edges ? 2 : 1, threads, [&](int b) {
+    if (b == 1)
       assign_large(r.edges, f.pixel_count(), uint8_t(0));
     else
       assign_large(f.fragments, f.pixel_count(), uint16_t(0));
@@ -556,6 +561,7 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   Settings s{c,
              m,
              allowance,
+             edges,
              allowance ? std::max(*freedom_bits, 4) : 0,
              std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8)),
              viewport_box(c),
@@ -592,7 +598,10 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
     setups[size_t(p)].emplace(SetUp{c, m, p, window});
   });
   window = {};  // freed: the setups hold their own copies
-  const std::vector<std::array<bool, 3>> shared = shared_edges(setups, threads);
+  // Which edges are shared marks edge bits only.
+  const std::vector<std::array<bool, 3>> shared =
+      edges ? shared_edges(setups, threads)
+            : std::vector<std::array<bool, 3>>(setups.size(), {false, false, false});
 
   const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
   std::vector<CandidateMap> candidates(rows.size());
@@ -634,6 +643,7 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
     });
   }
   // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.
+  // (Only with an allowance are there any.)
   for (CandidateMap& band : candidates)
     for (auto& [i, list] : band) {
       if (list.empty()) continue;
@@ -642,6 +652,17 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
         r.candidates.push_back(std::move(k));
     }
   return r;
+}
+
+}  // namespace
+
+Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                      int y0, int row_count) {
+  return draw(c, m, freedom_bits, threads, y0, row_count, true);
+}
+
+Frame render_frame(const Case& c, const Model& m, int threads) {
+  return std::move(draw(c, m, std::nullopt, threads, 0, c.fb_height, false).frame);
 }
 
 }  // namespace glrc::ref

@@ -134,5 +134,27 @@ TEST(Tiles, RowsRenderedBandByBandAreTheWholeFrame) {
   EXPECT_EQ(render_rows(c, Model{}, 8, 1, c.fb_height, 0).frame.pixel_count(), 0u);
 }
 
+// render_frame, which `digest` hashes, leaves the edge bits out: the frame itself, fragment
+// counts included, is render()'s, on any number of threads, for every committed case (shared
+// edges and fans among them) and for contested overlapping triangles.
+TEST(Tiles, TheFrameAloneIsRendersFrame) {
+  std::vector<Case> cases;
+  for (const auto& entry : std::filesystem::directory_iterator(GLRC_SOURCE_DIR "/cases"))
+    if (entry.path().extension() == ".json") cases.push_back(casefile::load(entry.path()));
+  ASSERT_GT(cases.size(), 40u);
+  size_t fragments = 0;
+  for (const Case& c : cases)
+    for (int threads : {1, 3}) {
+      SCOPED_TRACE(c.name + ", " + std::to_string(threads) + " threads");
+      const Frame whole = render(c, Model{}, std::nullopt, threads).frame;
+      const Frame alone = render_frame(c, Model{}, threads);
+      EXPECT_EQ(digest(alone), digest(whole));
+      EXPECT_EQ(alone.fragments, whole.fragments);
+      for (uint16_t n : alone.fragments)
+        fragments += n;
+    }
+  EXPECT_GT(fragments, 10000u);
+}
+
 }  // namespace
 }  // namespace glrc::ref
