@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <optional>
+#include <utility>
 
 #include "core/frame.hpp"
 #include "core/model.hpp"
@@ -23,6 +26,58 @@ class CoverageTest {
   // covered pixels is found by dividing instead (exact too).
   template <class F>
   void for_each_covered(int py, int x0, int x1, F&& f) const;
+  // The covered pixels of rows y0, y0 + 1, ..., y1 in turn, each row's as the one run
+  // for_each_covered visits, found without a test per pixel. Edge i covers px when
+  // a_i·px + b_i·py + c_i >= need_i (integers: need 0 on a tie-inside edge, else 1), so px >=
+  // ceil(N_i(py)/a_i) for a_i > 0 and px <= floor(M_i(py)/-a_i) for a_i < 0, N_i and M_i linear
+  // in py: each bound is divided out once, then stepped from row to row by the integer quotient
+  // and remainder of b_i (as a scan converter walks an edge), exact. A thin triangle's rows
+  // cover a pixel or none: their cost is this step, not a span of tests.
+  class CoveredRows {
+   public:
+    // The covered pixels [lo, hi] within [x0, x1] of the next row (y0 first); lo > hi for none.
+    std::pair<int, int> next() {  // inline: per row of every triangle
+      int64_t lo = x0_, hi = x1_;
+      bool none = false;
+      for (int i = 0; i < lower_; ++i) {  // ceil(N/d); then N - b
+        Edge& w = edges_[size_t(i)];
+        lo = std::max(lo, w.q + int64_t(w.r != 0));
+        w.q -= w.step_q, w.r -= w.step_r;
+        if (w.r < 0) w.r += w.d, --w.q;
+      }
+      for (int i = lower_; i < upper_; ++i) {  // floor(M/d); then M + b
+        Edge& w = edges_[size_t(i)];
+        hi = std::min(hi, w.q);
+        w.q += w.step_q, w.r += w.step_r;
+        if (w.r >= w.d) w.r -= w.d, ++w.q;
+      }
+      for (int i = upper_; i < 3; ++i) {  // every px while b·py + c - need >= 0
+        Edge& w = edges_[size_t(i)];
+        none = none || w.q < 0;
+        w.q += w.step_q;
+      }
+      if (none || lo > hi) return {x0_, x0_ - 1};
+      return {int(lo), int(hi)};
+    }
+
+   private:
+    friend class CoverageTest;
+    CoveredRows() = default;
+    // lower (a > 0): N = q·d + r, 0 <= r < d = a; upper (a < 0): M = q·d + r, d = -a; level
+    // (a = 0): q = b·py + c - need. From row to row N falls by b, M and q rise by it: b =
+    // step_q·d + step_r. The lower edges first, then the upper ones, then the level ones.
+    struct Edge {
+      int64_t q = 0, r = 0, d = 1, step_q = 0, step_r = 0;
+    };
+    std::array<Edge, 3> edges_{};
+    int lower_ = 0, upper_ = 0;  // edges_[0, lower_) lower, [lower_, upper_) upper
+    int x0_ = 0, x1_ = -1;
+  };
+  // A CoveredRows for rows [y0, y1] and pixels [x0, x1] (y0 <= y1, x0 <= x1): on the snapped
+  // path, where no near or far plane is crossed (for_each_covered tests those per pixel), and
+  // where every number of the walk fits 64 bits (always, but for triangles reaching far into
+  // the guard band); else nothing: for_each_covered.
+  std::optional<CoveredRows> covered_rows(int y0, int y1, int x0, int x1) const;
   // What this triangle's boundary means for the centre of pixel (px, py), as edge:: bits.
   // `freedom`: how far (in pixels, along x and along y) an implementation may move each vertex;
   // an edge then moves by at most freedom·(|n_x| + |n_y|) for its unit normal n, which is the

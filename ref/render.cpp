@@ -498,10 +498,42 @@ GLRC_BLOCK_FORM void draw_rows(const Settings& s, const Prepared& w, int p, Band
   if (w.eye)
     mark_unstable(s.viewport.x0, std::max(band.y0, s.viewport.y0), s.viewport.x1,
                   std::min(band.y1, s.viewport.y1), s.row0, f, r.edges);
+  // The covered pixels of row py within [x0, x1], a block at a time. Walked row after row
+  // (CoverageTest::CoveredRows: each row's run at once, exactly) where the coverage test allows,
+  // else tested pixel by pixel (for_each_covered). Rows [cy0, cy1] are those the triangle may
+  // cover, every one of them passed here in order when it draws.
+  const bool draws = t.drawn && !t.box.empty();
+  const int cy0 = std::max(band.y0, t.box.y0), cy1 = std::min(band.y1, t.box.y1);
+  std::optional<CoverageTest::CoveredRows> walk;
+  if (draws && cy0 <= cy1) walk = w.coverage.covered_rows(cy0, cy1, t.box.x0, t.box.x1);
+  auto draw_row = [&](int py, int x0, int x1) {
+    auto add = [&](int px) {
+      if (blocks)
+        blocks->add(px, py);
+      else
+        frame_blocks->add(px, py);
+    };
+    if (!walk) {
+      w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1), add);
+      return;
+    }
+    const auto [lo, hi] = walk->next();
+    for (int px = std::max(lo, x0), last = std::min(hi, x1); px <= last; ++px)
+      add(px);
+  };
+  // Without edge bits, a walked triangle needs no spans: its rows' runs are exact.
+  if (!s.edges && walk) {
+    for (int py = cy0; py <= cy1; ++py)
+      draw_row(py, t.box.x0, t.box.x1);
+    if (blocks) blocks->flush();
+    if (frame_blocks) frame_blocks->flush();
+    return;
+  }
   // Only the pixels within `margin` of the triangle, row by row (CoverageTest::row_span): a
   // thin triangle's bounding box holds a thousand times the pixels it reaches. Classifying only
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
-  const bool draws = t.drawn && !t.box.empty();
+  // The span holds every pixel the triangle covers, so a walked row's run is cut to it for
+  // nothing: the same pixels either way.
   const int y0 = std::max(band.y0, w.reach.y0), y1 = std::min(band.y1, w.reach.y1);
   const CoverageTest::RowSpans spans =
       w.coverage.row_spans(w.reach_px, w.reach.x0, w.reach.x1, y0, y1);
@@ -515,13 +547,7 @@ GLRC_BLOCK_FORM void draw_rows(const Settings& s, const Prepared& w, int p, Band
             w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable,
                                 s.allowance ? freedom.z_clip_at(px, py) : 0.0);
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
-    if (!s.allowance) {
-      w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
-                                  [&](int px) { frame_blocks->add(px, py); });
-      continue;
-    }
-    w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
-                                [&](int px) { blocks->add(px, py); });
+    draw_row(py, x0, x1);
   }
   if (blocks) blocks->flush();
   if (frame_blocks) frame_blocks->flush();

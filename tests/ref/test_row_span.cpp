@@ -1,5 +1,5 @@
-// CoverageTest::row_span and row_spans (ref/coverage.hpp): the reference walks only the pixels
-// of each row a triangle can reach, so the span must never miss a pixel that covers() or
+// CoverageTest::row_span, row_spans and covered_rows (ref/coverage.hpp): the reference walks only
+// the pixels of each row a triangle can reach, so the span must never miss a pixel that covers() or
 // classify() would mark, with render.cpp's reach, which is no wider than the freedom's bands
 // and the snapping need. Checked against every pixel of the framebuffer for random triangles of
 // every kind the cases hold: thin, large, nearly horizontal or vertical, reaching behind the eye,
@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -31,8 +32,8 @@ Case triangle(std::array<std::array<float, 4>, 3> v) {
 }
 
 // Every pixel the span leaves out is neither covered nor classified; returns the pixels the
-// spans held, to show that they are tight.
-size_t check_spans(const Case& c, const Model& m, double freedom) {
+// spans held, to show that they are tight. Counts the triangles CoveredRows walks in `walked`.
+size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked) {
   const TriangleSetup t = setup_triangle(c, m, 0);
   if (!t.has_edges) return 0;
   const CoverageTest coverage(t, m);
@@ -42,6 +43,13 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
       t.path == CoveragePath::snapped ? std::ldexp(1.0, -(m.subpixel_bits + 1)) : 0.0;
   const double reach = std::max(freedom, snapping) * 1.5;
   const CoverageTest::RowSpans spans = coverage.row_spans(reach, 0, kSize - 1, 0, kSize - 1);
+  // CoveredRows walks the rows: over the whole framebuffer, and over part of it (from a row
+  // other than 0, between columns 5 and 30).
+  std::optional<CoverageTest::CoveredRows> walk = coverage.covered_rows(0, kSize - 1, 0, kSize - 1);
+  std::optional<CoverageTest::CoveredRows> part_walk = coverage.covered_rows(7, kSize - 1, 5, 30);
+  EXPECT_EQ(walk.has_value(), t.path == CoveragePath::snapped && !depth_clip(t).crosses_near &&
+                                  !depth_clip(t).crosses_far);
+  walked += walk.has_value();
   size_t held = 0;
   for (int py = 0; py < kSize; ++py) {
     // for_each_covered steps the edge functions along the row: the very pixels covers() gives.
@@ -58,6 +66,22 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
         }
     }
     EXPECT_EQ(stepped, tested) << "row " << py;
+    // A walked row's run: the covered pixels, one run of them (a convex triangle's row).
+    auto run_of = [&](int from, int to) {
+      std::vector<int> in;
+      for (int px : tested)
+        if (px >= from && px <= to) in.push_back(px);
+      return in.empty() ? std::pair(from, from - 1) : std::pair(in.front(), in.back());
+    };
+    if (walk) {
+      EXPECT_EQ(walk->next(), run_of(0, kSize - 1)) << "row " << py;
+      if (!tested.empty()) {
+        EXPECT_EQ(size_t(tested.back() - tested.front() + 1), tested.size());
+      }
+    }
+    if (part_walk && py >= 7) {
+      EXPECT_EQ(part_walk->next(), run_of(5, 30)) << "row " << py;
+    }
     // Parts of the row, narrower than the run found by dividing (stepped) and not (divided).
     for (const auto& [from, to] : {std::pair(3, 36), std::pair(5, 20), std::pair(30, 31)}) {
       std::vector<int> part, want;
@@ -93,6 +117,7 @@ size_t check_spans(const Case& c, const Model& m, double freedom) {
 }
 
 TEST(RowSpan, NeverMissesAPixelOfRandomTriangles) {
+  size_t walked = 0;
   std::mt19937 rng(1301);
   std::uniform_real_distribution<float> unit(-1.2f, 1.2f), far(-40.0f, 40.0f), w(0.2f, 4.0f);
   std::uniform_real_distribution<double> freedom(0.0, 3.0);
@@ -109,15 +134,45 @@ TEST(RowSpan, NeverMissesAPixelOfRandomTriangles) {
     m.subpixel_bits = k % 2 ? 8 : 0;
     m.planes = k % 3 ? Planes::unsnapped : Planes::snapped;
     SCOPED_TRACE("triangle " + std::to_string(k));
-    check_spans(triangle(v), m, k % 4 == 1 ? std::ldexp(1.0, -8) : freedom(rng));
+    check_spans(triangle(v), m, k % 4 == 1 ? std::ldexp(1.0, -8) : freedom(rng), walked);
   }
+  EXPECT_GT(walked, 150u);  // the snapped ones not reaching behind the eye
+}
+
+TEST(RowSpan, RowsWalkedThroughExactTies) {
+  // Vertices on pixel centres and edges of small integer slopes: many centres lie exactly on an
+  // edge, where the tie rule decides (a remainder of exactly 0 when a row is walked), under
+  // every rule, for both facings.
+  auto at = [](double x, double y) {  // window (x, y) to clip coordinates of the 40x40 viewport
+    return std::array<float, 4>{float(x / 20 - 1), float(y / 20 - 1), 0, 1};
+  };
+  const std::array<std::array<double, 2>, 3> shapes[] = {
+      {{{0.5, 0.5}, {30.5, 10.5}, {5.5, 35.5}}},
+      {{{2.5, 3.5}, {38.5, 3.5}, {20.5, 39.5}}},
+      {{{1.5, 1.5}, {1.5, 37.5}, {37.5, 19.5}}},
+      {{{10.5, 0.5}, {13.5, 39.5}, {11.5, 39.5}}}};
+  size_t walked = 0;
+  for (const auto& shape : shapes)
+    for (bool reversed : {false, true})
+      for (TieBreak rule : {TieBreak::top_left, TieBreak::bottom_left, TieBreak::top_right,
+                            TieBreak::bottom_right}) {
+        Model m;
+        m.tie_break = rule;
+        std::array<std::array<float, 4>, 3> v = {at(shape[0][0], shape[0][1]),
+                                                 at(shape[1][0], shape[1][1]),
+                                                 at(shape[2][0], shape[2][1])};
+        if (reversed) std::swap(v[1], v[2]);
+        check_spans(triangle(v), m, std::ldexp(1.0, -8), walked);
+      }
+  EXPECT_EQ(walked, 32u);
 }
 
 TEST(RowSpan, HugeCoordinatesTakeEveryPixel) {
   // Edge forms far beyond 2^40 pixels: distance() may be off by more than a quarter pixel, so
   // the span gives up and every pixel is tested, as before.
   const Case c = triangle({{{-3e30f, -1, 0, 1}, {3e30f, -1, 0, 1}, {0, 1e30f, 0, 1}}});
-  check_spans(c, Model{}, 0.5);
+  size_t walked = 0;
+  check_spans(c, Model{}, 0.5, walked);
 }
 
 TEST(RowSpan, AThinTriangleIsWalkedAlongItsLengthOnly) {
@@ -125,7 +180,9 @@ TEST(RowSpan, AThinTriangleIsWalkedAlongItsLengthOnly) {
   // its spans one or two pixels per row (its width, under half a pixel, the reach, 1.5/256
   // pixel, and the rounding of the spans, a few ulps: none a whole pixel).
   const Case c = triangle({{{-1, -1, 0, 1}, {1, 1, 0, 1}, {1, 0.98f, 0, 1}}});
-  const size_t held = check_spans(c, Model{}, std::ldexp(1.0, -8));
+  size_t walked = 0;
+  const size_t held = check_spans(c, Model{}, std::ldexp(1.0, -8), walked);
+  EXPECT_EQ(walked, 1u);
   EXPECT_GE(held, size_t(kSize));
   EXPECT_LT(held, size_t(2 * kSize));
 }
