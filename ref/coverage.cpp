@@ -64,48 +64,28 @@ std::optional<CoverageTest::CoveredRows> CoverageTest::covered_rows(int y0, int 
                                                                     int x1) const {
   if (t_.path != CoveragePath::snapped || clip_.crosses_near || clip_.crosses_far)
     return std::nullopt;
-  // Every quotient the walk reaches is within |q| + rows·(|step_q| + 1) of its first one, and
-  // every remainder below d: 64 bits hold them when these bounds are below 2^62.
+  // Every quotient the walk reaches is within rows·(|step_q| + 1) of its first one, and every
+  // remainder below d: 64 bits hold them (negated too) when these bounds are below 2^62.
   constexpr int128 kFits = int128(1) << 62;
   const int128 rows = int128(y1) - y0 + 1;
   auto abs128 = [](int128 v) { return v < 0 ? -v : v; };
   CoveredRows walk;
   walk.x0_ = x0, walk.x1_ = x1;
-  std::array<int128, 3> q{}, r{}, d{}, step_q{}, step_r{};
-  std::array<int, 3> kind{};  // 0 lower, 1 upper, 2 level
   for (size_t i = 0; i < 3; ++i) {
     const TriangleSetup::IntEdge& e = t_.snapped_edges[i];
-    const int128 need = tie_inside_[i] ? 0 : 1;
-    if (e.a > 0) {
-      kind[i] = 0, d[i] = e.a;
-      floor_divide(need - e.c - e.b * y0, d[i], q[i], r[i]);
-    } else if (e.a < 0) {
-      kind[i] = 1, d[i] = -e.a;
-      floor_divide(e.b * y0 + e.c - need, d[i], q[i], r[i]);
-    } else {
-      kind[i] = 2, d[i] = 1, q[i] = e.b * y0 + e.c - need;
-    }
-    if (kind[i] == 2)
-      step_q[i] = e.b;
-    else
-      floor_divide(e.b, d[i], step_q[i], step_r[i]);
-    if (d[i] >= kFits || abs128(step_q[i]) >= kFits / rows ||
-        abs128(q[i]) + rows * (abs128(step_q[i]) + 1) >= kFits)
+    const int128 m = e.b * y0 + e.c - (tie_inside_[i] ? 0 : 1);
+    const int128 d = e.a > 0 ? e.a : e.a < 0 ? -e.a : 1;
+    int128 q, r, step_q, step_r;
+    floor_divide(m, d, q, r);
+    floor_divide(e.b, d, step_q, step_r);
+    if (d >= kFits || abs128(step_q) >= kFits / rows ||
+        abs128(q) + rows * (abs128(step_q) + 1) >= kFits)
       return std::nullopt;
+    CoveredRows::Edge& w = walk.edges_[i];
+    w.q = int64_t(q), w.r = int64_t(r), w.d = int64_t(d);
+    w.step_q = int64_t(step_q), w.step_r = int64_t(step_r);
+    w.lower = e.a > 0 ? -1 : 0, w.upper = e.a < 0 ? -1 : 0, w.level = e.a == 0 ? -1 : 0;
   }
-  // Slots in order: the lower edges, then the upper, then the level ones.
-  size_t next_slot = 0;
-  for (int k : {0, 1, 2})
-    for (size_t i = 0; i < 3; ++i) {
-      if (kind[i] != k) continue;
-      CoveredRows::Edge& w = walk.edges_[next_slot++];
-      w.q = int64_t(q[i]), w.r = int64_t(r[i]), w.d = int64_t(d[i]);
-      w.step_q = int64_t(step_q[i]), w.step_r = int64_t(step_r[i]);
-      if (k == 0) ++walk.lower_;
-    }
-  walk.upper_ = walk.lower_;
-  for (size_t i = 0; i < 3; ++i)
-    walk.upper_ += kind[i] == 1;
   return walk;
 }
 

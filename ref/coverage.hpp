@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -28,49 +29,57 @@ class CoverageTest {
   void for_each_covered(int py, int x0, int x1, F&& f) const;
   // The covered pixels of rows y0, y0 + 1, ..., y1 in turn, each row's as the one run
   // for_each_covered visits, found without a test per pixel. Edge i covers px when
-  // a_i·px + b_i·py + c_i >= need_i (integers: need 0 on a tie-inside edge, else 1), so px >=
-  // ceil(N_i(py)/a_i) for a_i > 0 and px <= floor(M_i(py)/-a_i) for a_i < 0, N_i and M_i linear
-  // in py: each bound is divided out once, then stepped from row to row by the integer quotient
-  // and remainder of b_i (as a scan converter walks an edge), exact. A thin triangle's rows
-  // cover a pixel or none: their cost is this step, not a span of tests.
+  // a_i·px + M_i(py) >= 0, M_i = b_i·py + c_i - need_i (integers: need 0 on a tie-inside edge,
+  // else 1): px >= -floor(M_i/a_i) for a_i > 0, px <= floor(M_i/-a_i) for a_i < 0, every px
+  // or none for a_i = 0. Each quotient is divided out once, then stepped from row to row by
+  // the integer quotient and remainder of b_i (as a scan converter walks an edge), exact. A
+  // thin triangle's rows cover a pixel or none: their cost is this step, not a span of tests.
   class CoveredRows {
    public:
     // The covered pixels [lo, hi] within [x0, x1] of the next row (y0 first); lo > hi for none.
-    std::pair<int, int> next() {  // inline: per row of every triangle
-      int64_t lo = x0_, hi = x1_;
-      bool none = false;
-      for (int i = 0; i < lower_; ++i) {  // ceil(N/d); then N - b
-        Edge& w = edges_[size_t(i)];
-        lo = std::max(lo, w.q + int64_t(w.r != 0));
-        w.q -= w.step_q, w.r -= w.step_r;
-        if (w.r < 0) w.r += w.d, --w.q;
+    std::pair<int, int> next() { return step(edges_[0], edges_[1], edges_[2]); }
+    // f(lo, hi) for the next `rows` rows in turn, as next() gives them: the walk's state in
+    // three locals, which the compiler keeps in registers for the whole loop, not stored and
+    // loaded again from row to row.
+    template <class F>
+    void for_each_row(int rows, F&& f) {
+      Edge e0 = edges_[0], e1 = edges_[1], e2 = edges_[2];
+      for (int k = 0; k < rows; ++k) {
+        const auto [lo, hi] = step(e0, e1, e2);
+        f(lo, hi);
       }
-      for (int i = lower_; i < upper_; ++i) {  // floor(M/d); then M + b
-        Edge& w = edges_[size_t(i)];
-        hi = std::min(hi, w.q);
-        w.q += w.step_q, w.r += w.step_r;
-        if (w.r >= w.d) w.r -= w.d, ++w.q;
-      }
-      for (int i = upper_; i < 3; ++i) {  // every px while b·py + c - need >= 0
-        Edge& w = edges_[size_t(i)];
-        none = none || w.q < 0;
-        w.q += w.step_q;
-      }
-      if (none || lo > hi) return {x0_, x0_ - 1};
-      return {int(lo), int(hi)};
+      edges_ = {e0, e1, e2};
     }
 
    private:
     friend class CoverageTest;
     CoveredRows() = default;
-    // lower (a > 0): N = q·d + r, 0 <= r < d = a; upper (a < 0): M = q·d + r, d = -a; level
-    // (a = 0): q = b·py + c - need. From row to row N falls by b, M and q rise by it: b =
-    // step_q·d + step_r. The lower edges first, then the upper ones, then the level ones.
+    // M = q·d + r, 0 <= r < d = |a| (d = 1 for a = 0: q = M); from row to row M rises by b =
+    // step_q·d + step_r. lower (a > 0), upper (a < 0), level (a = 0): all ones or 0.
     struct Edge {
       int64_t q = 0, r = 0, d = 1, step_q = 0, step_r = 0;
+      int64_t lower = 0, upper = 0, level = 0;
     };
+    // One row: its run, then every edge stepped to the next row. No branch: the kinds as
+    // masks, the carry as a mask (on a thin triangle's rows carries come as the slope's digits
+    // do, no pattern a predictor learns).
+    [[gnu::always_inline]] static void step(Edge& w, int64_t& lo, int64_t& hi, int64_t& none) {
+      constexpr int64_t kLeast = std::numeric_limits<int64_t>::min();
+      constexpr int64_t kMost = std::numeric_limits<int64_t>::max();
+      lo = std::max(lo, (-w.q & w.lower) | (kLeast & ~w.lower));
+      hi = std::min(hi, (w.q & w.upper) | (kMost & ~w.upper));
+      none |= w.level & -int64_t(w.q < 0);
+      w.q += w.step_q, w.r += w.step_r;
+      const int64_t carry = -int64_t(w.r >= w.d);  // all ones when r reached d
+      w.r -= w.d & carry, w.q -= carry;
+    }
+    [[gnu::always_inline]] std::pair<int, int> step(Edge& e0, Edge& e1, Edge& e2) const {
+      int64_t lo = x0_, hi = x1_, none = 0;
+      step(e0, lo, hi, none), step(e1, lo, hi, none), step(e2, lo, hi, none);
+      if (none || lo > hi) return {x0_, x0_ - 1};
+      return {int(lo), int(hi)};
+    }
     std::array<Edge, 3> edges_{};
-    int lower_ = 0, upper_ = 0;  // edges_[0, lower_) lower, [lower_, upper_) upper
     int x0_ = 0, x1_ = -1;
   };
   // A CoveredRows for rows [y0, y1] and pixels [x0, x1] (y0 <= y1, x0 <= x1): on the snapped

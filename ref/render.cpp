@@ -523,8 +523,15 @@ GLRC_BLOCK_FORM void draw_rows(const Settings& s, const Prepared& w, int p, Band
   };
   // Without edge bits, a walked triangle needs no spans: its rows' runs are exact.
   if (!s.edges && walk) {
-    for (int py = cy0; py <= cy1; ++py)
-      draw_row(py, t.box.x0, t.box.x1);
+    int py = cy0;
+    walk->for_each_row(cy1 - cy0 + 1, [&](int lo, int hi) {
+      for (int px = lo; px <= hi; ++px)
+        if (blocks)
+          blocks->add(px, py);
+        else
+          frame_blocks->add(px, py);
+      ++py;
+    });
     if (blocks) blocks->flush();
     if (frame_blocks) frame_blocks->flush();
     return;

@@ -50,6 +50,12 @@ size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked
   EXPECT_EQ(walk.has_value(), t.path == CoveragePath::snapped && !depth_clip(t).crosses_near &&
                                   !depth_clip(t).crosses_far);
   walked += walk.has_value();
+  // for_each_row gives the runs next() gives, row after row.
+  std::vector<std::pair<int, int>> runs;
+  if (auto all = coverage.covered_rows(0, kSize - 1, 0, kSize - 1)) {
+    all->for_each_row(kSize / 2, [&](int lo, int hi) { runs.emplace_back(lo, hi); });
+    all->for_each_row(kSize - kSize / 2, [&](int lo, int hi) { runs.emplace_back(lo, hi); });
+  }
   size_t held = 0;
   for (int py = 0; py < kSize; ++py) {
     // for_each_covered steps the edge functions along the row: the very pixels covers() gives.
@@ -75,6 +81,7 @@ size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked
     };
     if (walk) {
       EXPECT_EQ(walk->next(), run_of(0, kSize - 1)) << "row " << py;
+      EXPECT_EQ(runs.at(size_t(py)), run_of(0, kSize - 1)) << "row " << py;
       if (!tested.empty()) {
         EXPECT_EQ(size_t(tested.back() - tested.front() + 1), tested.size());
       }
