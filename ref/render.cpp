@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/vector_clones.hpp"
 #include "ref/allowance.hpp"
 #include "ref/coverage.hpp"
 #include "ref/depth.hpp"
@@ -479,9 +480,10 @@ class FrameBlocks {
 };
 
 // Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,
-// then the fragments it covers, depth-tested, with their allowances and the candidates.
-GLRC_BLOCK_FORM void draw_rows(const Settings& s, const Prepared& w, int p, Band band, Reference& r,
-                               CandidateMap& candidates) {
+// then the fragments it covers, depth-tested, with their allowances and the candidates. With an
+// AVX2 copy (core/vector_clones.hpp): the spans' ceil and floor are an instruction each there.
+GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, Band band,
+                                  Reference& r, CandidateMap& candidates) {
   const TriangleSetup& t = w.t;
   Frame& f = r.frame;
   const PositionFreedom& freedom = w.freedom;
@@ -506,30 +508,28 @@ GLRC_BLOCK_FORM void draw_rows(const Settings& s, const Prepared& w, int p, Band
   const int cy0 = std::max(band.y0, t.box.y0), cy1 = std::min(band.y1, t.box.y1);
   std::optional<CoverageTest::CoveredRows> walk;
   if (draws && cy0 <= cy1) walk = w.coverage.covered_rows(cy0, cy1, t.box.x0, t.box.x1);
+  auto add = [&](int px, int py) {
+    if (blocks)
+      blocks->add(px, py);
+    else
+      frame_blocks->add(px, py);
+  };
   auto draw_row = [&](int py, int x0, int x1) {
-    auto add = [&](int px) {
-      if (blocks)
-        blocks->add(px, py);
-      else
-        frame_blocks->add(px, py);
-    };
     if (!walk) {
-      w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1), add);
+      w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
+                                  [&](int px) { add(px, py); });
       return;
     }
     const auto [lo, hi] = walk->next();
     for (int px = std::max(lo, x0), last = std::min(hi, x1); px <= last; ++px)
-      add(px);
+      add(px, py);
   };
   // Without edge bits, a walked triangle needs no spans: its rows' runs are exact.
   if (!s.edges && walk) {
     int py = cy0;
     walk->for_each_row(cy1 - cy0 + 1, [&](int lo, int hi) {
       for (int px = lo; px <= hi; ++px)
-        if (blocks)
-          blocks->add(px, py);
-        else
-          frame_blocks->add(px, py);
+        add(px, py);
       ++py;
     });
     if (blocks) blocks->flush();
