@@ -130,17 +130,14 @@ struct ChannelAccumulator {
     else
       for (int j = 0; j < n; ++j)
         ulps_of[j] = abs_error[j] / ulp;
-    // No branch in the loop, or it is not vectorized: the maxima of doubles that are +0 or
-    // above (or skipped, as std::max(m, x) skips a NaN, a negative and -0 when m starts at +0)
-    // as the maxima of their bits as integers, which order them the same (a maximum of doubles
-    // is vectorized only under -ffast-math); selections as masks.
-    // Counts of double comparisons in 64 bits: the comparisons' masks are 64-bit lanes.
+    // One figure a loop, none with a branch: GCC vectorizes no other. Counts of double
+    // comparisons in 64 bits (the comparisons' masks are 64-bit lanes); the maxima of doubles
+    // that are +0 or above (or skipped, as std::max(m, x) skips a NaN, a negative and -0 when m
+    // starts at +0) as the maxima of their bits as integers, which order them the same (a
+    // maximum of doubles is vectorized only under -ffast-math).
     const uint64_t exact_mask = exact ? ~uint64_t(0) : 0;
     uint64_t differing = 0, over = 0;
-    int64_t largest_allowance = 0, max_abs = 0, max_ulps = 0;
-    const bool ratios_droppable = ratios.may_drop();
-    const double ratio_floor = ratios.floor_value();
-    // One figure a loop: GCC vectorizes no loop that mixes them.
+    int64_t largest_allowance = 0, max_abs = 0;
     for (int j = 0; j < n; ++j)
       differing += std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
     for (int j = 0; j < n; ++j)
@@ -155,15 +152,13 @@ struct ChannelAccumulator {
       const int64_t e = std::bit_cast<int64_t>(abs_error[j]);
       max_abs = max_abs < e ? e : max_abs;
     }
-    for (int j = 0; j < n; ++j) {
-      const int64_t u = std::bit_cast<int64_t>(ulps_of[j]);
-      max_ulps = max_ulps < u ? u : max_ulps;
-    }
     // LargestValues' work is in the lanes whose values it may keep: at the 99th percentile a
     // run of 64 has one in about half the runs. Which lanes those are is found for every lane
     // at once, against the floors as they are now; a floor only rises (a value kept may
     // compact the kept ones), so a lane left out would be dropped later in the run too, and a
     // lane taken is tested again against the floor as it is when its turn comes.
+    const bool ratios_droppable = ratios.may_drop();
+    const double ratio_floor = ratios.floor_value();
     uint32_t keys[kRun], may_keep_ulps[kRun];
     int64_t may_keep_ratio[kRun];
     const uint32_t ulps_floor = ulps.floor_key();
@@ -190,7 +185,10 @@ struct ChannelAccumulator {
     t.over_tolerance += over;
     t.finite += uint64_t(n);
     t.max_abs = std::max(t.max_abs, std::bit_cast<double>(max_abs));
-    t.max_ulps = std::max(t.max_ulps, std::bit_cast<double>(max_ulps));
+    // The largest ulps is the largest error's: ·(1/ulp) and /ulp, rounded, are monotone.
+    const double largest_error = std::bit_cast<double>(max_abs);
+    t.max_ulps =
+        std::max(t.max_ulps, inverse_ulp > 0 ? largest_error * inverse_ulp : largest_error / ulp);
     for (int j = 0; j < n; ++j) {
       t.sum += ulps_of[j];
       t.sum_sq += ulps_of[j] * ulps_of[j];
@@ -488,9 +486,10 @@ struct Comparator::State {
   // Per pixel of the band add_rows compares: whether its values are compared, and against the
   // reference's own fragment or a candidate (judged_against), found once for every channel.
   std::vector<uint8_t> judgement;
-  // Per run of ChannelAccumulator::kRun pixels of each row of the band (the last of a row may
-  // be shorter): the primitive when every pixel of it is compared against the reference's own
-  // fragment of that primitive, else -1. The same for every channel, so found once.
+  // Per run of ChannelAccumulator::kRun pixels of each row of the band: the primitive when every
+  // pixel of it is compared against the reference's own fragment of that primitive, else -1 (a
+  // row's last, shorter run always: add_run takes whole runs). The same for every channel, so
+  // found once.
   std::vector<int32_t> plain_runs;
 };
 
@@ -569,13 +568,12 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
         if (cv.mismatches.size() < kMismatchesKept)
           cv.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
       }
-      // The row's plain runs, now that its judgement is known.
-      for (int r = 0; r < runs; ++r) {
+      // The row's plain runs, now that its judgement is known (whole runs only: add_run's).
+      for (int r = 0; r < reference.width / kRun; ++r) {
         const size_t first_pixel = reference.index(r * kRun, y);
-        const int n = std::min(kRun, reference.width - r * kRun);
         const int32_t p = reference.primitive[first_pixel];
         bool plain = true;
-        for (int j = 0; j < n; ++j)
+        for (int j = 0; j < kRun; ++j)
           plain = plain && judgement[first_pixel + size_t(j)] == kOwn &&
                   reference.primitive[first_pixel + size_t(j)] == p;
         if (plain) st.plain_runs[size_t(y) * size_t(runs) + size_t(r)] = p;
@@ -673,7 +671,7 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
       const int n = std::min(kRun, reference.width - x);
       const size_t first = reference.index(x, row);
       const int32_t run_primitive = st.plain_runs[size_t(row) * size_t(runs) + size_t(x / kRun)];
-      if (run_primitive >= 0 && n == kRun) {
+      if (run_primitive >= 0) {
         own_ulps(run_primitive);
         if (acc.add_run(t, x, y0 + row, own_values + first, gl_values + first,
                         own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,

@@ -78,9 +78,7 @@ std::optional<CoverageTest::CoveredRows> CoverageTest::covered_rows(int y0, int 
     int128 q, r, step_q, step_r;
     floor_divide(m, d, q, r);
     floor_divide(e.b, d, step_q, step_r);
-    if (d >= kFits || abs128(step_q) >= kFits / rows ||
-        abs128(q) + rows * (abs128(step_q) + 1) >= kFits)
-      return std::nullopt;
+    if (d >= kFits || abs128(q) + rows * (abs128(step_q) + 1) >= kFits) return std::nullopt;
     CoveredRows::Edge& w = walk.edges_[i];
     w.q = int64_t(q), w.r = int64_t(r), w.d = int64_t(d);
     w.step_q = int64_t(step_q), w.step_r = int64_t(step_r);

@@ -546,7 +546,7 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
       w.coverage.row_spans(w.reach_px, w.reach.x0, w.reach.x1, y0, y1);
   for (int py = y0; py <= y1; ++py) {
     const auto [x0, x1] = spans.at(py);
-    for (int px = x0; px <= x1 && s.edges; ++px)
+    for (int px = x0; s.edges && px <= x1; ++px)
       // Most pixels are beyond or deep within every band: no freedom to compute for them.
       if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable,
                                          s.allowance ? freedom.z_clip_largest() : 0.0))
