@@ -23,13 +23,18 @@ int sign128(int128 v) {
 
 }  // namespace
 
-CoverageTest::CoverageTest(const TriangleSetup& t, const Model& m) : t_(t), clip_(depth_clip(t)) {
+CoverageTest::CoverageTest(const TriangleSetup& t, const Model& m, bool classifies)
+    : t_(t), clip_(depth_clip(t)) {
+  // The homogeneous path's coverage is the exact edges' signs: always made there.
+  const bool exact_edges = classifies || t.path != CoveragePath::snapped;
   for (int i = 0; i < 3; ++i) {
     const auto& e = t.homogeneous_edges[i];
-    edges_[i] = SignEvaluator(e);
-    const double a = std::fabs(e.a.get_d()), b = std::fabs(e.b.get_d());
-    const double norm = std::hypot(a, b);
-    band_scale_[i] = norm > 0 ? (a + b) / norm : 1.0;
+    if (exact_edges) {
+      edges_[i] = SignEvaluator(e);
+      const double a = std::fabs(e.a.get_d()), b = std::fabs(e.b.get_d());
+      const double norm = std::hypot(a, b);
+      band_scale_[i] = norm > 0 ? (a + b) / norm : 1.0;
+    }
     if (t.path == CoveragePath::snapped) {
       const auto& s = t.snapped_edges[i];
       tie_inside_[i] = tie_inside(sign128(s.a), sign128(s.b), m.tie_break);

@@ -19,7 +19,12 @@ namespace glrc::ref {
 
 class CoverageTest {
  public:
-  CoverageTest(const TriangleSetup& t, const Model& m);
+  // `classifies`: classify, classifies_nothing and row_span(s) may be called. Without it, on
+  // the snapped path, the exact edges' double copies (SignEvaluator) are not made: coverage
+  // there needs only the integer edges, and render_frame, which draws no edge bits, would make
+  // three exact forms' copies per triangle for nothing. row_spans then gives every pixel of
+  // each row (a span may hold more; the walk or the coverage test decides).
+  CoverageTest(const TriangleSetup& t, const Model& m, bool classifies = true);
   bool covers(int px, int py) const;
   // f(px) for every px in [x0, x1] whose pixel of row py covers() holds, in order. The snapped
   // edge functions are stepped by their integer a from pixel to pixel: exact, the same values

@@ -55,7 +55,7 @@ using CandidateMap = std::map<size_t, std::vector<Candidate>>;
 // only once built, so that every band may draw it at once.
 struct Prepared {
   Prepared(const Settings& s, const TriangleSetup& setup, const std::array<bool, 3>& shared_edges)
-      : t(setup), shared(shared_edges), coverage(setup, s.m) {
+      : t(setup), shared(shared_edges), coverage(setup, s.m, s.edges) {
     const Case& c = s.c;
     freedom = s.allowance ? PositionFreedom(c, t, s.bits) : PositionFreedom();
     // Reaching the eye (within rounding), the triangle may cover anything: unstable too.
@@ -568,6 +568,13 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
 
 namespace {
 
+// Empties every element of v on `threads` threads: a case's setups and prepared triangles hold
+// many GMP numbers each, and freeing them on one thread was a serial tenth of drawing a fan.
+template <class T>
+void release(std::vector<T>& v, int threads) {
+  parallel_for(int(v.size()), threads, [&](int k) { v[size_t(k)] = {}; });
+}
+
 // render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
 // the shared edges nor the bands are looked for.
 Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
@@ -607,16 +614,17 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     s.component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
 
   const int count = int(c.triangles.size());
-  // Each vertex used by several corners to the window once (a mesh's vertices are shared; the
-  // others are transformed by setup_triangle), then each triangle set up in its place: a
-  // TriangleSetup default-constructed first costs 24 rationals' allocations.
-  std::vector<uint8_t> uses(c.vertices.size(), 0);
+  // Each vertex a triangle uses to the window once, shared by its triangles (WindowCorners),
+  // then each triangle set up in its place: a TriangleSetup default-constructed first costs its
+  // rationals' allocations.
+  std::vector<uint8_t> used(c.vertices.size(), 0);
   for (const auto& triangle : c.triangles)
     for (uint32_t i : triangle)
-      uses[i] = uint8_t(std::min(2, uses[i] + 1));
-  std::vector<std::optional<WindowVertex>> window(c.vertices.size());
+      used[i] = 1;
+  std::vector<WindowCorners::Pointer> window(c.vertices.size());
   parallel_for(int(c.vertices.size()), threads, [&](int i) {
-    if (uses[size_t(i)] > 1) window[size_t(i)] = to_window(c.vertices[size_t(i)], c);
+    if (used[size_t(i)])
+      window[size_t(i)] = std::make_shared<const WindowVertex>(to_window(c.vertices[size_t(i)], c));
   });
   std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
   parallel_for(count, threads, [&](int p) {
@@ -625,12 +633,12 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
       const Case& c;
       const Model& m;
       int p;
-      const std::vector<std::optional<WindowVertex>>& window;
+      const std::vector<WindowCorners::Pointer>& window;
       operator TriangleSetup() const { return setup_triangle(c, m, p, window); }
     };
     setups[size_t(p)].emplace(SetUp{c, m, p, window});
   });
-  window = {};  // freed: the setups hold their own copies
+  window = {};  // the setups hold the vertices they use
   // Which edges are shared marks edge bits only.
   const std::vector<std::array<bool, 3>> shared =
       edges ? shared_edges(setups, threads)
@@ -674,7 +682,9 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
           sliver->mark(s.viewport.x0, std::max(s.viewport.y0, rows[size_t(b)].y0), s.viewport.x1,
                        std::min(s.viewport.y1, rows[size_t(b)].y1), s.row0, f, r.edges);
     });
+    release(prepared, threads);
   }
+  release(setups, threads);
   // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.
   // (Only with an allowance are there any.)
   for (CandidateMap& band : candidates)

@@ -221,22 +221,22 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
 }  // namespace
 
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive) {
-  TriangleSetup t;
-  t.primitive = primitive;
-  t.index = c.triangles[size_t(primitive)];
-  for (size_t i = 0; i < 3; ++i)
-    t.v[i] = to_window(c.vertices[t.index[i]], c);
-  set_up(c, m, t);
-  return t;
+  return setup_triangle(c, m, primitive, {});
 }
 
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
-                             const std::vector<std::optional<WindowVertex>>& window) {
+                             const std::vector<WindowCorners::Pointer>& window) {
   TriangleSetup t;
   t.primitive = primitive;
   t.index = c.triangles[size_t(primitive)];
-  for (size_t i = 0; i < 3; ++i)
-    t.v[i] = window[t.index[i]] ? *window[t.index[i]] : to_window(c.vertices[t.index[i]], c);
+  std::array<WindowCorners::Pointer, 3> corners;
+  for (size_t i = 0; i < 3; ++i) {
+    const uint32_t k = t.index[i];
+    corners[i] = k < window.size() && window[k]
+                     ? window[k]
+                     : std::make_shared<const WindowVertex>(to_window(c.vertices[k], c));
+  }
+  t.v = WindowCorners(std::move(corners));
   set_up(c, m, t);
   return t;
 }

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -26,9 +29,49 @@ struct PixelBox {
   bool empty() const { return x1 < x0 || y1 < y0; }
 };
 
+// A triangle's three window vertices, read only, shared with the other triangles that use
+// them: a mesh's vertex is transformed once and its rationals held once. (Copied into each
+// triangle, its ten GMP numbers' copies and frees were a tenth of drawing piglit's fan.)
+class WindowCorners {
+ public:
+  using Pointer = std::shared_ptr<const WindowVertex>;
+  WindowCorners() = default;
+  explicit WindowCorners(std::array<Pointer, 3> v) : v_(std::move(v)) {}
+
+  const WindowVertex& operator[](size_t i) const { return *v_[i]; }
+
+  // The three vertices in order (for range-for and the standard algorithms).
+  class Iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = WindowVertex;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const WindowVertex*;
+    using reference = const WindowVertex&;
+    Iterator() = default;
+    explicit Iterator(const Pointer* p) : p_(p) {}
+    reference operator*() const { return **p_; }
+    pointer operator->() const { return p_->get(); }
+    Iterator& operator++() {
+      ++p_;
+      return *this;
+    }
+    Iterator operator++(int) { return Iterator(p_++); }
+    bool operator==(const Iterator&) const = default;
+
+   private:
+    const Pointer* p_ = nullptr;
+  };
+  Iterator begin() const { return Iterator(v_.data()); }
+  Iterator end() const { return Iterator(v_.data() + 3); }
+
+ private:
+  std::array<Pointer, 3> v_;
+};
+
 struct TriangleSetup {
   int primitive = 0;  // gl_PrimitiveID
-  std::array<WindowVertex, 3> v;
+  WindowCorners v;
   std::array<uint32_t, 3> index{};  // into Case::vertices
   bool drawn = false;               // false: zero area, or culled
   // The exact triangle has area: edges and box are set, even when it is not drawn (a
@@ -53,11 +96,11 @@ struct TriangleSetup {
 };
 
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive);
-// The same with the window positions of shared vertices given (window[i], when it holds one, is
-// to_window(c.vertices[i], c)): a mesh's vertex is used by several triangles and transformed
-// once, not once per corner; a vertex used once is transformed here (a copy would cost more).
+// The same with the window positions given (window[i], when not null, is
+// to_window(c.vertices[i], c); a null one is transformed here): a mesh's vertex is used by
+// several triangles and transformed once, not once per corner, and shared by them.
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
-                             const std::vector<std::optional<WindowVertex>>& window);
+                             const std::vector<WindowCorners::Pointer>& window);
 
 // The window-pixel region of the viewport inside the framebuffer.
 PixelBox viewport_box(const Case& c);
