@@ -78,13 +78,17 @@ std::optional<CoverageTest::CoveredRows> CoverageTest::covered_rows(int y0, int 
   walk.x0_ = x0, walk.x1_ = x1;
   for (size_t i = 0; i < 3; ++i) {
     const TriangleSetup::IntEdge& e = t_.snapped_edges[i];
-    const int128 m = e.b * y0 + e.c - (tie_inside_[i] ? 0 : 1);
+    const int128 need = tie_inside_[i] ? 0 : 1;
+    // Linear: its least value over the rectangle is at a corner. Passed there, everywhere.
+    const int128 least = std::min(e.a * x0, e.a * x1) + std::min(e.b * y0, e.b * y1) + e.c;
+    if (least >= need) continue;
+    const int128 m = e.b * y0 + e.c - need;
     const int128 d = e.a > 0 ? e.a : e.a < 0 ? -e.a : 1;
     int128 q, r, step_q, step_r;
     floor_divide(m, d, q, r);
     floor_divide(e.b, d, step_q, step_r);
     if (d >= kFits || abs128(q) + rows * (abs128(step_q) + 1) >= kFits) return std::nullopt;
-    CoveredRows::Edge& w = walk.edges_[i];
+    CoveredRows::Edge& w = walk.edges_[size_t(walk.count_++)];
     w.q = int64_t(q), w.r = int64_t(r), w.d = int64_t(d);
     w.step_q = int64_t(step_q), w.step_r = int64_t(step_r);
     w.lower = e.a > 0 ? -1 : 0, w.upper = e.a < 0 ? -1 : 0, w.level = e.a == 0 ? -1 : 0;

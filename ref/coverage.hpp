@@ -42,16 +42,32 @@ class CoverageTest {
   class CoveredRows {
    public:
     // The covered pixels [lo, hi] within [x0, x1] of the next row (y0 first); lo > hi for none.
-    std::pair<int, int> next() { return step(edges_[0], edges_[1], edges_[2]); }
+    std::pair<int, int> next() {
+      int64_t lo = x0_, hi = x1_, none = 0;
+      for (int i = 0; i < count_; ++i)
+        step(edges_[size_t(i)], lo, hi, none);
+      return run(lo, hi, none);
+    }
+    // How many edges the walk steps: those that bind within its rows and columns.
+    int edges() const { return count_; }
     // f(lo, hi) for the next `rows` rows in turn, as next() gives them: the walk's state in
-    // three locals, which the compiler keeps in registers for the whole loop, not stored and
-    // loaded again from row to row.
+    // locals, which the compiler keeps in registers for the whole loop, not stored and loaded
+    // again from row to row; a loop for each count of edges that bind.
     template <class F>
     void for_each_row(int rows, F&& f) {
       Edge e0 = edges_[0], e1 = edges_[1], e2 = edges_[2];
-      for (int k = 0; k < rows; ++k) {
-        const auto [lo, hi] = step(e0, e1, e2);
-        f(lo, hi);
+      switch (count_) {
+        case 3:
+          walk(rows, f, e0, e1, e2);
+          break;
+        case 2:
+          walk(rows, f, e0, e1);
+          break;
+        case 1:
+          walk(rows, f, e0);
+          break;
+        default:
+          walk(rows, f);
       }
       edges_ = {e0, e1, e2};
     }
@@ -65,9 +81,9 @@ class CoverageTest {
       int64_t q = 0, r = 0, d = 1, step_q = 0, step_r = 0;
       int64_t lower = 0, upper = 0, level = 0;
     };
-    // One row: its run, then every edge stepped to the next row. No branch: the kinds as
-    // masks, the carry as a mask (on a thin triangle's rows carries come as the slope's digits
-    // do, no pattern a predictor learns).
+    // One edge on one row: its bound on the run, then the edge stepped to the next row. No
+    // branch: the kinds as masks, the carry as a mask (on a thin triangle's rows carries come as
+    // the slope's digits do, no pattern a predictor learns).
     [[gnu::always_inline]] static void step(Edge& w, int64_t& lo, int64_t& hi, int64_t& none) {
       constexpr int64_t kLeast = std::numeric_limits<int64_t>::min();
       constexpr int64_t kMost = std::numeric_limits<int64_t>::max();
@@ -78,13 +94,24 @@ class CoverageTest {
       const int64_t carry = -int64_t(w.r >= w.d);  // all ones when r reached d
       w.r -= w.d & carry, w.q -= carry;
     }
-    [[gnu::always_inline]] std::pair<int, int> step(Edge& e0, Edge& e1, Edge& e2) const {
-      int64_t lo = x0_, hi = x1_, none = 0;
-      step(e0, lo, hi, none), step(e1, lo, hi, none), step(e2, lo, hi, none);
+    [[gnu::always_inline]] std::pair<int, int> run(int64_t lo, int64_t hi, int64_t none) const {
       if (none || lo > hi) return {x0_, x0_ - 1};
       return {int(lo), int(hi)};
     }
+    template <class F, class... E>
+    [[gnu::always_inline]] void walk(int rows, F& f, E&... e) const {
+      for (int k = 0; k < rows; ++k) {
+        int64_t lo = x0_, hi = x1_, none = 0;
+        (step(e, lo, hi, none), ...);
+        const auto [l, h] = run(lo, hi, none);
+        f(l, h);
+      }
+    }
+    // The edges that bind, first: an edge every pixel of the rows and columns walked passes
+    // (a fan triangle's rim far outside the framebuffer, a large triangle's edges beyond the
+    // viewport) is left out, and the walk steps count_ edges a row.
     std::array<Edge, 3> edges_{};
+    int count_ = 0;
     int x0_ = 0, x1_ = -1;
   };
   // A CoveredRows for rows [y0, y1] and pixels [x0, x1] (y0 <= y1, x0 <= x1): on the snapped

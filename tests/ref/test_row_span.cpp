@@ -32,8 +32,10 @@ Case triangle(std::array<std::array<float, 4>, 3> v) {
 }
 
 // Every pixel the span leaves out is neither covered nor classified; returns the pixels the
-// spans held, to show that they are tight. Counts the triangles CoveredRows walks in `walked`.
-size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked) {
+// spans held, to show that they are tight. Counts the triangles CoveredRows walks in `walked`,
+// and the edges its walks leave out (passed by every pixel walked) in `left_out`.
+size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked,
+                   size_t* left_out = nullptr) {
   const TriangleSetup t = setup_triangle(c, m, 0);
   if (!t.has_edges) return 0;
   const CoverageTest coverage(t, m);
@@ -50,6 +52,7 @@ size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked
   EXPECT_EQ(walk.has_value(), t.path == CoveragePath::snapped && !depth_clip(t).crosses_near &&
                                   !depth_clip(t).crosses_far);
   walked += walk.has_value();
+  if (left_out && walk) *left_out += size_t(3 - walk->edges()) + size_t(3 - part_walk->edges());
   // for_each_row gives the runs next() gives, row after row.
   std::vector<std::pair<int, int>> runs;
   if (auto all = coverage.covered_rows(0, kSize - 1, 0, kSize - 1)) {
@@ -124,7 +127,7 @@ size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked
 }
 
 TEST(RowSpan, NeverMissesAPixelOfRandomTriangles) {
-  size_t walked = 0;
+  size_t walked = 0, left_out = 0;
   std::mt19937 rng(1301);
   std::uniform_real_distribution<float> unit(-1.2f, 1.2f), far(-40.0f, 40.0f), w(0.2f, 4.0f);
   std::uniform_real_distribution<double> freedom(0.0, 3.0);
@@ -141,9 +144,36 @@ TEST(RowSpan, NeverMissesAPixelOfRandomTriangles) {
     m.subpixel_bits = k % 2 ? 8 : 0;
     m.planes = k % 3 ? Planes::unsnapped : Planes::snapped;
     SCOPED_TRACE("triangle " + std::to_string(k));
-    check_spans(triangle(v), m, k % 4 == 1 ? std::ldexp(1.0, -8) : freedom(rng), walked);
+    check_spans(triangle(v), m, k % 4 == 1 ? std::ldexp(1.0, -8) : freedom(rng), walked,
+                &left_out);
   }
   EXPECT_GT(walked, 150u);  // the snapped ones not reaching behind the eye
+  // Many reach past the framebuffer, or past the part walked: edges every pixel there passes.
+  EXPECT_GT(left_out, 100u);
+}
+
+TEST(RowSpan, AWalkStepsOnlyTheEdgesThatBind) {
+  size_t walked = 0;
+  // A fan's triangle: its rim far outside the framebuffer, two edges from the centre.
+  const Case fan = triangle({{{0.1f, 0.2f, 0, 1}, {30, 2, 0, 1}, {30, 3, 0, 1}}});
+  // A triangle enclosing the framebuffer: no edge binds, every row is covered whole.
+  const Case enclosing = triangle({{{-5, -5, 0, 1}, {5, -5, 0, 1}, {0, 5, 0, 1}}});
+  for (const auto& [c, edges] : {std::pair(&fan, 2), std::pair(&enclosing, 0)}) {
+    const TriangleSetup t = setup_triangle(*c, Model{}, 0);
+    const CoverageTest coverage(t, Model{});
+    auto walk = coverage.covered_rows(0, kSize - 1, 0, kSize - 1);
+    ASSERT_TRUE(walk);
+    EXPECT_EQ(walk->edges(), edges);
+    check_spans(*c, Model{}, std::ldexp(1.0, -8), walked);
+  }
+  auto walk = CoverageTest(setup_triangle(enclosing, Model{}, 0), Model{})
+                  .covered_rows(0, kSize - 1, 0, kSize - 1);
+  ASSERT_TRUE(walk);
+  walk->for_each_row(kSize, [](int lo, int hi) {
+    EXPECT_EQ(lo, 0);
+    EXPECT_EQ(hi, kSize - 1);
+  });
+  EXPECT_EQ(walked, 2u);
 }
 
 TEST(RowSpan, RowsWalkedThroughExactTies) {
