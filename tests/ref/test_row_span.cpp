@@ -144,8 +144,7 @@ TEST(RowSpan, NeverMissesAPixelOfRandomTriangles) {
     m.subpixel_bits = k % 2 ? 8 : 0;
     m.planes = k % 3 ? Planes::unsnapped : Planes::snapped;
     SCOPED_TRACE("triangle " + std::to_string(k));
-    check_spans(triangle(v), m, k % 4 == 1 ? std::ldexp(1.0, -8) : freedom(rng), walked,
-                &left_out);
+    check_spans(triangle(v), m, k % 4 == 1 ? std::ldexp(1.0, -8) : freedom(rng), walked, &left_out);
   }
   EXPECT_GT(walked, 150u);  // the snapped ones not reaching behind the eye
   // Many reach past the framebuffer, or past the part walked: edges every pixel there passes.
