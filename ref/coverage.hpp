@@ -119,6 +119,14 @@ class CoverageTest {
   // where every number of the walk fits 64 bits (always, but for triangles reaching far into
   // the guard band); else nothing: for_each_covered.
   std::optional<CoveredRows> covered_rows(int y0, int y1, int x0, int x1) const;
+  // The same walk down columns x0, x1, ... in turn, each column's covered pixels [lo, hi] of
+  // rows [y0, y1] (y for x throughout: an edge covers py when b_i·py + a_i·px + c_i - need_i >=
+  // 0). A thin triangle nearer vertical than horizontal has fewer columns than rows to walk.
+  std::optional<CoveredRows> covered_columns(int x0, int x1, int y0, int y1) const;
+  // Columns [first, last] of the box holding every pixel of rows [y0, y1] the triangle covers
+  // (a pixel or so wider): the columns covered_columns walks for those rows; first > last for
+  // none. Off the snapped path, every column of the box.
+  std::pair<int, int> columns_of_rows(int y0, int y1) const;
   // What this triangle's boundary means for the centre of pixel (px, py), as edge:: bits.
   // `freedom`: how far (in pixels, along x and along y) an implementation may move each vertex;
   // an edge then moves by at most freedom·(|n_x| + |n_y|) for its unit normal n, which is the
@@ -171,6 +179,8 @@ class CoverageTest {
   RowSpans row_spans(double reach, int x0, int x1, int y0, int y1) const;
 
  private:
+  // covered_rows (lines l rows, s columns) or covered_columns (lines columns, s rows).
+  std::optional<CoveredRows> walk(bool columns, int l0, int l1, int s0, int s1) const;
   const TriangleSetup& t_;
   DepthClip clip_;
   std::array<SignEvaluator, 3> edges_;  // the exact (homogeneous) edges, on either path

@@ -500,20 +500,53 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
   if (w.eye)
     mark_unstable(s.viewport.x0, std::max(band.y0, s.viewport.y0), s.viewport.x1,
                   std::min(band.y1, s.viewport.y1), s.row0, f, r.edges);
-  // The covered pixels of row py within [x0, x1], a block at a time. Walked row after row
-  // (CoverageTest::CoveredRows: each row's run at once, exactly) where the coverage test allows,
-  // else tested pixel by pixel (for_each_covered). Rows [cy0, cy1] are those the triangle may
-  // cover, every one of them passed here in order when it draws.
+  // Rows [cy0, cy1]: those of the band the triangle may cover.
   const bool draws = t.drawn && !t.box.empty();
   const int cy0 = std::max(band.y0, t.box.y0), cy1 = std::min(band.y1, t.box.y1);
-  std::optional<CoverageTest::CoveredRows> walk;
-  if (draws && cy0 <= cy1) walk = w.coverage.covered_rows(cy0, cy1, t.box.x0, t.box.x1);
   auto add = [&](int px, int py) {
     if (blocks)
       blocks->add(px, py);
     else
       frame_blocks->add(px, py);
   };
+  auto flush = [&] {
+    if (blocks) blocks->flush();
+    if (frame_blocks) frame_blocks->flush();
+  };
+  // Without edge bits, a walked triangle needs no spans: its runs are exact. Walked down its
+  // columns where they are fewer than its rows in the band (a thin triangle nearer vertical: a
+  // pixel or none a row, where a column has several), else along its rows, each line's run at
+  // once; over the columns that can hold its pixels of these rows, not the whole box.
+  if (!s.edges && draws && cy0 <= cy1) {
+    const auto [cx0, cx1] = w.coverage.columns_of_rows(cy0, cy1);
+    if (cx0 > cx1) return;  // nothing of it in these rows
+    if (cx1 - cx0 < cy1 - cy0) {
+      if (auto columns = w.coverage.covered_columns(cx0, cx1, cy0, cy1)) {
+        int px = cx0;
+        columns->for_each_row(cx1 - cx0 + 1, [&](int lo, int hi) {
+          for (int py = lo; py <= hi; ++py)
+            add(px, py);
+          ++px;
+        });
+        return flush();
+      }
+    }
+    if (auto rows = w.coverage.covered_rows(cy0, cy1, cx0, cx1)) {
+      int py = cy0;
+      rows->for_each_row(cy1 - cy0 + 1, [&](int lo, int hi) {
+        for (int px = lo; px <= hi; ++px)
+          add(px, py);
+        ++py;
+      });
+      return flush();
+    }
+  }
+  // With edge bits: the covered pixels of row py within [x0, x1] (its span), a block at a time.
+  // Walked row after row (CoverageTest::CoveredRows) where the coverage test allows, else tested
+  // pixel by pixel (for_each_covered); every row of [cy0, cy1] passed here in order when it
+  // draws.
+  std::optional<CoverageTest::CoveredRows> walk;
+  if (draws && cy0 <= cy1) walk = w.coverage.covered_rows(cy0, cy1, t.box.x0, t.box.x1);
   auto draw_row = [&](int py, int x0, int x1) {
     if (!walk) {
       w.coverage.for_each_covered(py, std::max(x0, t.box.x0), std::min(x1, t.box.x1),
@@ -524,18 +557,6 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
     for (int px = std::max(lo, x0), last = std::min(hi, x1); px <= last; ++px)
       add(px, py);
   };
-  // Without edge bits, a walked triangle needs no spans: its rows' runs are exact.
-  if (!s.edges && walk) {
-    int py = cy0;
-    walk->for_each_row(cy1 - cy0 + 1, [&](int lo, int hi) {
-      for (int px = lo; px <= hi; ++px)
-        add(px, py);
-      ++py;
-    });
-    if (blocks) blocks->flush();
-    if (frame_blocks) frame_blocks->flush();
-    return;
-  }
   // Only the pixels within `margin` of the triangle, row by row (CoverageTest::row_span): a
   // thin triangle's bounding box holds a thousand times the pixels it reaches. Classifying only
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
@@ -556,8 +577,7 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
     draw_row(py, x0, x1);
   }
-  if (blocks) blocks->flush();
-  if (frame_blocks) frame_blocks->flush();
+  flush();
 }
 
 }  // namespace

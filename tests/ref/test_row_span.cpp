@@ -59,6 +59,48 @@ size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked
     all->for_each_row(kSize / 2, [&](int lo, int hi) { runs.emplace_back(lo, hi); });
     all->for_each_row(kSize - kSize / 2, [&](int lo, int hi) { runs.emplace_back(lo, hi); });
   }
+  // covered_columns walks the columns: each column's covered pixels, one run of them, over the
+  // whole framebuffer and over part of it; columns_of_rows holds every column a range of rows
+  // covers, within the box.
+  if (walk) {
+    std::vector<std::pair<int, int>> column_runs;
+    auto columns = coverage.covered_columns(0, kSize - 1, 0, kSize - 1);
+    auto part_columns = coverage.covered_columns(5, 30, 7, kSize - 1);
+    EXPECT_TRUE(columns && part_columns);
+    if (columns && part_columns) {
+      columns->for_each_row(kSize, [&](int lo, int hi) { column_runs.emplace_back(lo, hi); });
+      for (int px = 0; px < kSize; ++px) {
+        std::vector<int> in;
+        for (int py = 0; py < kSize; ++py)
+          if (coverage.covers(px, py)) in.push_back(py);
+        const auto whole = in.empty() ? std::pair(0, -1) : std::pair(in.front(), in.back());
+        EXPECT_EQ(column_runs[size_t(px)], whole) << "column " << px;
+        if (!in.empty()) {
+          EXPECT_EQ(size_t(in.back() - in.front() + 1), in.size());
+        }
+        if (px < 5 || px > 30) continue;
+        std::vector<int> part;
+        for (int py : in)
+          if (py >= 7) part.push_back(py);
+        EXPECT_EQ(part_columns->next(),
+                  part.empty() ? std::pair(7, 6) : std::pair(part.front(), part.back()))
+            << "column " << px;
+      }
+    }
+    for (const auto& [y0, y1] :
+         {std::pair(0, kSize - 1), std::pair(3, 9), std::pair(20, 20), std::pair(17, 38)}) {
+      const auto [first, last] = coverage.columns_of_rows(y0, y1);
+      int lo = kSize, hi = -1;
+      for (int py = y0; py <= y1; ++py)
+        for (int px = 0; px < kSize; ++px)
+          if (coverage.covers(px, py)) lo = std::min(lo, px), hi = std::max(hi, px);
+      if (hi < 0) continue;
+      EXPECT_LE(first, lo) << "rows " << y0 << " to " << y1;
+      EXPECT_GE(last, hi) << "rows " << y0 << " to " << y1;
+      EXPECT_GE(first, t.box.x0);
+      EXPECT_LE(last, t.box.x1);
+    }
+  }
   size_t held = 0;
   for (int py = 0; py < kSize; ++py) {
     // for_each_covered steps the edge functions along the row: the very pixels covers() gives.
@@ -221,6 +263,12 @@ TEST(RowSpan, AThinTriangleIsWalkedAlongItsLengthOnly) {
   EXPECT_EQ(walked, 1u);
   EXPECT_GE(held, size_t(kSize));
   EXPECT_LT(held, size_t(2 * kSize));
+  // Its part in rows 10 to 14 lies in x 10.5 to about 14.6: the columns a pixel wider each side,
+  // not its box's 40.
+  const TriangleSetup t = setup_triangle(c, Model{}, 0);
+  const auto [first, last] = CoverageTest(t, Model{}).columns_of_rows(10, 14);
+  EXPECT_EQ(first, 9);
+  EXPECT_EQ(last, 15);
 }
 
 }  // namespace
