@@ -76,18 +76,26 @@ bool Dyadic::of(const mpq_class& q, Dyadic& out) {
 }
 
 mpq_class Dyadic::rational() const {
-  mpq_class q;  // 0/1
-  if (sgn(m) == 0) return q;
+  mpq_class q;
+  to(q);
+  return q;
+}
+
+void Dyadic::to(mpq_class& out) const {
+  mpz_ptr num = mpq_numref(out.get_mpq_t()), den = mpq_denref(out.get_mpq_t());
+  mpz_set_ui(den, 1);
+  if (sgn(m) == 0) {
+    mpz_set_ui(num, 0);
+    return;
+  }
   if (e >= 0) {
-    mpz_mul_2exp(mpq_numref(q.get_mpq_t()), m.get_mpz_t(), mp_bitcnt_t(e));
-    return q;
+    mpz_mul_2exp(num, m.get_mpz_t(), mp_bitcnt_t(e));
+    return;
   }
   // m/2^-e in lowest terms: the twos they share cancel (m's trailing zeros, at most -e of them).
   const mp_bitcnt_t shared = std::min<mp_bitcnt_t>(mpz_scan1(m.get_mpz_t(), 0), mp_bitcnt_t(-e));
-  mpz_tdiv_q_2exp(mpq_numref(q.get_mpq_t()), m.get_mpz_t(), shared);
-  mpz_set_ui(mpq_denref(q.get_mpq_t()), 1);
-  mpz_mul_2exp(mpq_denref(q.get_mpq_t()), mpq_denref(q.get_mpq_t()), mp_bitcnt_t(-e) - shared);
-  return q;
+  mpz_tdiv_q_2exp(num, m.get_mpz_t(), shared);
+  mpz_mul_2exp(den, den, mp_bitcnt_t(-e) - shared);
 }
 
 double truncated_quotient(const mpq_class& n, const mpq_class& d) {

@@ -38,6 +38,8 @@ struct Dyadic {
   // q as m·2^e when its denominator is a power of two (always true of 0); false otherwise.
   static bool of(const mpq_class& q, Dyadic& out);
   mpq_class rational() const;
+  // rational() into `out`, whose limbs are reused: no temporary to allocate and free.
+  void to(mpq_class& out) const;
   int sign() const { return sgn(m); }
 };
 

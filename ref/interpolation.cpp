@@ -39,7 +39,7 @@ LinearForm sum(const Barycentrics& b, const std::array<mpq_class, 3>& alpha) {
     for (int k = 0; k < 3; ++k) {
       const Dyadic* terms[3] = {&b.dyadic[0][k], &b.dyadic[1][k], &b.dyadic[2][k]};
       sum_of_products(total, terms, weights, 3);
-      *coefficient[k] = total.rational();
+      total.to(*coefficient[k]);
     }
     return f;
   }

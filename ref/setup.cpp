@@ -103,11 +103,17 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   for (int i = 0; i < 3 && dyadic; ++i)
     dyadic = Dyadic::of(t.v[i].x_h, xyw[i][0]) && Dyadic::of(t.v[i].y_h, xyw[i][1]) &&
              Dyadic::of(t.v[i].w_c, xyw[i][2]);
-  H3 g[3];
-  mpq_class centre_term[3];  // E_i's value at pixel (0, 0), whose centre is (1/2, 1/2)
+  // The edges' coefficients: gd (x, y) and centre (E_i's value at pixel (0, 0), whose centre
+  // is (1/2, 1/2)) when dyadic, else rationals' g and centre_term (made only then: a rational
+  // is an allocation even at 0).
+  Dyadic gd[3][3], centre[3];
+  struct Rationals {
+    H3 g[3];
+    mpq_class centre_term[3];
+  };
+  std::optional<Rationals> rationals;
   int det_sign = 0;
   if (dyadic) {
-    Dyadic gd[3][3];
     for (int i = 0; i < 3; ++i) {
       const Dyadic(&u)[3] = xyw[(i + 1) % 3];
       const Dyadic(&v)[3] = xyw[(i + 2) % 3];
@@ -123,16 +129,14 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
     const Dyadic half{1, -1}, one{1, 0};
     const Dyadic* weights[3] = {&half, &half, &one};
     for (int i = 0; i < 3; ++i) {
-      g[i].x = gd[i][0].rational(), g[i].y = gd[i][1].rational();  // w only in centre_term
-      Dyadic c0;
-      const Dyadic* terms[3] = {&gd[i][0], &gd[i][1], &gd[i][2]};
-      sum_of_products(c0, terms, weights, 3);
-      centre_term[i] = c0.rational();
+      const Dyadic* terms[3] = {&gd[i][0], &gd[i][1], &gd[i][2]};  // w only in the centre's
+      sum_of_products(centre[i], terms, weights, 3);
     }
   } else {
     const Column col[3] = {{t.v[0].x_h, t.v[0].y_h, t.v[0].w_c},
                            {t.v[1].x_h, t.v[1].y_h, t.v[1].w_c},
                            {t.v[2].x_h, t.v[2].y_h, t.v[2].w_c}};
+    auto& [g, centre_term] = rationals.emplace();
     for (int i = 0; i < 3; ++i)
       g[i] = cross(col[(i + 1) % 3], col[(i + 2) % 3]);
     det_sign = sgn(mpq_class(g[0].x * col[0].x + g[0].y * col[0].y + g[0].w * col[0].w));
@@ -176,8 +180,12 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   t.has_edges = true;
   for (int i = 0; i < 3; ++i) {
     LinearForm& e = t.homogeneous_edges[i];
-    e.c = std::move(centre_term[i]);
-    e.a = std::move(g[i].x), e.b = std::move(g[i].y);
+    if (dyadic) {  // into the form's own rationals: no temporaries
+      gd[i][0].to(e.a), gd[i][1].to(e.b), centre[i].to(e.c);
+    } else {
+      e.c = std::move(rationals->centre_term[i]);
+      e.a = std::move(rationals->g[i].x), e.b = std::move(rationals->g[i].y);
+    }
     if (det_sign < 0)
       for (mpq_class* q : {&e.a, &e.b, &e.c})
         mpq_neg(q->get_mpq_t(), q->get_mpq_t());
