@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 
 namespace glrc {
 
@@ -15,5 +16,29 @@ int thread_count(int requested);
 // taking the next k when it is done with one; returns when all are done. An exception from fn
 // is rethrown here (the first one), after every thread stopped.
 void parallel_for(int n, int threads, const std::function<void(int)>& fn);
+
+// Threads kept for a run of parallel_for calls: each call hands its items to the same threads,
+// which wait between calls, where the function above starts and joins threads per call (a
+// thread's start, its allocator's cache and its thread-local scratch made anew each time: the
+// reference's two dozen calls per frame scaled poorly for it). Owned by the caller for the
+// run: no pool outlives it, and no state is shared between pools.
+class WorkerPool {
+ public:
+  // thread_count(threads) threads in all, the calling one among them.
+  explicit WorkerPool(int threads);
+  ~WorkerPool();  // stops the threads and joins them
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  int threads() const { return threads_; }
+  // As parallel_for(n, threads(), fn), on the pool's threads. Not from within fn (one call at a
+  // time, from the thread that made the pool).
+  void parallel_for(int n, const std::function<void(int)>& fn);
+
+ private:
+  struct State;
+  int threads_ = 1;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace glrc

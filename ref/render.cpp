@@ -591,8 +591,8 @@ namespace {
 // Empties every element of v on `threads` threads: a case's setups and prepared triangles hold
 // many GMP numbers each, and freeing them on one thread was a serial tenth of drawing a fan.
 template <class T>
-void release(std::vector<T>& v, int threads) {
-  parallel_for(int(v.size()), threads, [&](int k) { v[size_t(k)] = {}; });
+void release(std::vector<T>& v, WorkerPool& pool) {
+  pool.parallel_for(int(v.size()), [&](int k) { v[size_t(k)] = {}; });
 }
 
 // render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
@@ -604,11 +604,13 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
                                 std::to_string(int64_t(y0) + row_count) +
                                 ") outside a framebuffer " + std::to_string(c.fb_height) + " high");
   threads = thread_count(threads);
+  // One set of threads for every step below (core/parallel.hpp).
+  WorkerPool pool(threads);
   // The frames cleared on every thread, a buffer each: on a large frame of many channels,
   // filling them is otherwise a serial part of drawing it.
   Reference r{Frame(c.fb_width, row_count, c.component_count(), threads), {}, Frame()};
   Frame& f = r.frame;
-  parallel_for(edges ? 2 : 1, threads, [&](int b) {
+  pool.parallel_for(edges ? 2 : 1, [&](int b) {
     if (b == 1)
       assign_large(r.edges, f.pixel_count(), uint8_t(0));
     else
@@ -642,12 +644,12 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     for (uint32_t i : triangle)
       used[i] = 1;
   std::vector<WindowCorners::Pointer> window(c.vertices.size());
-  parallel_for(int(c.vertices.size()), threads, [&](int i) {
+  pool.parallel_for(int(c.vertices.size()), [&](int i) {
     if (used[size_t(i)])
       window[size_t(i)] = std::make_shared<const WindowVertex>(to_window(c.vertices[size_t(i)], c));
   });
   std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
-  parallel_for(count, threads, [&](int p) {
+  pool.parallel_for(count, [&](int p) {
     // Constructed from the returned value directly (no default construction, no move).
     struct SetUp {
       const Case& c;
@@ -675,7 +677,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     prepared.clear();
     prepared.resize(size_t(n));
     slivers.assign(size_t(n), std::nullopt);
-    parallel_for(n, threads, [&](int k) {
+    pool.parallel_for(n, [&](int k) {
       const int p = first + k;
       const TriangleSetup& t = *setups[size_t(p)];
       // Zero area: drawn by no model, but a sliver of some implementation's (Sliver). Its
@@ -693,7 +695,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
       if (!t.drawn && !w->unstable) return;
       prepared[size_t(k)] = std::move(w);
     });
-    parallel_for(int(rows.size()), threads, [&](int b) {
+    pool.parallel_for(int(rows.size()), [&](int b) {
       for (int k = 0; k < n; ++k)
         if (const Prepared* w = prepared[size_t(k)].get();
             w && w->reach.y0 <= rows[size_t(b)].y1 && w->reach.y1 >= rows[size_t(b)].y0)
@@ -702,9 +704,9 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
           sliver->mark(s.viewport.x0, std::max(s.viewport.y0, rows[size_t(b)].y0), s.viewport.x1,
                        std::min(s.viewport.y1, rows[size_t(b)].y1), s.row0, f, r.edges);
     });
-    release(prepared, threads);
+    release(prepared, pool);
   }
-  release(setups, threads);
+  release(setups, pool);
   // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.
   // (Only with an allowance are there any.)
   for (CandidateMap& band : candidates)

@@ -6,8 +6,11 @@
 
 #include <atomic>
 #include <filesystem>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "casefile/casefile.hpp"
@@ -50,6 +53,39 @@ TEST(Tiles, AnItemsExceptionReachesTheCaller) {
                               if (k == 37) throw std::runtime_error("item 37");
                             }),
                std::runtime_error);
+}
+
+TEST(Tiles, AWorkerPoolRunsEveryItemOfEveryCallOnce) {
+  // Many calls on the same threads, of every size (none, one, fewer items than threads, many):
+  // every item of each call once, each call done when it returns; an exception leaves the pool
+  // usable.
+  for (int threads : {1, 2, 5}) {
+    WorkerPool pool(threads);
+    EXPECT_EQ(pool.threads(), threads);
+    std::set<std::thread::id> ids;
+    std::mutex ids_lock;
+    for (int call = 0; call < 200; ++call) {
+      const int n = call % 7 == 0 ? 0 : call % 5 == 0 ? 1 : call % 3 == 0 ? 3 : 64 + call;
+      std::vector<std::atomic<int>> seen(static_cast<size_t>(n));
+      pool.parallel_for(n, [&](int k) {
+        ++seen[size_t(k)];
+        const std::lock_guard hold(ids_lock);
+        ids.insert(std::this_thread::get_id());
+      });
+      for (const auto& s : seen)
+        ASSERT_EQ(s.load(), 1) << "call " << call << " threads " << threads;
+      if (call == 100) {
+        EXPECT_THROW(pool.parallel_for(100,
+                                       [](int k) {
+                                         if (k == 37) throw std::runtime_error("item 37");
+                                       }),
+                     std::runtime_error);
+      }
+    }
+    // The same threads throughout: at most the pool's, the caller's among them.
+    EXPECT_LE(ids.size(), size_t(threads));
+    EXPECT_TRUE(ids.count(std::this_thread::get_id()));
+  }
 }
 
 TEST(Tiles, ThreadCountIsAtLeastOne) {
