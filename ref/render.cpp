@@ -588,8 +588,9 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
 
 namespace {
 
-// Empties every element of v on `threads` threads: a case's setups and prepared triangles hold
-// many GMP numbers each, and freeing them on one thread was a serial tenth of drawing a fan.
+// Empties every element of v on the pool's threads: a case's setups and prepared triangles
+// hold many GMP numbers each, and freeing them on one thread was a serial tenth of drawing a
+// fan.
 template <class T>
 void release(std::vector<T>& v, WorkerPool& pool) {
   pool.parallel_for(int(v.size()), [&](int k) { v[size_t(k)] = {}; });

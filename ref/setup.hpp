@@ -31,7 +31,8 @@ struct PixelBox {
 
 // A triangle's three window vertices, read only, shared with the other triangles that use
 // them: a mesh's vertex is transformed once and its rationals held once. (Copied into each
-// triangle, its ten GMP numbers' copies and frees were a tenth of drawing piglit's fan.)
+// triangle, its ten GMP numbers' copies and frees were a tenth of drawing piglit's fan.) None
+// until setup_triangle sets them.
 class WindowCorners {
  public:
   using Pointer = std::shared_ptr<const WindowVertex>;
