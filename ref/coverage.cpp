@@ -26,7 +26,7 @@ int sign128(int128 v) {
 }  // namespace
 
 CoverageTest::CoverageTest(const TriangleSetup& t, const Model& m, bool classifies)
-    : t_(t), clip_(depth_clip(t)) {
+    : t_(t), clip_(depth_clip(t)), subpixel_bits_(m.subpixel_bits) {
   // The homogeneous path's coverage is the exact edges' signs: always made there.
   const bool exact_edges = classifies || t.path != CoveragePath::snapped;
   for (int i = 0; i < 3; ++i) {
@@ -128,7 +128,7 @@ std::pair<int, int> CoverageTest::columns_of_rows(int y0, int y1) const {
   // subpixel steps: its vertices there and its edges' crossings of the two lines. Vertices are
   // exact in double (|s| < 2^40); a crossing is off by a few of its ulps, under 2^-9 step, far
   // inside the margin of a pixel each side.
-  const double unit = std::ldexp(1.0, t_.snapped_bits);
+  const double unit = std::ldexp(1.0, subpixel_bits_);
   const double lines[2] = {(y0 + 0.5) * unit, (y1 + 0.5) * unit};
   double lo = INFINITY, hi = -INFINITY;
   auto take = [&](double x) { lo = std::min(lo, x), hi = std::max(hi, x); };

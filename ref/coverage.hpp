@@ -183,6 +183,7 @@ class CoverageTest {
   std::optional<CoveredRows> walk(bool columns, int l0, int l1, int s0, int s1) const;
   const TriangleSetup& t_;
   DepthClip clip_;
+  int subpixel_bits_ = 0;               // the model's: t_.snapped's unit is 2^-subpixel_bits_ pixel
   std::array<SignEvaluator, 3> edges_;  // the exact (homogeneous) edges, on either path
   std::array<bool, 3> tie_inside_{};    // a centre exactly on edge i is covered
   std::array<double, 3> band_scale_{};  // (|n_x| + |n_y|) of each exact edge's unit normal

@@ -518,28 +518,24 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
   // pixel or none a row, where a column has several), else along its rows, each line's run at
   // once; over the columns that can hold its pixels of these rows, not the whole box.
   if (!s.edges && draws && cy0 <= cy1) {
+    // The lines from `first` in turn, each one's run at once; draw(line, k) for k in the run.
+    auto walk_lines = [&](CoverageTest::CoveredRows& lines, int first, int count, auto draw) {
+      int line = first;
+      lines.for_each_row(count, [&](int lo, int hi) {
+        for (int k = lo; k <= hi; ++k)
+          draw(line, k);
+        ++line;
+      });
+      flush();
+    };
     const auto [cx0, cx1] = w.coverage.columns_of_rows(cy0, cy1);
     if (cx0 > cx1) return;  // nothing of it in these rows
     if (cx1 - cx0 < cy1 - cy0) {
-      if (auto columns = w.coverage.covered_columns(cx0, cx1, cy0, cy1)) {
-        int px = cx0;
-        columns->for_each_row(cx1 - cx0 + 1, [&](int lo, int hi) {
-          for (int py = lo; py <= hi; ++py)
-            add(px, py);
-          ++px;
-        });
-        return flush();
-      }
+      if (auto columns = w.coverage.covered_columns(cx0, cx1, cy0, cy1))
+        return walk_lines(*columns, cx0, cx1 - cx0 + 1, [&](int px, int py) { add(px, py); });
     }
-    if (auto rows = w.coverage.covered_rows(cy0, cy1, cx0, cx1)) {
-      int py = cy0;
-      rows->for_each_row(cy1 - cy0 + 1, [&](int lo, int hi) {
-        for (int px = lo; px <= hi; ++px)
-          add(px, py);
-        ++py;
-      });
-      return flush();
-    }
+    if (auto rows = w.coverage.covered_rows(cy0, cy1, cx0, cx1))
+      return walk_lines(*rows, cy0, cy1 - cy0 + 1, [&](int py, int px) { add(px, py); });
   }
   // With edge bits: the covered pixels of row py within [x0, x1] (its span), a block at a time.
   // Walked row after row (CoverageTest::CoveredRows) where the coverage test allows, else tested

@@ -163,7 +163,6 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
     facing_sign = area2 > 0 ? 1 : area2 < 0 ? -1 : 0;
     const int bits = m.subpixel_bits;
     t.snapped = {s0, s1, s2};
-    t.snapped_bits = bits;
     for (int i = 0; i < 3; ++i) {
       const auto& sj = *s[(i + 1) % 3];
       const auto& sk = *s[(i + 2) % 3];

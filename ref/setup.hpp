@@ -92,9 +92,9 @@ struct TriangleSetup {
     int128 at(long px, long py) const { return a * px + b * py + c; }
   };
   std::array<IntEdge, 3> snapped_edges{};
-  // The snapped window positions (x_w, y_w)·2^snapped_bits, integers (on the snapped path).
+  // The snapped window positions (x_w, y_w)·2^subpixel_bits of the model set up with,
+  // integers (on the snapped path).
   std::array<std::array<long, 2>, 3> snapped{};
-  int snapped_bits = 0;
 
   PixelBox box;  // pixels that may be covered, inside the viewport and framebuffer
 };
