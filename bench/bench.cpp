@@ -23,6 +23,7 @@
 #include "casefile/casefile.hpp"
 #include "check/check.hpp"
 #include "compare/compare.hpp"
+#include "core/large_buffer.hpp"
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
 
@@ -77,6 +78,7 @@ void register_case(const Case& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  keep_freed_buffers();  // as glrefcheck's workers do: check/ times a case as one of them
   benchmark::Initialize(&argc, argv);
   if (argc < 2) {
     std::fprintf(stderr, "usage: glrc_bench [--benchmark_* flags] CASE.json...\n");

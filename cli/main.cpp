@@ -1,8 +1,5 @@
 // glrefcheck: run the suite against a GL implementation, diff one case, print reference
 // digests, list cases. Exit codes: 0 all as expected, 1 a case failed, 2 usage or input error.
-#if __has_include(<malloc.h>)
-#include <malloc.h>
-#endif
 #include <unistd.h>
 
 #include <fmt/core.h>
@@ -29,6 +26,7 @@
 #include "cli/validators.hpp"
 #include "cli/workers.hpp"
 #include "compare/compare.hpp"
+#include "core/large_buffer.hpp"
 #include "core/text.hpp"
 #include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
@@ -312,13 +310,6 @@ int main_impl(int argc, char** argv) {
 }  // namespace glrc::cli
 
 int main(int argc, char** argv) {
-#if defined(M_MMAP_THRESHOLD) && defined(M_TRIM_THRESHOLD)
-  // Per-pixel buffers of a few MiB are freed and allocated again band after band and case
-  // after case. By default glibc maps each with mmap and unmaps it when freed, so every page of
-  // the next one faults in again (measured: two fifths of a streamed 2048x2048 case). Below 32
-  // MiB they come from the heap instead, and up to 512 MiB freed at its top is kept for reuse.
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
-#endif
+  glrc::keep_freed_buffers();  // core/large_buffer.hpp: band after band, case after case
   return glrc::cli::main_impl(argc, argv);
 }
