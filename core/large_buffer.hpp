@@ -24,12 +24,13 @@ void advise_huge_pages(void* p, size_t bytes);
 void populate(void* p, size_t bytes);
 
 // Keeps per-pixel buffers of a few MiB in the process's heap when they are freed, for the next
-// band or case to reuse. By default glibc maps each with mmap and unmaps it when freed (or trims
+// band or case to reuse: glibc's malloc maps each with mmap and unmaps it when freed (or trims
 // it from the heap's top), so every page of the next one faults in again and is zeroed by the
 // kernel (measured: two fifths of a streamed 2048x2048 case). With this, below 32 MiB they come
-// from the heap, and up to 512 MiB freed at its top is kept. Call once, at the start of a
-// process that checks cases (glrefcheck's main, so its workers too; the benchmarks, which time
-// a case as a worker runs it). Nothing where the C library has no such settings.
+// from the heap, and up to 512 MiB freed at its top is kept. glibc's settings only: where the
+// programs link jemalloc (GLRC_MALLOC, CMakeLists.txt), which keeps freed extents for reuse by
+// itself, it does nothing. Call once, at the start of a process that checks cases (glrefcheck's
+// main, so its workers too; the benchmarks, which time a case as a worker runs it).
 void keep_freed_buffers();
 
 // v = n copies of `value`, the storage advised and populated as above before it is first
