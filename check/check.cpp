@@ -112,10 +112,11 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
       return out;
     }
     out.gl = renderer.render(c);
-    out.reference = reference.get();
-    // GL's digest is hashed while the channels are compared: neither needs the other.
+    // GL's digest is hashed while the reference is finished and the channels are compared:
+    // none needs another.
     std::future<std::string> gl_digest =
         std::async(std::launch::async, [&] { return ref::digest(out.gl); });
+    out.reference = reference.get();
     out.result =
         compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported), o.threads);
     out.result.gl_digest = gl_digest.get();
