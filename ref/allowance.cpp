@@ -229,26 +229,29 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
     d[j] = ad_ * px[j] + bd_ * py[j] + cd_;
     abs_v[j] = std::fabs(v[j]);
     g[j] = gn + abs_v[j] * gd;
-    terms[j] = 0, setup[j] = 0;
   }
   // The anchors' maxima in vectors of four lanes (GCC's vector extensions: the same IEEE
   // operations, lane by lane), so that they stay in registers from anchor to anchor: as arrays,
   // each anchor's maximum was stored and loaded again, a chain through memory that held a fifth
   // of this function's samples.
   using Four = double __attribute__((vector_size(4 * sizeof(double))));
-  static_assert(n == 8);
-  Four abs_v0, abs_v1, g0, g1, terms0, terms1, setup0, setup1;
-  std::memcpy(&abs_v0, abs_v, sizeof(Four)), std::memcpy(&abs_v1, abs_v + 4, sizeof(Four));
-  std::memcpy(&g0, g, sizeof(Four)), std::memcpy(&g1, g + 4, sizeof(Four));
-  std::memcpy(&terms0, terms, sizeof(Four)), std::memcpy(&terms1, terms + 4, sizeof(Four));
-  std::memcpy(&setup0, setup, sizeof(Four)), std::memcpy(&setup1, setup + 4, sizeof(Four));
+  static_assert(n == 2 * 4);
+  // A block's lanes as two vectors, and back (by reference: a vector returned by value would
+  // change the ABI between the two clones).
+  const auto load = [](const double* lanes, Four& low, Four& high) {
+    std::memcpy(&low, lanes, sizeof low), std::memcpy(&high, lanes + 4, sizeof high);
+  };
+  const auto store = [](const Four& low, const Four& high, double* lanes) {
+    std::memcpy(lanes, &low, sizeof low), std::memcpy(lanes + 4, &high, sizeof high);
+  };
+  Four abs_v0, abs_v1, g0, g1, terms0 = {}, terms1 = {}, setup0 = {}, setup1 = {};
+  load(abs_v, abs_v0, abs_v1);
+  load(g, g0, g1);
   const Anchors& a = anchors();
   for (size_t i = 0; i < a.size(); ++i) {
     Four dx0, dx1, dy0, dy1;
-    std::memcpy(&dx0, distances.dx[i].data(), sizeof(Four));
-    std::memcpy(&dx1, distances.dx[i].data() + 4, sizeof(Four));
-    std::memcpy(&dy0, distances.dy[i].data(), sizeof(Four));
-    std::memcpy(&dy1, distances.dy[i].data() + 4, sizeof(Four));
+    load(distances.dx[i].data(), dx0, dx1);
+    load(distances.dy[i].data(), dy0, dy1);
     const Four en0 = n_[i] + abs_an_ * dx0 + abs_bn_ * dy0;
     const Four en1 = n_[i] + abs_an_ * dx1 + abs_bn_ * dy1;
     const Four ed0 = d_[i] + abs_ad_ * dx0 + abs_bd_ * dy0;
@@ -259,15 +262,14 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
     terms1 = terms1 < term1 ? term1 : terms1;
     if (a.fan(i)) {
       Four most0, most1;
-      std::memcpy(&most0, distances.most[i].data(), sizeof(Four));
-      std::memcpy(&most1, distances.most[i].data() + 4, sizeof(Four));
+      load(distances.most[i].data(), most0, most1);
       const Four moved0 = g0 * most0, moved1 = g1 * most1;
       setup0 = setup0 < moved0 ? moved0 : setup0;
       setup1 = setup1 < moved1 ? moved1 : setup1;
     }
   }
-  std::memcpy(terms, &terms0, sizeof(Four)), std::memcpy(terms + 4, &terms1, sizeof(Four));
-  std::memcpy(setup, &setup0, sizeof(Four)), std::memcpy(setup + 4, &setup1, sizeof(Four));
+  store(terms0, terms1, terms);
+  store(setup0, setup1, setup);
   for (int j = 0; j < n; ++j) {
     const double vx = (an_ - v[j] * ad_) / d[j], vy = (bn_ - v[j] * bd_) / d[j];
     // std::min(moved, spread_) and the early return, as selections (no branch: vectorized).
