@@ -23,14 +23,14 @@ H3 cross(const Column& u, const Column& v) {
   return {u.y * v.w - u.w * v.y, u.w * v.x - u.x * v.w, u.x * v.y - u.y * v.x};
 }
 
-// num / den rounded to an integer, ties to even, for den > 0.
-mpz_class round_half_even(const mpz_class& num, const mpz_class& den) {
-  mpz_class fl, r;
-  mpz_fdiv_qr(fl.get_mpz_t(), r.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
+// out = num / den rounded to an integer, ties to even, for den > 0 (out may be neither). The
+// remainder in an integer kept per thread: no allocation once its limbs are there.
+void round_half_even(mpz_class& out, const mpz_class& num, const mpz_class& den) {
+  thread_local mpz_class r;
+  mpz_fdiv_qr(out.get_mpz_t(), r.get_mpz_t(), num.get_mpz_t(), den.get_mpz_t());
   r <<= 1;
   const int c = cmp(r, den);
-  if (c > 0 || (c == 0 && mpz_odd_p(fl.get_mpz_t()))) fl += 1;
-  return fl;
+  if (c > 0 || (c == 0 && mpz_odd_p(out.get_mpz_t()))) out += 1;
 }
 
 constexpr long kGuardBand = 1L << 40;  // in subpixel steps
@@ -40,22 +40,28 @@ constexpr long kGuardBand = 1L << 40;  // in subpixel steps
 std::optional<std::array<long, 2>> snap(const WindowVertex& v, const Dyadic* xyw, int bits) {
   std::array<long, 2> s{};
   const mpq_class* h[2] = {&v.x_h, &v.y_h};
+  // Kept per thread, as set_up's: a fan's thousands of snaps allocate nothing once warm.
+  thread_local mpz_class r, shifted;
   for (int k = 0; k < 2; ++k) {
-    mpz_class r;
     if (xyw) {
       // h·2^bits / w = (h.m / w.m)·2^shift: the power of two moved onto one side of the
       // integer quotient, whose rounding does not depend on a common factor (w.m > 0).
       const Dyadic &hd = xyw[k], &w = xyw[2];
       const long shift = hd.e - w.e + bits;
-      if (shift >= 0)
-        r = round_half_even(mpz_class(hd.m << mp_bitcnt_t(shift)), w.m);
-      else
-        r = round_half_even(hd.m, mpz_class(w.m << mp_bitcnt_t(-shift)));
+      if (shift >= 0) {
+        mpz_mul_2exp(shifted.get_mpz_t(), hd.m.get_mpz_t(), mp_bitcnt_t(shift));
+        round_half_even(r, shifted, w.m);
+      } else {
+        mpz_mul_2exp(shifted.get_mpz_t(), w.m.get_mpz_t(), mp_bitcnt_t(-shift));
+        round_half_even(r, hd.m, shifted);
+      }
     } else {
       const mpq_class q = *h[k] * mpq_class(mpz_class(1) << bits) / v.w_c;
-      r = round_half_even(q.get_num(), q.get_den());
+      round_half_even(r, q.get_num(), q.get_den());
     }
-    if (abs(r) >= kGuardBand) return std::nullopt;
+    // |r| >= 2^40 compared in place: abs(r) would be a temporary integer.
+    if (mpz_cmpabs_ui(r.get_mpz_t(), static_cast<unsigned long>(kGuardBand)) >= 0)
+      return std::nullopt;
     s[k] = r.get_si();
   }
   return s;
@@ -98,7 +104,13 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   // In dyadic arithmetic (exact.hpp) when every coordinate is dyadic, which those of float32
   // clip coordinates and an integer viewport always are: the same rationals as mpq_class
   // arithmetic gives, without its gcd after every product and sum.
-  Dyadic xyw[3][3];  // x_h, y_h, w_c of each vertex
+  // The dyadic numbers below are kept per thread, their limbs reused from triangle to
+  // triangle: made and freed here, their allocations were a third of setting up a fan.
+  struct Scratch {
+    Dyadic xyw[3][3], gd[3][3], centre[3], det;
+  };
+  thread_local Scratch scratch;
+  Dyadic(&xyw)[3][3] = scratch.xyw;  // x_h, y_h, w_c of each vertex
   bool dyadic = true;
   for (int i = 0; i < 3 && dyadic; ++i)
     dyadic = Dyadic::of(t.v[i].x_h, xyw[i][0]) && Dyadic::of(t.v[i].y_h, xyw[i][1]) &&
@@ -106,7 +118,8 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
   // The edges' coefficients: gd (x, y) and centre (E_i's value at pixel (0, 0), whose centre
   // is (1/2, 1/2)) when dyadic, else rationals' g and centre_term (made only then: a rational
   // is an allocation even at 0).
-  Dyadic gd[3][3], centre[3];
+  Dyadic(&gd)[3][3] = scratch.gd;
+  Dyadic(&centre)[3] = scratch.centre;
   struct Rationals {
     H3 g[3];
     mpq_class centre_term[3];
@@ -121,7 +134,7 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
       cross_term(gd[i][1], u[2], v[0], u[0], v[2]);
       cross_term(gd[i][2], u[0], v[1], u[1], v[0]);
     }
-    Dyadic det;
+    Dyadic& det = scratch.det;
     const Dyadic* gs[3] = {&gd[0][0], &gd[0][1], &gd[0][2]};
     const Dyadic* cs[3] = {&xyw[0][0], &xyw[0][1], &xyw[0][2]};
     sum_of_products(det, gs, cs, 3);
