@@ -10,7 +10,9 @@
 //                     it (check::expectation_for with llvmpipe's subpixel bits and default model),
 //                     on every core;
 //   compare/<case>    the comparison of llvmpipe's frame with it, its channels on every core;
-//   check/<case>      all three, as one case of `run` in a worker.
+//   check/<case>      all three, as one case of `run` in a worker;
+//   digest/<case>     SHA-256 of llvmpipe's frame (results.json's gl_digest), which check/
+//                     computes beside the reference (not in bench.sh's table: a part of check/).
 // Usage: glrc_bench [--benchmark_* flags] CASE.json... (bench/scenes.py writes the scenes).
 #include <benchmark/benchmark.h>
 
@@ -73,6 +75,11 @@ void register_case(const Case& c) {
         for (auto _ : state)
           benchmark::DoNotOptimize(check::check(c, llvmpipe(), options));
       }));
+  ms(benchmark::RegisterBenchmark(("digest/" + c.name).c_str(), [c](benchmark::State& state) {
+    const Frame gl = llvmpipe().render(c);
+    for (auto _ : state)
+      benchmark::DoNotOptimize(ref::digest(gl));
+  }));
 }
 
 }  // namespace
