@@ -8,13 +8,18 @@ DepthClip depth_clip(const TriangleSetup& t) {
   DepthClip clip;
   // The visible part is sum b_i·vertex_i with b_i >= 0, so if every vertex satisfies a plane,
   // every point does: only a triangle with a vertex outside needs the per-pixel test.
+  // -w_c in a rational kept per thread: as an expression's temporary it was allocated and freed
+  // for every vertex of every triangle.
+  thread_local mpq_class minus_w;
   for (const auto& v : t.v) {
-    if (v.z_c < -v.w_c) clip.crosses_near = true;
+    mpq_neg(minus_w.get_mpq_t(), v.w_c.get_mpq_t());
+    if (v.z_c < minus_w) clip.crosses_near = true;
     if (v.z_c > v.w_c) clip.crosses_far = true;
   }
   // b_i is proportional to E'_i with a positive factor, so sign(z_c + w_c) at the pixel is
   // sign(sum E'_i (z_i + w_i)); likewise for the far plane. Built only for a plane crossed:
   // exact products, per triangle.
+  if (!clip.crosses_near && !clip.crosses_far) return clip;  // most triangles: no exact work
   mpq_class scratch;
   auto form = [&](int plane) {
     LinearForm f;
@@ -24,7 +29,6 @@ DepthClip depth_clip(const TriangleSetup& t) {
   };
   if (clip.crosses_near) clip.near = form(1);
   if (clip.crosses_far) clip.far = form(-1);
-  if (!clip.crosses_near && !clip.crosses_far) return clip;  // most triangles: no exact work
   // 1 ± z_n at a pixel is form / Δ with Δ = Σ E'_i·w_c,i, constant over the window; the scale
   // is |Δ| over the form's gradient (doubles: it sizes a band, it decides no bit).
   LinearForm w;

@@ -186,7 +186,7 @@ int SignEvaluator::sign(long px, long py) const {
     if (v > bound) return 1;
     if (v < -bound) return -1;
   }
-  return sgn(form_.at(px, py));
+  return form_ ? sgn(form_->at(px, py)) : 0;  // a default evaluator's form is 0
 }
 
 SignEvaluator::RowBound SignEvaluator::row_bound(double grow, long x_lo, long x_hi, long y_lo,

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace glrc::ref {
@@ -117,7 +118,11 @@ class SignEvaluator {
   RowBound row_bound(double grow, long x_lo, long x_hi, long y_lo, long y_hi) const;
 
  private:
-  LinearForm form_;
+  // Only in an evaluator built from a form: a default one (a CoverageTest's edges on the snapped
+  // path, a DepthClip's planes not crossed) allocates nothing, where a LinearForm's three
+  // rationals are three allocations (GMP's mpq_init makes the denominator's limb) and frees,
+  // five evaluators for every triangle of a frame.
+  std::optional<LinearForm> form_;
   double a_ = 0, b_ = 0, c_ = 0;                    // range-checked copies for the fast sign
   double da_ = 0, db_ = 0, dc_ = 0, inv_norm_ = 0;  // unchecked copies for distance()
   double scale_ = 0, inverse_abs_da_ = 0, inverse_da_ = 0;  // 1 / inv_norm_, 1 / |da_|, 1 / da_

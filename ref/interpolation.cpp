@@ -11,20 +11,24 @@ namespace glrc::ref {
 
 Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
   Barycentrics b;
-  if (m.planes == Planes::snapped && t.path == CoveragePath::snapped) {
-    b.screen_space = true;
+  barycentrics(t, m, b);
+  return b;
+}
+
+void barycentrics(const TriangleSetup& t, const Model& m, Barycentrics& b) {
+  b.screen_space = m.planes == Planes::snapped && t.path == CoveragePath::snapped;
+  if (b.screen_space) {
     for (int i = 0; i < 3; ++i) {
       const auto& e = t.snapped_edges[i];
       b.l[i] = {mpq_class(to_mpz(e.a)), mpq_class(to_mpz(e.b)), mpq_class(to_mpz(e.c))};
     }
   } else {
-    b.l = t.homogeneous_edges;
+    b.l = t.homogeneous_edges;  // into b's rationals: their limbs reused
   }
   b.is_dyadic = true;
   for (int i = 0; i < 3 && b.is_dyadic; ++i)
     b.is_dyadic = Dyadic::of(b.l[i].a, b.dyadic[i][0]) && Dyadic::of(b.l[i].b, b.dyadic[i][1]) &&
                   Dyadic::of(b.l[i].c, b.dyadic[i][2]);
-  return b;
 }
 
 LinearForm sum(const Barycentrics& b, const std::array<mpq_class, 3>& alpha) {

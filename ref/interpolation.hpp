@@ -37,6 +37,9 @@ struct Barycentrics {
 };
 
 Barycentrics barycentrics(const TriangleSetup& t, const Model& m);
+// The same into `out`, whose rationals' storage is reused: a caller that keeps one per thread
+// (render.cpp, per triangle) allocates nothing once it is warm.
+void barycentrics(const TriangleSetup& t, const Model& m, Barycentrics& out);
 
 // A channel's value as N / D, two exact linear forms in pixel coordinates.
 struct Plane {

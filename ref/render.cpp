@@ -80,7 +80,10 @@ struct Prepared {
              std::min(s.viewport.y1, t.box.y1 + margin)};
     if (!t.drawn || t.box.empty()) return;
     clipped = s.allowance && freedom.generations() > 0;
-    const Barycentrics b = barycentrics(t, s.m);
+    // Kept per thread: its nine rationals and dyadic numbers, copied for every triangle, reuse
+    // their limbs instead of being allocated and freed each time.
+    thread_local Barycentrics b;
+    barycentrics(t, s.m, b);
     const Plane depth_forms = depth_plane(t, b);
     depth = depth_forms.evaluator();
     planes = component_planes(c, t, b);
