@@ -20,8 +20,10 @@ void normalized_doubles(const LinearForm& n, const LinearForm& d, double out[6])
       e = std::max(e, long(mpz_sizeinbase(x->get_num_mpz_t(), 2)) -
                           long(mpz_sizeinbase(x->get_den_mpz_t(), 2)));
   if (e == std::numeric_limits<long>::min()) e = 0;
+  // Scaled in a rational kept per thread: a copy per coefficient was six allocations per
+  // channel of every triangle.
+  thread_local mpq_class scaled;
   for (int i = 0; i < 6; ++i) {
-    mpq_class scaled = *q[i];
     if (e > 0)
       mpq_div_2exp(scaled.get_mpq_t(), q[i]->get_mpq_t(), mp_bitcnt_t(e));
     else

@@ -3,7 +3,8 @@
 namespace glrc::ref {
 
 Plane depth_plane(const TriangleSetup& t, const Barycentrics& b) {
-  std::array<mpq_class, 3> alpha, beta;
+  // Kept per thread, assigned in place: six rationals made and freed per triangle otherwise.
+  thread_local std::array<mpq_class, 3> alpha, beta;
   for (int i = 0; i < 3; ++i) {
     if (b.screen_space) {
       alpha[i] = z_w(t.v[i]);

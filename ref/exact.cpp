@@ -243,13 +243,19 @@ RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& de
           to_double(denominator.b, fbd_) && to_double(denominator.c, fcd_);
   // One common denominator for all six coefficients: the ratio is unchanged and the exact path
   // then needs integers only.
-  mpz_class common = 1;
+  // The multiple and the quotients in integers kept per thread, the products made in the
+  // evaluator's own: temporaries were a dozen allocations per plane of every triangle.
+  thread_local mpz_class common, factor;
+  mpz_set_ui(common.get_mpz_t(), 1);
   for (const mpq_class* q :
        {&numerator.a, &numerator.b, &numerator.c, &denominator.a, &denominator.b, &denominator.c})
     mpz_lcm(common.get_mpz_t(), common.get_mpz_t(), q->get_den_mpz_t());
-  auto scaled = [&](const mpq_class& q) { return mpz_class(q.get_num() * (common / q.get_den())); };
-  an_ = scaled(numerator.a), bn_ = scaled(numerator.b), cn_ = scaled(numerator.c);
-  ad_ = scaled(denominator.a), bd_ = scaled(denominator.b), cd_ = scaled(denominator.c);
+  auto scaled = [&](mpz_class& out, const mpq_class& q) {
+    mpz_divexact(factor.get_mpz_t(), common.get_mpz_t(), q.get_den_mpz_t());
+    mpz_mul(out.get_mpz_t(), q.get_num_mpz_t(), factor.get_mpz_t());
+  };
+  scaled(an_, numerator.a), scaled(bn_, numerator.b), scaled(cn_, numerator.c);
+  scaled(ad_, denominator.a), scaled(bd_, denominator.b), scaled(cd_, denominator.c);
 }
 
 float RatioEvaluator::exact_at(long px, long py) const {

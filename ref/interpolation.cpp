@@ -78,30 +78,33 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
       continue;
     }
     const bool perspective = q == Interpolation::smooth;
-    std::array<mpq_class, 3> alpha;
+    // The weights in rationals kept per thread, each product or quotient made in its place: as
+    // temporaries they were a dozen allocations per component of every triangle.
+    thread_local std::array<mpq_class, 3> alpha, beta;
     double lo = INFINITY, hi = -INFINITY;
     for (int i = 0; i < 3; ++i) {
       const double value = double(c.vertices[t.index[i]].values[k]);
       lo = std::min(lo, value), hi = std::max(hi, value);
       p.scale = std::max(p.scale, std::fabs(value));
-      const mpq_class v(value);
       const mpq_class& w = t.v[i].w_c;
-      if (b.screen_space)
-        alpha[i] = perspective ? mpq_class(v / w) : v;
-      else
-        alpha[i] = perspective ? v : mpq_class(w * v);
+      alpha[i] = value;
+      if (b.screen_space && perspective)
+        mpq_div(alpha[i].get_mpq_t(), alpha[i].get_mpq_t(), w.get_mpq_t());
+      else if (!b.screen_space && !perspective)
+        mpq_mul(alpha[i].get_mpq_t(), w.get_mpq_t(), alpha[i].get_mpq_t());
     }
     // Every component of one qualifier has the same denominator: its exact form is built once
     // per triangle, not once per component.
     std::optional<LinearForm>& denominator = denominators[perspective ? 1 : 0];
     if (!denominator) {
-      std::array<mpq_class, 3> beta;
       for (int i = 0; i < 3; ++i) {
         const mpq_class& w = t.v[i].w_c;
-        if (b.screen_space)
-          beta[i] = perspective ? mpq_class(1 / w) : mpq_class(1);
+        if (b.screen_space && perspective)
+          mpq_inv(beta[i].get_mpq_t(), w.get_mpq_t());
+        else if (b.screen_space || perspective)
+          beta[i] = 1;
         else
-          beta[i] = perspective ? mpq_class(1) : w;
+          beta[i] = w;
       }
       denominator = sum(b, beta);
     }

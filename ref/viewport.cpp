@@ -37,7 +37,12 @@ bool exact_half_sum(float a, double p, float b, double q, mpq_class& out) {
   const double yy = s - x;
   const double e = (x - (s - yy)) + (y - yy);
   out = s;
-  if (e != 0) out += mpq_class(e);
+  if (e != 0) {
+    // e in a rational kept per thread: a temporary would be an allocation per vertex.
+    thread_local mpq_class error;
+    error = e;
+    out += error;
+  }
   mpq_div_2exp(out.get_mpq_t(), out.get_mpq_t(), 1);
   return true;
 }
@@ -45,22 +50,27 @@ bool exact_half_sum(float a, double p, float b, double q, mpq_class& out) {
 }  // namespace
 
 WindowVertex to_window(const Vertex& v, const Case& c) {
-  const mpq_class x_c(double(v.clip[0])), y_c(double(v.clip[1])), z_c(double(v.clip[2])),
-      w_c(double(v.clip[3]));
   const Viewport& vp = c.viewport;
   WindowVertex out;
+  // The clip coordinates as rationals straight into the vertex (z_c, w_c), or only where the
+  // rational arithmetic below needs them (x_c, y_c): each is an allocation, and a mesh of
+  // small triangles transforms tens of thousands of vertices.
+  out.z_c = double(v.clip[2]);
+  out.w_c = double(v.clip[3]);
+  const mpq_class& w_c = out.w_c;
   // x_h = x_c·(width/2) + w_c·(x + width/2) = (x_c·width + w_c·(2x + width)) / 2; integers
   // below 2^29 have short significands.
   if (!exact_half_sum(v.clip[0], double(vp.width), v.clip[3], 2.0 * vp.x + vp.width, out.x_h)) {
+    const mpq_class x_c(double(v.clip[0]));
     const mpq_class half_w = mpq_class(vp.width) / 2;
     out.x_h = x_c * half_w + w_c * (vp.x + half_w);
   }
   if (!exact_half_sum(v.clip[1], double(vp.height), v.clip[3], 2.0 * vp.y + vp.height, out.y_h)) {
+    const mpq_class y_c(double(v.clip[1]));
     const mpq_class half_h = mpq_class(vp.height) / 2;
     out.y_h = y_c * half_h + w_c * (vp.y + half_h);
   }
-  out.z_c = z_c;
-  out.w_c = w_c;
+  const mpq_class& z_c = out.z_c;
   // w_c·z_w = (z_c·(f − n) + w_c·(n + f)) / 2, with f − n and n + f doubles that must be exact
   // (TwoSum's error 0) and short.
   const double n = c.depth_near, f = c.depth_far;
