@@ -3,7 +3,8 @@
 namespace glrc::ref {
 
 Plane depth_plane(const TriangleSetup& t, const Barycentrics& b) {
-  // Kept per thread, assigned in place: six rationals made and freed per triangle otherwise.
+  // Kept per thread: unsnapped planes' weights are copied into their limbs, where six
+  // rationals were made and freed per triangle (snapped planes' z_w is a quotient, swapped in).
   thread_local std::array<mpq_class, 3> alpha, beta;
   for (int i = 0; i < 3; ++i) {
     if (b.screen_space) {

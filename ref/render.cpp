@@ -81,7 +81,8 @@ struct Prepared {
     if (!t.drawn || t.box.empty()) return;
     clipped = s.allowance && freedom.generations() > 0;
     // Kept per thread: its nine rationals and dyadic numbers, copied for every triangle, reuse
-    // their limbs instead of being allocated and freed each time.
+    // their limbs instead of being allocated and freed each time (unsnapped planes, the
+    // default; snapped planes make their forms anew).
     thread_local Barycentrics b;
     barycentrics(t, s.m, b);
     const Plane depth_forms = depth_plane(t, b);
