@@ -242,9 +242,9 @@ RatioEvaluator::RatioEvaluator(const LinearForm& numerator, const LinearForm& de
           to_double(numerator.c, fcn_) && to_double(denominator.a, fad_) &&
           to_double(denominator.b, fbd_) && to_double(denominator.c, fcd_);
   // One common denominator for all six coefficients: the ratio is unchanged and the exact path
-  // then needs integers only.
-  // The multiple and the quotients in integers kept per thread, the products made in the
-  // evaluator's own: temporaries were a dozen allocations per plane of every triangle.
+  // then needs integers only. The multiple and the quotients in integers kept per thread, the
+  // products made in the evaluator's own: temporaries were a dozen allocations per plane of
+  // every triangle.
   thread_local mpz_class common, factor;
   mpz_set_ui(common.get_mpz_t(), 1);
   for (const mpq_class* q :

@@ -9,12 +9,6 @@
 
 namespace glrc::ref {
 
-Barycentrics barycentrics(const TriangleSetup& t, const Model& m) {
-  Barycentrics b;
-  barycentrics(t, m, b);
-  return b;
-}
-
 void barycentrics(const TriangleSetup& t, const Model& m, Barycentrics& b) {
   b.screen_space = m.planes == Planes::snapped && t.path == CoveragePath::snapped;
   if (b.screen_space) {

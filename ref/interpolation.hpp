@@ -36,10 +36,10 @@ struct Barycentrics {
   bool is_dyadic = false;
 };
 
-Barycentrics barycentrics(const TriangleSetup& t, const Model& m);
-// The same into `out`, whose rationals' storage is reused: a caller that keeps one per thread
-// (render.cpp, per triangle) allocates nothing for unsnapped planes once it is warm (snapped
-// planes' forms are made from the integer edges, and swapped in).
+// The barycentric forms of triangle t under model m, into `out`, whose rationals' storage is
+// reused: a caller that keeps one per thread (render.cpp, per triangle) allocates nothing for
+// unsnapped planes once it is warm (snapped planes' forms are made from the integer edges, and
+// swapped in).
 void barycentrics(const TriangleSetup& t, const Model& m, Barycentrics& out);
 
 // A channel's value as N / D, two exact linear forms in pixel coordinates.
