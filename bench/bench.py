@@ -40,20 +40,24 @@ def worker_environment():
 
 
 def bench_parts(build, scene, reps):
-    """Median real seconds of gl/, frame/, reference/, compare/ and check/ for one scene."""
+    """Median real seconds of gl/, frame/, reference/, compare/, check/ and digest/ for one scene,
+    and under "cpu" the median CPU seconds of each (every thread of the process: glrc_bench
+    measures process CPU time)."""
     name = os.path.splitext(os.path.basename(scene))[0]
     out = subprocess.run(
         [os.path.join(build, "bench", "glrc_bench"), scene,
-         "--benchmark_filter=^(gl|frame|reference|compare|check)/%s(/|$)" % name,
+         "--benchmark_filter=^(gl|frame|reference|compare|check|digest)/%s(/|$)" % name,
          "--benchmark_repetitions=%d" % reps, "--benchmark_min_time=0.2",
          "--benchmark_format=json"], check=True, capture_output=True, text=True,
         env=worker_environment()).stdout
-    times = {}
+    times = {"cpu": {}}
     for b in json.loads(out)["benchmarks"]:
         # One repetition has no aggregates; several, the median among them.
         if reps == 1 or b.get("aggregate_name") == "median":
             assert b["time_unit"] == "ms"
-            times[b["run_name"].split("/")[0]] = b["real_time"] / 1000.0
+            part = b["run_name"].split("/")[0]
+            times[part] = b["real_time"] / 1000.0
+            times["cpu"][part] = b["cpu_time"] / 1000.0
     return times
 
 
@@ -136,6 +140,18 @@ def main():
         print("%-18s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.0f" % (
             s, f["gl"], f["frame"], f["reference"], f["compare"], f["check"], f["run"],
             f["peak_bytes"] / 2**20))
+    print()
+    # Where a part's time goes when every core is busy: the CPU it takes on all its threads.
+    # digest: SHA-256 of GL's frame (results.json's gl_digest), which check hashes on a thread
+    # of its own beside the reference and the comparison. cores: check's CPU / its wall time.
+    print("CPU seconds, every thread; cores used by check; %d cores here" % len(os.sched_getaffinity(0)))
+    print("%-18s %9s %9s %9s %9s %9s %9s %9s" % ("scene", "gl", "frame", "reference", "compare",
+                                                 "digest", "check", "cores"))
+    for s, f in figures.items():
+        cpu = f["cpu"]
+        print("%-18s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.2f" % (
+            s, cpu["gl"], cpu["frame"], cpu["reference"], cpu["compare"], cpu["digest"],
+            cpu["check"], cpu["check"] / f["check"]))
     print()
     print("%-62s %12s %12s  %s" % ("target (issue 13)", "measured", "target", ""))
 
