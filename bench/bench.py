@@ -144,7 +144,8 @@ def main():
     # Where a part's time goes when every core is busy: the CPU it takes on all its threads.
     # digest: SHA-256 of GL's frame (results.json's gl_digest), which check hashes on a thread
     # of its own beside the reference and the comparison. cores: check's CPU / its wall time.
-    print("CPU seconds, every thread; cores used by check; %d cores here" % len(os.sched_getaffinity(0)))
+    print("CPU seconds, every thread; cores used by check; %d cores here"
+          % len(os.sched_getaffinity(0)))
     print("%-18s %9s %9s %9s %9s %9s %9s %9s" % ("scene", "gl", "frame", "reference", "compare",
                                                  "digest", "check", "cores"))
     for s, f in figures.items():
