@@ -45,10 +45,14 @@ void register_case(const Case& c) {
   const auto ms = [](benchmark::internal::Benchmark* b) {
     b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
   };
+  // gl/ and check/ read back into the last repetition's frames, as a worker does from case to
+  // case (check::check_with_frames).
   ms(benchmark::RegisterBenchmark(("gl/" + c.name).c_str(), [c](benchmark::State& state) {
-    benchmark::DoNotOptimize(llvmpipe().render(c));  // warm: the first draw compiles shaders
-    for (auto _ : state)
-      benchmark::DoNotOptimize(llvmpipe().render(c));
+    Frame gl = llvmpipe().render(c);  // warm: the first draw compiles shaders
+    for (auto _ : state) {
+      gl = llvmpipe().render_reusing(c, std::move(gl));
+      benchmark::DoNotOptimize(gl);
+    }
   }));
   ms(benchmark::RegisterBenchmark(
       ("frame/" + c.name).c_str(), [c, options](benchmark::State& state) {
@@ -72,8 +76,11 @@ void register_case(const Case& c) {
       }));
   ms(benchmark::RegisterBenchmark(
       ("check/" + c.name).c_str(), [c, options](benchmark::State& state) {
-        for (auto _ : state)
-          benchmark::DoNotOptimize(check::check(c, llvmpipe(), options));
+        check::Checked last;
+        for (auto _ : state) {
+          last = check::check_with_frames(c, llvmpipe(), options, std::move(last));
+          benchmark::DoNotOptimize(last.result);
+        }
       }));
   ms(benchmark::RegisterBenchmark(("digest/" + c.name).c_str(), [c](benchmark::State& state) {
     const Frame gl = llvmpipe().render(c);

@@ -5,6 +5,7 @@
 #include <future>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "compare/compare.hpp"
 #include "ref/reference.hpp"
@@ -27,8 +28,10 @@ Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits)
   return t;
 }
 
-Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits) {
-  ref::Reference r = ref::render(c, o.model, freedom_bits(o, reported_bits), o.threads);
+Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits,
+                            Expectation storage) {
+  ref::Reference r =
+      ref::render(c, o.model, freedom_bits(o, reported_bits), o.threads, std::move(storage));
   // The driver model replaces the frame only: the edge bits still name ties and bands.
   if (o.driver_model) r.frame = driver_models::render(c, *o.driver_model);
   return r;
@@ -88,7 +91,8 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
 
 }  // namespace
 
-Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o) {
+Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o,
+                          Checked last) {
   // A driver's frame under the specification's allowance would pass whatever the driver model
   // gets wrong by less than the allowance: the model is there to be matched bit for bit.
   if (o.driver_model && o.tolerance == ToleranceMode::spec && !o.varying_ulps && !o.depth_ulps)
@@ -102,8 +106,12 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
   // The reference is drawn while GL draws: it needs no GL, and a driver's first draw of a case
   // spends most of its time compiling shaders on one core (llvmpipe's LLVM), not drawing.
   std::future<Expectation> reference;
-  if (!streamed)
-    reference = std::async(std::launch::async, [&] { return expectation_for(c, o, reported); });
+  if (streamed)
+    last = {};
+  else
+    reference = std::async(std::launch::async, [&, storage = std::move(last.reference)]() mutable {
+      return expectation_for(c, o, reported, std::move(storage));
+    });
   try {
     if (streamed) {
       check_streamed(c, renderer, o, reported, out);
@@ -111,7 +119,7 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return out;
     }
-    out.gl = renderer.render(c);
+    out.gl = renderer.render_reusing(c, std::move(last.gl));
     // GL's digest is hashed while the reference is finished and the channels are compared:
     // none needs another.
     std::future<std::string> gl_digest =

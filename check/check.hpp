@@ -71,7 +71,9 @@ Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits)
 // What the case is compared against: the exact reference under o.model with the allowance for
 // an implementation reporting `reported_bits`, its frame replaced by the driver model's when
 // o.driver_model is set.
-Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits);
+// `storage`: a previous Expectation whose buffers are reused (ref::render's).
+Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits,
+                            Expectation storage = {});
 
 // RunInfo's words for the tolerance: "exact", "ulps" or "spec (subpixel bits N)".
 std::string tolerance_text(const CheckOptions& o, int reported_bits);
@@ -89,7 +91,12 @@ struct Checked {
 // Renders `c` on the reference and on `renderer`, and compares them. A GL error drawing this
 // case (gl::RenderError) is the result Error with its message, not an exception; seconds
 // counts everything. Throws std::invalid_argument for a driver model under ToleranceMode::spec.
-Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o);
+// `last`: the previous case's Checked, whose frames' buffers this case's frames reuse where
+// they are large enough (Frame::reset), so that a caller checking case after case (a worker)
+// does not have the kernel fault in and zero fresh memory for every case; the same result
+// and frames, bit for bit, as without. A streamed case frees them first: its bands need none.
+Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o,
+                          Checked last = {});
 // The same, the verdict only.
 CaseResult check(const Case& c, gl::Renderer& renderer, const CheckOptions& o);
 

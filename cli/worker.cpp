@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -52,7 +53,9 @@ struct Outcome {
   check::Checked checked;
 };
 
-Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::Renderer& renderer) {
+// `last`: the previous case's frames, whose memory this case's reuse (check_with_frames).
+Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::Renderer& renderer,
+                  check::Checked last) {
   Outcome out;
   try {
     // The runner has read and validated the case already and sends it whole: a case file is
@@ -64,7 +67,7 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
     r.name = job.at("name"), r.status = r.outcome = Status::error, r.message = e.what();
     return out;
   }
-  out.checked = check::check_with_frames(out.c, renderer, o);
+  out.checked = check::check_with_frames(out.c, renderer, o, std::move(last));
   return out;
 }
 
@@ -125,6 +128,7 @@ int cmd_worker() {
   }
   const gl::GlInfo& gl = renderer->info();
   channel.send(hello_message(gl, identify::driver_files(gl)));
+  check::Checked last;  // the last case checked, its frames' memory for the next case's
   while (read_line(line)) {
     const auto job = nlohmann::json::parse(line);
     if (job.contains("identify")) {
@@ -143,7 +147,7 @@ int cmd_worker() {
       const auto model = identify::model_from_json(job.at("model"));
       if (!model) throw std::runtime_error("a job without a valid model: " + line);
       judged.model = *model;
-      done = check_one(job, judged, *renderer);
+      done = check_one(job, judged, *renderer, std::exchange(last, {}));
     } catch (const std::exception& e) {
       done.checked = check::Checked{};
       CaseResult& r = done.checked.result;
@@ -153,11 +157,13 @@ int cmd_worker() {
     // killed while writing them must not take the verdict with it.
     const bool images = done.checked.result.outcome == Status::fail && job.value("images", true);
     channel.send_raw_result(index, report::case_result_json(done.checked.result), images);
-    if (!images) continue;
-    const std::string error = write_images(done, o, judged, *renderer);
-    nlohmann::json note = {{"images_done", index}};
-    if (!error.empty()) note["images_error"] = error;
-    channel.send(note);
+    if (images) {
+      const std::string error = write_images(done, o, judged, *renderer);
+      nlohmann::json note = {{"images_done", index}};
+      if (!error.empty()) note["images_error"] = error;
+      channel.send(note);
+    }
+    last = std::move(done.checked);
   }
   return 0;
 }

@@ -34,9 +34,14 @@ void populate(void* p, size_t bytes);
 void keep_freed_buffers();
 
 // v = n copies of `value`, the storage advised and populated as above before it is first
-// written. Existing capacity is reused as it is.
+// written. Existing capacity is reused (a frame made again in a buffer a previous case used:
+// its pages are in memory already), unless it is over twice n and over 1 MiB more: then it is
+// given back first, so that a buffer kept for reuse holds at most about twice what it is used
+// for.
 template <class T>
 void assign_large(std::vector<T>& v, size_t n, const T& value) {
+  if (v.capacity() / 2 > n && (v.capacity() - n) * sizeof(T) > (size_t(1) << 20))
+    std::vector<T>().swap(v);
   if (v.capacity() < n) {
     std::vector<T>().swap(v);
     v.reserve(n);

@@ -120,7 +120,7 @@ void Framebuffer::read_depth(Frame& frame, int y0) {
                    frame.depth.data());
     return;
   }
-  std::vector<GLuint> z;
+  std::vector<GLuint>& z = z_;
   assign_large(z, frame.pixel_count(), GLuint(0));
   gl_.ReadPixels(0, y0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
   for (size_t i = 0; i < z.size(); ++i)
@@ -128,7 +128,7 @@ void Framebuffer::read_depth(Frame& frame, int y0) {
 }
 
 void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
-  std::vector<float> counts;
+  std::vector<float>& counts = counts_;
   assign_large(counts, frame.pixel_count(), 0.0f);
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
   gl_.ReadPixels(0, y0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());

@@ -86,7 +86,12 @@ class Framebuffer {
   std::vector<GLuint> renderbuffers_;  // one per colour attachment, then depth
   int width_ = 0, height_ = 0;
   std::vector<GLenum> colour_formats_;
-  std::vector<float> rgba_;  // one colour attachment as RGBA, kept to spare reallocations
+  // Read back before they are converted into a Frame, kept to spare reallocations (and the
+  // kernel's zeroing of fresh pages): one colour attachment as RGBA, a 24-bit depth buffer,
+  // the fragment counts.
+  std::vector<float> rgba_;
+  std::vector<GLuint> z_;
+  std::vector<float> counts_;
 };
 
 }  // namespace glrc::gl

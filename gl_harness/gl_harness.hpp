@@ -98,6 +98,14 @@ class Renderer {
   // (for renderers that are no GL: tests) keep render()'s whole frame and cut it.
   virtual void draw(const Case& c) { drawn_ = render(c); }
   virtual Frame read_rows(const Case& c, int y0, int rows);
+  // render(c), read back into the buffers of `storage` (a frame the caller is done with, of
+  // any case) where they are large enough: a caller checking case after case reuses the last
+  // one's memory (Frame::reset). Throws as render() does. This default (renderers that are no
+  // GL: tests) is render(c).
+  virtual Frame render_reusing(const Case& c, Frame&& storage) {
+    storage = Frame();
+    return render(c);
+  }
 
  private:
   Frame drawn_;

@@ -103,9 +103,13 @@ class GlRenderer final : public Renderer {
 
   const GlInfo& info() const override { return info_; }
 
-  Frame render(const Case& c) override {
+  Frame render(const Case& c) override { return render_reusing(c, Frame()); }
+
+  Frame render_reusing(const Case& c, Frame&& storage) override {
+    Frame frame = std::exchange(storage, Frame());
     draw(c);
-    return read_rows(c, 0, c.fb_height);
+    read_rows_into(c, 0, c.fb_height, frame);
+    return frame;
   }
 
   void draw(const Case& c) override {
@@ -130,12 +134,20 @@ class GlRenderer final : public Renderer {
   }
 
   Frame read_rows(const Case& c, int y0, int rows) override {
+    Frame frame;
+    read_rows_into(c, y0, rows, frame);
+    return frame;
+  }
+
+ private:
+  // read_rows() into `frame`, whose buffers are reused (Frame::reset).
+  void read_rows_into(const Case& c, int y0, int rows, Frame& frame) {
     if (!drawn_) throw RenderError("case '" + c.name + "': read back before it was drawn");
     if (y0 < 0 || rows < 0 || rows > c.fb_height - y0)
       throw RenderError("case '" + c.name + "': rows " + std::to_string(y0) + " + " +
                         std::to_string(rows) + " outside the framebuffer");
     context_->make_current();
-    Frame frame(c.fb_width, rows, c.component_count());
+    frame.reset(c.fb_width, rows, c.component_count());
     framebuffer_.use();
     framebuffer_.read_varyings(c, frame, y0);
     framebuffer_.read_depth(frame, y0);
@@ -143,10 +155,8 @@ class GlRenderer final : public Renderer {
     count_framebuffer_.use();
     count_framebuffer_.read_fragment_counts(frame, y0);
     check_error(c, "reading fragment counts");
-    return frame;
   }
 
- private:
   // Draws the case again with positions only, into its own framebuffer, adding 1 per fragment
   // that passes the same depth test: how many fragments each pixel received, which the final
   // primitive id cannot tell (a shared edge drawn twice shows only its last triangle).

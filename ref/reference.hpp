@@ -27,6 +27,11 @@ using Reference = Expectation;
 // every bit of the result is the same for any number.
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt,
                  int threads = 1);
+// The same bits, drawn in the buffers of `storage` (a Reference the caller is done with, of
+// any case; left empty), where they are large enough: a caller checking case after case
+// reuses the memory of the last one (Frame::reset).
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                 Reference&& storage);
 
 // render(c, m, std::nullopt, threads).frame, bit for bit, without the edge bits (which `digest`
 // does not hash): neither the edges triangles share nor the bands along them are looked for.

@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/vector_clones.hpp"
 #include "ref/allowance.hpp"
@@ -597,9 +598,9 @@ void release(std::vector<T>& v, WorkerPool& pool) {
 }
 
 // render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
-// the shared edges nor the bands are looked for.
+// the shared edges nor the bands are looked for. In `storage`'s buffers, where given.
 Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
-               int row_count, bool edges) {
+               int row_count, bool edges, Reference* storage = nullptr) {
   if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
@@ -609,7 +610,16 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   WorkerPool pool(threads);
   // The frames cleared on every thread, a buffer each: on a large frame of many channels,
   // filling them is otherwise a serial part of drawing it.
-  Reference r{Frame(c.fb_width, row_count, c.component_count(), threads), {}, Frame()};
+  Reference r;
+  if (storage) r = std::exchange(*storage, Reference{});
+  const bool allowance = freedom_bits.has_value();
+  r.frame.reset(c.fb_width, row_count, c.component_count(), threads);
+  if (allowance)
+    r.allowed.reset(c.fb_width, row_count, c.component_count(), threads);
+  else
+    r.allowed = Frame();
+  r.candidates.clear();
+  if (!edges) r.edges = {};
   Frame& f = r.frame;
   pool.parallel_for(edges ? 2 : 1, [&](int b) {
     if (b == 1)
@@ -617,8 +627,6 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     else
       assign_large(f.fragments, f.pixel_count(), uint16_t(0));
   });
-  const bool allowance = freedom_bits.has_value();
-  if (allowance) r.allowed = Frame(c.fb_width, row_count, c.component_count(), threads);
   // Without an allowance, coverage may legally differ within one model subpixel step of an
   // edge (1/256 pixel when the model does not snap).
   Settings s{c,
@@ -725,6 +733,11 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
 Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                       int y0, int row_count) {
   return draw(c, m, freedom_bits, threads, y0, row_count, true);
+}
+
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                 Reference&& storage) {
+  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage);
 }
 
 Frame render_frame(const Case& c, const Model& m, int threads) {

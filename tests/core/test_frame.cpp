@@ -1,8 +1,11 @@
 // core/frame.hpp: a new frame is cleared whole (no primitive, depth 1, every component 0),
-// whichever number of threads fills it.
+// whichever number of threads fills it; a frame reset in another's buffers is the same frame,
+// reusing them where they are large enough and giving back those far too large.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <vector>
 
 #include "core/frame.hpp"
 
@@ -24,6 +27,45 @@ TEST(Frame, ClearedWholeOnAnyThreadCount) {
       EXPECT_TRUE(std::all_of(c.begin(), c.end(), [](float v) { return v == 0.0f; }));
     }
   }
+}
+
+// reset() of a frame that held another case's values (another size, more or fewer components,
+// fragment counts) is a new frame, field for field.
+TEST(Frame, ResetInAnotherFramesBuffersIsANewFrame) {
+  for (const auto& [w, h, k] :
+       {std::array{37, 11, 6}, std::array{20, 9, 2}, std::array{37, 11, 9}, std::array{1, 1, 0}}) {
+    Frame old(40, 12, 7, 2);
+    std::fill(old.primitive.begin(), old.primitive.end(), 3);
+    std::fill(old.depth.begin(), old.depth.end(), 0.25f);
+    for (auto& c : old.components)
+      std::fill(c.begin(), c.end(), -2.0f);
+    old.fragments.assign(old.pixel_count(), uint16_t(2));
+    old.reset(w, h, k, 2);
+    const Frame fresh(w, h, k);
+    EXPECT_EQ(old.width, fresh.width);
+    EXPECT_EQ(old.height, fresh.height);
+    EXPECT_EQ(old.primitive, fresh.primitive);
+    EXPECT_EQ(old.depth, fresh.depth);
+    EXPECT_EQ(old.components, fresh.components);
+    EXPECT_TRUE(old.fragments.empty());
+  }
+}
+
+// The buffers are reused, pages and all, where they are large enough; one over twice as large
+// as needed (and over 1 MiB more) is given back, so that a kept frame holds at most about
+// twice what it is used for.
+TEST(Frame, ResetReusesBuffersLargeEnoughAndGivesBackFarLargerOnes) {
+  Frame f(1024, 512, 2);
+  const float* depth = f.depth.data();
+  f.reset(1000, 500, 2);
+  EXPECT_EQ(f.depth.data(), depth);  // 2 MB for 1.95 MB: reused
+  f.reset(1024, 128, 2);
+  EXPECT_LE(f.depth.capacity(), f.pixel_count() * 2);  // 2 MB for 0.5 MB: given back
+  EXPECT_EQ(f.depth.size(), f.pixel_count());
+  std::vector<float> small(1000, 1.0f);
+  assign_large(small, 10, 0.0f);  // far larger, but under 1 MiB more: kept
+  EXPECT_GE(small.capacity(), size_t(1000));
+  EXPECT_EQ(small, std::vector<float>(10, 0.0f));
 }
 
 }  // namespace

@@ -119,6 +119,23 @@ TEST(Tiles, OverlappingTrianglesGiveTheSameBitsOnAnyNumberOfThreads) {
   EXPECT_EQ(digest(render(c, Model{}, std::nullopt, 5).frame),
             digest(render(c, Model{}, std::nullopt, 1).frame));
   EXPECT_FALSE(render(c, Model{}, 8, 5).candidates.empty());  // the depth order was contested
+  // Drawn in the buffers of another case's Reference (larger, with more components, its
+  // candidates and edge bits set; or one without an allowance): the same bits.
+  Case other = c;
+  other.fb_width = 120, other.fb_height = 70;
+  other.viewport = {0, 0, 120, 70};
+  other.varyings = {{"v", 2, Interpolation::smooth}, {"u", 3, Interpolation::smooth}};
+  for (Vertex& v : other.vertices)
+    v.values = {v.values[0], v.values[1], 0.5f, -1.0f, v.values[0]};
+  for (const std::optional<int> bits : {std::optional<int>(8), std::optional<int>()}) {
+    Reference storage = render(other, Model{}, bits, 2);
+    ASSERT_FALSE(storage.edges.empty());
+    EXPECT_EQ(expectation_digest(render(c, Model{}, 8, 2, std::move(storage))), one);
+    EXPECT_TRUE(storage.frame.primitive.empty() && storage.allowed.depth.empty());
+  }
+  Reference storage = render(other, Model{}, 8, 2);
+  EXPECT_EQ(expectation_digest(render(c, Model{}, std::nullopt, 2, std::move(storage))),
+            expectation_digest(render(c, Model{}, std::nullopt, 2)));
 }
 
 // render_rows' bands, one after another, as one Reference: what render() gives, if they are
