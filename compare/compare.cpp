@@ -349,12 +349,23 @@ void LargestValues::keep(uint32_t key) {
 }
 
 void LargestValues::compact() {
-  // The keep_ largest keys, the smallest of them last: everything not above it may go.
+  // The keep_ largest keys, the smallest of them last: everything not above it may go. Above
+  // an assumed floor, every key kept is above it, and so is the new floor.
   std::nth_element(keys_.begin(), keys_.begin() + ptrdiff_t(keep_ - 1), keys_.end(),
                    std::greater<>());
   keys_.resize(keep_);
   floor_ = keys_.back();
   compacted_ = true;
+  assumed_ = false;
+  floor_value_ = float_of_order_key(floor_);
+}
+
+void LargestValues::assume_floor(uint32_t floor) {
+  if (count_ > 0 || compacted_ || floor <= order_key(0.0f) ||
+      floor >= order_key(std::numeric_limits<float>::infinity()))
+    throw std::logic_error("LargestValues: a floor is assumed above 0, before any value");
+  floor_ = floor;
+  compacted_ = assumed_ = true;
   floor_value_ = float_of_order_key(floor_);
 }
 
@@ -364,7 +375,8 @@ double LargestValues::p99() {
   // The (count - rank)-th largest. Every value above floor_ is kept, and at least keep_ values
   // not below it, so the kept keys' j-th largest is the stream's for any j <= keep_.
   const size_t j = count_ - rank;
-  if (j > keys_.size()) throw std::logic_error("LargestValues: kept too few values for p99");
+  if (j > keys_.size() || !complete())
+    throw std::logic_error("LargestValues: kept too few values for p99");
   std::nth_element(keys_.begin(), keys_.begin() + ptrdiff_t(j - 1), keys_.end(), std::greater<>());
   return float_of_order_key(keys_[j - 1]);
 }
@@ -593,8 +605,82 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   // Then the values, channel by channel (depth, then each component), each in pixel order. The
   // channels share nothing but what they read, so several threads take one each: every
   // channel's figures are the same bits for any number of threads.
-  parallel_for(int(st.channels.size()), st.threads,
-               [&](int slot) { add_channel(expected, gl, y0, slot - 1); });
+  const bool whole = y0 == 0 && reference.height == st.height;
+  parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
+    if (whole)
+      add_whole_channel(expected, gl, slot - 1);
+    else
+      add_channel(expected, gl, y0, slot - 1);
+  });
+}
+
+namespace {
+
+// The floors of a channel's largest values guessed from a sample of a frame compared whole
+// (LargestValues::assume_floor): one pixel of each plain run (compared against the reference's
+// own fragment of one primitive, as add_run takes them), at an offset that moves from run to
+// run and row to row. Nothing where plain runs are under half the frame (many small
+// triangles: a sample of them would be a poor one, and their values rise little).
+void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_runs,
+                   const UlpTable& table, const ChannelAllowance& allowance, const Frame& reference,
+                   const float* gl_values, const float* own_values, int k) {
+  constexpr int kRun = ChannelAccumulator::kRun;
+  const int runs = (reference.width + kRun - 1) / kRun;
+  const size_t plain =
+      size_t(std::count_if(plain_runs.begin(), plain_runs.end(), [](int32_t p) { return p >= 0; }));
+  if (plain * kRun * 2 < reference.pixel_count()) return;
+  std::vector<uint32_t> ulps, ratios;
+  ulps.reserve(plain), ratios.reserve(plain);
+  for (int row = 0; row < reference.height; ++row)
+    for (int r = 0; r < reference.width / kRun; ++r) {
+      const int32_t p = plain_runs[size_t(row) * size_t(runs) + size_t(r)];
+      if (p < 0) continue;
+      const size_t i = reference.index(r * kRun + (row * 37 + r * 11) % kRun, row);
+      const float g = gl_values[i], v = own_values[i];
+      if (!std::isfinite(g) || !std::isfinite(v)) continue;
+      const double ulp = table.ulp(p, k);
+      const double allowed = allowance.at(i, ulp);
+      const double abs_error = std::fabs(double(g) - double(v));
+      ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, k))));
+      ratios.push_back(order_key(float(abs_error == 0 ? 0.0
+                                       : allowed > 0  ? abs_error / allowed
+                                                      : kInf)));
+    }
+  // Below the sample's value at the share that should be kept, one and a half times what a
+  // compaction keeps (with 4096 samples or more, the frame's share above it is within a few
+  // percent of the sample's), and strictly below it, so that a value many pixels share is
+  // kept rather than dropped.
+  constexpr size_t kFewest = 4096;
+  const double share = 1.5 * double(acc.ulps.kept_after_compaction()) / double(plain * kRun);
+  if (ulps.size() < kFewest || share > 0.25) return;
+  const auto floor_of = [&](std::vector<uint32_t>& keys) -> std::optional<uint32_t> {
+    const auto nth = keys.end() - ptrdiff_t(std::max(1.0, double(keys.size()) * share));
+    std::nth_element(keys.begin(), nth, keys.end());
+    uint32_t below = 0;
+    for (auto it = keys.begin(); it != nth; ++it)
+      if (*it < *nth) below = std::max(below, *it);
+    if (below <= order_key(0.0f) || below >= order_key(std::numeric_limits<float>::infinity()))
+      return std::nullopt;
+    return below;
+  };
+  if (const auto floor = floor_of(ulps)) acc.ulps.assume_floor(*floor);
+  if (const auto floor = floor_of(ratios)) acc.ratios.assume_floor(*floor);
+}
+
+}  // namespace
+
+void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl, int k) {
+  State& st = *state_;
+  ChannelAccumulator& acc = st.channels[size_t(k + 1)];
+  const ChannelAccumulator before = acc;
+  const Frame& reference = expected.frame;
+  assume_floors(acc, st.plain_runs, st.ulps, ChannelAllowance(st.c, expected, st.r.tolerance, k),
+                reference, k == kDepth ? gl.depth.data() : gl.components[size_t(k)].data(),
+                k == kDepth ? reference.depth.data() : reference.components[size_t(k)].data(), k);
+  add_channel(expected, gl, 0, k);
+  if (acc.ulps.complete() && acc.ratios.complete()) return;
+  acc = before;
+  add_channel(expected, gl, 0, k);
 }
 
 void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, int k) {

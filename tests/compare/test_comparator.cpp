@@ -84,6 +84,43 @@ TEST(LargestValues, CertainlyDroppedOnlyBelowWhatIsKept) {
   EXPECT_FALSE(LargestValues(100).certainly_dropped(0.0, 1.0));
 }
 
+// A floor assumed from a guess: where the stream bears it out (at least keep_ values above it,
+// or a compaction raised it) the p99 is the stream's; where it does not, complete() says so.
+TEST(LargestValues, AnAssumedFloorGivesTheStreamsP99OrSaysItCannot) {
+  std::mt19937 random(5);
+  const size_t n = 20000, keep = n / 100 + 16;
+  std::vector<float> values(n);
+  for (size_t k = 0; k < n; ++k)  // rising, as a frame's errors may: ties among them
+    values[k] = float(random() % (k / 50 + 2)) * 0.25f;
+  std::vector<float> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  LargestValues plain(n);
+  for (float v : values)
+    plain.add(v);
+  // A floor with this many values above it in the stream.
+  for (const size_t above : {keep / 2, keep - 1, keep, keep * 3 / 2, n / 2}) {
+    const float floor = sorted[n - above - 1];
+    LargestValues assumed(n);
+    assumed.assume_floor(order_key(floor));
+    for (float v : values)
+      assumed.add(v);
+    const auto truly_above =
+        size_t(sorted.end() - std::upper_bound(sorted.begin(), sorted.end(), floor));
+    EXPECT_EQ(assumed.complete(), truly_above >= keep) << above;
+    if (assumed.complete()) {
+      EXPECT_EQ(assumed.p99(), plain.p99()) << above;
+    } else {
+      EXPECT_THROW(assumed.p99(), std::logic_error);
+    }
+  }
+  LargestValues late(n);
+  late.add(1.0f);
+  EXPECT_THROW(late.assume_floor(order_key(0.5f)), std::logic_error);
+  EXPECT_THROW(LargestValues(n).assume_floor(order_key(0.0f)), std::logic_error);
+  EXPECT_THROW(LargestValues(n).assume_floor(order_key(std::numeric_limits<float>::infinity())),
+               std::logic_error);
+}
+
 // The crossing triangles of test_depth_order.cpp (depth candidates), with one varying.
 Case crossing() {
   Case c;
@@ -196,6 +233,54 @@ TEST(Comparator, BandsGiveTheWholeFramesResult) {
                      " threads");
         expect_same(comparator.finish(), whole);
       }
+  }
+}
+
+// A frame compared whole guesses the floors of each channel's largest values from a sample
+// (one pixel of each run of 64 of one triangle); a frame whose errors rise from row to row
+// bears the guess out, one whose large errors lie only on the sampled pixels does not, and is
+// compared again. Either way the result is that of bands, which guess nothing, bit for bit.
+TEST(Comparator, AWholeFramesGuessedFloorsGiveTheBandsResult) {
+  Case c;
+  c.name = "guessed";
+  c.fb_width = 1024, c.fb_height = 512;  // 8192 runs of 64, 4096 needed for a sample
+  c.viewport = {0, 0, 1024, 512};
+  c.varyings = {{"c", 2, Interpolation::smooth}};
+  // A perspective quad filling the framebuffer.
+  c.vertices = {{{-1, -1, 0, 1}, {0, 1}},
+                {{2, -2, 0, 2}, {1, 3}},
+                {{1, 1, 0, 1}, {2, 2}},
+                {{-2, 2, 0, 2}, {3, 0.5f}}};
+  c.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const Expectation e = ref::render(c, Model{}, 8, 2);
+  std::mt19937 random(3);
+  const auto steps = [](float v, int n) {
+    for (int k = 0; k < n; ++k)
+      v = std::nextafter(v, 100.0f);
+    return v;
+  };
+  for (const bool misleading : {false, true}) {
+    Frame gl = e.frame;
+    for (int y = 0; y < c.fb_height; ++y)
+      for (int x = 0; x < c.fb_width; ++x) {
+        const size_t i = gl.index(x, y);
+        const bool sampled = x % 64 == (y * 37 + x / 64 * 11) % 64;
+        const int n = misleading ? (sampled ? int(random() % 400) : int(random() % 2))
+                                 : int(random() % (y / 16 + 2));
+        for (auto& component : gl.components)
+          component[i] = steps(component[i], n);
+        gl.depth[i] = steps(gl.depth[i], n / 8);
+      }
+    for (const Tolerance& t : {Tolerance{}, Tolerance{ToleranceMode::ulps}}) {
+      SCOPED_TRACE(std::string(misleading ? "misleading" : "rising") +
+                   (t.mode == ToleranceMode::ulps ? ", ulps" : ", spec"));
+      Comparator bands(c, t, c.fb_width, c.fb_height, 2);
+      for (int y0 = 0; y0 < c.fb_height; y0 += 100) {
+        const int n = std::min(100, c.fb_height - y0);
+        bands.add_rows(rows_of(e, y0, n), gl.rows(y0, n), y0);
+      }
+      expect_same(compare(c, e, gl, t, 2), bands.finish());
+    }
   }
 }
 
