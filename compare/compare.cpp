@@ -628,7 +628,13 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
   const int runs = (reference.width + kRun - 1) / kRun;
   const size_t plain =
       size_t(std::count_if(plain_runs.begin(), plain_runs.end(), [](int32_t p) { return p >= 0; }));
-  if (plain * kRun * 2 < reference.pixel_count()) return;
+  // Below the sample's value at the share that should be kept, one and a half times what a
+  // compaction keeps (with 4096 samples or more, the frame's share above it is within a few
+  // percent of the sample's), and strictly below it, so that a value many pixels share is
+  // kept rather than dropped.
+  constexpr size_t kFewest = 4096;
+  const double share = 1.5 * double(acc.ulps.kept_after_compaction()) / double(plain * kRun);
+  if (plain * kRun * 2 < reference.pixel_count() || plain < kFewest || share > 0.25) return;
   std::vector<uint32_t> ulps, ratios;
   ulps.reserve(plain), ratios.reserve(plain);
   for (int row = 0; row < reference.height; ++row)
@@ -646,13 +652,7 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
                                        : allowed > 0  ? abs_error / allowed
                                                       : kInf)));
     }
-  // Below the sample's value at the share that should be kept, one and a half times what a
-  // compaction keeps (with 4096 samples or more, the frame's share above it is within a few
-  // percent of the sample's), and strictly below it, so that a value many pixels share is
-  // kept rather than dropped.
-  constexpr size_t kFewest = 4096;
-  const double share = 1.5 * double(acc.ulps.kept_after_compaction()) / double(plain * kRun);
-  if (ulps.size() < kFewest || share > 0.25) return;
+  if (ulps.size() < kFewest) return;  // non-finite values left out
   const auto floor_of = [&](std::vector<uint32_t>& keys) -> std::optional<uint32_t> {
     const auto nth = keys.end() - ptrdiff_t(std::max(1.0, double(keys.size()) * share));
     std::nth_element(keys.begin(), nth, keys.end());

@@ -28,6 +28,7 @@
 #include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
 #include "tests/support/gl_test_target.hpp"
+#include "tests/support/same_result.hpp"
 
 namespace glrc::gl {
 namespace {
@@ -669,34 +670,6 @@ class GlEgl : public Gl {
   }
 };
 
-// The verdict and the statistics of two checks of one case, field for field.
-void expect_same_result(const CaseResult& x, const CaseResult& y) {
-  EXPECT_EQ(x.status, y.status);
-  EXPECT_EQ(x.message, y.message);
-  EXPECT_EQ(x.gl_digest, y.gl_digest);
-  EXPECT_EQ(x.coverage.both, y.coverage.both);
-  EXPECT_EQ(x.coverage.failures, y.coverage.failures);
-  EXPECT_EQ(x.coverage.boundary, y.coverage.boundary);
-  EXPECT_EQ(x.coverage.mismatches.size(), y.coverage.mismatches.size());
-  ASSERT_EQ(x.channels.size(), y.channels.size());
-  for (size_t k = 0; k < x.channels.size(); ++k) {
-    const ChannelStats &p = x.channels[k], &q = y.channels[k];
-    EXPECT_EQ(p.compared, q.compared);
-    EXPECT_EQ(p.over_tolerance, q.over_tolerance);
-    EXPECT_EQ(p.differing, q.differing);
-    EXPECT_EQ(p.max_ulps, q.max_ulps);
-    EXPECT_EQ(p.mean_ulps, q.mean_ulps);
-    EXPECT_EQ(p.rms_ulps, q.rms_ulps);
-    EXPECT_EQ(p.p99_ulps, q.p99_ulps);
-    EXPECT_EQ(p.max_ratio, q.max_ratio);
-    EXPECT_EQ(p.p99_ratio, q.p99_ratio);
-    EXPECT_EQ(p.tolerance_ulps, q.tolerance_ulps);
-    ASSERT_EQ(p.worst.size(), q.worst.size());
-    for (size_t i = 0; i < p.worst.size(); ++i)
-      EXPECT_EQ(p.worst[i].ulps, q.worst[i].ulps);
-  }
-}
-
 // End to end on cases of the suite: the real driver against the exact reference, judged by
 // check/ with the default options (the case file's own tolerance, where it sets one).
 // GL's frame read back band by band (glReadPixels of each band's rows) is the frame render()
@@ -723,7 +696,7 @@ TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
       const check::Checked fresh = check::check_with_frames(c, gl(), check::CheckOptions{});
       const check::Checked reused = check::check_with_frames(
           c, gl(), check::CheckOptions{}, check::check_with_frames(other, gl(), {}));
-      expect_same_result(reused.result, fresh.result);
+      test::expect_same_result(reused.result, fresh.result);
       EXPECT_EQ(ref::expectation_digest(reused.reference),
                 ref::expectation_digest(fresh.reference));
       EXPECT_EQ(ref::digest(reused.gl), ref::digest(fresh.gl));
@@ -740,7 +713,7 @@ TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
       EXPECT_FALSE(a.streamed);
       EXPECT_TRUE(b.streamed);
       EXPECT_TRUE(b.gl.components.empty() && b.reference.frame.primitive.empty());
-      expect_same_result(a.result, b.result);
+      test::expect_same_result(a.result, b.result);
     }
   }
 }
