@@ -40,7 +40,8 @@ std::string sha256(const Fill& fill) {
 
 struct FrameDigest::Context {
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> md{EVP_MD_CTX_new(), EVP_MD_CTX_free};
-  std::vector<unsigned char> row;  // one row's pixels, fed at once
+  std::vector<uint32_t> row;             // one row's pixels, fed at once
+  std::vector<const uint32_t*> sources;  // one row of each channel
 };
 
 FrameDigest::FrameDigest(int width, int height)
@@ -57,20 +58,27 @@ FrameDigest::~FrameDigest() = default;
 void FrameDigest::add_rows(const Frame& f) {
   if (f.width != width_) throw std::invalid_argument("FrameDigest: a band of another width");
   // Per pixel, so that the layout of Frame's vectors is not part of the digest: primitive,
-  // depth, every component.
-  const size_t per_pixel = 4 * (2 + f.components.size());
-  std::vector<unsigned char>& row = context_->row;
-  row.resize(per_pixel * size_t(f.width));
+  // depth, every component, 4 bytes each. A row is put together channel by channel (each
+  // channel's row read in order, written every `channels` words): the same bytes as pixel by
+  // pixel, without looking up every channel's vector again at every pixel.
+  static_assert(sizeof(float) == 4 && sizeof(int32_t) == 4);
+  const size_t channels = 2 + f.components.size(), width = size_t(f.width);
+  std::vector<uint32_t>& row = context_->row;
+  std::vector<const uint32_t*>& sources = context_->sources;
+  row.resize(channels * width);
+  sources.resize(channels);
   for (int y = 0; y < f.height; ++y) {
-    unsigned char* out = row.data();
-    for (int x = 0; x < f.width; ++x) {
-      const size_t i = f.index(x, y);
-      std::memcpy(out, &f.primitive[i], 4), out += 4;
-      std::memcpy(out, &f.depth[i], 4), out += 4;
-      for (const auto& comp : f.components)
-        std::memcpy(out, &comp[i], 4), out += 4;
-    }
-    EVP_DigestUpdate(context_->md.get(), row.data(), row.size());
+    const size_t i = f.index(0, y);
+    sources[0] = reinterpret_cast<const uint32_t*>(f.primitive.data() + i);
+    sources[1] = reinterpret_cast<const uint32_t*>(f.depth.data() + i);
+    for (size_t k = 0; k < f.components.size(); ++k)
+      sources[2 + k] = reinterpret_cast<const uint32_t*>(f.components[k].data() + i);
+    const uint32_t* const* in = sources.data();
+    uint32_t* out = row.data();
+    for (size_t x = 0; x < width; ++x)
+      for (size_t k = 0; k < channels; ++k)
+        *out++ = in[k][x];
+    EVP_DigestUpdate(context_->md.get(), row.data(), row.size() * sizeof(uint32_t));
   }
 }
 
