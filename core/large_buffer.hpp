@@ -33,13 +33,13 @@ void populate(void* p, size_t bytes);
 // main, so its workers too; the benchmarks, which time a case as a worker runs it).
 void keep_freed_buffers();
 
-// v = n copies of `value`, the storage advised and populated as above before it is first
-// written. Existing capacity is reused (a frame made again in a buffer a previous case used:
-// its pages are in memory already), unless it is over twice n and over 1 MiB more: then it is
-// given back first, so that a buffer kept for reuse holds at most about twice what it is used
-// for.
+// Makes v's storage ready for n elements, as assign_large and resize_large below need it:
+// existing capacity is kept (a frame made again in a buffer a previous case used: its pages are
+// in memory already), unless it is over twice n and over 1 MiB more: then it is given back
+// first, so that a buffer kept for reuse holds at most about twice what it is used for. New
+// storage is advised and populated as above before it is first written.
 template <class T>
-void assign_large(std::vector<T>& v, size_t n, const T& value) {
+void reserve_large(std::vector<T>& v, size_t n) {
   if (v.capacity() / 2 > n && (v.capacity() - n) * sizeof(T) > (size_t(1) << 20))
     std::vector<T>().swap(v);
   if (v.capacity() < n) {
@@ -48,7 +48,22 @@ void assign_large(std::vector<T>& v, size_t n, const T& value) {
     advise_huge_pages(v.data(), n * sizeof(T));
     populate(v.data(), n * sizeof(T));
   }
+}
+
+// v = n copies of `value`, in storage made ready by reserve_large.
+template <class T>
+void assign_large(std::vector<T>& v, size_t n, const T& value) {
+  reserve_large(v, n);
   v.assign(n, value);
+}
+
+// v.resize(n), in storage made ready by reserve_large: the first elements keep whatever values
+// they had (a shorter vector's new elements are value-initialized), so that a buffer its user
+// writes whole anyway is not filled first.
+template <class T>
+void resize_large(std::vector<T>& v, size_t n) {
+  reserve_large(v, n);
+  v.resize(n);
 }
 
 }  // namespace glrc

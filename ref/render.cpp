@@ -597,6 +597,34 @@ void release(std::vector<T>& v, WorkerPool& pool) {
   pool.parallel_for(int(v.size()), [&](int k) { v[size_t(k)] = {}; });
 }
 
+// Sets the components of the frame and of the allowance to 0 (Frame's clear value) at every
+// pixel no fragment was drawn at (no primitive): the frames were made with their components uncleared
+// (Frame::reset_uncleared_components), and a drawn fragment writes every component of both.
+// In chunks of pixels on the pool's threads, each finding its runs of undrawn pixels once.
+void clear_uncovered(Reference& r, WorkerPool& pool) {
+  const Frame& f = r.frame;
+  const size_t n = f.pixel_count();
+  constexpr size_t kChunk = size_t(1) << 16;
+  pool.parallel_for(int((n + kChunk - 1) / kChunk), [&](int k) {
+    // The primitive, not the fragment count: a count of 65,536 fragments wraps to 0.
+    const int32_t* primitive = f.primitive.data();
+    const size_t end = std::min(n, (size_t(k) + 1) * kChunk);
+    for (size_t i = size_t(k) * kChunk; i < end;) {
+      if (primitive[i] != Frame::kNoPrimitive) {
+        ++i;
+        continue;
+      }
+      size_t j = i + 1;
+      while (j < end && primitive[j] == Frame::kNoPrimitive)
+        ++j;
+      for (Frame* frame : {&r.frame, &r.allowed})
+        for (std::vector<float>& component : frame->components)
+          std::fill(component.begin() + ptrdiff_t(i), component.begin() + ptrdiff_t(j), 0.0f);
+      i = j;
+    }
+  });
+}
+
 // render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
 // the shared edges nor the bands are looked for. In `storage`'s buffers, where given.
 Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
@@ -613,9 +641,11 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   Reference r;
   if (storage) r = std::exchange(*storage, Reference{});
   const bool allowance = freedom_bits.has_value();
-  r.frame.reset(c.fb_width, row_count, c.component_count(), threads);
+  // The components are cleared where nothing is drawn once everything is (clear_uncovered):
+  // every fragment drawn writes all of them, in the frame and in the allowance alike.
+  r.frame.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
   if (allowance)
-    r.allowed.reset(c.fb_width, row_count, c.component_count(), threads);
+    r.allowed.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
   else
     r.allowed = Frame();
   r.candidates.clear();
@@ -716,6 +746,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     release(prepared, pool);
   }
   release(setups, pool);
+  clear_uncovered(r, pool);
   // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.
   // (Only with an allowance are there any.)
   for (CandidateMap& band : candidates)

@@ -4,9 +4,11 @@
 // at 2 and 5 threads are ctest's digest.threads_* and digest.expectation_threads_*).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -136,6 +138,48 @@ TEST(Tiles, OverlappingTrianglesGiveTheSameBitsOnAnyNumberOfThreads) {
   Reference storage = render(other, Model{}, 8, 2);
   EXPECT_EQ(expectation_digest(render(c, Model{}, std::nullopt, 2, std::move(storage))),
             expectation_digest(render(c, Model{}, std::nullopt, 2)));
+}
+
+TEST(Tiles, PixelsNothingDrawsAreClearedInAnotherCasesBuffers) {
+  // The reference sizes its components without clearing them and clears the pixels no fragment
+  // reached once it has drawn: drawn in the buffers of a case that covered every pixel with
+  // values and allowances other than 0, a small triangle's frame must still be 0 elsewhere.
+  Case full;
+  full.name = "full";
+  full.fb_width = 40, full.fb_height = 30;
+  full.viewport = {0, 0, 40, 30};
+  full.varyings = {{"v", 3, Interpolation::smooth}};
+  full.vertices = {{{-1, -1, 0, 1}, {1.0f, 2.0f, 3.0f}},
+                   {{6, -2, 0, 2}, {4.0f, 5.0f, 6.0f}},
+                   {{-1, 3, 0, 1}, {7.0f, 8.0f, 9.0f}}};
+  full.triangles = {{0, 1, 2}};
+  Case small = full;
+  small.name = "small";
+  small.vertices = {{{-0.5f, -0.5f, 0, 1}, {1.0f, 2.0f, 3.0f}},
+                    {{0.25f, -0.5f, 0, 1}, {4.0f, -5.0f, 6.0f}},
+                    {{-0.5f, 0.25f, 0, 1}, {7.0f, 8.0f, -9.0f}}};
+  for (const std::optional<int> bits : {std::optional<int>(8), std::optional<int>()}) {
+    Reference storage = render(full, Model{}, bits, 2);
+    for (const auto& component : storage.frame.components)
+      ASSERT_EQ(std::count(component.begin(), component.end(), 0.0f), 0);
+    const Reference fresh = render(small, Model{}, bits, 2);
+    const Reference reused = render(small, Model{}, bits, 2, std::move(storage));
+    EXPECT_EQ(expectation_digest(reused), expectation_digest(fresh));
+    ASSERT_EQ(reused.frame.components.size(), 3u);
+    size_t undrawn = 0;
+    for (size_t i = 0; i < reused.frame.pixel_count(); ++i) {
+      if (reused.frame.primitive[i] != Frame::kNoPrimitive) continue;
+      ++undrawn;
+      for (size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(reused.frame.components[k][i], 0.0f) << i;
+        if (bits) {
+          EXPECT_EQ(reused.allowed.components[k][i], 0.0f) << i;
+        }
+      }
+    }
+    EXPECT_GT(undrawn, 1000u);  // most of the 1,200 pixels
+    EXPECT_LT(undrawn, 1200u);  // and not all
+  }
 }
 
 // render_rows' bands, one after another, as one Reference: what render() gives, if they are
