@@ -598,9 +598,9 @@ void release(std::vector<T>& v, WorkerPool& pool) {
 }
 
 // Sets the components of the frame and of the allowance to 0 (Frame's clear value) at every
-// pixel no fragment was drawn at (no primitive): the frames were made with their components uncleared
-// (Frame::reset_uncleared_components), and a drawn fragment writes every component of both.
-// In chunks of pixels on the pool's threads, each finding its runs of undrawn pixels once.
+// pixel no fragment was drawn at (no primitive): the frames were made with their components
+// uncleared (Frame::reset_uncleared_components), and a drawn fragment writes every component of
+// both. In chunks of pixels on the pool's threads, each finding its runs of undrawn pixels once.
 void clear_uncovered(Reference& r, WorkerPool& pool) {
   const Frame& f = r.frame;
   const size_t n = f.pixel_count();
