@@ -30,6 +30,9 @@ Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits)
 
 Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits,
                             Expectation storage) {
+  if (o.deferred_allowance && !o.driver_model)
+    return ref::render_deferred(c, o.model, freedom_bits(o, reported_bits), o.threads,
+                                std::move(storage));
   ref::Reference r =
       ref::render(c, o.model, freedom_bits(o, reported_bits), o.threads, std::move(storage));
   // The driver model replaces the frame only: the edge bits still name ties and bands.

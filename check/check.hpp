@@ -48,6 +48,11 @@ struct CheckOptions {
   size_t whole_frame_bytes = size_t(256) << 20;
   // About how many bytes of frame one band of a streamed case holds.
   size_t band_bytes = size_t(16) << 20;
+  // The reference's component allowances computed only where the comparison needs them
+  // (ref::render_deferred): the same verdict and statistics, bit for bit, in less time;
+  // Checked::reference then holds them deferred (complete_allowance fills them in for a
+  // heatmap). Not with a driver model, nor in a streamed case (whose bands have them all).
+  bool deferred_allowance = false;
 };
 
 // The bytes of one Frame of case c: every pixel's primitive, depth, fragment count and

@@ -75,7 +75,7 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
 // the run. Returns why there are none, or "".
 // A case checked band by band holds no whole frame: its pictures are made band by band again,
 // from the reference's rows and GL's, which still holds the case's drawing.
-std::string write_images(const Outcome& done, const Options& o, const check::CheckOptions& judged,
+std::string write_images(Outcome& done, const Options& o, const check::CheckOptions& judged,
                          gl::Renderer& renderer) {
   try {
     const std::filesystem::path dir = std::filesystem::path(o.out) / "cases" / done.c.name;
@@ -89,6 +89,8 @@ std::string write_images(const Outcome& done, const Options& o, const check::Che
           });
       return "";
     }
+    // The heatmaps show every pixel's allowance.
+    complete_allowance(done.checked.reference, judged.threads);
     report::write_diff_images(dir, done.c, done.checked.reference, done.checked.gl,
                               done.checked.result);
     return "";
@@ -142,6 +144,8 @@ int cmd_worker() {
     const size_t index = job.at("index");
     Outcome done;
     check::CheckOptions judged = check_options(o);
+    // Only a failing case's heatmaps need every pixel's allowance (write_images).
+    judged.deferred_allowance = true;
     try {
       // Every case of the run is judged by the run's model, which the runner chose.
       const auto model = identify::model_from_json(job.at("model"));

@@ -108,28 +108,13 @@ struct ChannelAccumulator {
                                   const float* allowed, double fixed_allowed, double ulp,
                                   double inverse_ulp) {
     constexpr int n = kRun;
-    constexpr uint32_t kExponent = 0x7f800000u;
-    uint32_t non_finite = 0;
-    for (int j = 0; j < n; ++j)
-      non_finite |= uint32_t((std::bit_cast<uint32_t>(reference[j]) & kExponent) == kExponent) |
-                    uint32_t((std::bit_cast<uint32_t>(gl[j]) & kExponent) == kExponent);
-    if (non_finite) return false;
     double abs_error[kRun], ulps_of[kRun], allowed_of[kRun];
-    // pixel_error's finite branch: both values are finite floats, so their difference is exact
-    // in double, and the ulps finite.
-    for (int j = 0; j < n; ++j)
-      abs_error[j] = std::fabs(double(gl[j]) - double(reference[j]));
+    if (!run_errors(reference, gl, ulp, inverse_ulp, abs_error, ulps_of)) return false;
     if (allowed)
       for (int j = 0; j < n; ++j)
         allowed_of[j] = double(allowed[j]);
     else
       std::fill(allowed_of, allowed_of + n, fixed_allowed);
-    if (inverse_ulp > 0)
-      for (int j = 0; j < n; ++j)
-        ulps_of[j] = abs_error[j] * inverse_ulp;
-    else
-      for (int j = 0; j < n; ++j)
-        ulps_of[j] = abs_error[j] / ulp;
     // One figure a loop, none with a branch: GCC vectorizes no other. Counts of double
     // comparisons in 64 bits (the comparisons' masks are 64-bit lanes); the maxima of doubles
     // that are +0 or above (or skipped, as std::max(m, x) skips a NaN, a negative and -0 when m
@@ -137,7 +122,7 @@ struct ChannelAccumulator {
     // maximum of doubles is vectorized only under -ffast-math).
     const uint64_t exact_mask = exact ? ~uint64_t(0) : 0;
     uint64_t differing = 0, over = 0;
-    int64_t largest_allowance = 0, max_abs = 0;
+    int64_t largest_allowance = 0;
     for (int j = 0; j < n; ++j)
       differing += std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
     for (int j = 0; j < n; ++j)
@@ -148,10 +133,6 @@ struct ChannelAccumulator {
       const int64_t a = allowance_ulps > 0 ? std::bit_cast<int64_t>(allowance_ulps) : 0;
       largest_allowance = largest_allowance < a ? a : largest_allowance;
     }
-    for (int j = 0; j < n; ++j) {
-      const int64_t e = std::bit_cast<int64_t>(abs_error[j]);
-      max_abs = max_abs < e ? e : max_abs;
-    }
     // LargestValues' work is in the lanes whose values it may keep: at the 99th percentile a
     // run of 64 has one in about half the runs. Which lanes those are is found for every lane
     // at once, against the floors as they are now; a floor only rises (a value kept may
@@ -159,30 +140,121 @@ struct ChannelAccumulator {
     // lane taken is tested again against the floor as it is when its turn comes.
     const bool ratios_droppable = ratios.may_drop();
     const double ratio_floor = ratios.floor_value();
-    uint32_t keys[kRun], may_keep_ulps[kRun];
     int64_t may_keep_ratio[kRun];
+    const int64_t keeps_every_ratio = !ratios_droppable;
+    for (int j = 0; j < n; ++j)
+      may_keep_ratio[j] =
+          int64_t(!LargestValues::below_drop_bound(abs_error[j], allowed_of[j], ratio_floor)) |
+          keeps_every_ratio;
+    uint64_t ratios_taken = 0;
+    for (int j = 0; j < n; ++j)
+      ratios_taken += uint64_t(may_keep_ratio[j]);
+    t.largest_allowance_ulps =
+        std::max(t.largest_allowance_ulps, std::bit_cast<double>(largest_allowance));
+    t.over_tolerance += over;
+    tally_errors(t, differing, abs_error, ulps_of, ulp, inverse_ulp);
+    ratios.count_dropped(size_t(n) - ratios_taken);
+    if (ratios_taken > 0)
+      for (int j = 0; j < n; ++j) {
+        if (!may_keep_ratio[j]) continue;
+        if (ratios.certainly_dropped(abs_error[j], allowed_of[j])) {
+          ratios.count_dropped();
+          continue;
+        }
+        const PixelError pe{abs_error[j], ulps_of[j], false};
+        t.max_ratio =
+            std::max(t.max_ratio, keep_ratio(x + j, y, reference[j], gl[j], pe, allowed_of[j]));
+      }
+    return true;
+  }
+
+  // add_run() of a run whose allowances are not known, only a bound `lo` below each of them
+  // (DeferredAllowance::range; spec mode), as far as they change no figure: 0, with the figures
+  // add_run() would give, when no error is above lo (so none is over); `largest_known`: no
+  // allowance is above the largest the channel has, which the caller knows; and every share of
+  // the allowance is one LargestValues certainly drops, since it does for the larger share
+  // error/lo (below_drop_bound is monotone in the allowance). Else, having changed nothing,
+  // the lanes whose allowances are needed, as bits (kEveryLane: all, also for a run with NaN or
+  // Inf): the others' decisions are the same for any allowance from lo up, so add_run() may be
+  // given any such one for them (the least float not below lo).
+  static constexpr uint64_t kEveryLane = ~uint64_t(0);
+  GLRC_VECTOR_CLONES uint64_t add_run_within(Tally& t, const float* reference, const float* gl,
+                                             double lo, bool largest_known, double ulp,
+                                             double inverse_ulp) {
+    constexpr int n = kRun;
+    static_assert(n == 64);
+    if (exact || !largest_known || !ratios.may_drop()) return kEveryLane;
+    double abs_error[kRun], ulps_of[kRun];
+    if (!run_errors(reference, gl, ulp, inverse_ulp, abs_error, ulps_of)) return kEveryLane;
+    const double ratio_floor = ratios.floor_value();
+    int64_t needed[kRun];
+    int64_t any = 0;
+    for (int j = 0; j < n; ++j) {
+      needed[j] = int64_t(!(abs_error[j] <= lo)) |
+                  int64_t(!LargestValues::below_drop_bound(abs_error[j], lo, ratio_floor));
+      any |= needed[j];
+    }
+    if (any) {
+      uint64_t lanes = 0;
+      for (int j = 0; j < n; ++j)
+        lanes |= uint64_t(needed[j]) << j;
+      return lanes;
+    }
+    uint64_t differing = 0;
+    for (int j = 0; j < n; ++j)
+      differing += std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
+    tally_errors(t, differing, abs_error, ulps_of, ulp, inverse_ulp);
+    ratios.count_dropped(size_t(n));
+    return 0;
+  }
+
+  // A run's errors, as pixel_error's finite branch gives them (both values finite floats, so
+  // their difference is exact in double, and the ulps finite): false when a value is NaN or
+  // Inf. Inlined into each caller's copies.
+  [[gnu::always_inline]] static bool run_errors(const float* reference, const float* gl, double ulp,
+                                                double inverse_ulp, double* abs_error,
+                                                double* ulps_of) {
+    constexpr int n = kRun;
+    constexpr uint32_t kExponent = 0x7f800000u;
+    uint32_t non_finite = 0;
+    for (int j = 0; j < n; ++j)
+      non_finite |= uint32_t((std::bit_cast<uint32_t>(reference[j]) & kExponent) == kExponent) |
+                    uint32_t((std::bit_cast<uint32_t>(gl[j]) & kExponent) == kExponent);
+    if (non_finite) return false;
+    for (int j = 0; j < n; ++j)
+      abs_error[j] = std::fabs(double(gl[j]) - double(reference[j]));
+    if (inverse_ulp > 0)
+      for (int j = 0; j < n; ++j)
+        ulps_of[j] = abs_error[j] * inverse_ulp;
+    else
+      for (int j = 0; j < n; ++j)
+        ulps_of[j] = abs_error[j] / ulp;
+    return true;
+  }
+
+  // The figures of a run's errors that do not depend on the allowance: counts, maxima, sums in
+  // pixel order, and the ulps' LargestValues (as add_run() feeds the ratios'). Inlined into
+  // each caller's copies.
+  [[gnu::always_inline]] void tally_errors(Tally& t, uint64_t differing, const double* abs_error,
+                                           const double* ulps_of, double ulp, double inverse_ulp) {
+    constexpr int n = kRun;
+    int64_t max_abs = 0;
+    for (int j = 0; j < n; ++j) {
+      const int64_t e = std::bit_cast<int64_t>(abs_error[j]);
+      max_abs = max_abs < e ? e : max_abs;
+    }
+    uint32_t keys[kRun], may_keep_ulps[kRun];
     const uint32_t ulps_floor = ulps.floor_key();
     for (int j = 0; j < n; ++j) {
       // order_key of a float that is +0 or above: never 0, so above a floor_key of 0.
       keys[j] = std::bit_cast<uint32_t>(float(ulps_of[j])) | 0x80000000u;
       may_keep_ulps[j] = keys[j] > ulps_floor;
     }
-    const int64_t keeps_every_ratio = !ratios_droppable;
-    for (int j = 0; j < n; ++j)
-      may_keep_ratio[j] =
-          int64_t(!LargestValues::below_drop_bound(abs_error[j], allowed_of[j], ratio_floor)) |
-          keeps_every_ratio;
     uint32_t ulps_taken = 0;
-    uint64_t ratios_taken = 0;
     for (int j = 0; j < n; ++j)
       ulps_taken += may_keep_ulps[j];
-    for (int j = 0; j < n; ++j)
-      ratios_taken += uint64_t(may_keep_ratio[j]);
-    t.largest_allowance_ulps =
-        std::max(t.largest_allowance_ulps, std::bit_cast<double>(largest_allowance));
     t.compared += uint64_t(n);
     t.differing += differing;
-    t.over_tolerance += over;
     t.finite += uint64_t(n);
     t.max_abs = std::max(t.max_abs, std::bit_cast<double>(max_abs));
     // The largest ulps is the largest error's: ·(1/ulp) and /ulp, rounded, are monotone.
@@ -198,19 +270,6 @@ struct ChannelAccumulator {
     if (ulps_taken > 0)
       for (int j = 0; j < n; ++j)
         if (may_keep_ulps[j]) ulps.offer(keys[j]);
-    ratios.count_dropped(size_t(n) - ratios_taken);
-    if (ratios_taken > 0)
-      for (int j = 0; j < n; ++j) {
-        if (!may_keep_ratio[j]) continue;
-        if (ratios.certainly_dropped(abs_error[j], allowed_of[j])) {
-          ratios.count_dropped();
-          continue;
-        }
-        const PixelError pe{abs_error[j], ulps_of[j], false};
-        t.max_ratio =
-            std::max(t.max_ratio, keep_ratio(x + j, y, reference[j], gl[j], pe, allowed_of[j]));
-      }
-    return true;
   }
 
   // The share of the allowance of a pixel whose ratio LargestValues may keep, kept, and the
@@ -418,6 +477,11 @@ ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
   // components (the fixed depth ULPs judged those until a campaign found it).
   if (tolerance.mode == ToleranceMode::spec &&
       expected.allowed.depth.size() == expected.frame.pixel_count()) {
+    if (!depth && expected.deferred && expected.allowed.components.empty()) {
+      deferred_ = expected.deferred;
+      frame_ = &expected.frame, channel_ = channel;
+      return;
+    }
     per_pixel_ = depth ? &expected.allowed.depth : &expected.allowed.components.at(size_t(channel));
     return;
   }
@@ -523,9 +587,14 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
       reference.components.size() != size_t(c.component_count()) ||
       reference.components.size() != gl.components.size() ||
       expected.edges.size() != reference.pixel_count() ||
-      (spec && (expected.allowed.components.size() != reference.components.size() ||
+      (spec && ((expected.allowed.components.size() != reference.components.size() &&
+                 !(expected.deferred && expected.allowed.components.empty())) ||
                 expected.allowed.depth.size() != reference.pixel_count())))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
+  // A deferred allowance knows the rows of the frame it drew: the frame is compared whole.
+  if (expected.deferred && (y0 != 0 || reference.height != st.height))
+    throw std::invalid_argument("compare: a deferred allowance in a band of rows, for case " +
+                                c.name);
   st.next_row += reference.height;
 
   // Coverage first, then the values where both frames name the same triangle (or GL a
@@ -634,9 +703,15 @@ namespace {
 // own fragment of one primitive, as add_run takes them), at an offset that moves from run to
 // run and row to row. Nothing where plain runs are under half the frame (many small
 // triangles: a sample of them would be a poor one, and their values rise little).
+// With a deferred allowance, each sampled pixel's run's bound above it stands for it
+// (`bounds`, as add_channel's): the ratios sampled are then no larger than the pixels' own, the
+// floor guessed no higher (a lower one keeps more values, which complete() allows; what the
+// figures are does not depend on the floor, only how many values are kept on the way).
 void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_runs,
                    const UlpTable& table, const ChannelAllowance& allowance, const Frame& reference,
-                   const float* gl_values, const float* own_values, int k) {
+                   const float* gl_values, const float* own_values, int k,
+                   const Comparator::ChannelBounds* bounds) {
+  constexpr int kSampledRuns = 4;  // run_bounds' sample too: one plain run in four
   constexpr int kRun = ChannelAccumulator::kRun;
   const int runs = (reference.width + kRun - 1) / kRun;
   const size_t plain =
@@ -650,20 +725,30 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
   if (plain * kRun * 2 < reference.pixel_count() || plain < kFewest || share > 0.25) return;
   std::vector<uint32_t> ulps, ratios;
   ulps.reserve(plain), ratios.reserve(plain);
+  // kSampledRuns neighbouring pixels of one plain run in kSampledRuns: the same number of
+  // pixels as one of each run, in a quarter of the cache lines (each a miss: measured, the
+  // sample of one pixel a run was a tenth of the comparison of the 1024x1024 quad). With
+  // bounds, the runs whose bounds run_bounds found, each one's hi standing for the pixels'
+  // allowances.
+  size_t sampled = 0;
   for (int row = 0; row < reference.height; ++row)
     for (int r = 0; r < reference.width / kRun; ++r) {
-      const int32_t p = plain_runs[size_t(row) * size_t(runs) + size_t(r)];
-      if (p < 0) continue;
-      const size_t i = reference.index(r * kRun + (row * 37 + r * 11) % kRun, row);
-      const float g = gl_values[i], v = own_values[i];
-      if (!std::isfinite(g) || !std::isfinite(v)) continue;
-      const double ulp = table.ulp(p, k);
-      const double allowed = allowance.at(i, ulp);
-      const double abs_error = std::fabs(double(g) - double(v));
-      ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, k))));
-      ratios.push_back(order_key(float(abs_error == 0 ? 0.0
-                                       : allowed > 0  ? abs_error / allowed
-                                                      : kInf)));
+      const size_t run = size_t(row) * size_t(runs) + size_t(r);
+      const int32_t p = plain_runs[run];
+      if (p < 0 || sampled++ % kSampledRuns != 0) continue;
+      const size_t first =
+          reference.index(r * kRun + (row * 37 + r * 11) % (kRun - kSampledRuns), row);
+      for (size_t i = first; i < first + kSampledRuns; ++i) {
+        const float g = gl_values[i], v = own_values[i];
+        if (!std::isfinite(g) || !std::isfinite(v)) continue;
+        const double ulp = table.ulp(p, k);
+        const double allowed = bounds ? bounds->runs[run].hi : allowance.at(i, ulp);
+        const double abs_error = std::fabs(double(g) - double(v));
+        ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, k))));
+        ratios.push_back(order_key(float(abs_error == 0 ? 0.0
+                                         : allowed > 0  ? abs_error / allowed
+                                                        : kInf)));
+      }
     }
   if (ulps.size() < kFewest) return;  // non-finite values left out
   const auto floor_of = [&](std::vector<uint32_t>& keys) -> std::optional<uint32_t> {
@@ -682,21 +767,114 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
 
 }  // namespace
 
+namespace {
+
+// The least and the largest of n finite floats, in loops the compiler vectorizes (eight
+// partial extremes, each a selection that is one minps or maxps: a single running one is a
+// chain of dependent instructions). false when a value is NaN or Inf. Inlined into each caller
+// (run_range's copies).
+[[gnu::always_inline]] inline bool value_range(const float* v, int n, float& lo, float& hi) {
+  constexpr uint32_t kExponent = 0x7f800000u;
+  uint32_t non_finite = 0;
+  for (int j = 0; j < n; ++j)
+    non_finite |= uint32_t((std::bit_cast<uint32_t>(v[j]) & kExponent) == kExponent);
+  if (non_finite || n <= 0) return false;
+  constexpr int kLanes = 8;
+  float low[kLanes], high[kLanes];
+  for (int l = 0; l < kLanes; ++l)
+    low[l] = high[l] = v[0];
+  int j = 0;
+  for (; j + kLanes <= n; j += kLanes)
+    for (int l = 0; l < kLanes; ++l) {
+      low[l] = v[j + l] < low[l] ? v[j + l] : low[l];
+      high[l] = high[l] < v[j + l] ? v[j + l] : high[l];
+    }
+  for (; j < n; ++j)
+    low[0] = v[j] < low[0] ? v[j] : low[0], high[0] = high[0] < v[j] ? v[j] : high[0];
+  lo = low[0], hi = high[0];
+  for (int l = 1; l < kLanes; ++l)
+    lo = low[l] < lo ? low[l] : lo, hi = hi < high[l] ? high[l] : hi;
+  return true;
+}
+
+// value_range of a whole run: a count the compiler sees, and an AVX2 copy.
+GLRC_VECTOR_CLONES bool run_range(const float* v, float& lo, float& hi) {
+  return value_range(v, ChannelAccumulator::kRun, lo, hi);
+}
+
+// One plain run's bounds (ChannelBounds), for component k's values there: none where one is
+// NaN or Inf.
+void find_run_bounds(const DeferredAllowance& deferred, const Frame& reference, int k, int32_t p,
+                     int x, int row, Comparator::RunBounds& b) {
+  constexpr int kRun = ChannelAccumulator::kRun;
+  b.computed = true;
+  float lo, hi;
+  if (!run_range(reference.components[size_t(k)].data() + reference.index(x, row), lo, hi)) return;
+  const auto range = deferred.range(k, p, x, x + kRun - 1, row, lo, hi);
+  b.lo = range[0], b.hi = range[1];
+}
+
+// The ChannelBounds of a frame compared whole, for component k's deferred allowance: the bounds
+// of one plain run in four (the others are found as they are compared, their values then in
+// cache), and from them the largest allowance certainly in the channel: every plain run with
+// finite bounds has its allowances counted in the channel's largest (all finite: every pixel's
+// value is judged), so that is at least the largest lo of those.
+Comparator::ChannelBounds run_bounds(const DeferredAllowance& deferred,
+                                     const std::vector<int32_t>& plain_runs, const UlpTable& table,
+                                     const Frame& reference, int k) {
+  constexpr int kRun = ChannelAccumulator::kRun;
+  constexpr int kSampledRuns = 4;
+  const int runs = (reference.width + kRun - 1) / kRun;
+  Comparator::ChannelBounds out;
+  out.runs.resize(plain_runs.size());
+  size_t plain = 0;
+  for (int row = 0; row < reference.height; ++row)
+    for (int r = 0; r < reference.width / kRun; ++r) {
+      const size_t run = size_t(row) * size_t(runs) + size_t(r);
+      const int32_t p = plain_runs[run];
+      if (p < 0 || plain++ % kSampledRuns != 0) continue;
+      Comparator::RunBounds& b = out.runs[run];
+      find_run_bounds(deferred, reference, k, p, r * kRun, row, b);
+      if (b.hi < kInf) out.largest_lo = std::max(out.largest_lo, b.lo * table.inverse_ulp(p, k));
+    }
+  for (size_t run = 0; run < out.runs.size(); ++run)
+    if (Comparator::RunBounds& b = out.runs[run]; b.computed && b.hi < kInf)
+      b.largest_known = b.hi * table.inverse_ulp(plain_runs[run], k) <= out.largest_lo;
+  return out;
+}
+
+// The least float not below a bound lo >= 0: an allowance that is a float at least lo is at
+// least this one too.
+float float_up(double lo) {
+  float f = float(lo);
+  if (double(f) < lo) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+}  // namespace
+
 void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl, int k) {
   State& st = *state_;
   ChannelAccumulator& acc = st.channels[size_t(k + 1)];
   const ChannelAccumulator before = acc;
   const Frame& reference = expected.frame;
-  assume_floors(acc, st.plain_runs, st.ulps, ChannelAllowance(st.c, expected, st.r.tolerance, k),
-                reference, k == kDepth ? gl.depth.data() : gl.components[size_t(k)].data(),
-                k == kDepth ? reference.depth.data() : reference.components[size_t(k)].data(), k);
-  add_channel(expected, gl, 0, k);
+  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+  std::optional<ChannelBounds> bounds;
+  if (const DeferredAllowance* deferred = allowance.deferred())
+    bounds = run_bounds(*deferred, st.plain_runs, st.ulps, reference, k);
+  ChannelBounds* known = bounds ? &*bounds : nullptr;
+  assume_floors(acc, st.plain_runs, st.ulps, allowance, reference,
+                k == kDepth ? gl.depth.data() : gl.components[size_t(k)].data(),
+                k == kDepth ? reference.depth.data() : reference.components[size_t(k)].data(), k,
+                known);
+  add_channel(expected, gl, 0, k, known);
   if (acc.ulps.complete() && acc.ratios.complete()) return;
   acc = before;
-  add_channel(expected, gl, 0, k);
+  add_channel(expected, gl, 0, k, known);
 }
 
-void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
+void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, int k,
+                             ChannelBounds* bounds) {
   State& st = *state_;
   const Case& c = st.c;
   const Tolerance& tolerance = st.r.tolerance;
@@ -716,6 +894,12 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   const uint8_t* judged_as = st.judgement.data();
   const float* own_allowed = allowance.per_pixel_values();
   const double fixed_ulps = allowance.fixed_ulps();
+  // A deferred allowance: computed for a run where it is needed (run_allowed, the run from
+  // column run_x), else only bounded.
+  const DeferredAllowance* deferred = allowance.deferred();
+  constexpr int kRun = ChannelAccumulator::kRun;
+  float run_allowed[kRun];
+  int run_x = 0;
   // The ulp of the last primitive seen: along a row it rarely changes.
   int32_t ulp_primitive = -1;
   double own_ulp = 0, own_inverse_ulp = 0;
@@ -736,7 +920,9 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
       own_ulps(own_primitive[i]);
       ulp = own_ulp, inverse_ulp = own_inverse_ulp;
       // ChannelAllowance::at
-      allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
+      allowed = own_allowed ? double(own_allowed[i])
+                : deferred  ? double(run_allowed[x - run_x])
+                            : fixed_ulps * ulp;
       value = own_values[i];
     } else {
       const Judged judged = judged_against(c, expected, gl, i, tolerance);
@@ -760,7 +946,55 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
     t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, allowed * inverse_ulp);
     acc.add(t, x, y, value, gl_values[i], ulp, inverse_ulp, allowed);
   };
-  constexpr int kRun = ChannelAccumulator::kRun;
+  // The run from pixel `first`, n pixels: run_allowed's lanes given as bits computed (the
+  // others hold a float from their lo up, which decides nothing: add_run_within).
+  auto deferred_lanes = [&](size_t first, int n, uint64_t lanes) {
+    if (lanes == ChannelAccumulator::kEveryLane)
+      return deferred->at(reference, k, first, n, run_allowed);
+    // Eight lanes at a time: the deferred allowance computes a block as fast as a pixel.
+    for (int j = 0; j < n; j += 8)
+      if ((lanes >> j) & 0xff)
+        deferred->at(reference, k, first + size_t(j), std::min(8, n - j), run_allowed + j);
+  };
+  // A whole run of several primitives (or with candidates, or pixels not compared): bounds of
+  // each stretch of one primitive's own fragments, and for each pixel whether they decide
+  // nothing, as add_run_within finds for a plain run; the rest of run_allowed set as there. A
+  // pixel whose decision needs its allowance, or any in doubt, is a lane returned; a pixel not
+  // judged against the reference's own fragment needs none of the deferred allowance.
+  auto segment_lanes = [&](int x, int row, size_t first) -> uint64_t {
+    if (!acc.ratios.may_drop()) return ChannelAccumulator::kEveryLane;
+    const double ratio_floor = acc.ratios.floor_value();
+    uint64_t lanes = 0;
+    for (int j = 0; j < kRun;) {
+      const size_t i = first + size_t(j);
+      if (judged_as[i] != kOwn) {
+        run_allowed[j++] = 0.0f;
+        continue;
+      }
+      const int32_t p = own_primitive[i];
+      int end = j + 1;
+      while (end < kRun && judged_as[first + size_t(end)] == kOwn &&
+             own_primitive[first + size_t(end)] == p)
+        ++end;
+      float lo, hi;
+      std::array<double, 2> range{0.0, kInf};
+      if (value_range(own_values + i, end - j, lo, hi))
+        range = deferred->range(k, p, x + j, x + end - 1, row, lo, hi);
+      const bool largest_known =
+          range[1] < kInf && range[1] * st.ulps.inverse_ulp(p, k) <= bounds->largest_lo;
+      const float substitute = float_up(range[0]);
+      for (; j < end; ++j) {
+        const size_t pixel = first + size_t(j);
+        const float g = gl_values[pixel];
+        const double abs_error = std::fabs(double(g) - double(own_values[pixel]));
+        const bool decided = largest_known && std::isfinite(g) && abs_error <= range[0] &&
+                             LargestValues::below_drop_bound(abs_error, range[0], ratio_floor);
+        run_allowed[j] = substitute;
+        lanes |= uint64_t(!decided) << j;
+      }
+    }
+    return lanes;
+  };
   const int runs = (reference.width + kRun - 1) / kRun;
   for (int row = 0; row < reference.height; ++row)
     for (int x = 0; x < reference.width; x += kRun) {
@@ -769,12 +1003,35 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
       // other run (a row's last, shorter one too) pixel by pixel.
       const int n = std::min(kRun, reference.width - x);
       const size_t first = reference.index(x, row);
-      const int32_t run_primitive = st.plain_runs[size_t(row) * size_t(runs) + size_t(x / kRun)];
+      const size_t run = size_t(row) * size_t(runs) + size_t(x / kRun);
+      const int32_t run_primitive = st.plain_runs[run];
+      const float* allowed = own_allowed ? own_allowed + first : nullptr;
+      if (deferred) {
+        // Most runs need only bounds of their allowances; the others the allowances of some of
+        // their pixels, or of all, computed here (deferred_lanes).
+        uint64_t lanes = ChannelAccumulator::kEveryLane;
+        if (run_primitive >= 0 && bounds) {
+          own_ulps(run_primitive);
+          RunBounds& b = bounds->runs[run];
+          if (!b.computed) {
+            find_run_bounds(*deferred, reference, k, run_primitive, x, row, b);
+            b.largest_known = b.hi < kInf && b.hi * own_inverse_ulp <= bounds->largest_lo;
+          }
+          lanes = acc.add_run_within(t, own_values + first, gl_values + first, b.lo,
+                                     b.largest_known, own_ulp, own_inverse_ulp);
+          if (lanes == 0) continue;
+          if (lanes != ChannelAccumulator::kEveryLane)
+            std::fill_n(run_allowed, kRun, float_up(b.lo));
+        } else if (bounds && n == kRun) {
+          lanes = segment_lanes(x, row, first);
+        }
+        deferred_lanes(first, n, lanes);
+        run_x = x, allowed = run_allowed;
+      }
       if (run_primitive >= 0) {
         own_ulps(run_primitive);
-        if (acc.add_run(t, x, y0 + row, own_values + first, gl_values + first,
-                        own_allowed ? own_allowed + first : nullptr, fixed_ulps * own_ulp, own_ulp,
-                        own_inverse_ulp))
+        if (acc.add_run(t, x, y0 + row, own_values + first, gl_values + first, allowed,
+                        fixed_ulps * own_ulp, own_ulp, own_inverse_ulp))
           continue;
       }
       for (int j = 0; j < n; ++j)

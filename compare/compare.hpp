@@ -45,9 +45,27 @@ class Comparator {
   // The verdict and the statistics, as compare() gives them. Once.
   CaseResult finish();
 
+  // Bounds of a deferred allowance over a run of pixels of one row (DeferredAllowance::range),
+  // and whether no allowance of the run is the channel's largest (largest_known: hi, in ULPs,
+  // is no larger than another run's lo).
+  struct RunBounds {
+    double lo = 0, hi = std::numeric_limits<double>::infinity();
+    bool largest_known = false;
+    bool computed = false;  // lo, hi and largest_known found (else none yet)
+  };
+  // A channel's RunBounds by plain run, and the largest allowance in ULPs that the channel
+  // certainly has: the largest lo of a sample of plain runs whose allowances are all finite.
+  struct ChannelBounds {
+    std::vector<RunBounds> runs;
+    double largest_lo = 0;
+  };
+
  private:
   // The values of channel k (kDepth or a component) in the band add_rows is comparing.
-  void add_channel(const Expectation& expected, const Frame& gl, int y0, int k);
+  // `bounds`: for a component whose allowance is deferred, bounds of it over each of the band's
+  // plain runs (add_whole_channel), or none: every run's allowances are computed.
+  void add_channel(const Expectation& expected, const Frame& gl, int y0, int k,
+                   ChannelBounds* bounds = nullptr);
   // add_channel(), for a frame compared whole (one band) after the floors of its largest
   // values are guessed from a sample (LargestValues::assume_floor), and again without them
   // should the frame not bear them out.
@@ -95,15 +113,27 @@ class ChannelAllowance {
   ChannelAllowance(const Case& c, const Expectation& expected, const Tolerance& tolerance,
                    int channel);
   double at(size_t pixel, double ulp) const {
+    if (deferred_) {
+      float allowed;
+      deferred_->at(*frame_, channel_, pixel, 1, &allowed);
+      return double(allowed);
+    }
     return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
   }
-  bool per_pixel() const { return per_pixel_ != nullptr; }
-  // The per-pixel allowances (at() of pixel i is element i), or nullptr when fixed.
+  // Whether the allowance is the specification's, per pixel (held, or deferred).
+  bool per_pixel() const { return per_pixel_ != nullptr || deferred_ != nullptr; }
+  // The per-pixel allowances held (at() of pixel i is element i), or nullptr when fixed or
+  // deferred.
   const float* per_pixel_values() const { return per_pixel_ ? per_pixel_->data() : nullptr; }
+  // A component's allowance computed where asked for (Expectation::deferred), or nullptr.
+  const DeferredAllowance* deferred() const { return deferred_.get(); }
   double fixed_ulps() const { return fixed_ulps_; }
 
  private:
   const std::vector<float>* per_pixel_ = nullptr;
+  std::shared_ptr<const DeferredAllowance> deferred_;
+  const Frame* frame_ = nullptr;  // the expectation's, with deferred_
+  int channel_ = 0;
   double fixed_ulps_ = 0;
 };
 

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/large_buffer.hpp"
@@ -110,14 +112,35 @@ struct Candidate {
   std::vector<float> values, allowed;  // per component, as in Frame::components
 };
 
+// The allowances of a frame's components computed where they are asked for, not at every pixel:
+// most of a comparison needs only bounds of them over a run of pixels (a pixel's error below
+// the run's least allowance is within it). Made by the reference (ref::render_deferred) for the
+// frame it draws; asked by the comparator (compare/).
+class DeferredAllowance {
+ public:
+  virtual ~DeferredAllowance() = default;
+  // Component k's allowances at pixels [first, first + n) of one row of `frame` (the frame
+  // drawn with this, or a copy of it): out[j] is bit for bit what Expectation::allowed holds at
+  // pixel first + j when it is computed at every pixel (0 where nothing is drawn).
+  virtual void at(const Frame& frame, int k, size_t first, int n, float* out) const = 0;
+  // Bounds {lo, hi} of at()'s values at pixels x0..x1 of row y (x0 <= x1), every one drawn by
+  // primitive p with component k's value in [value_lo, value_hi]: lo <= each <= hi. {0, +inf}
+  // when nothing better is known.
+  virtual std::array<double, 2> range(int k, int32_t p, int x0, int x1, int y, float value_lo,
+                                      float value_hi) const = 0;
+};
+
 // What a correct implementation may produce: the exact reference frame, and around it the
 // freedom the specification leaves.
 struct Expectation {
   Frame frame;                 // the exact reference
   std::vector<uint8_t> edges;  // edge:: bits per pixel
   // Per pixel and channel (depth, components), the largest |gl - reference| a conforming
-  // implementation can produce there; no components when not computed.
+  // implementation can produce there; no components when not computed, or when `deferred`.
   Frame allowed;
+  // With an allowance whose components are computed where asked for: allowed has the depth's
+  // only (complete_allowance fills in the rest).
+  std::shared_ptr<const DeferredAllowance> deferred;
   // Where the depth test's winner is not decided (edge::depth_order), the other fragments that
   // may win, sorted by pixel; only with an allowance.
   std::vector<Candidate> candidates;
@@ -131,5 +154,21 @@ struct Expectation {
     return nullptr;
   }
 };
+
+// Computes a deferred allowance's components at every pixel (a heatmap shows them all): e is
+// then as if they had been computed while drawing. Nothing to do without `deferred`.
+inline void complete_allowance(Expectation& e, int threads = 1) {
+  if (!e.deferred) return;
+  const Frame& f = e.frame;
+  std::vector<std::vector<float>>& components = e.allowed.components;
+  components.assign(f.components.size(), {});
+  parallel_for(int(components.size()), threads, [&](int k) {
+    std::vector<float>& values = components[size_t(k)];
+    resize_large(values, f.pixel_count());
+    for (int y = 0; y < f.height; ++y)
+      e.deferred->at(f, k, f.index(0, y), f.width, values.data() + f.index(0, y));
+  });
+  e.deferred.reset();
+}
 
 }  // namespace glrc

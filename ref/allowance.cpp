@@ -113,6 +113,25 @@ GLRC_BLOCK_FORM void FanTriangles::condition(const double* x, const double* y, d
   std::copy(g, g + n, out);
 }
 
+std::array<double, 2> FanTriangles::condition_range(double x0, double x1, double y) const {
+  double lo = 0, hi = 0;
+  for (const Triangle& t : triangles_) {
+    if (x1 < t.box[0] || x0 > t.box[2] || y < t.box[1] || y > t.box[3]) continue;
+    hi = std::max(hi, t.condition);
+    if (t.condition <= lo || x0 < t.box[0] || x1 > t.box[2]) continue;
+    // Inside at both ends by more than the edge tests' rounding (two roundings of terms of
+    // the magnitudes below; 2^-48 of them taken): inside as computed at every point between.
+    bool inside = true;
+    for (const auto& e : t.edge) {
+      const double s = 0x1p-48 * (std::fabs(e[0]) * std::max(std::fabs(x0), std::fabs(x1)) +
+                                  std::fabs(e[1] * y) + std::fabs(e[2]));
+      inside = inside && e[0] * x0 + e[1] * y + e[2] >= s && e[0] * x1 + e[1] * y + e[2] >= s;
+    }
+    if (inside) lo = t.condition;
+  }
+  return {lo, hi};
+}
+
 Anchors::Anchors(const WindowPolygon& polygon, const WindowPolygon& guard_band) {
   // A point given twice (an unclipped triangle is its own guard-band triangle) counts once,
   // a fan anchor if either is: the largest terms over the anchors are the same.
@@ -148,6 +167,20 @@ GLRC_BLOCK_FORM void Anchors::distances(const double* px, const double* py,
       out.dx[i][size_t(j)] = dx, out.dy[i][size_t(j)] = dy;
       out.most[i][size_t(j)] = std::max(dx, dy);
     }
+  }
+}
+
+void Anchors::distances(int px0, int px1, int py, RunDistances& out) const {
+  const double x0 = px0 + 0.5, x1 = px1 + 0.5, y = py + 0.5;
+  for (size_t i = 0; i < count_; ++i) {
+    const double ax = points_[i][0];
+    const double d0 = std::fabs(x0 - ax), d1 = std::fabs(x1 - ax);
+    // Zero where the anchor's column is within the run (x - x_a changes sign there).
+    out.dx_lo[i] = x0 <= ax && ax <= x1 ? 0.0 : std::min(d0, d1);
+    out.dx_hi[i] = std::max(d0, d1);
+    out.dy[i] = std::fabs(y - points_[i][1]);
+    out.most_lo[i] = std::max(out.dx_lo[i], out.dy[i]);
+    out.most_hi[i] = std::max(out.dx_hi[i], out.dy[i]);
   }
 }
 
@@ -209,6 +242,74 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   const double evaluation = kEvaluationRoundings * kFloatUnitRoundoff * terms / std::fabs(d);
   const double set_up = kSetupRoundings * kFloatUnitRoundoff * condition * setup / std::fabs(d);
   return position + evaluation + set_up + values_ + extra;
+}
+
+std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo, float value_hi,
+                                       const std::array<double, 2>& delta,
+                                       const std::array<double, 2>& extra,
+                                       const std::array<double, 2>& condition,
+                                       const Anchors::RunDistances& distances) const {
+  constexpr std::array<double, 2> kUnknown{0.0, INFINITY};
+  const double v_lo = value_lo, v_hi = value_hi;
+  if (!(v_lo <= v_hi) || !std::isfinite(v_lo) || !std::isfinite(v_hi)) return kUnknown;
+  // A linear form's computed value is within two roundings of its exact value, 2^-52 of its
+  // terms' magnitudes (s below is four times that); the exact value is linear along the run,
+  // so between its ends' values.
+  const auto linear = [](double e0, double e1, double s) -> std::array<double, 2> {
+    return {std::min(e0, e1) - 2 * s, std::max(e0, e1) + 2 * s};
+  };
+  // |a| of a range {lo, hi}: {0, ...} where it may change sign.
+  const auto magnitude = [](const std::array<double, 2>& r) -> std::array<double, 2> {
+    if (r[0] > 0) return r;
+    if (r[1] < 0) return {-r[1], -r[0]};
+    return {0.0, std::max(-r[0], r[1])};
+  };
+  const double x0 = px0, x1 = px1, y = py;
+  const double x_most = std::max(std::fabs(x0), std::fabs(x1));
+  const auto d = linear(ad_ * x0 + bd_ * y + cd_, ad_ * x1 + bd_ * y + cd_,
+                        0x1p-50 * (abs_ad_ * x_most + std::fabs(bd_ * y) + std::fabs(cd_)));
+  const auto abs_d = magnitude(d);
+  if (!(abs_d[0] > 0)) return kUnknown;
+  const double v_most = std::max(std::fabs(v_lo), std::fabs(v_hi));
+  const auto abs_v = magnitude({v_lo, v_hi});
+  // (a - v·b)/d for the gradient's components: linear in v.
+  const auto gradient = [&](double a, double b) -> std::array<double, 2> {
+    const auto r = magnitude(
+        linear(a - v_lo * b, a - v_hi * b, 0x1p-50 * (std::fabs(a) + v_most * std::fabs(b))));
+    return {r[0] / abs_d[1], r[1] / abs_d[0]};
+  };
+  const auto vx = gradient(an_, ad_), vy = gradient(bn_, bd_);
+  const double moved_lo = 1.5 * delta[0] * (vx[0] + vy[0]);
+  const double moved_hi = 1.5 * delta[1] * (vx[1] + vy[1]);
+  const double position_lo = spread_ < moved_lo ? spread_ : moved_lo;
+  const double position_hi = spread_ < moved_hi ? spread_ : moved_hi;
+  const double gn = abs_an_ + abs_bn_, gd = abs_ad_ + abs_bd_;
+  const double g_lo = gn + abs_v[0] * gd, g_hi = gn + abs_v[1] * gd;
+  const Anchors& a = anchors();
+  double terms_lo = 0, terms_hi = 0, setup_lo = 0, setup_hi = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double en_lo = n_[i] + abs_an_ * distances.dx_lo[i] + abs_bn_ * distances.dy[i];
+    const double en_hi = n_[i] + abs_an_ * distances.dx_hi[i] + abs_bn_ * distances.dy[i];
+    const double ed_lo = d_[i] + abs_ad_ * distances.dx_lo[i] + abs_bd_ * distances.dy[i];
+    const double ed_hi = d_[i] + abs_ad_ * distances.dx_hi[i] + abs_bd_ * distances.dy[i];
+    terms_lo = std::max(terms_lo, en_lo + abs_v[0] * ed_lo);
+    terms_hi = std::max(terms_hi, en_hi + abs_v[1] * ed_hi);
+    if (a.fan(i)) {
+      setup_lo = std::max(setup_lo, g_lo * distances.most_lo[i]);
+      setup_hi = std::max(setup_hi, g_hi * distances.most_hi[i]);
+    }
+  }
+  const double evaluation_lo = kEvaluationRoundings * kFloatUnitRoundoff * terms_lo / abs_d[1];
+  const double evaluation_hi = kEvaluationRoundings * kFloatUnitRoundoff * terms_hi / abs_d[0];
+  const double set_up_lo =
+      kSetupRoundings * kFloatUnitRoundoff * condition[0] * setup_lo / abs_d[1];
+  const double set_up_hi =
+      kSetupRoundings * kFloatUnitRoundoff * condition[1] * setup_hi / abs_d[0];
+  const double lo = position_lo + evaluation_lo + set_up_lo + values_ + extra[0];
+  const double hi = position_hi + evaluation_hi + set_up_hi + values_ + extra[1];
+  if (!(lo >= 0) || !(hi < INFINITY)) return {std::max(lo, 0.0) * (1 - 0x1p-44), INFINITY};
+  // round_up is monotone: the stored float of a bound below hi is at most round_up(hi).
+  return {lo * (1 - 0x1p-44), double(round_up(hi * (1 + 0x1p-44)))};
 }
 
 // Inlined into each block form's own copies (GLRC_BLOCK_FORM), which are vectorized for their

@@ -127,6 +127,10 @@ class FanTriangles {
   double condition(double x, double y) const;
   // condition() of kRowBlock points (x[j], y[j]) at once, bit for bit: the same largest G.
   void condition(const double* x, const double* y, double* out) const;
+  // Bounds {lo, hi} of what condition() gives at every point (x, y), x in [x0, x1]: the
+  // largest G of the triangles that hold both ends (so every point between: they are convex),
+  // with the rounding of the edge tests allowed for; and of those whose box meets the segment.
+  std::array<double, 2> condition_range(double x0, double x1, double y) const;
 
  private:
   struct Triangle {
@@ -164,6 +168,13 @@ class Anchors {
     std::array<std::array<double, kRowBlock>, kMost> dx, dy, most;
   };
   void distances(const double* px, const double* py, RowDistances& out) const;
+  // Bounds of what distances() gives over the centres of pixels px0..px1 of row py (px0 <=
+  // px1), per anchor: |x - x_a| from dx_lo to dx_hi, |y - y_a| exactly dy, their maximum from
+  // most_lo to most_hi. Exact bounds: x - x_a, rounded, is monotone in x.
+  struct RunDistances {
+    std::array<double, kMost> dx_lo, dx_hi, dy, most_lo, most_hi;
+  };
+  void distances(int px0, int px1, int py, RunDistances& out) const;
 
  private:
   std::array<std::array<double, 2>, kMost> points_{};
@@ -209,6 +220,18 @@ class Allowance {
   void at_rounded_up(const double* px, const double* py, const float* value, const double* delta,
                      const double* extra, const double* condition,
                      const Anchors::RowDistances& distances, float* out) const;
+  // Bounds {lo, hi} of what at_rounded_up() gives at the pixels px0..px1 of row py (px0 <=
+  // px1), each pixel's value in [value_lo, value_hi] (finite), delta, extra and condition within
+  // the bounds given ({lo, hi} each) and distances those of Anchors::distances of the run: lo
+  // <= each allowance <= hi. {0, +inf} when the run's D may be 0 (the value undefined there).
+  // The bound is taken operation by operation in at()'s order: every operation but the planes'
+  // sums (whose rounding is allowed for) is monotone in its operands; a relative 2^-44 more
+  // covers a compiler's other grouping of the sums of positive terms.
+  std::array<double, 2> range(int px0, int px1, int py, float value_lo, float value_hi,
+                              const std::array<double, 2>& delta,
+                              const std::array<double, 2>& extra,
+                              const std::array<double, 2>& condition,
+                              const Anchors::RunDistances& distances) const;
 
  private:
   void set_planes(const LinearForm& numerator, const LinearForm& denominator);

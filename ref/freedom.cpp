@@ -82,6 +82,26 @@ GLRC_BLOCK_FORM void ConcaveEnvelope::at(const double* x, const double* y, doubl
     out[j] = v[j] < lo_ ? lo_ : hi_ < v[j] ? hi_ : v[j];
 }
 
+std::array<double, 2> ConcaveEnvelope::range(double x0, double x1, double y) const {
+  if (planes_.empty()) return {hi_, hi_};
+  // Each plane's value a·x + b·y + c computed in double is within two roundings (one when
+  // fused) of the exact one, 2^-52 of its terms' magnitudes: s below, four times that. The
+  // exact minimum is concave along the segment, at least its ends' least value; the computed
+  // one is within s of it; and no computed plane exceeds its exact value at either end by more.
+  double lo = INFINITY, hi = INFINITY, slack = 0;
+  const double x = std::max(std::fabs(x0), std::fabs(x1));
+  for (const auto& p : planes_) {
+    const double a0 = p[0] * x0 + p[1] * y + p[2], a1 = p[0] * x1 + p[1] * y + p[2];
+    const double s = 0x1p-50 * (std::fabs(p[0]) * x + std::fabs(p[1] * y) + std::fabs(p[2]));
+    lo = std::min({lo, a0, a1});
+    hi = std::min(hi, std::max(a0, a1) + 2 * s);
+    slack = std::max(slack, s);
+  }
+  lo -= 2 * slack;
+  // std::clamp(v, lo_, hi_), as at() applies it, is monotone.
+  return {std::clamp(lo, lo_, hi_), std::clamp(hi, lo_, hi_)};
+}
+
 std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t, int subpixel_bits,
                                            std::vector<std::array<double, 3>>* z_clip,
                                            bool* reaches_eye) {
@@ -306,6 +326,21 @@ GLRC_BLOCK_FORM void PositionFreedom::weight_at(const double* px, const double* 
     weight[j] = weight[j] / inverse_w[j];
   for (int j = 0; j < kRowBlock; ++j)
     out[j] = inverse_w[j] > 0 ? weight[j] : 0.0;
+}
+
+std::array<double, 2> PositionFreedom::range(int px0, int px1, int py) const {
+  const double x0 = px0 + 0.5, x1 = px1 + 0.5, y = py + 0.5;
+  const auto a = delta_[0].range(x0, x1, y), b = delta_[1].range(x0, x1, y);
+  return {std::max(a[0], b[0]), std::max(a[1], b[1])};
+}
+
+std::array<double, 2> PositionFreedom::weight_range(int px0, int px1, int py) const {
+  const double x0 = px0 + 0.5, x1 = px1 + 0.5, y = py + 0.5;
+  const auto [ilo, ihi] = inverse_w_.range(x0, x1, y);
+  const auto [wlo, whi] = weight_.range(x0, x1, y);
+  // weight_at: w/i where i > 0, else 0; the rounded quotient is monotone in each.
+  if (!(ilo > 0)) return {std::min(0.0, wlo >= 0 ? 0.0 : -INFINITY), INFINITY};
+  return {wlo >= 0 ? wlo / ihi : wlo / ilo, whi >= 0 ? whi / ilo : whi / ihi};
 }
 
 double PositionFreedom::largest() const {

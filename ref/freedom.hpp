@@ -66,6 +66,11 @@ class ConcaveEnvelope {
   double at(double x, double y) const;
   // at() of kRowBlock points (x[j], y[j]) at once, bit for bit (ref/blocks.hpp).
   void at(const double* x, const double* y, double* out) const;
+  // Bounds of what at(x, y) computes for every x in [x0, x1] on the line y: lo <= at(x, y) <= hi
+  // (ref/deferred.hpp's runs). The minimum of planes is concave, so along a segment it is
+  // least at an end, and no larger than any one plane, which is largest at an end; each plane's
+  // rounding is allowed for.
+  std::array<double, 2> range(double x0, double x1, double y) const;
   double largest() const { return hi_; }
 
  private:
@@ -109,6 +114,11 @@ class PositionFreedom {
   void at(const double* px, const double* py, double* out) const;
   void depth_at(const double* px, const double* py, double* out) const;
   void weight_at(const double* px, const double* py, double* out) const;
+  // Bounds {lo, hi} of what at() and weight_at() give at the centres of pixels px0..px1 of row
+  // py (px0 <= px1): lo <= each <= hi. The weight's hi is infinite where the envelope of 1/w_c
+  // may reach 0 on the run.
+  std::array<double, 2> range(int px0, int px1, int py) const;
+  std::array<double, 2> weight_range(int px0, int px1, int py) const;
   // Freedom of z_w at the pixel from the clipping of depth (0 for an unclipped triangle).
   double depth_at(int px, int py) const;
   // Freedom of z_n at the pixel where the near and far planes decide coverage: clipping

@@ -33,6 +33,14 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits 
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                  Reference&& storage);
 
+// render(c, m, freedom_bits, threads, storage) with the components' allowances deferred
+// (Expectation::deferred): computed where a comparison asks for them, bit for bit render()'s,
+// not at every pixel drawn; the result's allowed frame holds the depth's only (and the
+// candidates their own, as render()'s), until complete_allowance (core/frame.hpp). Most pixels
+// of a frame compared need only a bound of their allowances over a run of pixels.
+Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                          Reference&& storage = {});
+
 // render(c, m, std::nullopt, threads).frame, bit for bit, without the edge bits (which `digest`
 // does not hash): neither the edges triangles share nor the bands along them are looked for.
 Frame render_frame(const Case& c, const Model& m, int threads = 1);

@@ -16,6 +16,7 @@
 #include "core/vector_clones.hpp"
 #include "ref/allowance.hpp"
 #include "ref/coverage.hpp"
+#include "ref/deferred.hpp"
 #include "ref/depth.hpp"
 #include "ref/freedom.hpp"
 #include "ref/interpolation.hpp"
@@ -47,6 +48,9 @@ struct Settings {
   PixelBox viewport;  // its rows cut to the ones drawn
   std::vector<bool> component_smooth;
   int row0 = 0;  // the window row of the frames' row 0
+  // With a deferred allowance: the components' allowances are not drawn (only those of the
+  // depth test's candidates), and each triangle's are kept here instead.
+  TriangleAllowances* deferred = nullptr;
 };
 
 // Fragments that may win the depth test instead of the reference's, by pixel.
@@ -58,13 +62,13 @@ struct Prepared {
   Prepared(const Settings& s, const TriangleSetup& setup, const std::array<bool, 3>& shared_edges)
       : t(setup), shared(shared_edges), coverage(setup, s.m, s.edges) {
     const Case& c = s.c;
-    freedom = s.allowance ? PositionFreedom(c, t, s.bits) : PositionFreedom();
+    if (s.allowance) allowance = std::make_shared<TriangleAllowance>(c, t, s.bits);
     // Reaching the eye (within rounding), the triangle may cover anything: unstable too.
-    eye = s.allowance && freedom.reaches_eye();
-    unstable = eye || (s.allowance && freedom.may_turn_over());
+    eye = s.allowance && allowance->eye();
+    unstable = eye || (s.allowance && freedom().may_turn_over());
     // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further
     // (the viewport bounds it anyway; the clamp keeps the conversion defined).
-    largest = s.allowance ? freedom.largest() : s.model_step;
+    largest = s.allowance ? freedom().largest() : s.model_step;
     margin = 1 + int(std::min(std::ceil(largest * 1.5), 1e6));
     // How far outside the exact triangle a centre may be classified or covered, and a little
     // more (sqrt(2) < 1.5), never beyond the margin of the box: classified within the largest
@@ -80,7 +84,7 @@ struct Prepared {
              std::min(s.viewport.x1, t.box.x1 + margin),
              std::min(s.viewport.y1, t.box.y1 + margin)};
     if (!t.drawn || t.box.empty()) return;
-    clipped = s.allowance && freedom.generations() > 0;
+    clipped = s.allowance && allowance->clipped();
     // Kept per thread: its nine rationals and dyadic numbers, copied for every triangle, reuse
     // their limbs instead of being allocated and freed each time (unsnapped planes, the
     // default; snapped planes make their forms anew).
@@ -90,26 +94,18 @@ struct Prepared {
     depth = depth_forms.evaluator();
     planes = component_planes(c, t, b);
     values = ComponentValues(planes);
-    if (!s.allowance) return;
-    // The implementation's possible fan triangles, shared by every channel; and where its
-    // planes may be anchored.
-    fan = FanTriangles(freedom.polygon(), freedom.largest());
-    anchors = Anchors(freedom.polygon(), freedom.guard_band_triangle());
-    const int generations = freedom.generations();
-    allowed.reserve(planes.size());
-    for (const ComponentPlane& cp : planes)
-      allowed.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
-                           value_freedom(c, t, cp.scale, generations), anchors);
-    const double n = c.depth_near, fa = c.depth_far;
-    depth_allowed =
-        Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
-                  value_freedom(c, t, std::max(std::fabs(n), std::fabs(fa)), generations), anchors);
+    if (s.allowance) allowance->set(c, t, planes, depth_forms, s.component_smooth);
   }
+
+  // Only with an allowance.
+  const PositionFreedom& freedom() const { return allowance->freedom(); }
 
   const TriangleSetup& t;
   std::array<bool, 3> shared;
   CoverageTest coverage;
-  PositionFreedom freedom;
+  // With an allowance: the position freedom, and the allowances once the triangle draws (set).
+  // Shared: a deferred allowance keeps it after the triangle is drawn.
+  std::shared_ptr<TriangleAllowance> allowance;
   bool unstable = false, clipped = false;
   // PositionFreedom::reaches_eye: every centre of the viewport is unstable, and the smooth and
   // noperspective values and the depth it draws have no bound (an infinite allowance).
@@ -121,10 +117,6 @@ struct Prepared {
   RatioEvaluator depth;
   std::vector<ComponentPlane> planes;
   ComponentValues values;  // of `planes`
-  Anchors anchors;         // before the allowances, which point to it
-  std::vector<Allowance> allowed;
-  Allowance depth_allowed;
-  FanTriangles fan;
 };
 
 // A triangle of zero area (det = 0): no pixel centre lies inside it, but the vertices an
@@ -241,40 +233,27 @@ class FragmentBlocks {
     CandidateMap& candidates = candidates_;
     const Case& c = s.c;
     Frame& f = r.frame;
-    const PositionFreedom& freedom = w.freedom;
+    const TriangleAllowance& a = *w.allowance;
     const auto& planes = w.planes;
+    const bool deferred = s.deferred != nullptr;
     // Lanes past `count` repeat the last pixel: computed, never used.
+    double x[n], y[n];
     for (int j = 0; j < n; ++j) {
       const int k = std::min(j, count - 1);
-      x_[j] = double(px_[k]), y_[j] = double(py_[k]);
+      x[j] = double(px_[k]), y[j] = double(py_[k]);
     }
-    freedom.at(x_, y_, delta_);
-    double centre_x[n], centre_y[n];
-    for (int j = 0; j < n; ++j)
-      centre_x[j] = x_[j] + 0.5, centre_y[j] = y_[j] + 0.5;
-    w.fan.condition(centre_x, centre_y, condition_);
-    if (w.clipped)
-      freedom.weight_at(x_, y_, weight_);
-    else
-      std::fill(std::begin(weight_), std::end(weight_), 0.0);
-    freedom.depth_at(x_, y_, depth_extra_);
-    w.depth.at(x_, y_, z_);
-    w.anchors.distances(x_, y_, distances_);
-    if (w.eye) {
-      std::fill(std::begin(z_allowed_), std::end(z_allowed_), INFINITY);
-    } else {
-      w.depth_allowed.at_rounded_up(x_, y_, z_, delta_, depth_extra_, condition_, distances_,
-                                    z_allowed_);
-    }
+    a.prepare(x, y, block_);
+    w.depth.at(x, y, z_);
+    a.depth_at(block_, z_, z_allowed_);
     // The depth test, pixel by pixel: which fragments need their values and allowances.
-    int needed = 0;
+    int needed = 0, losers = 0;
     for (int j = 0; j < count; ++j) {
       const int px = px_[j], py = py_[j];
       const size_t i = f.index(px, py - s.row0);
       role_[j] = Role::none;
       // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
       // no pixel centre is; but they move with its vertices, inwards too.
-      if (w.clipped && viewport_side_distance(c.viewport, px, py) <= delta_[j])
+      if (w.clipped && viewport_side_distance(c.viewport, px, py) <= block_.delta[j])
         r.edges[i] |= edge::snapping;
       const float z = z_[j], z_allowed = z_allowed_[j];
       // Depths within each other's allowances: either fragment may win the depth test.
@@ -286,7 +265,7 @@ class FragmentBlocks {
       if (!depth_test(c.depth_func, z, f.depth[i])) {
         if (!contested) continue;
         role_[j] = Role::loser;
-        ++needed;
+        ++needed, ++losers;
         continue;
       }
       // Keep the candidates that may still win against the new winner (looked up, not
@@ -294,12 +273,14 @@ class FragmentBlocks {
       if (const auto it = candidates.find(i); it != candidates.end())
         std::erase_if(it->second,
                       [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
-      // The old winner is one when it was close.
+      // The old winner is one when it was close: its allowances as they were drawn, or as
+      // the deferred allowance of its triangle gives them.
       if (contested) {
         Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
         for (size_t k = 0; k < planes.size(); ++k) {
           old.values.push_back(f.components[k][i]);
-          old.allowed.push_back(r.allowed.components[k][i]);
+          old.allowed.push_back(deferred ? s.deferred->at(f, int(k), i)
+                                         : r.allowed.components[k][i]);
         }
         candidates[i].push_back(std::move(old));
       }
@@ -313,9 +294,10 @@ class FragmentBlocks {
     }
     if (needed == 0) return;
     // The values: of the whole block at once when every pixel needs them (padding lanes
-    // repeat a pixel), else of those that do; then their allowances.
+    // repeat a pixel), else of those that do; then their allowances, unless deferred and
+    // needed by no candidate.
     if (needed == count) {
-      w.values.values(x_, y_, block_values_.data());
+      w.values.values(x, y, block_values_.data());
       for (size_t k = 0; k < planes.size(); ++k)
         copy_block(block_values_.data() + k * n, value_[k].data());
     } else {
@@ -326,19 +308,9 @@ class FragmentBlocks {
           value_[k][size_t(j)] = scratch_[k];
       }
     }
-    for (size_t k = 0; k < planes.size(); ++k) {
-      auto& allowed = allowed_[k];
-      if (planes[k].flat || w.eye) {
-        allowed.fill(planes[k].flat ? 0.0f : INFINITY);
-        continue;
-      }
-      // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
-      const bool smooth = s.component_smooth[k];
-      for (int j = 0; j < n; ++j)
-        extra_[j] = smooth ? weight_[j] * planes[k].spread : 0.0;
-      w.allowed[k].at_rounded_up(x_, y_, value_[k].data(), delta_, extra_, condition_, distances_,
-                                 allowed.data());
-    }
+    if (!deferred || losers > 0)
+      for (size_t k = 0; k < planes.size(); ++k)
+        a.component_at(block_, k, value_[k].data(), allowed_[k].data());
     // The winners' values and allowances, channel by channel: each channel's two frames get the
     // block's pixels (mostly neighbours in a row) together. These stores are most of this
     // function's time on a frame of many channels: every one is a write to memory that nothing
@@ -353,16 +325,16 @@ class FragmentBlocks {
       run = run && role_[j] == Role::winner && index[j] == index[0] + size_t(j);
     for (size_t k = 0; k < planes.size(); ++k) {
       float* values = f.components[k].data();
-      float* allowances = r.allowed.components[k].data();
+      float* allowances = deferred ? nullptr : r.allowed.components[k].data();
       if (run) {
         copy_block(value_[k].data(), values + index[0]);
-        copy_block(allowed_[k].data(), allowances + index[0]);
+        if (allowances) copy_block(allowed_[k].data(), allowances + index[0]);
         continue;
       }
       for (int j = 0; j < count; ++j)
         if (role_[j] == Role::winner) {
           values[index[j]] = value_[k][size_t(j)];
-          allowances[index[j]] = allowed_[k][size_t(j)];
+          if (allowances) allowances[index[j]] = allowed_[k][size_t(j)];
         }
     }
     for (int j = 0; j < count; ++j) {
@@ -385,12 +357,9 @@ class FragmentBlocks {
   CandidateMap& candidates_;
   int count_ = 0;
   int px_[kRowBlock]{}, py_[kRowBlock]{};
-  double x_[kRowBlock]{}, y_[kRowBlock]{}, delta_[kRowBlock]{}, condition_[kRowBlock]{},
-      weight_[kRowBlock]{};
-  double depth_extra_[kRowBlock]{}, extra_[kRowBlock]{};
   float z_[kRowBlock]{}, z_allowed_[kRowBlock]{};
   Role role_[kRowBlock]{};
-  Anchors::RowDistances distances_{};
+  TriangleAllowance::Block block_{};
   std::vector<std::array<float, kRowBlock>> value_, allowed_;  // by component, then lane
   std::vector<float> scratch_, block_values_;
 };
@@ -491,8 +460,9 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
                                   Reference& r, CandidateMap& candidates) {
   const TriangleSetup& t = w.t;
   Frame& f = r.frame;
-  const PositionFreedom& freedom = w.freedom;
-  auto delta_at = [&](int px, int py) { return s.allowance ? freedom.at(px, py) : s.model_step; };
+  auto delta_at = [&](int px, int py) {
+    return s.allowance ? w.freedom().at(px, py) : s.model_step;
+  };
 
   // The covered pixels a block at a time: with their allowances (FragmentBlocks) or without.
   std::optional<FragmentBlocks> blocks;
@@ -571,10 +541,10 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
     for (int px = x0; s.edges && px <= x1; ++px)
       // Most pixels are beyond or deep within every band: no freedom to compute for them.
       if (!w.coverage.classifies_nothing(px, py, w.largest, w.unstable,
-                                         s.allowance ? freedom.z_clip_largest() : 0.0))
+                                         s.allowance ? w.freedom().z_clip_largest() : 0.0))
         r.edges[f.index(px, py - s.row0)] |=
             w.coverage.classify(px, py, delta_at(px, py), w.shared, w.unstable,
-                                s.allowance ? freedom.z_clip_at(px, py) : 0.0);
+                                s.allowance ? w.freedom().z_clip_at(px, py) : 0.0);
     if (!draws || py < t.box.y0 || py > t.box.y1) continue;
     draw_row(py, x0, x1);
   }
@@ -627,8 +597,9 @@ void clear_uncovered(Reference& r, WorkerPool& pool) {
 
 // render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
 // the shared edges nor the bands are looked for. In `storage`'s buffers, where given.
+// `deferred`: with an allowance, its components computed where asked for (render_deferred).
 Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
-               int row_count, bool edges, Reference* storage = nullptr) {
+               int row_count, bool edges, Reference* storage = nullptr, bool deferred = false) {
   if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
@@ -641,13 +612,18 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   Reference r;
   if (storage) r = std::exchange(*storage, Reference{});
   const bool allowance = freedom_bits.has_value();
+  deferred = deferred && allowance;
   // The components are cleared where nothing is drawn once everything is (clear_uncovered):
   // every fragment drawn writes all of them, in the frame and in the allowance alike.
   r.frame.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
   if (allowance)
-    r.allowed.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
+    r.allowed.reset_uncleared_components(c.fb_width, row_count, deferred ? 0 : c.component_count(),
+                                         threads);
   else
     r.allowed = Frame();
+  r.deferred.reset();
+  std::shared_ptr<TriangleAllowances> kept;
+  if (deferred) kept = std::make_shared<TriangleAllowances>(c.triangles.size(), y0);
   r.candidates.clear();
   if (!edges) r.edges = {};
   Frame& f = r.frame;
@@ -667,7 +643,8 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
              std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8)),
              viewport_box(c),
              {},
-             y0};
+             y0,
+             kept.get()};
   // Only the rows asked for: what a triangle does elsewhere changes nothing in them.
   s.viewport.y0 = std::max(s.viewport.y0, y0);
   s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);
@@ -734,6 +711,10 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
       if (!t.drawn && !w->unstable) return;
       prepared[size_t(k)] = std::move(w);
     });
+    if (kept)
+      for (int k = 0; k < n; ++k)
+        if (const Prepared* w = prepared[size_t(k)].get(); w && w->t.drawn)
+          kept->add(size_t(first + k), w->allowance);
     pool.parallel_for(int(rows.size()), [&](int b) {
       for (int k = 0; k < n; ++k)
         if (const Prepared* w = prepared[size_t(k)].get();
@@ -756,6 +737,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
       for (Candidate& k : list)
         r.candidates.push_back(std::move(k));
     }
+  r.deferred = std::move(kept);
   return r;
 }
 
@@ -769,6 +751,11 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
 Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                  Reference&& storage) {
   return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage);
+}
+
+Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                          Reference&& storage) {
+  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true);
 }
 
 Frame render_frame(const Case& c, const Model& m, int threads) {

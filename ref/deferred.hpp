@@ -1,0 +1,92 @@
+// One triangle's allowances, at a block of pixels or bounded over a run of one row: what a
+// triangle prepared for drawing keeps once it is drawn, so that its components' allowances can
+// be computed where a comparison asks for them (DeferredAllowance, core/frame.hpp) instead of
+// at every pixel it draws. The per-pixel arithmetic is allowance.hpp's; this puts together
+// what its channels share at a pixel (the position freedom, the fan's condition, the anchors'
+// distances, the re-weighting of clipped vertices) once per block, and the same bounded over a
+// run for range().
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/case.hpp"
+#include "core/frame.hpp"
+#include "ref/allowance.hpp"
+#include "ref/blocks.hpp"
+#include "ref/freedom.hpp"
+#include "ref/interpolation.hpp"
+#include "ref/setup.hpp"
+
+namespace glrc::ref {
+
+class TriangleAllowance {
+ public:
+  // Triangle t's position freedom for an implementation reporting `bits` subpixel bits
+  // (PositionFreedom), no allowance yet (set()).
+  TriangleAllowance(const Case& c, const TriangleSetup& t, int bits);
+  TriangleAllowance(const TriangleAllowance&) = delete;  // the allowances point to anchors_
+  TriangleAllowance& operator=(const TriangleAllowance&) = delete;
+
+  const PositionFreedom& freedom() const { return freedom_; }
+  // PositionFreedom::reaches_eye: every allowance is infinite.
+  bool eye() const { return eye_; }
+  // Made by clipping: smooth values re-weighted by the clipped vertices' 1/w_c (weight_at).
+  bool clipped() const { return clipped_; }
+
+  // The allowances of the triangle's component planes and of its depth (`depth_forms`), each
+  // component's smooth or not (`smooth`, Case component order).
+  void set(const Case& c, const TriangleSetup& t, const std::vector<ComponentPlane>& planes,
+           const Plane& depth_forms, const std::vector<bool>& smooth);
+
+  // What the channels share at kRowBlock pixels (px[j], py[j]) (integer window coordinates
+  // as doubles).
+  struct Block {
+    double x[kRowBlock], y[kRowBlock], delta[kRowBlock], condition[kRowBlock], weight[kRowBlock],
+        depth_extra[kRowBlock];
+    Anchors::RowDistances distances;
+  };
+  // `depth`: depth_extra too (depth_at needs it; component_at does not).
+  void prepare(const double* px, const double* py, Block& b, bool depth = true) const;
+  // The depth's allowance and component k's, the block's values z[j] and value[j], rounded up
+  // to floats (Allowance::at_rounded_up): infinite through the eye, 0 for a flat component.
+  void depth_at(const Block& b, const float* z, float* out) const;
+  void component_at(const Block& b, size_t k, const float* value, float* out) const;
+  // Bounds {lo, hi} of component_at() at pixels px0..px1 of row py whose values lie in
+  // [value_lo, value_hi] (Allowance::range).
+  std::array<double, 2> component_range(size_t k, int px0, int px1, int py, float value_lo,
+                                        float value_hi) const;
+
+ private:
+  PositionFreedom freedom_;
+  bool eye_ = false, clipped_ = false;
+  FanTriangles fan_;
+  Anchors anchors_;  // the allowances point to it
+  std::vector<Allowance> components_;
+  Allowance depth_;
+  std::vector<double> spread_;          // per component: what a re-weighting moves
+  std::vector<uint8_t> flat_, smooth_;  // per component
+};
+
+// The DeferredAllowance of a frame whose row 0 is window row `row0`, from the triangles that
+// drew it, by primitive: each added (add()) before anything asks for its pixels.
+class TriangleAllowances final : public DeferredAllowance {
+ public:
+  TriangleAllowances(size_t triangles, int row0) : triangles_(triangles), row0_(row0) {}
+  // Primitive p's allowances; not while another thread asks for any.
+  void add(size_t p, std::shared_ptr<const TriangleAllowance> t) {
+    triangles_.at(p) = std::move(t);
+  }
+  void at(const Frame& frame, int k, size_t first, int n, float* out) const override;
+  std::array<double, 2> range(int k, int32_t p, int x0, int x1, int y, float value_lo,
+                              float value_hi) const override;
+  // Component k's allowance at one pixel of `frame`, as at() gives it.
+  float at(const Frame& frame, int k, size_t i) const;
+
+ private:
+  std::vector<std::shared_ptr<const TriangleAllowance>> triangles_;
+  int row0_;
+};
+
+}  // namespace glrc::ref

@@ -1,0 +1,184 @@
+// A deferred allowance (CheckOptions::deferred_allowance, ref::render_deferred): the components'
+// allowances computed only where the comparison needs them must give the verdict and every
+// statistic of the allowance computed at every pixel, bit for bit, and its bounds over a run
+// must hold every allowance of the run. GL's frames here are the bit-exact models of Mesa's
+// llvmpipe and softpipe (driver_models/), which use the freedom the allowance is derived from,
+// and the reference's own frame with errors planted.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "casefile/casefile.hpp"
+#include "check/check.hpp"
+#include "compare/compare.hpp"
+#include "driver_models/driver_models.hpp"
+#include "ref/reference.hpp"
+#include "report/report.hpp"
+
+namespace glrc::check {
+namespace {
+
+std::vector<Case> suite_cases() {
+  std::vector<Case> cases;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(GLRC_SOURCE_DIR) + "/cases"))
+    if (entry.path().extension() == ".json") cases.push_back(casefile::load(entry.path()));
+  return cases;
+}
+
+// Two perspective triangles filling size×size, `count` smooth vec4 varyings and one
+// noperspective and one flat (bench/scenes.py's quad, with the other interpolations).
+Case quad(int size, int count, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-100, 100), depth(-0.5, 0.5);
+  std::string varyings, vertices;
+  for (int k = 0; k < count; ++k)
+    varyings += "{\"name\": \"v" + std::to_string(k) + "\", \"size\": 4},";
+  varyings +=
+      "{\"name\": \"np\", \"size\": 2, \"interpolation\": \"noperspective\"},"
+      "{\"name\": \"fl\", \"size\": 1, \"interpolation\": \"flat\"}";
+  const double corners[4][3] = {{-1, -1, 1.0}, {1, -1, 2.0}, {1, 1, 4.0}, {-1, 1, 3.0}};
+  for (const auto& [x, y, w] : corners) {
+    vertices += std::string(vertices.empty() ? "" : ",") + "{\"clip\": [" + std::to_string(x * w) +
+                "," + std::to_string(y * w) + "," + std::to_string(depth(rng) * w) + "," +
+                std::to_string(w) + "]";
+    const auto numbers = [&](int n) {
+      std::string s;
+      for (int i = 0; i < n; ++i)
+        s += (i ? "," : "") + std::to_string(std::round(value(rng) * 1000) / 1000);
+      return "[" + s + "]";
+    };
+    for (int k = 0; k < count; ++k)
+      vertices += ", \"v" + std::to_string(k) + "\": " + numbers(4);
+    vertices += ", \"np\": " + numbers(2) + ", \"fl\": " + numbers(1) + "}";
+  }
+  const std::string text =
+      "{\"description\": \"deferred allowance test quad\", \"framebuffer\": "
+      "{\"width\": " +
+      std::to_string(size) + ", \"height\": " + std::to_string(size) + "}, \"varyings\": [" +
+      varyings + "], \"vertices\": [" + vertices + "], \"triangles\": [[0, 1, 2], [0, 2, 3]]}";
+  return casefile::parse(text, "test", "deferred_quad_" + std::to_string(size));
+}
+
+// The reference's frame with errors planted: a few pixels far beyond any allowance, a few
+// values one float step away, NaN at one pixel.
+Frame planted(const Frame& reference, unsigned seed) {
+  Frame f = reference;
+  std::mt19937 rng(seed);
+  if (f.components.empty() || f.pixel_count() == 0) return f;
+  std::uniform_int_distribution<size_t> pixel(0, f.pixel_count() - 1);
+  for (int n = 0; n < 200; ++n) {
+    std::vector<float>& channel = f.components[size_t(n) % f.components.size()];
+    const size_t i = pixel(rng);
+    channel[i] = n % 3 == 0 ? channel[i] + 1.0f : std::nextafter(channel[i], INFINITY);
+  }
+  f.components[0][pixel(rng)] = NAN;
+  return f;
+}
+
+std::string json_of(CaseResult r) {
+  r.seconds = 0;
+  return report::case_result_json(r);
+}
+
+void expect_same_results(const Case& c, const std::vector<Frame>& frames,
+                         const CheckOptions& options) {
+  CheckOptions deferred_options = options;
+  deferred_options.deferred_allowance = true;
+  const Expectation everywhere = expectation_for(c, options, 8);
+  Expectation deferred = expectation_for(c, deferred_options, 8);
+  ASSERT_TRUE(deferred.deferred) << c.name;
+  EXPECT_TRUE(deferred.allowed.components.empty()) << c.name;
+  const Tolerance t = tolerance_for(c, options, 8);
+  for (size_t n = 0; n < frames.size(); ++n) {
+    EXPECT_EQ(json_of(compare::compare(c, deferred, frames[n], t, 2)),
+              json_of(compare::compare(c, everywhere, frames[n], t, 2)))
+        << c.name << ", frame " << n;
+  }
+  // Filled in, the allowance is the one computed at every pixel, bit for bit.
+  complete_allowance(deferred, 2);
+  EXPECT_FALSE(deferred.deferred);
+  EXPECT_EQ(ref::expectation_digest(deferred), ref::expectation_digest(everywhere)) << c.name;
+}
+
+std::vector<Frame> frames_for(const Case& c, const Frame& reference) {
+  return {driver_models::render(c, driver_models::Driver::llvmpipe),
+          driver_models::render(c, driver_models::Driver::softpipe), planted(reference, 7)};
+}
+
+TEST(DeferredAllowance, EverySuiteCaseGetsTheSameResultsAsTheAllowanceAtEveryPixel) {
+  for (const Case& c : suite_cases()) {
+    const Frame reference = ref::render(c, CheckOptions{}.model, 8).frame;
+    expect_same_results(c, frames_for(c, reference), CheckOptions{});
+  }
+}
+
+TEST(DeferredAllowance, ALargeFrameGetsTheSameResultsAsTheAllowanceAtEveryPixel) {
+  // Large enough for the comparator to guess its floors and to judge most runs by their
+  // bounds alone (Comparator::add_whole_channel).
+  for (unsigned seed : {1u, 2u}) {
+    const Case c = quad(512, 2, seed);
+    const Frame reference = ref::render(c, CheckOptions{}.model, 8).frame;
+    expect_same_results(c, frames_for(c, reference), CheckOptions{});
+    CheckOptions strict;
+    strict.strict_coverage = true;
+    expect_same_results(c, {driver_models::render(c, driver_models::Driver::llvmpipe)}, strict);
+  }
+}
+
+// Every run of `length` pixels of one primitive in a row: lo <= each allowance <= hi, for the
+// run's least and largest values.
+size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
+  CheckOptions o;
+  o.deferred_allowance = true;
+  const Expectation e = expectation_for(c, o, 8);
+  EXPECT_TRUE(e.deferred);
+  if (!e.deferred) return 0;
+  const Frame& f = e.frame;
+  size_t runs = 0, tight = 0;
+  for (int k = 0; k < int(f.components.size()); ++k)
+    for (int y = 0; y < f.height; ++y)
+      for (int x0 = 0; x0 < f.width; x0 += length / 4) {
+        const int x1 = std::min(f.width, x0 + length) - 1;
+        const int32_t p = f.primitive[f.index(x0, y)];
+        bool one = p >= 0;
+        float lo = INFINITY, hi = -INFINITY;
+        for (int x = x0; x <= x1 && one; ++x) {
+          const size_t i = f.index(x, y);
+          one = f.primitive[i] == p && std::isfinite(f.components[size_t(k)][i]);
+          lo = std::min(lo, f.components[size_t(k)][i]);
+          hi = std::max(hi, f.components[size_t(k)][i]);
+        }
+        if (!one) continue;
+        const auto range = e.deferred->range(k, p, x0, x1, y, lo, hi);
+        std::vector<float> allowed(size_t(x1 - x0 + 1));
+        e.deferred->at(f, k, f.index(x0, y), x1 - x0 + 1, allowed.data());
+        ++runs;
+        for (float a : allowed) {
+          EXPECT_LE(range[0], double(a)) << c.name << " component " << k << " row " << y;
+          EXPECT_LE(double(a), range[1]) << c.name << " component " << k << " row " << y;
+        }
+        tight += range[1] <= tightest_spread * range[0];
+      }
+  // Most runs' bounds are within a factor of 2: a bound is only worth having if it decides.
+  if (tightest_spread > 0) {
+    EXPECT_GT(double(tight), 0.9 * double(runs)) << c.name << " " << tight << "/" << runs;
+  }
+  return runs;
+}
+
+TEST(DeferredAllowance, ARunsBoundsHoldEveryAllowanceOfIt) {
+  EXPECT_GT(expect_ranges_hold(quad(256, 2, 3), 64, 2.0), 10000u);
+  size_t runs = 0;
+  for (const Case& c : suite_cases())
+    if (c.component_count() > 0) runs += expect_ranges_hold(c, 8, 0);
+  EXPECT_GT(runs, 1000u);
+}
+
+}  // namespace
+}  // namespace glrc::check
