@@ -28,9 +28,14 @@ Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits)
   return t;
 }
 
+bool deferral_pays(const Case& c) {
+  const double pixels = double(std::max(c.fb_width, 0)) * double(std::max(c.fb_height, 0));
+  return c.component_count() > 0 && pixels >= 4096.0 * double(c.triangles.size());
+}
+
 Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits,
                             Expectation storage) {
-  if (o.deferred_allowance && !o.driver_model)
+  if (o.deferred_allowance && !o.driver_model && deferral_pays(c))
     return ref::render_deferred(c, o.model, freedom_bits(o, reported_bits), o.threads,
                                 std::move(storage));
   ref::Reference r =

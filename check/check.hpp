@@ -49,11 +49,20 @@ struct CheckOptions {
   // About how many bytes of frame one band of a streamed case holds.
   size_t band_bytes = size_t(16) << 20;
   // The reference's component allowances computed only where the comparison needs them
-  // (ref::render_deferred): the same verdict and statistics, bit for bit, in less time;
-  // Checked::reference then holds them deferred (complete_allowance fills them in for a
-  // heatmap). Not with a driver model, nor in a streamed case (whose bands have them all).
+  // (ref::render_deferred), in a case where that pays (deferral_pays): the same verdict and
+  // statistics, bit for bit, in less time; Checked::reference then holds them deferred
+  // (complete_allowance fills them in for a heatmap). Not with a driver model, nor in a
+  // streamed case (whose bands have them all).
   bool deferred_allowance = false;
 };
+
+// Whether deferring case c's component allowances (CheckOptions::deferred_allowance) is likely
+// to save time: it has components, and its triangles are large, on average at least 4096
+// pixels of the framebuffer each. The comparison bounds the allowances over runs of 64 pixels
+// of one triangle; where a row of 64 pixels crosses several triangles, each stretch is bounded
+// apart, which costs about what computing the allowance costs (measured on a 2-core VM: 10,000
+// triangles in 256x256 checked 11% slower deferred, the 1024x1024 quad of two 7% faster).
+bool deferral_pays(const Case& c);
 
 // The bytes of one Frame of case c: every pixel's primitive, depth, fragment count and
 // components, 4 bytes each.

@@ -14,6 +14,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace glrc::compare {
 namespace {
@@ -725,20 +726,18 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
   if (plain * kRun * 2 < reference.pixel_count() || plain < kFewest || share > 0.25) return;
   std::vector<uint32_t> ulps, ratios;
   ulps.reserve(plain), ratios.reserve(plain);
-  // kSampledRuns neighbouring pixels of one plain run in kSampledRuns: the same number of
-  // pixels as one of each run, in a quarter of the cache lines (each a miss: measured, the
-  // sample of one pixel a run was a tenth of the comparison of the 1024x1024 quad). With
-  // bounds, the runs whose bounds run_bounds found, each one's hi standing for the pixels'
-  // allowances.
-  size_t sampled = 0;
+  // One pixel of each plain run, at an offset that moves from run to run; with bounds,
+  // kSampledRuns neighbouring pixels of each run whose bounds run_bounds found (one in
+  // kSampledRuns: as many pixels), each run's hi standing for the pixels' allowances.
+  const int per_run = bounds ? kSampledRuns : 1;
   for (int row = 0; row < reference.height; ++row)
     for (int r = 0; r < reference.width / kRun; ++r) {
       const size_t run = size_t(row) * size_t(runs) + size_t(r);
       const int32_t p = plain_runs[run];
-      if (p < 0 || sampled++ % kSampledRuns != 0) continue;
+      if (p < 0 || (bounds && !bounds->runs[run].computed)) continue;
       const size_t first =
-          reference.index(r * kRun + (row * 37 + r * 11) % (kRun - kSampledRuns), row);
-      for (size_t i = first; i < first + kSampledRuns; ++i) {
+          reference.index(r * kRun + (row * 37 + r * 11) % (kRun - per_run + 1), row);
+      for (size_t i = first; i < first + size_t(per_run); ++i) {
         const float g = gl_values[i], v = own_values[i];
         if (!std::isfinite(g) || !std::isfinite(v)) continue;
         const double ulp = table.ulp(p, k);
@@ -909,8 +908,10 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
     own_ulp = st.ulps.ulp(primitive, k);
     own_inverse_ulp = st.ulps.inverse_ulp(primitive, k);
   };
-  // One pixel of row `row`, whatever it is judged against.
-  auto add_pixel = [&](int x, int row) {
+  // One pixel of row `row`, whatever it is judged against. `deferring`: std::true_type with a
+  // deferred allowance (its run's in run_allowed), std::false_type otherwise, so that the loop
+  // without one is compiled without its tests.
+  auto add_pixel = [&](int x, int row, auto deferring) {
     const size_t i = reference.index(x, row);
     if (judged_as[i] == kNotCompared) return;
     const int y = y0 + row;
@@ -920,9 +921,10 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
       own_ulps(own_primitive[i]);
       ulp = own_ulp, inverse_ulp = own_inverse_ulp;
       // ChannelAllowance::at
-      allowed = own_allowed ? double(own_allowed[i])
-                : deferred  ? double(run_allowed[x - run_x])
-                            : fixed_ulps * ulp;
+      if constexpr (decltype(deferring)::value)
+        allowed = double(run_allowed[x - run_x]);
+      else
+        allowed = own_allowed ? double(own_allowed[i]) : fixed_ulps * ulp;
       value = own_values[i];
     } else {
       const Judged judged = judged_against(c, expected, gl, i, tolerance);
@@ -996,47 +998,53 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
     return lanes;
   };
   const int runs = (reference.width + kRun - 1) / kRun;
-  for (int row = 0; row < reference.height; ++row)
-    for (int x = 0; x < reference.width; x += kRun) {
-      // Whole runs of pixels compared against the reference's own fragment of one primitive,
-      // every value finite (nearly all of a frame): add_run, whose loops are vectorized. Any
-      // other run (a row's last, shorter one too) pixel by pixel.
-      const int n = std::min(kRun, reference.width - x);
-      const size_t first = reference.index(x, row);
-      const size_t run = size_t(row) * size_t(runs) + size_t(x / kRun);
-      const int32_t run_primitive = st.plain_runs[run];
-      const float* allowed = own_allowed ? own_allowed + first : nullptr;
-      if (deferred) {
-        // Most runs need only bounds of their allowances; the others the allowances of some of
-        // their pixels, or of all, computed here (deferred_lanes).
-        uint64_t lanes = ChannelAccumulator::kEveryLane;
-        if (run_primitive >= 0 && bounds) {
-          own_ulps(run_primitive);
-          RunBounds& b = bounds->runs[run];
-          if (!b.computed) {
-            find_run_bounds(*deferred, reference, k, run_primitive, x, row, b);
-            b.largest_known = b.hi < kInf && b.hi * own_inverse_ulp <= bounds->largest_lo;
+  auto add_rows = [&](auto deferring) {
+    for (int row = 0; row < reference.height; ++row)
+      for (int x = 0; x < reference.width; x += kRun) {
+        // Whole runs of pixels compared against the reference's own fragment of one primitive,
+        // every value finite (nearly all of a frame): add_run, whose loops are vectorized. Any
+        // other run (a row's last, shorter one too) pixel by pixel.
+        const int n = std::min(kRun, reference.width - x);
+        const size_t first = reference.index(x, row);
+        const size_t run = size_t(row) * size_t(runs) + size_t(x / kRun);
+        const int32_t run_primitive = st.plain_runs[run];
+        const float* allowed = own_allowed ? own_allowed + first : nullptr;
+        if constexpr (decltype(deferring)::value) {
+          // Most runs need only bounds of their allowances; the others the allowances of some of
+          // their pixels, or of all, computed here (deferred_lanes).
+          uint64_t lanes = ChannelAccumulator::kEveryLane;
+          if (run_primitive >= 0 && bounds) {
+            own_ulps(run_primitive);
+            RunBounds& b = bounds->runs[run];
+            if (!b.computed) {
+              find_run_bounds(*deferred, reference, k, run_primitive, x, row, b);
+              b.largest_known = b.hi < kInf && b.hi * own_inverse_ulp <= bounds->largest_lo;
+            }
+            lanes = acc.add_run_within(t, own_values + first, gl_values + first, b.lo,
+                                       b.largest_known, own_ulp, own_inverse_ulp);
+            if (lanes == 0) continue;
+            if (lanes != ChannelAccumulator::kEveryLane)
+              std::fill_n(run_allowed, kRun, float_up(b.lo));
+          } else if (bounds && n == kRun) {
+            lanes = segment_lanes(x, row, first);
           }
-          lanes = acc.add_run_within(t, own_values + first, gl_values + first, b.lo,
-                                     b.largest_known, own_ulp, own_inverse_ulp);
-          if (lanes == 0) continue;
-          if (lanes != ChannelAccumulator::kEveryLane)
-            std::fill_n(run_allowed, kRun, float_up(b.lo));
-        } else if (bounds && n == kRun) {
-          lanes = segment_lanes(x, row, first);
+          deferred_lanes(first, n, lanes);
+          run_x = x, allowed = run_allowed;
         }
-        deferred_lanes(first, n, lanes);
-        run_x = x, allowed = run_allowed;
+        if (run_primitive >= 0) {
+          own_ulps(run_primitive);
+          if (acc.add_run(t, x, y0 + row, own_values + first, gl_values + first, allowed,
+                          fixed_ulps * own_ulp, own_ulp, own_inverse_ulp))
+            continue;
+        }
+        for (int j = 0; j < n; ++j)
+          add_pixel(x + j, row, deferring);
       }
-      if (run_primitive >= 0) {
-        own_ulps(run_primitive);
-        if (acc.add_run(t, x, y0 + row, own_values + first, gl_values + first, allowed,
-                        fixed_ulps * own_ulp, own_ulp, own_inverse_ulp))
-          continue;
-      }
-      for (int j = 0; j < n; ++j)
-        add_pixel(x + j, row);
-    }
+  };
+  if (deferred)
+    add_rows(std::true_type{});
+  else
+    add_rows(std::false_type{});
   acc.tally = t;
 }
 

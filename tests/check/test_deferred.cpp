@@ -88,10 +88,9 @@ std::string json_of(CaseResult r) {
 
 void expect_same_results(const Case& c, const std::vector<Frame>& frames,
                          const CheckOptions& options) {
-  CheckOptions deferred_options = options;
-  deferred_options.deferred_allowance = true;
   const Expectation everywhere = expectation_for(c, options, 8);
-  Expectation deferred = expectation_for(c, deferred_options, 8);
+  // Deferred whether or not it pays (deferral_pays): the same results either way.
+  Expectation deferred = ref::render_deferred(c, options.model, freedom_bits(options, 8), 1);
   ASSERT_TRUE(deferred.deferred) << c.name;
   EXPECT_TRUE(deferred.allowed.components.empty()) << c.name;
   const Tolerance t = tolerance_for(c, options, 8);
@@ -134,9 +133,8 @@ TEST(DeferredAllowance, ALargeFrameGetsTheSameResultsAsTheAllowanceAtEveryPixel)
 // Every run of `length` pixels of one primitive in a row: lo <= each allowance <= hi, for the
 // run's least and largest values.
 size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
-  CheckOptions o;
-  o.deferred_allowance = true;
-  const Expectation e = expectation_for(c, o, 8);
+  const CheckOptions o;
+  const Expectation e = ref::render_deferred(c, o.model, freedom_bits(o, 8), 2);
   EXPECT_TRUE(e.deferred);
   if (!e.deferred) return 0;
   const Frame& f = e.frame;
@@ -170,6 +168,30 @@ size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
     EXPECT_GT(double(tight), 0.9 * double(runs)) << c.name << " " << tight << "/" << runs;
   }
   return runs;
+}
+
+TEST(DeferredAllowance, IsUsedWhereTrianglesAreLargeAndThereAreComponents) {
+  CheckOptions o;
+  o.deferred_allowance = true;
+  const Case large = quad(256, 1, 4);
+  EXPECT_TRUE(deferral_pays(large));
+  EXPECT_TRUE(expectation_for(large, o, 8).deferred);
+  o.deferred_allowance = false;
+  EXPECT_FALSE(expectation_for(large, o, 8).deferred);
+  // Many small triangles: every run of 64 pixels crosses several.
+  Case small = large;
+  small.fb_width = small.fb_height = 64;
+  for (int n = 0; n < 2; ++n)
+    small.triangles.push_back(small.triangles[0]);
+  EXPECT_FALSE(deferral_pays(small));
+  o.deferred_allowance = true;
+  EXPECT_FALSE(expectation_for(small, o, 8).deferred);
+  // No components: nothing to defer.
+  Case plain = large;
+  plain.varyings.clear();
+  for (Vertex& v : plain.vertices)
+    v.values.clear();
+  EXPECT_FALSE(deferral_pays(plain));
 }
 
 TEST(DeferredAllowance, ARunsBoundsHoldEveryAllowanceOfIt) {
