@@ -63,15 +63,19 @@ void register_case(const Case& c) {
         for (auto _ : state)
           benchmark::DoNotOptimize(ref::render_frame(c, options.model, options.threads));
       }));
-  ms(benchmark::RegisterBenchmark(
-      ("reference/" + c.name).c_str(), [c, options](benchmark::State& state) {
-        const int bits = llvmpipe().info().subpixel_bits;
-        Expectation last = check::expectation_for(c, options, bits);
-        for (auto _ : state) {
-          last = check::expectation_for(c, options, bits, std::move(last));
-          benchmark::DoNotOptimize(last);
-        }
-      }));
+  // The reference under `o`, each iteration in the last one's buffers: reference/ with the
+  // allowance at every pixel, deferred/ as `run`'s workers draw it (below).
+  const auto expectation = [&](const std::string& part, const check::CheckOptions& o) {
+    ms(benchmark::RegisterBenchmark((part + "/" + c.name).c_str(), [c, o](benchmark::State& state) {
+      const int bits = llvmpipe().info().subpixel_bits;
+      Expectation last = check::expectation_for(c, o, bits);
+      for (auto _ : state) {
+        last = check::expectation_for(c, o, bits, std::move(last));
+        benchmark::DoNotOptimize(last);
+      }
+    }));
+  };
+  expectation("reference", options);
   ms(benchmark::RegisterBenchmark(
       ("compare/" + c.name).c_str(), [c, options](benchmark::State& state) {
         const int bits = llvmpipe().info().subpixel_bits;
@@ -82,18 +86,10 @@ void register_case(const Case& c) {
           benchmark::DoNotOptimize(compare::compare(c, e, gl, t, options.threads));
       }));
   // As `run`'s workers check a case: the component allowances computed where the comparison
-  // needs them (CheckOptions::deferred_allowance).
+  // needs them (CheckOptions::deferred_allowance), where that pays (check::deferral_pays).
   check::CheckOptions as_run = options;
   as_run.deferred_allowance = true;
-  ms(benchmark::RegisterBenchmark(
-      ("deferred/" + c.name).c_str(), [c, as_run](benchmark::State& state) {
-        const int bits = llvmpipe().info().subpixel_bits;
-        Expectation last = check::expectation_for(c, as_run, bits);
-        for (auto _ : state) {
-          last = check::expectation_for(c, as_run, bits, std::move(last));
-          benchmark::DoNotOptimize(last);
-        }
-      }));
+  expectation("deferred", as_run);
   ms(benchmark::RegisterBenchmark(
       ("check/" + c.name).c_str(), [c, as_run](benchmark::State& state) {
         check::Checked last = check::check_with_frames(c, llvmpipe(), as_run);
