@@ -113,11 +113,7 @@ class ChannelAllowance {
   ChannelAllowance(const Case& c, const Expectation& expected, const Tolerance& tolerance,
                    int channel);
   double at(size_t pixel, double ulp) const {
-    if (deferred_) {
-      float allowed;
-      deferred_->at(*frame_, channel_, pixel, 1, &allowed);
-      return double(allowed);
-    }
+    if (deferred_) return deferred_at(pixel);
     return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
   }
   // Whether the allowance is the specification's, per pixel (held, or deferred).
@@ -130,6 +126,7 @@ class ChannelAllowance {
   double fixed_ulps() const { return fixed_ulps_; }
 
  private:
+  double deferred_at(size_t pixel) const;  // out of line: rare, and at() is inlined per pixel
   const std::vector<float>* per_pixel_ = nullptr;
   std::shared_ptr<const DeferredAllowance> deferred_;
   const Frame* frame_ = nullptr;  // the expectation's, with deferred_
