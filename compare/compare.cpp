@@ -1005,7 +1005,9 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
     return lanes;
   };
   const int runs = (reference.width + kRun - 1) / kRun;
-  auto add_rows = [&](auto deferring) {
+  // Not inlined: each form a function of its own, whose registers the other's code does not
+  // crowd (measured: the fan's comparison 12.5 ms with, 13.7 ms without).
+  auto add_rows = [&](auto deferring) __attribute__((noinline)) {
     float run_allowed[kRun];  // with a deferred allowance: the run's, from column run_x
     int run_x = 0;
     for (int row = 0; row < reference.height; ++row)
