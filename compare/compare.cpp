@@ -494,12 +494,6 @@ ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
   fixed_ulps_ = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
 }
 
-double ChannelAllowance::deferred_at(size_t pixel) const {
-  float allowed;
-  deferred_->at(*frame_, channel_, pixel, 1, &allowed);
-  return double(allowed);
-}
-
 PixelError pixel_error(float reference, float gl, double ulp) {
   return pixel_error(reference, gl, ulp, 0);
 }
@@ -844,9 +838,6 @@ Comparator::ChannelBounds run_bounds(const DeferredAllowance& deferred,
       find_run_bounds(deferred, reference, k, p, r * kRun, row, b);
       if (b.hi < kInf) out.largest_lo = std::max(out.largest_lo, b.lo * table.inverse_ulp(p, k));
     }
-  for (size_t run = 0; run < out.runs.size(); ++run)
-    if (Comparator::RunBounds& b = out.runs[run]; b.computed && b.hi < kInf)
-      b.largest_known = b.hi * table.inverse_ulp(plain_runs[run], k) <= out.largest_lo;
   return out;
 }
 
@@ -989,8 +980,7 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
       std::array<double, 2> range{0.0, kInf};
       if (value_range(own_values + i, end - j, lo, hi))
         range = deferred->range(k, p, x + j, x + end - 1, row, lo, hi);
-      const bool largest_known =
-          range[1] < kInf && range[1] * st.ulps.inverse_ulp(p, k) <= bounds->largest_lo;
+      const bool largest_known = bounds->below_largest(range[1], st.ulps.inverse_ulp(p, k));
       const float substitute = float_up(range[0]);
       for (; j < end; ++j) {
         const size_t pixel = first + size_t(j);
@@ -1027,12 +1017,10 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
           if (run_primitive >= 0 && bounds) {
             own_ulps(run_primitive);
             RunBounds& b = bounds->runs[run];
-            if (!b.computed) {
-              find_run_bounds(*deferred, reference, k, run_primitive, x, row, b);
-              b.largest_known = b.hi < kInf && b.hi * own_inverse_ulp <= bounds->largest_lo;
-            }
+            if (!b.computed) find_run_bounds(*deferred, reference, k, run_primitive, x, row, b);
             lanes = acc.add_run_within(t, own_values + first, gl_values + first, b.lo,
-                                       b.largest_known, own_ulp, own_inverse_ulp);
+                                       bounds->below_largest(b.hi, own_inverse_ulp), own_ulp,
+                                       own_inverse_ulp);
             if (lanes == 0) continue;
             if (lanes != ChannelAccumulator::kEveryLane)
               std::fill_n(run_allowed, kRun, float_up(b.lo));

@@ -45,19 +45,21 @@ class Comparator {
   // The verdict and the statistics, as compare() gives them. Once.
   CaseResult finish();
 
-  // Bounds of a deferred allowance over a run of pixels of one row (DeferredAllowance::range),
-  // and whether no allowance of the run is the channel's largest (largest_known: hi, in ULPs,
-  // is no larger than another run's lo).
+  // Bounds of a deferred allowance over a run of pixels of one row (DeferredAllowance::range).
   struct RunBounds {
     double lo = 0, hi = std::numeric_limits<double>::infinity();
-    bool largest_known = false;
-    bool computed = false;  // lo, hi and largest_known found (else none yet)
+    bool computed = false;  // lo and hi found (else none yet)
   };
   // A channel's RunBounds by plain run, and the largest allowance in ULPs that the channel
   // certainly has: the largest lo of a sample of plain runs whose allowances are all finite.
   struct ChannelBounds {
     std::vector<RunBounds> runs;
     double largest_lo = 0;
+    // Whether no allowance up to hi, of ulp 1/inverse_ulp, can be the channel's largest (an
+    // infinite hi can).
+    bool below_largest(double hi, double inverse_ulp) const {
+      return hi * inverse_ulp <= largest_lo;
+    }
   };
 
  private:
@@ -113,7 +115,7 @@ class ChannelAllowance {
   ChannelAllowance(const Case& c, const Expectation& expected, const Tolerance& tolerance,
                    int channel);
   double at(size_t pixel, double ulp) const {
-    if (deferred_) return deferred_at(pixel);
+    if (deferred_) return double(deferred_->at(*frame_, channel_, pixel));
     return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
   }
   // Whether the allowance is the specification's, per pixel (held, or deferred).
@@ -126,7 +128,6 @@ class ChannelAllowance {
   double fixed_ulps() const { return fixed_ulps_; }
 
  private:
-  double deferred_at(size_t pixel) const;  // out of line: rare, and at() is inlined per pixel
   const std::vector<float>* per_pixel_ = nullptr;
   std::shared_ptr<const DeferredAllowance> deferred_;
   const Frame* frame_ = nullptr;  // the expectation's, with deferred_

@@ -123,6 +123,12 @@ class DeferredAllowance {
   // drawn with this, or a copy of it): out[j] is bit for bit what Expectation::allowed holds at
   // pixel first + j when it is computed at every pixel (0 where nothing is drawn).
   virtual void at(const Frame& frame, int k, size_t first, int n, float* out) const = 0;
+  // at() of the one pixel i.
+  float at(const Frame& frame, int k, size_t i) const {
+    float out;
+    at(frame, k, i, 1, &out);
+    return out;
+  }
   // Bounds {lo, hi} of at()'s values at pixels x0..x1 of row y (x0 <= x1), every one drawn by
   // primitive p with component k's value in [value_lo, value_hi]: lo <= each <= hi. {0, +inf}
   // when nothing better is known.

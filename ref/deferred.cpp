@@ -115,12 +115,6 @@ void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, floa
   }
 }
 
-float TriangleAllowances::at(const Frame& frame, int k, size_t i) const {
-  float out;
-  at(frame, k, i, 1, &out);
-  return out;
-}
-
 std::array<double, 2> TriangleAllowances::range(int k, int32_t p, int x0, int x1, int y,
                                                 float value_lo, float value_hi) const {
   const TriangleAllowance* t =

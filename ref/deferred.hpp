@@ -78,11 +78,10 @@ class TriangleAllowances final : public DeferredAllowance {
   void add(size_t p, std::shared_ptr<const TriangleAllowance> t) {
     triangles_.at(p) = std::move(t);
   }
+  using DeferredAllowance::at;  // one pixel
   void at(const Frame& frame, int k, size_t first, int n, float* out) const override;
   std::array<double, 2> range(int k, int32_t p, int x0, int x1, int y, float value_lo,
                               float value_hi) const override;
-  // Component k's allowance at one pixel of `frame`, as at() gives it.
-  float at(const Frame& frame, int k, size_t i) const;
 
  private:
   std::vector<std::shared_ptr<const TriangleAllowance>> triangles_;
