@@ -91,6 +91,35 @@ void Framebuffer::use() const {
   gl_.BindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
 }
 
+namespace {
+
+// out[i][p] = rgba[4·p + i] for the first `size` (1 to 4) of each pixel's four values: a loop
+// for each size, over every pixel at once, which the compiler vectorizes.
+template <int size>
+void deinterleave_first(const float* rgba, size_t pixels, float* const* out) {
+  float* o[size];
+  for (int i = 0; i < size; ++i)
+    o[i] = out[i];
+  for (size_t p = 0; p < pixels; ++p)
+    for (int i = 0; i < size; ++i)
+      o[i][p] = rgba[4 * p + size_t(i)];
+}
+
+void deinterleave(const float* rgba, size_t pixels, int size, float* const* out) {
+  switch (size) {
+    case 1:
+      return deinterleave_first<1>(rgba, pixels, out);
+    case 2:
+      return deinterleave_first<2>(rgba, pixels, out);
+    case 3:
+      return deinterleave_first<3>(rgba, pixels, out);
+    default:
+      return deinterleave_first<4>(rgba, pixels, out);
+  }
+}
+
+}  // namespace
+
 void Framebuffer::read_varyings(const Case& c, Frame& frame, int y0) {
   const int n = int(c.varyings.size());
   const int w = frame.width, h = frame.height;
@@ -101,12 +130,14 @@ void Framebuffer::read_varyings(const Case& c, Frame& frame, int y0) {
   for (int k = 0; k < n; ++k) {
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + k);
     gl_.ReadPixels(0, y0, w, h, GL_RGBA, GL_FLOAT, rgba);
-    // Rows come bottom first, as Frame wants: no flip.
-    for (int i = 0; i < c.varyings[k].size; ++i, ++component) {
-      std::vector<float>& out = frame.components[size_t(component)];
-      for (size_t p = 0; p < out.size(); ++p)
-        out[p] = rgba[4 * p + size_t(i)];
-    }
+    // Rows come bottom first, as Frame wants: no flip. The varying's components in one pass
+    // over the pixels (one per component read the RGBA buffer as many times).
+    const int size = c.varyings[k].size;
+    float* out[4] = {};
+    for (int i = 0; i < size; ++i)
+      out[i] = frame.components[size_t(component + i)].data();
+    deinterleave(rgba, frame.pixel_count(), size, out);
+    component += size;
   }
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
   gl_.ReadPixels(0, y0, w, h, GL_RED_INTEGER, GL_INT, frame.primitive.data());
@@ -121,7 +152,7 @@ void Framebuffer::read_depth(Frame& frame, int y0) {
     return;
   }
   std::vector<GLuint>& z = z_;
-  assign_large(z, frame.pixel_count(), GLuint(0));
+  resize_large(z, frame.pixel_count());  // every value read back
   gl_.ReadPixels(0, y0, frame.width, frame.height, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z.data());
   for (size_t i = 0; i < z.size(); ++i)
     frame.depth[i] = float(z[i] >> 8);
@@ -129,10 +160,10 @@ void Framebuffer::read_depth(Frame& frame, int y0) {
 
 void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
   std::vector<float>& counts = counts_;
-  assign_large(counts, frame.pixel_count(), 0.0f);
+  resize_large(counts, frame.pixel_count());  // every value read back
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
   gl_.ReadPixels(0, y0, frame.width, frame.height, GL_RED, GL_FLOAT, counts.data());
-  assign_large(frame.fragments, counts.size(), uint16_t(0));
+  resize_large(frame.fragments, counts.size());  // every value written below
   for (size_t i = 0; i < counts.size(); ++i)
     frame.fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
 }

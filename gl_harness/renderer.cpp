@@ -147,7 +147,8 @@ class GlRenderer final : public Renderer {
       throw RenderError("case '" + c.name + "': rows " + std::to_string(y0) + " + " +
                         std::to_string(rows) + " outside the framebuffer");
     context_->make_current();
-    frame.reset(c.fb_width, rows, c.component_count());
+    // Every value of the frame is read back below (or the case is an error).
+    frame.reset_uncleared(c.fb_width, rows, c.component_count());
     framebuffer_.use();
     framebuffer_.read_varyings(c, frame, y0);
     framebuffer_.read_depth(frame, y0);

@@ -51,6 +51,32 @@ TEST(Frame, ResetInAnotherFramesBuffersIsANewFrame) {
   }
 }
 
+// reset_uncleared() sizes every buffer as reset() does, in the same storage, and fills none:
+// what a buffer held stays where it still fits (GL's readback then writes every value).
+TEST(Frame, ResetUnclearedSizesEveryBufferAndFillsNone) {
+  Frame f(40, 12, 3, 2);
+  std::fill(f.primitive.begin(), f.primitive.end(), 3);
+  std::fill(f.depth.begin(), f.depth.end(), 0.25f);
+  for (auto& c : f.components)
+    std::fill(c.begin(), c.end(), -2.0f);
+  f.fragments.assign(f.pixel_count(), uint16_t(2));
+  const float* depth = f.depth.data();
+  f.reset_uncleared(30, 10, 2, 2);
+  EXPECT_EQ(f.width, 30);
+  EXPECT_EQ(f.height, 10);
+  EXPECT_EQ(f.depth.data(), depth);
+  EXPECT_EQ(f.primitive, std::vector<int32_t>(300, 3));
+  EXPECT_EQ(f.depth, std::vector<float>(300, 0.25f));
+  ASSERT_EQ(f.components.size(), size_t(2));
+  for (const auto& c : f.components)
+    EXPECT_EQ(c, std::vector<float>(300, -2.0f));
+  EXPECT_TRUE(f.fragments.empty());
+  // A component the frame did not have is sized too.
+  f.reset_uncleared(30, 10, 4, 2);
+  ASSERT_EQ(f.components.size(), size_t(4));
+  EXPECT_EQ(f.components[3].size(), size_t(300));
+}
+
 // The buffers are reused, pages and all, where they are large enough; one over twice as large
 // as needed (and over 1 MiB more) is given back, so that a kept frame holds at most about
 // twice what it is used for.
