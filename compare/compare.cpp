@@ -478,9 +478,12 @@ ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
   // In spec mode the allowance covers every pixel (add_rows checks its shape): every channel,
   // depth included, is judged by it, also in a case without varyings, whose allowance has no
   // components (the fixed depth ULPs judged those until a campaign found it).
+  // A deferred allowance gives the components' allowances, and the depth's where it says so.
+  const bool deferred_depth = expected.deferred && expected.deferred->depth();
   if (tolerance.mode == ToleranceMode::spec &&
-      expected.allowed.depth.size() == expected.frame.pixel_count()) {
-    if (!depth && expected.deferred && expected.allowed.components.empty()) {
+      (deferred_depth || expected.allowed.depth.size() == expected.frame.pixel_count())) {
+    static_assert(kDepth == DeferredAllowance::kDepth);
+    if (depth ? deferred_depth : expected.deferred && expected.allowed.components.empty()) {
       deferred_ = expected.deferred;
       frame_ = &expected.frame, channel_ = channel;
       return;
@@ -592,7 +595,8 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
       expected.edges.size() != reference.pixel_count() ||
       (spec && ((expected.allowed.components.size() != reference.components.size() &&
                  !(expected.deferred && expected.allowed.components.empty())) ||
-                expected.allowed.depth.size() != reference.pixel_count())))
+                (expected.allowed.depth.size() != reference.pixel_count() &&
+                 !(expected.deferred && expected.deferred->depth())))))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
   // A deferred allowance knows the rows of the frame it drew: the frame is compared whole.
   if (expected.deferred && (y0 != 0 || reference.height != st.height))
@@ -820,6 +824,11 @@ namespace {
   return true;
 }
 
+// Channel k's values in frame f: kDepth's or a component's.
+const float* channel_values(const Frame& f, int k) {
+  return k == kDepth ? f.depth.data() : f.components[size_t(k)].data();
+}
+
 // value_range of a whole run: a count the compiler sees, and an AVX2 copy.
 GLRC_VECTOR_CLONES bool run_range(const float* v, float& lo, float& hi) {
   return value_range(v, ChannelAccumulator::kRun, lo, hi);
@@ -832,7 +841,7 @@ void find_run_bounds(const DeferredAllowance& deferred, const Frame& reference, 
   constexpr int kRun = ChannelAccumulator::kRun;
   b.computed = true;
   float lo, hi;
-  if (!run_range(reference.components[size_t(k)].data() + reference.index(x, row), lo, hi)) return;
+  if (!run_range(channel_values(reference, k) + reference.index(x, row), lo, hi)) return;
   const auto range = deferred.range(k, p, x, x + kRun - 1, row, lo, hi);
   b.lo = range[0], b.hi = range[1];
 }
@@ -857,7 +866,7 @@ Comparator::ChannelBounds run_bounds(const DeferredAllowance& deferred,
       const size_t run = size_t(row) * size_t(runs) + size_t(r);
       if (plain_runs[run] >= 0 && plain++ % kSampledRuns == 0) sampled.push_back(run);
     }
-  const float* values = reference.components[size_t(k)].data();
+  const float* values = channel_values(reference, k);
   const auto first_of = [&](size_t run) {
     return reference.index(int(run % size_t(runs)) * kRun, int(run / size_t(runs)));
   };

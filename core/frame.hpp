@@ -129,16 +129,24 @@ struct Candidate {
   std::vector<float> values, allowed;  // per component, as in Frame::components
 };
 
-// The allowances of a frame's components computed where they are asked for, not at every pixel:
-// most of a comparison needs only bounds of them over a run of pixels (a pixel's error below
-// the run's least allowance is within it). Made by the reference (ref::render_deferred) for the
-// frame it draws; asked by the comparator (compare/).
+// The allowances of a frame's components (and of its depth, where no depth test needs them
+// while drawing) computed where they are asked for, not at every pixel: most of a comparison
+// needs only bounds of them over a run of pixels (a pixel's error below the run's least
+// allowance is within it). Made by the reference (ref::render_deferred) for the frame it draws;
+// asked by the comparator (compare/).
 class DeferredAllowance {
  public:
+  // The channel k of at() and range() that is the depth, where depth() says it is deferred.
+  static constexpr int kDepth = -1;
   virtual ~DeferredAllowance() = default;
-  // Component k's allowances at pixels [first, first + n) of one row of `frame` (the frame
-  // drawn with this, or a copy of it): out[j] is bit for bit what Expectation::allowed holds at
-  // pixel first + j when it is computed at every pixel (0 where nothing is drawn).
+  // Whether the depth's allowance is deferred too (channel kDepth): then Expectation::allowed
+  // has no primitive and no depth either. Only where the depth test needs no allowance while
+  // drawing (DepthFunc::always: no fragment may win it instead of another).
+  virtual bool depth() const { return false; }
+  // Component k's allowances (or the depth's, k = kDepth) at pixels [first, first + n) of one
+  // row of `frame` (the frame drawn with this, or a copy of it): out[j] is bit for bit what
+  // Expectation::allowed holds at pixel first + j when it is computed at every pixel (0 where
+  // nothing is drawn).
   virtual void at(const Frame& frame, int k, size_t first, int n, float* out) const = 0;
   // at() of the one pixel i.
   float at(const Frame& frame, int k, size_t i) const {
@@ -147,8 +155,8 @@ class DeferredAllowance {
     return out;
   }
   // Bounds {lo, hi} of at()'s values at pixels x0..x1 of row y (x0 <= x1), every one drawn by
-  // primitive p with component k's value in [value_lo, value_hi]: lo <= each <= hi. {0, +inf}
-  // when nothing better is known.
+  // primitive p with component k's value (or the depth, k = kDepth) in [value_lo, value_hi]:
+  // lo <= each <= hi. {0, +inf} when nothing better is known.
   virtual std::array<double, 2> range(int k, int32_t p, int x0, int x1, int y, float value_lo,
                                       float value_hi) const = 0;
 };
@@ -159,10 +167,11 @@ struct Expectation {
   Frame frame;                 // the exact reference
   std::vector<uint8_t> edges;  // edge:: bits per pixel
   // Per pixel and channel (depth, components), the largest |gl - reference| a conforming
-  // implementation can produce there; no components when not computed, or when `deferred`.
+  // implementation can produce there; no components when not computed, or when `deferred`
+  // (nor primitive and depth, when it defers the depth's too).
   Frame allowed;
   // With an allowance whose components are computed where asked for: allowed has the depth's
-  // only (complete_allowance fills in the rest).
+  // only, or nothing (DeferredAllowance::depth); complete_allowance fills in the rest.
   std::shared_ptr<const DeferredAllowance> deferred;
   // Where the depth test's winner is not decided (edge::depth_order), the other fragments that
   // may win, sorted by pixel; only with an allowance.
@@ -178,15 +187,23 @@ struct Expectation {
   }
 };
 
-// Computes a deferred allowance's components at every pixel (a heatmap shows them all): e is
-// then as if they had been computed while drawing. Nothing to do without `deferred`.
+// Computes a deferred allowance at every pixel (a heatmap shows them all): e is then as if it
+// had been computed while drawing. Nothing to do without `deferred`.
 inline void complete_allowance(Expectation& e, int threads = 1) {
   if (!e.deferred) return;
   const Frame& f = e.frame;
-  std::vector<std::vector<float>>& components = e.allowed.components;
-  components.assign(f.components.size(), {});
-  parallel_for(int(components.size()), threads, [&](int k) {
-    std::vector<float>& values = components[size_t(k)];
+  Frame& a = e.allowed;
+  const bool depth = e.deferred->depth();
+  a.components.assign(f.components.size(), {});
+  // Channel kDepth (when deferred) first, then the components.
+  const int first = depth ? DeferredAllowance::kDepth : 0;
+  if (depth) {
+    a.width = f.width, a.height = f.height;
+    a.primitive = f.primitive;  // each drawn fragment's primitive, as render() keeps it
+  }
+  parallel_for(int(a.components.size()) - first, threads, [&](int item) {
+    const int k = item + first;
+    std::vector<float>& values = k == DeferredAllowance::kDepth ? a.depth : a.components[size_t(k)];
     resize_large(values, f.pixel_count());
     for (int y = 0; y < f.height; ++y)
       e.deferred->at(f, k, f.index(0, y), f.width, values.data() + f.index(0, y));

@@ -83,11 +83,24 @@ std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int 
   return components_[k].range(px0, px1, py, value_lo, value_hi, delta, extra, condition, distances);
 }
 
+std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, float z_lo,
+                                                     float z_hi) const {
+  if (eye_) return {0.0, INFINITY};
+  const auto delta = freedom_.range(px0, px1, py);
+  const auto condition = fan_.condition_range(px0 + 0.5, px1 + 0.5, py + 0.5);
+  const auto extra = freedom_.depth_range(px0, px1, py);
+  if (!(delta[0] >= 0) || !(condition[0] >= 0) || !(extra[0] >= 0)) return {0.0, INFINITY};
+  Anchors::RunDistances distances;
+  anchors_.distances(px0, px1, py, distances);
+  return depth_.range(px0, px1, py, z_lo, z_hi, delta, extra, condition, distances);
+}
+
 void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, float* out) const {
   constexpr int m = kRowBlock;
   const int y = int(first / size_t(frame.width)) + row0_;
   const int x0 = int(first % size_t(frame.width));
-  const float* values = frame.components[size_t(k)].data() + first;
+  const bool depth = k == kDepth;
+  const float* values = (depth ? frame.depth.data() : frame.components[size_t(k)].data()) + first;
   const int32_t* primitive = frame.primitive.data() + first;
   TriangleAllowance::Block block;
   for (int j = 0; j < n;) {
@@ -95,7 +108,7 @@ void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, floa
     const TriangleAllowance* t =
         p >= 0 && size_t(p) < triangles_.size() ? triangles_[size_t(p)].get() : nullptr;
     if (!t) {
-      out[j++] = 0.0f;  // nothing drawn (Frame's clear value)
+      out[j++] = depth ? 1.0f : 0.0f;  // nothing drawn (Frame's clear value)
       continue;
     }
     // The pixels of primitive p from j on, a block at most; lanes past them repeat the last.
@@ -108,8 +121,11 @@ void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, floa
       const int q = j + std::min(l, count - 1);
       px[l] = double(x0 + q), py[l] = double(y), value[l] = values[q];
     }
-    t->prepare(px, py, block, false);
-    t->component_at(block, size_t(k), value, allowed);
+    t->prepare(px, py, block, depth);
+    if (depth)
+      t->depth_at(block, value, allowed);
+    else
+      t->component_at(block, size_t(k), value, allowed);
     std::copy(allowed, allowed + count, out + j);
     j += count;
   }
@@ -120,6 +136,7 @@ std::array<double, 2> TriangleAllowances::range(int k, int32_t p, int x0, int x1
   const TriangleAllowance* t =
       p >= 0 && size_t(p) < triangles_.size() ? triangles_[size_t(p)].get() : nullptr;
   if (!t) return {0.0, INFINITY};
+  if (k == kDepth) return t->depth_range(x0, x1, y + row0_, value_lo, value_hi);
   return t->component_range(size_t(k), x0, x1, y + row0_, value_lo, value_hi);
 }
 

@@ -57,6 +57,9 @@ class TriangleAllowance {
   // [value_lo, value_hi] (Allowance::range).
   std::array<double, 2> component_range(size_t k, int px0, int px1, int py, float value_lo,
                                         float value_hi) const;
+  // The same of depth_at(), the depths z in [z_lo, z_hi] (depth_extra bounded by
+  // PositionFreedom::depth_range).
+  std::array<double, 2> depth_range(int px0, int px1, int py, float z_lo, float z_hi) const;
 
  private:
   PositionFreedom freedom_;
@@ -70,10 +73,13 @@ class TriangleAllowance {
 };
 
 // The DeferredAllowance of a frame whose row 0 is window row `row0`, from the triangles that
-// drew it, by primitive: each added (add()) before anything asks for its pixels.
+// drew it, by primitive: each added (add()) before anything asks for its pixels. `depth`: the
+// depth's allowance deferred too (DeferredAllowance::depth).
 class TriangleAllowances final : public DeferredAllowance {
  public:
-  TriangleAllowances(size_t triangles, int row0) : triangles_(triangles), row0_(row0) {}
+  TriangleAllowances(size_t triangles, int row0, bool depth)
+      : triangles_(triangles), row0_(row0), depth_(depth) {}
+  bool depth() const override { return depth_; }
   // Primitive p's allowances; not while another thread asks for any.
   void add(size_t p, std::shared_ptr<const TriangleAllowance> t) {
     triangles_.at(p) = std::move(t);
@@ -86,6 +92,7 @@ class TriangleAllowances final : public DeferredAllowance {
  private:
   std::vector<std::shared_ptr<const TriangleAllowance>> triangles_;
   int row0_;
+  bool depth_;
 };
 
 }  // namespace glrc::ref

@@ -114,11 +114,15 @@ class PositionFreedom {
   void at(const double* px, const double* py, double* out) const;
   void depth_at(const double* px, const double* py, double* out) const;
   void weight_at(const double* px, const double* py, double* out) const;
-  // Bounds {lo, hi} of what at() and weight_at() give at the centres of pixels px0..px1 of row
-  // py (px0 <= px1): lo <= each <= hi. The weight's hi is infinite where the envelope of 1/w_c
-  // may reach 0 on the run.
+  // Bounds {lo, hi} of what at(), weight_at() and depth_at() give at the centres of pixels px0..px1
+  // of row py (px0 <= px1): lo <= each <= hi. The weight's hi is infinite where the envelope of
+  // 1/w_c may reach 0 on the run.
   std::array<double, 2> range(int px0, int px1, int py) const;
   std::array<double, 2> weight_range(int px0, int px1, int py) const;
+  // The same of depth_at().
+  std::array<double, 2> depth_range(int px0, int px1, int py) const {
+    return depth_.range(px0 + 0.5, px1 + 0.5, py + 0.5);
+  }
   // Freedom of z_w at the pixel from the clipping of depth (0 for an unclipped triangle).
   double depth_at(int px, int py) const;
   // Freedom of z_n at the pixel where the near and far planes decide coverage: clipping

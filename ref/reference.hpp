@@ -34,8 +34,10 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
                  Reference&& storage);
 
 // render(c, m, freedom_bits, threads, storage) with the components' allowances deferred
-// (Expectation::deferred): computed where a comparison asks for them, bit for bit render()'s,
-// not at every pixel drawn; the result's allowed frame holds the depth's only (and the
+// (Expectation::deferred), and the depth's too in a case without a depth test
+// (DepthFunc::always: no fragment may win it instead of another, so drawing needs no depth
+// allowance): computed where a comparison asks for them, bit for bit render()'s, not at every
+// pixel drawn; the result's allowed frame holds the depth's only, or nothing (and the
 // candidates their own, as render()'s), until complete_allowance (core/frame.hpp). Most pixels
 // of a frame compared need only a bound of their allowances over a run of pixels.
 Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,

@@ -51,6 +51,8 @@ struct Settings {
   // With a deferred allowance: the components' allowances are not drawn (only those of the
   // depth test's candidates), and each triangle's are kept here instead.
   TriangleAllowances* deferred = nullptr;
+  // The depth's allowance deferred too: no depth test needs it while drawing.
+  bool deferred_depth = false;
 };
 
 // Fragments that may win the depth test instead of the reference's, by pixel.
@@ -242,9 +244,13 @@ class FragmentBlocks {
       const int k = std::min(j, count - 1);
       x[j] = double(px_[k]), y[j] = double(py_[k]);
     }
-    a.prepare(x, y, block_);
     w.depth.at(x, y, z_);
-    a.depth_at(block_, z_, z_allowed_);
+    if (!s.deferred_depth) {
+      a.prepare(x, y, block_);
+      a.depth_at(block_, z_, z_allowed_);
+    } else if (w.clipped) {
+      a.freedom().at(x, y, block_.delta);  // for the viewport's sides below
+    }
     // The depth test, pixel by pixel: which fragments need their values and allowances.
     int needed = 0, losers = 0;
     for (int j = 0; j < count; ++j) {
@@ -287,8 +293,10 @@ class FragmentBlocks {
       f.primitive[i] = p;
       f.depth[i] = z;
       ++f.fragments[i];
-      r.allowed.primitive[i] = p;
-      r.allowed.depth[i] = z_allowed;
+      if (!s.deferred_depth) {
+        r.allowed.primitive[i] = p;
+        r.allowed.depth[i] = z_allowed;
+      }
       role_[j] = Role::winner;
       ++needed;
     }
@@ -616,14 +624,18 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   // The components are cleared where nothing is drawn once everything is (clear_uncovered):
   // every fragment drawn writes all of them, in the frame and in the allowance alike.
   r.frame.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
-  if (allowance)
+  // Without a depth test, no fragment may win it instead of another (no candidates), and the
+  // depth's allowance is only compared: deferred with the components'.
+  const bool deferred_depth = deferred && c.depth_func == DepthFunc::always;
+  if (allowance && !deferred_depth) {
     r.allowed.reset_uncleared_components(c.fb_width, row_count, deferred ? 0 : c.component_count(),
                                          threads);
-  else
+  } else {
     r.allowed = Frame();
+  }
   r.deferred.reset();
   std::shared_ptr<TriangleAllowances> kept;
-  if (deferred) kept = std::make_shared<TriangleAllowances>(c.triangles.size(), y0);
+  if (deferred) kept = std::make_shared<TriangleAllowances>(c.triangles.size(), y0, deferred_depth);
   r.candidates.clear();
   if (!edges) r.edges = {};
   Frame& f = r.frame;
@@ -644,7 +656,8 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
              viewport_box(c),
              {},
              y0,
-             kept.get()};
+             kept.get(),
+             deferred_depth};
   // Only the rows asked for: what a triangle does elsewhere changes nothing in them.
   s.viewport.y0 = std::max(s.viewport.y0, y0);
   s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);

@@ -65,8 +65,8 @@ Case quad(int size, int count, unsigned seed) {
   return casefile::parse(text, "test", "deferred_quad_" + std::to_string(size));
 }
 
-// The reference's frame with errors planted: a few pixels far beyond any allowance, a few
-// values one float step away, NaN at one pixel.
+// The reference's frame with errors planted, in the components and in the depth: a few pixels
+// far beyond any allowance, a few values one float step away, NaN at one pixel.
 Frame planted(const Frame& reference, unsigned seed) {
   Frame f = reference;
   std::mt19937 rng(seed);
@@ -77,7 +77,12 @@ Frame planted(const Frame& reference, unsigned seed) {
     const size_t i = pixel(rng);
     channel[i] = n % 3 == 0 ? channel[i] + 1.0f : std::nextafter(channel[i], INFINITY);
   }
+  for (int n = 0; n < 60; ++n) {
+    const size_t i = pixel(rng);
+    f.depth[i] = n % 3 == 0 ? f.depth[i] * 0.5f : std::nextafter(f.depth[i], 0.0f);
+  }
   f.components[0][pixel(rng)] = NAN;
+  f.depth[pixel(rng)] = NAN;
   return f;
 }
 
@@ -93,6 +98,10 @@ void expect_same_results(const Case& c, const std::vector<Frame>& frames,
   Expectation deferred = ref::render_deferred(c, options.model, freedom_bits(options, 8), 1);
   ASSERT_TRUE(deferred.deferred) << c.name;
   EXPECT_TRUE(deferred.allowed.components.empty()) << c.name;
+  // The depth's too, where no depth test needs it while drawing.
+  const bool depth = c.depth_func == DepthFunc::always;
+  EXPECT_EQ(deferred.deferred->depth(), depth) << c.name;
+  EXPECT_EQ(deferred.allowed.depth.empty(), depth) << c.name;
   const Tolerance t = tolerance_for(c, options, 8);
   for (size_t n = 0; n < frames.size(); ++n) {
     EXPECT_EQ(json_of(compare::compare(c, deferred, frames[n], t, 2)),
@@ -131,7 +140,7 @@ TEST(DeferredAllowance, ALargeFrameGetsTheSameResultsAsTheAllowanceAtEveryPixel)
 }
 
 // Every run of `length` pixels of one primitive in a row: lo <= each allowance <= hi, for the
-// run's least and largest values.
+// run's least and largest values; of every component, and of the depth where it is deferred.
 size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
   const CheckOptions o;
   const Expectation e = ref::render_deferred(c, o.model, freedom_bits(o, 8), 2);
@@ -139,18 +148,21 @@ size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
   if (!e.deferred) return 0;
   const Frame& f = e.frame;
   size_t runs = 0, tight = 0;
-  for (int k = 0; k < int(f.components.size()); ++k)
+  const int first = e.deferred->depth() ? DeferredAllowance::kDepth : 0;
+  for (int k = first; k < int(f.components.size()); ++k)
     for (int y = 0; y < f.height; ++y)
       for (int x0 = 0; x0 < f.width; x0 += length / 4) {
+        const std::vector<float>& values =
+            k == DeferredAllowance::kDepth ? f.depth : f.components[size_t(k)];
         const int x1 = std::min(f.width, x0 + length) - 1;
         const int32_t p = f.primitive[f.index(x0, y)];
         bool one = p >= 0;
         float lo = INFINITY, hi = -INFINITY;
         for (int x = x0; x <= x1 && one; ++x) {
           const size_t i = f.index(x, y);
-          one = f.primitive[i] == p && std::isfinite(f.components[size_t(k)][i]);
-          lo = std::min(lo, f.components[size_t(k)][i]);
-          hi = std::max(hi, f.components[size_t(k)][i]);
+          one = f.primitive[i] == p && std::isfinite(values[i]);
+          lo = std::min(lo, values[i]);
+          hi = std::max(hi, values[i]);
         }
         if (!one) continue;
         const auto range = e.deferred->range(k, p, x0, x1, y, lo, hi);
@@ -195,7 +207,11 @@ TEST(DeferredAllowance, IsUsedWhereTrianglesAreLargeAndThereAreComponents) {
 }
 
 TEST(DeferredAllowance, ARunsBoundsHoldEveryAllowanceOfIt) {
-  EXPECT_GT(expect_ranges_hold(quad(256, 2, 3), 64, 2.0), 10000u);
+  // Twelve channels (2 vec4, the noperspective pair, the flat one, whose bounds are 0 and 0,
+  // and the depth) of 256 rows, each of 13 runs, but those that cross the quad's diagonal.
+  const Case large = quad(256, 2, 3);
+  ASSERT_EQ(large.depth_func, DepthFunc::always);
+  EXPECT_GT(expect_ranges_hold(large, 64, 2.0), 12 * 256u * 12u);
   size_t runs = 0;
   for (const Case& c : suite_cases())
     if (c.component_count() > 0) runs += expect_ranges_hold(c, 8, 0);
