@@ -860,25 +860,25 @@ Comparator::ChannelBounds run_bounds(const DeferredAllowance& deferred,
   Comparator::ChannelBounds out;
   out.runs.resize(plain_runs.size());
   size_t plain = 0;
-  std::vector<size_t> sampled;
+  struct Sampled {
+    size_t run;
+    int x, row;
+  };
+  std::vector<Sampled> sampled;
   for (int row = 0; row < reference.height; ++row)
     for (int r = 0; r < reference.width / kRun; ++r) {
       const size_t run = size_t(row) * size_t(runs) + size_t(r);
-      if (plain_runs[run] >= 0 && plain++ % kSampledRuns == 0) sampled.push_back(run);
+      if (plain_runs[run] >= 0 && plain++ % kSampledRuns == 0)
+        sampled.push_back({run, r * kRun, row});
     }
   const float* values = channel_values(reference, k);
-  const auto first_of = [&](size_t run) {
-    return reference.index(int(run % size_t(runs)) * kRun, int(run / size_t(runs)));
-  };
   for (size_t s = 0; s < sampled.size(); ++s) {
     // The runs sampled are four apart: their values are in no cache line the processor
     // fetches ahead by itself (assume_floors' samples too).
-    const float* ahead =
-        values + first_of(sampled[std::min(s + kPrefetchAhead, sampled.size() - 1)]);
+    const Sampled& ahead = sampled[std::min(s + kPrefetchAhead, sampled.size() - 1)];
     for (int line = 0; line < kRun; line += 16)
-      __builtin_prefetch(ahead + line);
-    const size_t run = sampled[s];
-    const int row = int(run / size_t(runs)), x = int(run % size_t(runs)) * kRun;
+      __builtin_prefetch(values + reference.index(ahead.x + line, ahead.row));
+    const auto [run, x, row] = sampled[s];
     const int32_t p = plain_runs[run];
     Comparator::RunBounds& b = out.runs[run];
     find_run_bounds(deferred, reference, k, p, x, row, b);
@@ -907,10 +907,8 @@ void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl,
   if (const DeferredAllowance* deferred = allowance.deferred())
     bounds = run_bounds(*deferred, st.plain_runs, st.ulps, reference, k);
   ChannelBounds* known = bounds ? &*bounds : nullptr;
-  assume_floors(acc, st.plain_runs, st.ulps, allowance, reference,
-                k == kDepth ? gl.depth.data() : gl.components[size_t(k)].data(),
-                k == kDepth ? reference.depth.data() : reference.components[size_t(k)].data(), k,
-                known);
+  assume_floors(acc, st.plain_runs, st.ulps, allowance, reference, channel_values(gl, k),
+                channel_values(reference, k), k, known);
   add_channel(expected, gl, 0, k, known);
   if (acc.ulps.complete() && acc.ratios.complete()) return;
   acc = before;
@@ -926,14 +924,13 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   const size_t slot = size_t(k + 1);
   ChannelAccumulator& acc = st.channels[slot];
   Tally t = acc.tally;
-  const bool depth = k == kDepth;
   const ChannelAllowance allowance(c, expected, tolerance, k);
   if (!allowance.per_pixel()) st.fixed_ulps[slot] = allowance.fixed_ulps();
   // The reference's own fragments (nearly every compared pixel) read through pointers taken
   // once: the loop's stores (the tally, LargestValues) could alias a vector's members, and its
   // data pointer would be loaded again at every pixel. A candidate goes through Judged.
-  const float* gl_values = depth ? gl.depth.data() : gl.components[size_t(k)].data();
-  const float* own_values = depth ? reference.depth.data() : reference.components[size_t(k)].data();
+  const float* gl_values = channel_values(gl, k);
+  const float* own_values = channel_values(reference, k);
   const int32_t* own_primitive = reference.primitive.data();
   const uint8_t* judged_as = st.judgement.data();
   const float* own_allowed = allowance.per_pixel_values();

@@ -85,23 +85,20 @@ struct Frame {
     width = w, height = h;
     components.resize(size_t(std::max(component_count, 0)));
     fragments.clear();
+    // Each buffer filled with its clear value, or only sized.
+    const auto make_buffer = [&](auto& v, auto clear_value, bool filled) {
+      if (filled)
+        assign_large(v, pixel_count(), clear_value);
+      else
+        resize_large(v, pixel_count());
+    };
     parallel_for(2 + int(components.size()), threads, [&](int b) {
-      if (clear == Clear::nothing) {
-        if (b == 0)
-          resize_large(primitive, pixel_count());
-        else if (b == 1)
-          resize_large(depth, pixel_count());
-        else
-          resize_large(components[size_t(b - 2)], pixel_count());
-      } else if (b == 0) {
-        assign_large(primitive, pixel_count(), kNoPrimitive);
-      } else if (b == 1) {
-        assign_large(depth, pixel_count(), 1.0f);
-      } else if (clear == Clear::everything) {
-        assign_large(components[size_t(b - 2)], pixel_count(), 0.0f);
-      } else {
-        resize_large(components[size_t(b - 2)], pixel_count());
-      }
+      if (b == 0)
+        make_buffer(primitive, kNoPrimitive, clear != Clear::nothing);
+      else if (b == 1)
+        make_buffer(depth, 1.0f, clear != Clear::nothing);
+      else
+        make_buffer(components[size_t(b - 2)], 0.0f, clear == Clear::everything);
     });
   }
 };
