@@ -383,11 +383,17 @@ Case float_case(const char* name, int width, int height) {
 // comparator takes at once and the pixels it takes one by one must give the same figures, bit
 // for bit, under the specification's allowance per pixel, a fixed number of ULPs and exact
 // mode. The percentiles' kept values are compacted many times (about 5,000 values, the largest
-// 1% and 16 kept), in the middle of runs too.
-TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
+// 1% and 16 kept), in the middle of runs too. `largest`: the largest value of primitive 1, 700
+// (its ulp is another than primitive 0's, whose largest is 3) or 3.5 (the same ulp: a run where
+// the two meet is taken at once too).
+void expect_runs_give_a_plain_count(float largest) {
   Case c = float_case("runs", 150, 40);
-  c.vertices = {{{-1, -1, 0, 1}, {0.25f}}, {{1, -1, 0, 1}, {3.0f}},   {{-1, 1, 0, 1}, {1.0f}},
-                {{1, 1, 0, 1}, {700.0f}},  {{1, -1, 0, 1}, {-90.0f}}, {{-1, 1, 0, 1}, {5.0f}}};
+  c.vertices = {{{-1, -1, 0, 1}, {0.25f}},
+                {{1, -1, 0, 1}, {3.0f}},
+                {{-1, 1, 0, 1}, {1.0f}},
+                {{1, 1, 0, 1}, {largest}},
+                {{1, -1, 0, 1}, {-90.0f * largest / 700}},
+                {{-1, 1, 0, 1}, {5.0f * largest / 700}}};
   c.triangles = {{0, 1, 2}, {3, 4, 5}};
   std::mt19937 random(21);
   std::uniform_real_distribution<float> unit(0, 1);
@@ -399,7 +405,7 @@ TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
       if ((x + 3 * y) % 97 == 7) continue;
       ref.primitive[i] = x > 60 + y ? 1 : 0;
       ref.depth[i] = unit(random);
-      ref.components[0][i] = (ref.primitive[i] ? 700.0f : 3.0f) * (unit(random) - 0.3f);
+      ref.components[0][i] = (ref.primitive[i] ? largest : 3.0f) * (unit(random) - 0.3f);
       allowed.depth[i] = 1e-6f * unit(random);
       allowed.components[0][i] = (ref.primitive[i] ? 1e-4f : 1e-6f) * unit(random);
     }
@@ -417,6 +423,7 @@ TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
   }
   const std::vector<uint8_t> edges(ref.pixel_count(), 0);
   const UlpTable table(c);
+  ASSERT_EQ(table.ulp(0, 0) == table.ulp(1, 0), largest < 4);
   for (const ToleranceMode mode : {ToleranceMode::spec, ToleranceMode::ulps, ToleranceMode::exact})
     for (int k : {kDepth, 0}) {
       Tolerance tolerance;
@@ -486,6 +493,14 @@ TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
       EXPECT_EQ(ch.worst[0].y, worst.y) << ch.name;
       EXPECT_EQ(ch.worst[0].ratio, worst.ratio) << ch.name;
     }
+}
+
+TEST(Compare, RunsAndSinglePixelsGiveTheFiguresOfAPlainCount) {
+  expect_runs_give_a_plain_count(700.0f);
+}
+
+TEST(Compare, RunsWherePrimitivesOfOneUlpMeetGiveTheFiguresOfAPlainCount) {
+  expect_runs_give_a_plain_count(3.5f);
 }
 
 // The coverage pass runs on blocks of rows at once: its figures, and the first mismatches kept
