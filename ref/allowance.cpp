@@ -205,9 +205,30 @@ Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator,
 }
 
 Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-                     double values, const Anchors& anchors)
-    : spread_(spread), values_(values), shared_(&anchors) {
+                     double values, const Anchors& anchors, const PositionReach& reach)
+    : spread_(spread), values_(values), reach_(reach), shared_(&anchors) {
   set_planes(numerator, denominator);
+}
+
+// The derivation's position term: the larger of 1.5 times the first order and the exact bound
+// over the points q within h of p, at most the spread. Selections, not branches: the block form
+// is vectorized (and the exact bound's division is made in every lane, then chosen).
+[[gnu::always_inline]] inline double Allowance::position(double px, double py, double v, double d,
+                                                         double delta) const {
+  // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
+  const double a = an_ - v * ad_, b = bn_ - v * bd_;
+  const double vx = a / d, vy = b / d;
+  const double first = 1.5 * delta * (std::fabs(vx) + std::fabs(vy));
+  const double h = reach_.at(delta);
+  const double gd = abs_ad_ + abs_bd_;
+  const double numerator =
+      h * ((std::fabs(a) + std::fabs(b)) + (0x1p-23 * std::fabs(v) + 0x1p-149) * gd);
+  const double terms_d = abs_ad_ * std::fabs(px) + std::fabs(bd_ * py) + std::fabs(cd_);
+  const double below = (std::fabs(d) - 0x1p-50 * terms_d) - h * gd;
+  const double exact = (1 + 0x1p-30) * (numerator / below);
+  const double bound = below > 0x1p-20 * std::fabs(d) ? exact : INFINITY;
+  const double moved = first < bound ? bound : first;  // std::max(first, bound)
+  return spread_ < moved ? spread_ : moved;            // std::min(moved, spread_)
 }
 
 double Allowance::at(int px, int py, float value, double delta, double extra,
@@ -222,9 +243,7 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   const double v = double(value);
   const double d = ad_ * px + bd_ * py + cd_;
   if (!(std::fabs(d) > 0) || !std::isfinite(v)) return std::numeric_limits<double>::infinity();
-  // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
-  const double vx = (an_ - v * ad_) / d, vy = (bn_ - v * bd_) / d;
-  const double position = std::min(1.5 * delta * (std::fabs(vx) + std::fabs(vy)), spread_);
+  const double moved = position(px, py, v, d, delta);
   // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor;
   // and set up from a fan triangle anchored at a polygon vertex.
   const double abs_v = std::fabs(v);
@@ -241,7 +260,7 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   }
   const double evaluation = kEvaluationRoundings * kFloatUnitRoundoff * terms / std::fabs(d);
   const double set_up = kSetupRoundings * kFloatUnitRoundoff * condition * setup / std::fabs(d);
-  return position + evaluation + set_up + values_ + extra;
+  return moved + evaluation + set_up + values_ + extra;
 }
 
 std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo, float value_hi,
@@ -272,18 +291,34 @@ std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo,
   if (!(abs_d[0] > 0)) return kUnknown;
   const double v_most = std::max(std::fabs(v_lo), std::fabs(v_hi));
   const auto abs_v = magnitude({v_lo, v_hi});
-  // (a - v·b)/d for the gradient's components: linear in v.
-  const auto gradient = [&](double a, double b) -> std::array<double, 2> {
-    const auto r = magnitude(
+  // |a - v·b| of the gradient's numerators A and B (linear in v), and (a - v·b)/d.
+  const auto numerator = [&](double a, double b) {
+    return magnitude(
         linear(a - v_lo * b, a - v_hi * b, 0x1p-50 * (std::fabs(a) + v_most * std::fabs(b))));
-    return {r[0] / abs_d[1], r[1] / abs_d[0]};
   };
-  const auto vx = gradient(an_, ad_), vy = gradient(bn_, bd_);
-  const double moved_lo = 1.5 * delta[0] * (vx[0] + vy[0]);
-  const double moved_hi = 1.5 * delta[1] * (vx[1] + vy[1]);
+  const auto num_a = numerator(an_, ad_), num_b = numerator(bn_, bd_);
+  const std::array<double, 2> vx{num_a[0] / abs_d[1], num_a[1] / abs_d[0]};
+  const std::array<double, 2> vy{num_b[0] / abs_d[1], num_b[1] / abs_d[0]};
+  const double first_lo = 1.5 * delta[0] * (vx[0] + vy[0]);
+  const double first_hi = 1.5 * delta[1] * (vx[1] + vy[1]);
+  const double gn = abs_an_ + abs_bn_, gd = abs_ad_ + abs_bd_;
+  // The exact bound's operands, each monotone, in position()'s order.
+  const double h_lo = reach_.at(delta[0]), h_hi = reach_.at(delta[1]);
+  const double n_lo = h_lo * ((num_a[0] + num_b[0]) + (0x1p-23 * abs_v[0] + 0x1p-149) * gd);
+  const double n_hi = h_hi * ((num_a[1] + num_b[1]) + (0x1p-23 * abs_v[1] + 0x1p-149) * gd);
+  const double x_least = x0 <= 0 && x1 >= 0 ? 0.0 : std::min(std::fabs(x0), std::fabs(x1));
+  const double terms_d_lo = abs_ad_ * x_least + std::fabs(bd_ * y) + std::fabs(cd_);
+  const double terms_d_hi = abs_ad_ * x_most + std::fabs(bd_ * y) + std::fabs(cd_);
+  const double below_lo = (abs_d[0] - 0x1p-50 * terms_d_hi) - h_hi * gd;
+  const double below_hi = (abs_d[1] - 0x1p-50 * terms_d_lo) - h_lo * gd;
+  // Infinite at a pixel whose denominator is below 2^-20·|d|: above any lo, and hi only where
+  // none is.
+  const double bound_lo = below_hi > 0 ? (1 + 0x1p-30) * (n_lo / below_hi) : 0.0;
+  const double bound_hi =
+      below_lo > 0x1p-20 * abs_d[1] ? (1 + 0x1p-30) * (n_hi / below_lo) : INFINITY;
+  const double moved_lo = std::max(first_lo, bound_lo), moved_hi = std::max(first_hi, bound_hi);
   const double position_lo = spread_ < moved_lo ? spread_ : moved_lo;
   const double position_hi = spread_ < moved_hi ? spread_ : moved_hi;
-  const double gn = abs_an_ + abs_bn_, gd = abs_ad_ + abs_bd_;
   const double g_lo = gn + abs_v[0] * gd, g_hi = gn + abs_v[1] * gd;
   const Anchors& a = anchors();
   double terms_lo = 0, terms_hi = 0, setup_lo = 0, setup_hi = 0;
@@ -374,10 +409,8 @@ std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo,
   store(terms0, terms1, terms);
   store(setup0, setup1, setup);
   for (int j = 0; j < n; ++j) {
-    const double vx = (an_ - v[j] * ad_) / d[j], vy = (bn_ - v[j] * bd_) / d[j];
-    // std::min(moved, spread_) and the early return, as selections (no branch: vectorized).
-    const double moved = 1.5 * delta[j] * (std::fabs(vx) + std::fabs(vy));
-    const double position = spread_ < moved ? spread_ : moved;
+    // The early return, as a selection below (no branch: vectorized).
+    const double position = this->position(px[j], py[j], v[j], d[j], delta[j]);
     const double evaluation =
         kEvaluationRoundings * kFloatUnitRoundoff * terms[j] / std::fabs(d[j]);
     const double set_up =

@@ -6,10 +6,27 @@
 // arithmetic), and the freedom at a pixel is δ = Σ λ_j δ_j over the polygon's vertices (the
 // largest over every triangulation). Moving vertex j by d_j changes the screen barycentrics at
 // a fixed pixel by dλ_i = -λ_j ∇λ_i·d_j, and so the value v (smooth, noperspective or depth
-// alike) by dv = -λ_j ∇v·d_j; with the λ_j >= 0 summing to 1:
-//     |dv| <= δ·(|∂v/∂x| + |∂v/∂y|)        (first order; times 1.5 for the second)
-// and never more than the spread of the triangle's vertex values, since every legal value is a
-// convex combination of them. Depth adds the z_w freedom of clipped vertices (freedom.hpp).
+// alike) by dv = -λ_j ∇v·d_j; with the λ_j >= 0 summing to 1, to first order:
+//     |dv| <= δ·(|∂v/∂x| + |∂v/∂y|)
+// Exactly: the moved vertices q_j + d_j draw at the pixel centre p the exact value at the point
+// q = p - Σ λ'_j d_j, where λ' are p's barycentrics in the moved triangle, which are q's in the
+// exact one (the vertices' values are the same). So |q - p| <= Σ λ'_j δ_j = δ(q) in x and in y,
+// and with L the slope of δ (PositionFreedom::slope), |q - p| <= h = min(δ(p)/(1 - L), the
+// largest δ) (PositionReach). N and D are linear in the window position, so
+// v(q) - v(p) = (A·(q_x - p_x) + B·(q_y - p_y)) / D(q), with A = N_x - v·D_x, B = N_y - v·D_y
+// and |D(q)| >= |D(p)| - h·(|D_x| + |D_y|):
+//     |dv| <= h·(|A| + |B|) / (|D| - h·(|D_x| + |D_y|))   where that denominator is > 0
+// and any value the vertices span where it is not. Near a vertex whose w_c is close to 0, D
+// changes fast and this is many times the first order (found by fuzz on a GPU: a smooth value
+// 0.0037 that snapping one vertex by 0.0017 px moves to 0.0185, five times the first order).
+// The allowance takes the larger of 1.5 times the first order (its bound before the exact one:
+// kept where it is larger, so that no allowance shrinks) and the exact bound, and never more
+// than the spread of the triangle's vertex values, since every legal value is a convex
+// combination of them. In doubles, with the reference's value v rounded to float: |A| + |B|
+// gets (2^-23·|v| + 2^-149)·(|D_x| + |D_y|) more; D at p, computed from its terms, 2^-50 of their
+// magnitudes less; a denominator below 2^-20·|D| counts as 0; and 2^-30 of the bound more
+// covers the doubles' own roundings. Depth adds the z_w freedom of clipped vertices
+// (freedom.hpp).
 //
 // Arithmetic. The planes N = Σ λ_i a_i and D = Σ λ_i b_i (a = v/w, b = 1/w for smooth;
 // a = v, b = 1 for noperspective and depth) evaluated in float32 from an anchor point, and the
@@ -182,6 +199,24 @@ class Anchors {
   size_t count_ = 0;
 };
 
+// How far from a pixel centre p, in x and in y, the point q lies whose exact value moved
+// vertices draw at p (the position term above): h = min(max(δ·scale, floor), most) pixels for
+// the freedom δ at p. of(L, largest): scale = 1/(1 - L) for δ's slope L < 1
+// (PositionFreedom::slope), else the largest δ anywhere. The default, h = δ, is for a δ the
+// same everywhere.
+struct PositionReach {
+  double scale = 1, floor = 0, most = std::numeric_limits<double>::infinity();
+  static PositionReach of(double slope, double largest) {
+    if (slope < 1) return {1 / (1 - slope), 0, largest};
+    return {0, largest, largest};
+  }
+  double at(double delta) const {
+    const double scaled = delta * scale;
+    const double h = scaled < floor ? floor : scaled;  // std::max, as a selection
+    return most < h ? most : h;
+  }
+};
+
 // The allowance of one interpolated channel (a varying component or depth) over one triangle.
 class Allowance {
  public:
@@ -196,9 +231,9 @@ class Allowance {
   Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
             double values, const WindowPolygon& polygon = {}, const WindowPolygon& guard_band = {});
   // The same, its anchors given as the triangle's shared Anchors (kept by pointer: they must
-  // outlive it).
+  // outlive it), and `reach` the triangle's (PositionReach::of its PositionFreedom).
   Allowance(const LinearForm& numerator, const LinearForm& denominator, double spread,
-            double values, const Anchors& anchors);
+            double values, const Anchors& anchors, const PositionReach& reach = {});
   // At pixel (px, py), whose value is `value`: `delta` is the position freedom there
   // (PositionFreedom::at, pixels), `extra` any further absolute freedom there (depth:
   // PositionFreedom::depth_at), `condition` the setup's G(p) (FanTriangles::condition).
@@ -235,6 +270,9 @@ class Allowance {
 
  private:
   void set_planes(const LinearForm& numerator, const LinearForm& denominator);
+  // The position term at pixel (px, py) of value v, where D computed is d and the freedom is
+  // delta: at()'s and the block at()'s, one body.
+  double position(double px, double py, double v, double d, double delta) const;
   void block_at(const double* px, const double* py, const float* value, const double* delta,
                 const double* extra, const double* condition,
                 const Anchors::RowDistances& distances, double* result) const;
@@ -242,6 +280,7 @@ class Allowance {
   double an_ = 0, bn_ = 0, cn_ = 0, ad_ = 0, bd_ = 0, cd_ = 0;
   double abs_an_ = 0, abs_bn_ = 0, abs_ad_ = 0, abs_bd_ = 0;
   double spread_ = 0, values_ = 0;
+  PositionReach reach_;
   const Anchors& anchors() const { return shared_ ? *shared_ : own_; }
 
   Anchors own_;                      // when built from the polygons

@@ -17,19 +17,20 @@ void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
   fan_ = FanTriangles(freedom_.polygon(), freedom_.largest());
   anchors_ = Anchors(freedom_.polygon(), freedom_.guard_band_triangle());
   const int generations = freedom_.generations();
+  const PositionReach reach = PositionReach::of(freedom_.slope(), freedom_.largest());
   components_.clear();
   components_.reserve(planes.size());
   for (const ComponentPlane& cp : planes) {
     components_.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
-                             value_freedom(c, t, cp.scale, generations), anchors_);
+                             value_freedom(c, t, cp.scale, generations), anchors_, reach);
     spread_.push_back(cp.spread);
     flat_.push_back(cp.flat);
   }
   smooth_.assign(smooth.begin(), smooth.end());
   const double n = c.depth_near, f = c.depth_far;
-  depth_ =
-      Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
-                value_freedom(c, t, std::max(std::fabs(n), std::fabs(f)), generations), anchors_);
+  depth_ = Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
+                     value_freedom(c, t, std::max(std::fabs(n), std::fabs(f)), generations),
+                     anchors_, reach);
 }
 
 void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bool depth) const {

@@ -56,7 +56,10 @@ ConcaveEnvelope::ConcaveEnvelope(const std::vector<std::array<double, 3>>& point
             break;
           }
         }
-        if (facet) planes_.push_back({a, b, c});
+        if (facet) {
+          planes_.push_back({a, b, c});
+          slope_ = std::max(slope_, std::fabs(a) + std::fabs(b));
+        }
       }
 }
 

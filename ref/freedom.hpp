@@ -72,10 +72,15 @@ class ConcaveEnvelope {
   // rounding is allowed for.
   std::array<double, 2> range(double x0, double x1, double y) const;
   double largest() const { return hi_; }
+  // The largest |a| + |b| of its planes (0 for none): at() at (x', y') is at most at() at
+  // (x, y) plus slope()·max(|x' - x|, |y' - y|), since the plane that is least at (x, y)
+  // bounds every plane's least at (x', y') from above, and at() is the least plane clamped to
+  // [lo, hi], so never below lo.
+  double slope() const { return slope_; }
 
  private:
   std::vector<std::array<double, 3>> planes_;  // a·x + b·y + c
-  double lo_ = 0, hi_ = 0;
+  double lo_ = 0, hi_ = 0, slope_ = 0;
 };
 
 // One vertex of the polygon an implementation rasterizes, with the freedom it has.
@@ -141,6 +146,8 @@ class PositionFreedom {
   int generations() const { return generations_; }
   // The largest δ of any vertex: how far any edge can move.
   double largest() const;
+  // The largest slope() of the δ envelopes at() takes the larger of.
+  double slope() const { return std::max(delta_[0].slope(), delta_[1].slope()); }
   // What an implementation may rasterize, as window positions: the clipped polygon (the
   // triangle itself when nothing is clipped; empty when nothing is left), and the triangle
   // itself when a guard-band rasterizer would draw it unclipped (else empty).
