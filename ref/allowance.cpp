@@ -210,11 +210,13 @@ Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator,
   set_planes(numerator, denominator);
 }
 
-// The derivation's position term: the larger of 1.5 times the first order and the exact bound
-// over the points q within h of p, at most the spread. Selections, not branches: the block form
-// is vectorized (and the exact bound's division is made in every lane, then chosen).
-[[gnu::always_inline]] inline double Allowance::position(double px, double py, double v, double d,
-                                                         double delta) const {
+// The derivation's position term, in two parts: the first order times 1.5, the exact bound over
+// the points within h of p (its denominator's test apart), and then their larger, at most the
+// spread. The block form computes the parts of every lane in one loop and chooses in another:
+// a choice between the exact bound and infinity in one loop would move the bound's division
+// into a branch, which is not vectorized (it might trap).
+[[gnu::always_inline]] inline Allowance::PositionParts Allowance::position_parts(
+    double px, double py, double v, double d, double delta) const {
   // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
   const double a = an_ - v * ad_, b = bn_ - v * bd_;
   const double vx = a / d, vy = b / d;
@@ -225,10 +227,13 @@ Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator,
       h * ((std::fabs(a) + std::fabs(b)) + (0x1p-23 * std::fabs(v) + 0x1p-149) * gd);
   const double terms_d = abs_ad_ * std::fabs(px) + std::fabs(bd_ * py) + std::fabs(cd_);
   const double below = (std::fabs(d) - 0x1p-50 * terms_d) - h * gd;
-  const double exact = (1 + 0x1p-30) * (numerator / below);
-  const double bound = below > 0x1p-20 * std::fabs(d) ? exact : INFINITY;
-  const double moved = first < bound ? bound : first;  // std::max(first, bound)
-  return spread_ < moved ? spread_ : moved;            // std::min(moved, spread_)
+  return {first, (1 + 0x1p-30) * (numerator / below), double(below > 0x1p-20 * std::fabs(d))};
+}
+
+[[gnu::always_inline]] inline double Allowance::position(const PositionParts& p) const {
+  const double bound = p.defined != 0 ? p.exact : INFINITY;
+  const double moved = p.first < bound ? bound : p.first;  // std::max(first, bound)
+  return spread_ < moved ? spread_ : moved;                // std::min(moved, spread_)
 }
 
 double Allowance::at(int px, int py, float value, double delta, double extra,
@@ -243,7 +248,7 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   const double v = double(value);
   const double d = ad_ * px + bd_ * py + cd_;
   if (!(std::fabs(d) > 0) || !std::isfinite(v)) return std::numeric_limits<double>::infinity();
-  const double moved = position(px, py, v, d, delta);
+  const double moved = position(position_parts(px, py, v, d, delta));
   // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor;
   // and set up from a fan triangle anchored at a polygon vertex.
   const double abs_v = std::fabs(v);
@@ -408,9 +413,14 @@ std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo,
   }
   store(terms0, terms1, terms);
   store(setup0, setup1, setup);
+  double first[n], exact[n], defined[n];
+  for (int j = 0; j < n; ++j) {
+    const PositionParts p = position_parts(px[j], py[j], v[j], d[j], delta[j]);
+    first[j] = p.first, exact[j] = p.exact, defined[j] = p.defined;
+  }
   for (int j = 0; j < n; ++j) {
     // The early return, as a selection below (no branch: vectorized).
-    const double position = this->position(px[j], py[j], v[j], d[j], delta[j]);
+    const double position = this->position({first[j], exact[j], defined[j]});
     const double evaluation =
         kEvaluationRoundings * kFloatUnitRoundoff * terms[j] / std::fabs(d[j]);
     const double set_up =

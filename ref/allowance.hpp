@@ -271,8 +271,14 @@ class Allowance {
  private:
   void set_planes(const LinearForm& numerator, const LinearForm& denominator);
   // The position term at pixel (px, py) of value v, where D computed is d and the freedom is
-  // delta: at()'s and the block at()'s, one body.
-  double position(double px, double py, double v, double d, double delta) const;
+  // delta: position(position_parts(...)), at()'s and the block at()'s, one body. `defined`:
+  // 1 where the exact bound's denominator is above 2^-20·|D| (a double: a lane of the block's
+  // loops), else 0 and the bound infinite.
+  struct PositionParts {
+    double first, exact, defined;
+  };
+  PositionParts position_parts(double px, double py, double v, double d, double delta) const;
+  double position(const PositionParts& parts) const;
   void block_at(const double* px, const double* py, const float* value, const double* delta,
                 const double* extra, const double* condition,
                 const Anchors::RowDistances& distances, double* result) const;
