@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -145,6 +146,17 @@ class DeferredAllowance {
   // Expectation::allowed holds at pixel first + j when it is computed at every pixel (0 where
   // nothing is drawn).
   virtual void at(const Frame& frame, int k, size_t first, int n, float* out) const = 0;
+  // at() of the pixels first + j of one row for each bit j set in `lanes` (j < 64), into
+  // out[j]; the other out[j] are left as they are. The same bits as at(). This one computes
+  // them pixel by pixel; the reference's computes as many pixels at once as its blocks hold,
+  // wherever they are in the row (lanes of a run of 64 that a comparison needs are seldom
+  // next to each other).
+  virtual void at_lanes(const Frame& frame, int k, size_t first, uint64_t lanes, float* out) const {
+    for (; lanes != 0; lanes &= lanes - 1) {
+      const int j = std::countr_zero(lanes);
+      at(frame, k, first + size_t(j), 1, out + j);
+    }
+  }
   // at() of the one pixel i.
   float at(const Frame& frame, int k, size_t i) const {
     float out;

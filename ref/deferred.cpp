@@ -1,6 +1,7 @@
 #include "ref/deferred.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -129,6 +130,50 @@ void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, floa
       t->component_at(block, size_t(k), value, allowed);
     std::copy(allowed, allowed + count, out + j);
     j += count;
+  }
+}
+
+void TriangleAllowances::at_lanes(const Frame& frame, int k, size_t first, uint64_t lanes,
+                                  float* out) const {
+  constexpr int m = kRowBlock;
+  const int y = int(first / size_t(frame.width)) + row0_;
+  const int x0 = int(first % size_t(frame.width));
+  const bool depth = k == kDepth;
+  const float* values = (depth ? frame.depth.data() : frame.components[size_t(k)].data()) + first;
+  const int32_t* primitive = frame.primitive.data() + first;
+  TriangleAllowance::Block block;
+  while (lanes != 0) {
+    // The lanes of the primitive of the first lane left, a block at most: the block's lanes are
+    // each computed on their own (Allowance::at's block form), so any pixels of one triangle
+    // may share it. Lanes past them repeat the last.
+    const int32_t p = primitive[std::countr_zero(lanes)];
+    const TriangleAllowance* t =
+        p >= 0 && size_t(p) < triangles_.size() ? triangles_[size_t(p)].get() : nullptr;
+    int lane[m], count = 0;
+    for (uint64_t rest = lanes; rest != 0 && count < m; rest &= rest - 1) {
+      const int j = std::countr_zero(rest);
+      if (primitive[j] == p) lane[count++] = j;
+    }
+    for (int l = 0; l < count; ++l)
+      lanes &= ~(uint64_t(1) << lane[l]);
+    if (!t) {
+      for (int l = 0; l < count; ++l)
+        out[lane[l]] = depth ? 1.0f : 0.0f;  // nothing drawn (Frame's clear value)
+      continue;
+    }
+    double px[m], py[m];
+    float value[m], allowed[m];
+    for (int l = 0; l < m; ++l) {
+      const int q = lane[std::min(l, count - 1)];
+      px[l] = double(x0 + q), py[l] = double(y), value[l] = values[q];
+    }
+    t->prepare(px, py, block, depth);
+    if (depth)
+      t->depth_at(block, value, allowed);
+    else
+      t->component_at(block, size_t(k), value, allowed);
+    for (int l = 0; l < count; ++l)
+      out[lane[l]] = allowed[l];
   }
 }
 

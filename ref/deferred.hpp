@@ -86,6 +86,8 @@ class TriangleAllowances final : public DeferredAllowance {
   }
   using DeferredAllowance::at;  // one pixel
   void at(const Frame& frame, int k, size_t first, int n, float* out) const override;
+  // Up to kRowBlock lanes of one primitive in each block, wherever they are in the row.
+  void at_lanes(const Frame& frame, int k, size_t first, uint64_t lanes, float* out) const override;
   std::array<double, 2> range(int k, int32_t p, int x0, int x1, int y, float value_lo,
                               float value_hi) const override;
 

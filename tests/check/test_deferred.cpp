@@ -218,5 +218,42 @@ TEST(DeferredAllowance, ARunsBoundsHoldEveryAllowanceOfIt) {
   EXPECT_GT(runs, 1000u);
 }
 
+// at_lanes of any lanes of a run gives each lane at()'s bits for the whole run and leaves the
+// other lanes as they were: on the quad (runs crossing its diagonal hold two primitives) and on
+// every suite case with components (pixels nothing draws, several triangles in a run).
+void expect_lanes_give_the_runs_bits(const Case& c, std::mt19937& rng) {
+  const CheckOptions o;
+  const Expectation e = ref::render_deferred(c, o.model, freedom_bits(o, 8), 2);
+  if (!e.deferred) return;
+  const Frame& f = e.frame;
+  const int first = e.deferred->depth() ? DeferredAllowance::kDepth : 0;
+  for (int k = first; k < int(f.components.size()); ++k)
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x + 64 <= f.width; x += 64) {
+        const size_t start = f.index(x, y);
+        float whole[64], lanes[64];
+        e.deferred->at(f, k, start, 64, whole);
+        // Every lane, none, one, and sparse and dense random ones.
+        const uint64_t masks[] = {~uint64_t(0), 0, uint64_t(1) << (rng() % 64),
+                                  uint64_t(rng()) & (uint64_t(rng()) << 32) & uint64_t(rng()),
+                                  uint64_t(rng()) | (uint64_t(rng()) << 32)};
+        for (const uint64_t mask : masks) {
+          std::fill(std::begin(lanes), std::end(lanes), -7.0f);
+          e.deferred->at_lanes(f, k, start, mask, lanes);
+          for (int j = 0; j < 64; ++j)
+            ASSERT_EQ(std::bit_cast<uint32_t>(lanes[j]),
+                      std::bit_cast<uint32_t>((mask >> j) & 1 ? whole[j] : -7.0f))
+                << c.name << " channel " << k << " pixel " << x + j << ", " << y;
+        }
+      }
+}
+
+TEST(DeferredAllowance, LanesGiveTheBitsOfTheirRun) {
+  std::mt19937 rng(5);
+  expect_lanes_give_the_runs_bits(quad(256, 1, 6), rng);
+  for (const Case& c : suite_cases())
+    if (c.component_count() > 0) expect_lanes_give_the_runs_bits(c, rng);
+}
+
 }  // namespace
 }  // namespace glrc::check
