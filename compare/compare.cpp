@@ -176,10 +176,13 @@ struct ChannelAccumulator {
   // add_run() would give, when no error is above lo (so none is over); `largest_known`: no
   // allowance is above the largest the channel has, which the caller knows; and every share of
   // the allowance is one LargestValues certainly drops, since it does for the larger share
-  // error/lo (below_drop_bound is monotone in the allowance). Else, having changed nothing,
-  // the lanes whose allowances are needed, as bits (kEveryLane: all, also for a run with NaN or
-  // Inf): the others' decisions are the same for any allowance from lo up, so add_run() may be
-  // given any such one for them (the least float not below lo).
+  // error/lo (below_drop_bound is monotone in the allowance). Else the lanes whose allowances
+  // are needed, as bits: the others' decisions are the same for any allowance from lo up. Then
+  // everything that does not depend on the allowance is added, and the other lanes' shares
+  // counted as dropped: add_lanes() adds the rest once the caller has the lanes' allowances.
+  // kEveryLane, having changed nothing, where that does not hold, for a run with NaN or Inf, and
+  // where every lane is needed: add_run() then, given any allowance from lo up for the lanes
+  // not needed.
   static constexpr uint64_t kEveryLane = ~uint64_t(0);
   GLRC_VECTOR_CLONES uint64_t add_run_within(Tally& t, const float* reference, const float* gl,
                                              double lo, bool largest_known, double ulp,
@@ -197,18 +200,52 @@ struct ChannelAccumulator {
                   int64_t(!LargestValues::below_drop_bound(abs_error[j], lo, ratio_floor));
       any |= needed[j];
     }
-    if (any) {
-      uint64_t lanes = 0;
+    uint64_t lanes = 0;
+    if (any)
       for (int j = 0; j < n; ++j)
         lanes |= uint64_t(needed[j]) << j;
-      return lanes;
-    }
+    // Every lane needed is kEveryLane's bits: that run is left to add_run() whole.
+    if (lanes == kEveryLane) return kEveryLane;
     uint64_t differing = 0;
     for (int j = 0; j < n; ++j)
       differing += std::bit_cast<uint32_t>(reference[j]) != std::bit_cast<uint32_t>(gl[j]);
     tally_errors(t, differing, abs_error, ulps_of, ulp, inverse_ulp);
-    ratios.count_dropped(size_t(n));
-    return 0;
+    ratios.count_dropped(size_t(n - std::popcount(lanes)));
+    return lanes;
+  }
+
+  // The rest of add_run() of a run add_run_within() returned `lanes` for (neither 0 nor
+  // kEveryLane), with allowed[j] each lane's allowance and `substitute` (a float from lo up)
+  // the others': what depends on the allowance, as add_run() takes it (the largest allowance
+  // over every lane, the lanes over it, their shares), in the same order. Few lanes: one by
+  // one.
+  void add_lanes(Tally& t, int x, int y, const float* reference, const float* gl, uint64_t lanes,
+                 const float* allowed, float substitute, double ulp, double inverse_ulp) {
+    // add_run's maxima of allowance·(1/ulp) above 0: the substitute's where a lane holds it.
+    const auto largest = [&](double allowance) {
+      const double a = allowance * inverse_ulp;
+      if (a > 0) t.largest_allowance_ulps = std::max(t.largest_allowance_ulps, a);
+    };
+    if (~lanes != 0) largest(double(substitute));
+    for (uint64_t rest = lanes; rest != 0; rest &= rest - 1) {
+      const int j = std::countr_zero(rest);
+      const double allowance = double(allowed[j]);
+      largest(allowance);
+      const double abs_error = std::fabs(double(gl[j]) - double(reference[j]));
+      t.over_tolerance += !(abs_error <= allowance);
+    }
+    for (uint64_t rest = lanes; rest != 0; rest &= rest - 1) {
+      const int j = std::countr_zero(rest);
+      const double allowance = double(allowed[j]);
+      const double abs_error = std::fabs(double(gl[j]) - double(reference[j]));
+      if (ratios.certainly_dropped(abs_error, allowance)) {
+        ratios.count_dropped();
+        continue;
+      }
+      const PixelError e{abs_error, inverse_ulp > 0 ? abs_error * inverse_ulp : abs_error / ulp,
+                         false};
+      t.max_ratio = std::max(t.max_ratio, keep_ratio(x + j, y, reference[j], gl[j], e, allowance));
+    }
   }
 
   // A run's errors, as pixel_error's finite branch gives them (both values finite floats, so
@@ -1082,8 +1119,12 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
                                        bounds->below_largest(b.hi, own_inverse_ulp), own_ulp,
                                        own_inverse_ulp);
             if (lanes == 0) continue;
-            if (lanes != ChannelAccumulator::kEveryLane)
-              std::fill_n(run_allowed, kRun, float_up(b.lo));
+            if (lanes != ChannelAccumulator::kEveryLane) {
+              deferred->at_lanes(reference, k, first, lanes, run_allowed);
+              acc.add_lanes(t, x, y0 + row, own_values + first, gl_values + first, lanes,
+                            run_allowed, float_up(b.lo), own_ulp, own_inverse_ulp);
+              continue;
+            }
           } else if (bounds && n == kRun) {
             lanes = segment_lanes(x, row, first, run_allowed);
           }
