@@ -25,7 +25,8 @@
 // combination of them. In doubles, with the reference's value v rounded to float: |A| + |B|
 // gets (2^-23·|v| + 2^-149)·(|D_x| + |D_y|) more; D at p, computed from its terms, 2^-50 of their
 // magnitudes less; a denominator below 2^-20·|D| counts as 0; and 2^-30 of the bound more
-// covers the doubles' own roundings. Depth adds the z_w freedom of clipped vertices
+// covers the roundings of its own arithmetic (δ and h are bounds with margins of their own,
+// freedom.hpp and PositionReach). Depth adds the z_w freedom of clipped vertices
 // (freedom.hpp).
 //
 // Arithmetic. The planes N = Σ λ_i a_i and D = Σ λ_i b_i (a = v/w, b = 1/w for smooth;
@@ -201,13 +202,15 @@ class Anchors {
 
 // How far from a pixel centre p, in x and in y, the point q lies whose exact value moved
 // vertices draw at p (the position term above): h = min(max(δ·scale, floor), most) pixels for
-// the freedom δ at p. of(L, largest): scale = 1/(1 - L) for δ's slope L < 1
-// (PositionFreedom::slope), else the largest δ anywhere. The default, h = δ, is for a δ the
-// same everywhere.
+// the freedom δ at p. of(L, largest): scale = 1/(1 - L) (and 2^-30 more) for δ's slope
+// L < 1 - 2^-20 (PositionFreedom::slope), else the largest δ anywhere. The default, h = δ, is
+// for a δ the same everywhere.
 struct PositionReach {
   double scale = 1, floor = 0, most = std::numeric_limits<double>::infinity();
   static PositionReach of(double slope, double largest) {
-    if (slope < 1) return {1 / (1 - slope), 0, largest};
+    // The slope is a sum of two magnitudes, rounded (2^-53 of it): below 1 - 2^-20, 1/(1 - L)
+    // computed is within 2^-31 of the exact one's, and 2^-30 more makes it not below it.
+    if (slope < 1 - 0x1p-20) return {(1 + 0x1p-30) / (1 - slope), 0, largest};
     return {0, largest, largest};
   }
   double at(double delta) const {

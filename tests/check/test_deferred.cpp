@@ -234,9 +234,9 @@ void expect_lanes_give_the_runs_bits(const Case& c, std::mt19937& rng) {
         float whole[64], lanes[64];
         e.deferred->at(f, k, start, 64, whole);
         // Every lane, none, one, and sparse and dense random ones.
+        const auto word = [&] { return uint64_t(rng()) | (uint64_t(rng()) << 32); };
         const uint64_t masks[] = {~uint64_t(0), 0, uint64_t(1) << (rng() % 64),
-                                  uint64_t(rng()) & (uint64_t(rng()) << 32) & uint64_t(rng()),
-                                  uint64_t(rng()) | (uint64_t(rng()) << 32)};
+                                  word() & word() & word(), word()};
         for (const uint64_t mask : masks) {
           std::fill(std::begin(lanes), std::end(lanes), -7.0f);
           e.deferred->at_lanes(f, k, start, mask, lanes);
