@@ -97,39 +97,40 @@ std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, f
   return depth_.range(px0, px1, py, z_lo, z_hi, delta, extra, condition, distances);
 }
 
-void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, float* out) const {
+namespace {
+
+// Channel k's allowances (TriangleAllowance's component or depth) of `count` pixels of triangle
+// t (1 to kRowBlock) in row y, columns x0 + offset[l], whose values are values[offset[l]], into
+// allowed[l]: one block, its lanes past `count` repeating the last (each lane is computed on its
+// own, so any pixels of one triangle may share a block).
+void block_of(const TriangleAllowance& t, int k, int x0, int y, const float* values,
+              const int* offset, int count, float* allowed) {
   constexpr int m = kRowBlock;
-  const int y = int(first / size_t(frame.width)) + row0_;
-  const int x0 = int(first % size_t(frame.width));
-  const bool depth = k == kDepth;
-  const float* values = (depth ? frame.depth.data() : frame.components[size_t(k)].data()) + first;
-  const int32_t* primitive = frame.primitive.data() + first;
+  const bool depth = k == DeferredAllowance::kDepth;
+  double px[m], py[m];
+  float value[m], out[m];
+  for (int l = 0; l < m; ++l) {
+    const int q = offset[std::min(l, count - 1)];
+    px[l] = double(x0 + q), py[l] = double(y), value[l] = values[q];
+  }
   TriangleAllowance::Block block;
-  for (int j = 0; j < n;) {
-    const int32_t p = primitive[j];
-    const TriangleAllowance* t =
-        p >= 0 && size_t(p) < triangles_.size() ? triangles_[size_t(p)].get() : nullptr;
-    if (!t) {
-      out[j++] = depth ? 1.0f : 0.0f;  // nothing drawn (Frame's clear value)
-      continue;
-    }
-    // The pixels of primitive p from j on, a block at most; lanes past them repeat the last.
-    int count = 1;
-    while (count < m && j + count < n && primitive[j + count] == p)
-      ++count;
-    double px[m], py[m];
-    float value[m], allowed[m];
-    for (int l = 0; l < m; ++l) {
-      const int q = j + std::min(l, count - 1);
-      px[l] = double(x0 + q), py[l] = double(y), value[l] = values[q];
-    }
-    t->prepare(px, py, block, depth);
-    if (depth)
-      t->depth_at(block, value, allowed);
-    else
-      t->component_at(block, size_t(k), value, allowed);
-    std::copy(allowed, allowed + count, out + j);
-    j += count;
+  t.prepare(px, py, block, depth);
+  if (depth)
+    t.depth_at(block, value, out);
+  else
+    t.component_at(block, size_t(k), value, out);
+  std::copy(out, out + count, allowed);
+}
+
+}  // namespace
+
+void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, float* out) const {
+  // Every lane of each 64 pixels: at_lanes' blocks, bit for bit the same per lane however the
+  // lanes are grouped.
+  for (int j = 0; j < n; j += 64) {
+    const int count = std::min(64, n - j);
+    at_lanes(frame, k, first + size_t(j), count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1,
+             out + j);
   }
 }
 
@@ -141,11 +142,8 @@ void TriangleAllowances::at_lanes(const Frame& frame, int k, size_t first, uint6
   const bool depth = k == kDepth;
   const float* values = (depth ? frame.depth.data() : frame.components[size_t(k)].data()) + first;
   const int32_t* primitive = frame.primitive.data() + first;
-  TriangleAllowance::Block block;
   while (lanes != 0) {
-    // The lanes of the primitive of the first lane left, a block at most: the block's lanes are
-    // each computed on their own (Allowance::at's block form), so any pixels of one triangle
-    // may share it. Lanes past them repeat the last.
+    // The lanes of the primitive of the first lane left, a block at most.
     const int32_t p = primitive[std::countr_zero(lanes)];
     const TriangleAllowance* t =
         p >= 0 && size_t(p) < triangles_.size() ? triangles_[size_t(p)].get() : nullptr;
@@ -156,22 +154,11 @@ void TriangleAllowances::at_lanes(const Frame& frame, int k, size_t first, uint6
     }
     for (int l = 0; l < count; ++l)
       lanes &= ~(uint64_t(1) << lane[l]);
-    if (!t) {
-      for (int l = 0; l < count; ++l)
-        out[lane[l]] = depth ? 1.0f : 0.0f;  // nothing drawn (Frame's clear value)
-      continue;
-    }
-    double px[m], py[m];
-    float value[m], allowed[m];
-    for (int l = 0; l < m; ++l) {
-      const int q = lane[std::min(l, count - 1)];
-      px[l] = double(x0 + q), py[l] = double(y), value[l] = values[q];
-    }
-    t->prepare(px, py, block, depth);
-    if (depth)
-      t->depth_at(block, value, allowed);
+    float allowed[m];
+    if (t)
+      block_of(*t, k, x0, y, values, lane, count, allowed);
     else
-      t->component_at(block, size_t(k), value, allowed);
+      std::fill(allowed, allowed + count, depth ? 1.0f : 0.0f);  // nothing drawn (the clear value)
     for (int l = 0; l < count; ++l)
       out[lane[l]] = allowed[l];
   }
