@@ -217,8 +217,8 @@ struct ChannelAccumulator {
   // The rest of add_run() of a run add_run_within() returned `lanes` for (neither 0 nor
   // kEveryLane), with allowed[j] each lane's allowance and `substitute` (a float from lo up)
   // the others': what depends on the allowance, as add_run() takes it (the largest allowance
-  // over every lane, the lanes over it, their shares), in the same order. Few lanes: one by
-  // one.
+  // over every lane, the lanes over it, their shares, these in add_run's order). Few lanes: one
+  // by one.
   void add_lanes(Tally& t, int x, int y, const float* reference, const float* gl, uint64_t lanes,
                  const float* allowed, float substitute, double ulp, double inverse_ulp) {
     // add_run's maxima of allowance·(1/ulp) above 0: the substitute's where a lane holds it.
@@ -233,11 +233,6 @@ struct ChannelAccumulator {
       largest(allowance);
       const double abs_error = std::fabs(double(gl[j]) - double(reference[j]));
       t.over_tolerance += !(abs_error <= allowance);
-    }
-    for (uint64_t rest = lanes; rest != 0; rest &= rest - 1) {
-      const int j = std::countr_zero(rest);
-      const double allowance = double(allowed[j]);
-      const double abs_error = std::fabs(double(gl[j]) - double(reference[j]));
       if (ratios.certainly_dropped(abs_error, allowance)) {
         ratios.count_dropped();
         continue;
@@ -1038,11 +1033,11 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   auto deferred_lanes = [&](size_t first, int n, uint64_t lanes, float* run_allowed) {
     if (lanes == ChannelAccumulator::kEveryLane)
       return deferred->at(reference, k, first, n, run_allowed);
-    // The lanes needed only: the deferred allowance computes a block of them as fast as one,
-    // wherever they are in the run (a run's lanes needed are about one in seven, seldom next to
-    // each other: blocks of eight neighbours computed three times as many as needed).
-    deferred->at_lanes(reference, k, first, n == kRun ? lanes : lanes & ((uint64_t(1) << n) - 1),
-                       run_allowed);
+    // The lanes needed only (some lanes are only returned for a whole run, segment_lanes'): the
+    // deferred allowance computes a block of them as fast as one, wherever they are in the run
+    // (a run's lanes needed are about one in seven, seldom next to each other: blocks of eight
+    // neighbours computed three times as many as needed).
+    deferred->at_lanes(reference, k, first, lanes, run_allowed);
   };
   // A whole run of several primitives (or with candidates, or pixels not compared): bounds of
   // each stretch of one primitive's own fragments, and for each pixel whether they decide
