@@ -75,23 +75,37 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 
 namespace {
 
-// Band by band: GL draws once, then for each band the reference renders its rows, GL's are read
-// back (glReadPixels of the band) and both are compared and digested; only one band's frames
-// are alive at a time.
+// Band by band: GL draws once, then for each band the reference renders its rows (with its
+// allowances deferred where CheckOptions::deferred_allowance asks and that pays), GL's are read
+// back (glReadPixels of the band) and both are compared; GL's band is then digested on a thread
+// of its own while the next band is drawn, read and compared (the digest is one SHA-256 stream
+// in row order, which nothing else of a band needs). At most two bands of GL's frame and one of
+// the reference's are alive at a time.
 void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o, int reported,
                     Checked& out) {
   const int rows = band_rows(c, o);
+  const bool deferred = o.deferred_allowance && deferral_pays(c);
   renderer.draw(c);
   compare::Comparator comparator(c, tolerance_for(c, o, reported), c.fb_width, c.fb_height,
                                  o.threads);
   ref::FrameDigest digest(c.fb_width, c.fb_height);
+  Expectation expected;  // each band drawn in the last one's buffers
+  // Declared before the digest's future, whose destructor waits for it: the band it hashes
+  // outlives it, whatever throws.
+  Frame hashing;
+  std::future<void> hashed;
   for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
     const int n = std::min(rows, c.fb_height - y0);
-    const Expectation expected = expectation_rows(c, o, reported, y0, n);
-    const Frame gl = renderer.read_rows(c, y0, n);
+    expected = deferred ? ref::render_rows_deferred(c, o.model, freedom_bits(o, reported),
+                                                    o.threads, y0, n, std::move(expected))
+                        : expectation_rows(c, o, reported, y0, n);
+    Frame gl = renderer.read_rows(c, y0, n);
     comparator.add_rows(expected, gl, y0);
-    digest.add_rows(gl);
+    if (hashed.valid()) hashed.get();
+    hashing = std::move(gl);
+    hashed = std::async(std::launch::async, [&] { digest.add_rows(hashing); });
   }
+  if (hashed.valid()) hashed.get();
   out.result = comparator.finish();
   out.result.gl_digest = digest.hex();
   out.streamed = true;

@@ -51,8 +51,8 @@ struct CheckOptions {
   // The reference's component allowances computed only where the comparison needs them
   // (ref::render_deferred), in a case where that pays (deferral_pays): the same verdict and
   // statistics, bit for bit, in less time; Checked::reference then holds them deferred
-  // (complete_allowance fills them in for a heatmap). Not with a driver model, nor in a
-  // streamed case (whose bands have them all).
+  // (complete_allowance fills them in for a heatmap). Not with a driver model. A streamed case
+  // defers them band by band (ref::render_rows_deferred).
   bool deferred_allowance = false;
 };
 

@@ -633,9 +633,11 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
                 (expected.allowed.depth.size() != reference.pixel_count() &&
                  !(expected.deferred && expected.deferred->depth())))))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
-  // A deferred allowance knows the rows of the frame it drew: the frame is compared whole.
-  if (expected.deferred && (y0 != 0 || reference.height != st.height))
-    throw std::invalid_argument("compare: a deferred allowance in a band of rows, for case " +
+  // A deferred allowance knows the first row of the frame it drew: it must be this band's.
+  if (expected.deferred && expected.deferred->first_row() != y0)
+    throw std::invalid_argument("compare: a deferred allowance drawn for rows from " +
+                                std::to_string(expected.deferred->first_row()) +
+                                " compared as rows from " + std::to_string(y0) + ", for case " +
                                 c.name);
   st.next_row += reference.height;
 
@@ -738,7 +740,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     if (whole)
       add_whole_channel(expected, gl, slot - 1);
     else
-      add_channel(expected, gl, y0, slot - 1);
+      add_band_channel(expected, gl, y0, slot - 1);
   });
 }
 
@@ -952,6 +954,20 @@ void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl,
   if (acc.ulps.complete() && acc.ratios.complete()) return;
   acc = before;
   add_channel(expected, gl, 0, k, known);
+}
+
+void Comparator::add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
+  State& st = *state_;
+  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+  const DeferredAllowance* deferred = allowance.deferred();
+  if (!deferred) return add_channel(expected, gl, y0, k);
+  // The band's bounds as a whole frame's (run_bounds); the largest allowance the channel
+  // certainly has is also the largest of the bands before (the tally's: it only grows). No
+  // floors are guessed: a band cannot be compared again should they not hold.
+  ChannelBounds bounds = run_bounds(*deferred, st.plain_runs, st.ulps, expected.frame, k);
+  bounds.largest_lo =
+      std::max(bounds.largest_lo, st.channels[size_t(k + 1)].tally.largest_allowance_ulps);
+  add_channel(expected, gl, y0, k, &bounds);
 }
 
 void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, int k,

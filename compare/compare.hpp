@@ -72,6 +72,9 @@ class Comparator {
   // values are guessed from a sample (LargestValues::assume_floor), and again without them
   // should the frame not bear them out.
   void add_whole_channel(const Expectation& expected, const Frame& gl, int k);
+  // add_channel() of a band of a frame compared band by band: with a deferred allowance, bounds
+  // of it over the band's plain runs, as add_whole_channel finds them, and no floors guessed.
+  void add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k);
   struct State;
   std::unique_ptr<State> state_;
 };

@@ -141,6 +141,9 @@ class DeferredAllowance {
   // has no primitive and no depth either. Only where the depth test needs no allowance while
   // drawing (DepthFunc::always: no fragment may win it instead of another).
   virtual bool depth() const { return false; }
+  // The window row of row 0 of the frame drawn with this: a band's first row
+  // (ref::render_rows_deferred), 0 for a whole frame.
+  virtual int first_row() const { return 0; }
   // Component k's allowances (or the depth's, k = kDepth) at pixels [first, first + n) of one
   // row of `frame` (the frame drawn with this, or a copy of it): out[j] is bit for bit what
   // Expectation::allowed holds at pixel first + j when it is computed at every pixel (0 where

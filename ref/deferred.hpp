@@ -80,6 +80,7 @@ class TriangleAllowances final : public DeferredAllowance {
   TriangleAllowances(size_t triangles, int row0, bool depth)
       : triangles_(triangles), row0_(row0), depth_(depth) {}
   bool depth() const override { return depth_; }
+  int first_row() const override { return row0_; }
   // Primitive p's allowances; not while another thread asks for any.
   void add(size_t p, std::shared_ptr<const TriangleAllowance> t) {
     triangles_.at(p) = std::move(t);

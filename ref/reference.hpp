@@ -55,6 +55,13 @@ Frame render_frame(const Case& c, const Model& m, int threads = 1);
 Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                       int y0, int rows);
 
+// render_rows() with the components' allowances deferred, as render_deferred() defers them
+// (and the depth's in a case without a depth test): bit for bit render_rows()' allowances where
+// a comparison of the band asks for them (its DeferredAllowance knows the band's first row), in
+// the buffers of `storage` where given. Throws as render_rows().
+Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                               int y0, int rows, Reference&& storage = {});
+
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.
 std::string digest(const Frame& f);

@@ -108,6 +108,24 @@ void expect_same_results(const Case& c, const std::vector<Frame>& frames,
               json_of(compare::compare(c, everywhere, frames[n], t, 2)))
         << c.name << ", frame " << n;
   }
+  // Band by band, as a streamed check compares them, each band's allowance deferred
+  // (render_rows_deferred: its rows' bounds, the largest allowance of the bands before, no
+  // floors guessed): the same results as the whole frame's allowance at every pixel.
+  const int band = std::max(1, c.fb_height / 5 + 3);
+  for (size_t n = 0; n < frames.size(); ++n) {
+    compare::Comparator comparator(c, t, c.fb_width, c.fb_height, 2);
+    for (int y0 = 0; y0 < c.fb_height; y0 += band) {
+      const int rows = std::min(band, c.fb_height - y0);
+      const Expectation e = ref::render_rows_deferred(c, options.model, freedom_bits(options, 8),
+                                                      1, y0, rows);
+      ASSERT_TRUE(e.deferred) << c.name;
+      EXPECT_EQ(e.deferred->first_row(), y0);
+      comparator.add_rows(e, frames[n].rows(y0, rows), y0);
+    }
+    EXPECT_EQ(json_of(comparator.finish()),
+              json_of(compare::compare(c, everywhere, frames[n], t, 2)))
+        << c.name << ", frame " << n << " in bands of " << band << " rows";
+  }
   // Filled in, the allowance is the one computed at every pixel, bit for bit.
   complete_allowance(deferred, 2);
   EXPECT_FALSE(deferred.deferred);

@@ -718,6 +718,39 @@ TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
   }
 }
 
+// A streamed case whose deferral pays (check::deferral_pays: one large perspective triangle):
+// each band's allowance deferred (ref::render_rows_deferred), and GL's bands digested while the
+// next is compared; the whole check's verdict and statistics, bit for bit, deferred or not.
+TEST_F(Gl, StreamedChecksDeferTheAllowanceBandByBand) {
+  const Case c = casefile::parse(R"({
+    "description": "One large perspective triangle with a smooth vec4.",
+    "framebuffer": {"width": 256, "height": 192},
+    "varyings": [{"name": "v", "size": 4}],
+    "vertices": [
+      {"clip": [-1.6, -1.5, 0.2, 2], "v": [1, -40, 0.25, 3]},
+      {"clip": [0.9, -0.6, -0.2, 1], "v": [0, 7, 0.5, -2]},
+      {"clip": [0.02, 0.45, 0.1, 0.5], "v": [-3, 0.5, 1, 100]}
+    ]
+  })",
+                                 "inline", "large_perspective");
+  ASSERT_TRUE(check::deferral_pays(c));
+  check::CheckOptions streamed;
+  streamed.deferred_allowance = true;
+  streamed.whole_frame_bytes = 0;
+  streamed.band_bytes = 7 * check::frame_bytes(c) / size_t(c.fb_height);  // 7 rows a band
+  const check::Checked b = check::check_with_frames(c, gl(), streamed);
+  EXPECT_TRUE(b.streamed);
+  EXPECT_GT(b.result.coverage.both, 10000u);
+  for (const bool deferred : {false, true}) {
+    check::CheckOptions o;
+    o.deferred_allowance = deferred;
+    const check::Checked a = check::check_with_frames(c, gl(), o);
+    EXPECT_FALSE(a.streamed);
+    EXPECT_EQ(bool(a.reference.deferred), deferred);
+    test::expect_same_result(a.result, b.result);
+  }
+}
+
 TEST_F(Gl, SuiteCasesAgreeWithTheReference) {
   const char* names[] = {"face_on",
                          "checkerboard_quad",
