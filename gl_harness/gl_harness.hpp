@@ -106,6 +106,13 @@ class Renderer {
     storage = Frame();
     return render(c);
   }
+  // read_rows(), read back into the buffers of `storage` where they are large enough: a
+  // streamed check reuses a band's memory for the band after next. Throws as read_rows(). This
+  // default (renderers that are no GL: tests) is read_rows().
+  virtual Frame read_rows_reusing(const Case& c, int y0, int rows, Frame&& storage) {
+    storage = Frame();
+    return read_rows(c, y0, rows);
+  }
 
  private:
   Frame drawn_;

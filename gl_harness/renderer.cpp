@@ -139,6 +139,12 @@ class GlRenderer final : public Renderer {
     return frame;
   }
 
+  Frame read_rows_reusing(const Case& c, int y0, int rows, Frame&& storage) override {
+    Frame frame = std::exchange(storage, Frame());
+    read_rows_into(c, y0, rows, frame);
+    return frame;
+  }
+
  private:
   // read_rows() into `frame`, whose buffers are reused (Frame::reset).
   void read_rows_into(const Case& c, int y0, int rows, Frame& frame) {
