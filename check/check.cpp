@@ -79,8 +79,8 @@ namespace {
 // allowances deferred where CheckOptions::deferred_allowance asks and that pays), GL's are read
 // back (glReadPixels of the band) and both are compared; GL's band is then digested on a thread
 // of its own while the next band is drawn, read and compared (the digest is one SHA-256 stream
-// in row order, which nothing else of a band needs). At most three bands of GL's frame (one read, one
-// hashed, one spare) and one of the reference's are alive at a time.
+// in row order, which nothing else of a band needs). At most three bands of GL's frame (one read,
+// one hashed, one spare) and one of the reference's are alive at a time.
 void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o, int reported,
                     Checked& out) {
   const int rows = band_rows(c, o);

@@ -59,8 +59,8 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
 // (and the depth's in a case without a depth test): bit for bit render_rows()' allowances where
 // a comparison of the band asks for them (its DeferredAllowance knows the band's first row), in
 // the buffers of `storage` where given. Throws as render_rows().
-Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
-                               int y0, int rows, Reference&& storage = {});
+Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads, int y0,
+                               int rows, Reference&& storage = {});
 
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.

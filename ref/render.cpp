@@ -761,8 +761,8 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
   return draw(c, m, freedom_bits, threads, y0, row_count, true);
 }
 
-Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
-                               int y0, int row_count, Reference&& storage) {
+Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads, int y0,
+                               int row_count, Reference&& storage) {
   return draw(c, m, freedom_bits, threads, y0, row_count, true, &storage, true);
 }
 

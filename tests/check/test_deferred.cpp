@@ -116,8 +116,8 @@ void expect_same_results(const Case& c, const std::vector<Frame>& frames,
     compare::Comparator comparator(c, t, c.fb_width, c.fb_height, 2);
     for (int y0 = 0; y0 < c.fb_height; y0 += band) {
       const int rows = std::min(band, c.fb_height - y0);
-      const Expectation e = ref::render_rows_deferred(c, options.model, freedom_bits(options, 8),
-                                                      1, y0, rows);
+      const Expectation e =
+          ref::render_rows_deferred(c, options.model, freedom_bits(options, 8), 1, y0, rows);
       ASSERT_TRUE(e.deferred) << c.name;
       EXPECT_EQ(e.deferred->first_row(), y0);
       comparator.add_rows(e, frames[n].rows(y0, rows), y0);
