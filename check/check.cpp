@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 #include "compare/compare.hpp"
 #include "ref/reference.hpp"
@@ -75,40 +76,84 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 
 namespace {
 
+// Bands of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
+// are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about 8192 runs of
+// 64 pixels in all (twice the fewest a guess is made from), none where that is more than an
+// eighth of the frame.
+std::vector<std::pair<int, int>> floor_sample_bands(const Case& c) {
+  constexpr int kSampleBands = 32, kRun = 64, kRuns = 8192;
+  const int runs_per_row = c.fb_width / kRun;
+  if (runs_per_row <= 0 || c.fb_height <= 0) return {};
+  const int rows = (kRuns + runs_per_row - 1) / runs_per_row;
+  if (int64_t(rows) * 8 > c.fb_height) return {};
+  const int bands = std::min(kSampleBands, rows);
+  const int height = (rows + bands - 1) / bands;
+  std::vector<std::pair<int, int>> out;
+  for (int b = 0; b < bands; ++b) {
+    const int middle = int((2 * int64_t(b) + 1) * c.fb_height / (2 * bands));
+    out.emplace_back(std::clamp(middle - height / 2, 0, c.fb_height - height), height);
+  }
+  return out;
+}
+
 // Band by band: GL draws once, then for each band the reference renders its rows (with its
 // allowances deferred where CheckOptions::deferred_allowance asks and that pays), GL's are read
 // back (glReadPixels of the band) and both are compared; GL's band is then digested on a thread
 // of its own while the next band is drawn, read and compared (the digest is one SHA-256 stream
 // in row order, which nothing else of a band needs). At most three bands of GL's frame (one read,
-// one hashed, one spare) and one of the reference's are alive at a time.
+// one hashed, one spare) and one of the reference's are alive at a time. The comparator's
+// floors are guessed first from bands spread over the frame (floor_sample_bands), as a frame
+// compared whole guesses them from a sample of itself: without them, a channel keeps every
+// value until it has a percent of the frame's, and its allowances are computed at every pixel
+// until then (a sixth of the 2048x2048 scene's check). Should the stream not bear them out,
+// its bands are compared again without (GL's frame stays drawn).
 void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o, int reported,
                     Checked& out) {
   const int rows = band_rows(c, o);
   const bool deferred = o.deferred_allowance && deferral_pays(c);
+  const Tolerance tolerance = tolerance_for(c, o, reported);
   renderer.draw(c);
-  compare::Comparator comparator(c, tolerance_for(c, o, reported), c.fb_width, c.fb_height,
-                                 o.threads);
-  ref::FrameDigest digest(c.fb_width, c.fb_height);
   Expectation expected;  // each band drawn in the last one's buffers
+  const auto draw_rows = [&](int y0, int n) {
+    expected = deferred ? ref::render_rows_deferred(c, o.model, freedom_bits(o, reported),
+                                                    o.threads, y0, n, std::move(expected))
+                        : expectation_rows(c, o, reported, y0, n);
+  };
+  ref::FrameDigest digest(c.fb_width, c.fb_height);
   // Declared before the digest's future, whose destructor waits for it: the band it hashes
   // outlives it, whatever throws. GL's band is read into the buffers of the band before the
   // last (`spare`), hashed by then: a fresh band's pages are faulted in and zeroed by the kernel
   // (perf: a twentieth of the 2048x2048 scene's check).
   Frame hashing, spare;
   std::future<void> hashed;
-  for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
-    const int n = std::min(rows, c.fb_height - y0);
-    expected = deferred ? ref::render_rows_deferred(c, o.model, freedom_bits(o, reported),
-                                                    o.threads, y0, n, std::move(expected))
-                        : expectation_rows(c, o, reported, y0, n);
-    Frame gl = renderer.read_rows_reusing(c, y0, n, std::move(spare));
-    comparator.add_rows(expected, gl, y0);
+  // Every band compared by `comparator`, and hashed when `hash`.
+  const auto compare_bands = [&](compare::Comparator& comparator, bool hash) {
+    for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
+      const int n = std::min(rows, c.fb_height - y0);
+      draw_rows(y0, n);
+      Frame gl = renderer.read_rows_reusing(c, y0, n, std::move(spare));
+      comparator.add_rows(expected, gl, y0);
+      if (hashed.valid()) hashed.get();
+      spare = std::exchange(hashing, std::move(gl));
+      if (hash) hashed = std::async(std::launch::async, [&] { digest.add_rows(hashing); });
+    }
     if (hashed.valid()) hashed.get();
-    spare = std::exchange(hashing, std::move(gl));
-    hashed = std::async(std::launch::async, [&] { digest.add_rows(hashing); });
+  };
+  std::optional<compare::Comparator> comparator;
+  comparator.emplace(c, tolerance, c.fb_width, c.fb_height, o.threads);
+  const std::vector<std::pair<int, int>> samples = floor_sample_bands(c);
+  for (const auto& [y0, n] : samples) {
+    draw_rows(y0, n);
+    spare = renderer.read_rows_reusing(c, y0, n, std::move(spare));
+    comparator->add_floor_sample(expected, spare);
   }
-  if (hashed.valid()) hashed.get();
-  out.result = comparator.finish();
+  comparator->guess_floors();
+  compare_bands(*comparator, true);
+  if (!comparator->floors_held()) {
+    comparator.emplace(c, tolerance, c.fb_width, c.fb_height, o.threads);
+    compare_bands(*comparator, false);
+  }
+  out.result = comparator->finish();
   out.result.gl_digest = digest.hex();
   out.streamed = true;
 }

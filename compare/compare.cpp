@@ -608,6 +608,9 @@ struct Comparator::State {
   // Per run as plain_runs: 1 when every pixel of a whole run is compared against the reference's
   // own fragment, of whichever primitive (a plain run, or one where triangles meet), else 0.
   std::vector<uint8_t> own_runs;
+  // add_floor_sample's keys by channel, and how many rows and plain runs they were taken from.
+  std::vector<std::vector<uint32_t>> sampled_ulps, sampled_ratios;
+  size_t sampled_rows = 0, sampled_plain = 0;
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height,
@@ -750,31 +753,39 @@ namespace {
 // into the cache (__builtin_prefetch): far enough that they arrive before they are read.
 constexpr size_t kPrefetchAhead = 8;
 
-// The floors of a channel's largest values guessed from a sample of a frame compared whole
-// (LargestValues::assume_floor): one pixel of each plain run (compared against the reference's
-// own fragment of one primitive, as add_run takes them), at an offset that moves from run to
-// run and row to row. Nothing where plain runs are under half the frame (many small
-// triangles: a sample of them would be a poor one, and their values rise little).
-// With a deferred allowance, each sampled pixel's run's bound above it stands for it
-// (`bounds`, as add_channel's): the ratios sampled are then no larger than the pixels' own, the
-// floor guessed no higher (a lower one keeps more values, which complete() allows; what the
-// figures are does not depend on the floor, only how many values are kept on the way).
-void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_runs,
-                   const UlpTable& table, const ChannelAllowance& allowance, const Frame& reference,
-                   const float* gl_values, const float* own_values, int k,
-                   const Comparator::ChannelBounds* bounds) {
+// Below a sample's value at the share that should be kept, one and a half times what a
+// compaction keeps (with 4096 samples or more, the frame's share above it is within a few
+// percent of the sample's), and strictly below it, so that a value many pixels share is kept
+// rather than dropped: that share, for a frame of `pixels` pixels, `plain` of its runs plain,
+// `sampled` of them sampled; none where plain runs are under half the frame (many small
+// triangles: a sample of them would be a poor one, and their values rise little), or too few
+// are sampled.
+constexpr size_t kFewestFloorSamples = 4096;
+std::optional<double> floor_share(const ChannelAccumulator& acc, double plain, double pixels,
+                                  size_t sampled) {
+  constexpr int kRun = ChannelAccumulator::kRun;
+  const double share = 1.5 * double(acc.ulps.kept_after_compaction()) / (plain * kRun);
+  if (plain * kRun * 2 < pixels || sampled < kFewestFloorSamples || share > 0.25)
+    return std::nullopt;
+  return share;
+}
+
+// The order keys of a sample of a frame's (or a band's) ulps and shares of the allowance, for
+// guessing the floors of a channel's largest values: one pixel of each plain run (compared
+// against the reference's own fragment of one primitive, as add_run takes them), at an offset
+// that moves from run to run and row to row. With a deferred allowance, each sampled pixel's
+// run's bound above it stands for it (`bounds`, as add_channel's): the ratios sampled are then
+// no larger than the pixels' own, the floor guessed no higher (a lower one keeps more values,
+// which complete() allows; what the figures are does not depend on the floor, only how many
+// values are kept on the way). Appended to ulps and ratios.
+void sample_floor_keys(const std::vector<int32_t>& plain_runs, const UlpTable& table,
+                       const ChannelAllowance& allowance, const Frame& reference,
+                       const float* gl_values, const float* own_values, int k,
+                       const Comparator::ChannelBounds* bounds, std::vector<uint32_t>& ulps,
+                       std::vector<uint32_t>& ratios) {
   constexpr int kSampledRuns = 4;  // run_bounds' sample too: one plain run in four
   constexpr int kRun = ChannelAccumulator::kRun;
   const int runs = (reference.width + kRun - 1) / kRun;
-  const size_t plain =
-      size_t(std::count_if(plain_runs.begin(), plain_runs.end(), [](int32_t p) { return p >= 0; }));
-  // Below the sample's value at the share that should be kept, one and a half times what a
-  // compaction keeps (with 4096 samples or more, the frame's share above it is within a few
-  // percent of the sample's), and strictly below it, so that a value many pixels share is
-  // kept rather than dropped.
-  constexpr size_t kFewest = 4096;
-  const double share = 1.5 * double(acc.ulps.kept_after_compaction()) / double(plain * kRun);
-  if (plain * kRun * 2 < reference.pixel_count() || plain < kFewest || share > 0.25) return;
   // One pixel of each plain run, at an offset that moves from run to run; with bounds,
   // kSampledRuns neighbouring pixels of each run whose bounds run_bounds found (one in
   // kSampledRuns: as many pixels), each run's hi standing for the pixels' allowances.
@@ -783,7 +794,6 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
     size_t run, first;
   };
   std::vector<Sample> samples;
-  samples.reserve(plain);
   for (int row = 0; row < reference.height; ++row)
     for (int r = 0; r < reference.width / kRun; ++r) {
       const size_t run = size_t(row) * size_t(runs) + size_t(r);
@@ -791,8 +801,8 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
       samples.push_back(
           {run, reference.index(r * kRun + (row * 37 + r * 11) % (kRun - per_run + 1), row)});
     }
-  std::vector<uint32_t> ulps, ratios;
-  ulps.reserve(samples.size() * size_t(per_run)), ratios.reserve(samples.size() * size_t(per_run));
+  ulps.reserve(ulps.size() + samples.size() * size_t(per_run));
+  ratios.reserve(ratios.size() + samples.size() * size_t(per_run));
   for (size_t s = 0; s < samples.size(); ++s) {
     {
       // A sample's pixels are a row or more from the last one's: in no cache line the
@@ -804,21 +814,26 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
     }
     const size_t run = samples[s].run, first = samples[s].first;
     const int32_t p = plain_runs[run];
-    {
-      for (size_t i = first; i < first + size_t(per_run); ++i) {
-        const float g = gl_values[i], v = own_values[i];
-        if (!std::isfinite(g) || !std::isfinite(v)) continue;
-        const double ulp = table.ulp(p, k);
-        const double allowed = bounds ? bounds->runs[run].hi : allowance.at(i, ulp);
-        const double abs_error = std::fabs(double(g) - double(v));
-        ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, k))));
-        ratios.push_back(order_key(float(abs_error == 0 ? 0.0
-                                         : allowed > 0  ? abs_error / allowed
-                                                        : kInf)));
-      }
+    for (size_t i = first; i < first + size_t(per_run); ++i) {
+      const float g = gl_values[i], v = own_values[i];
+      if (!std::isfinite(g) || !std::isfinite(v)) continue;
+      const double ulp = table.ulp(p, k);
+      const double allowed = bounds ? bounds->runs[run].hi : allowance.at(i, ulp);
+      const double abs_error = std::fabs(double(g) - double(v));
+      ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, k))));
+      ratios.push_back(order_key(float(abs_error == 0 ? 0.0
+                                       : allowed > 0  ? abs_error / allowed
+                                                      : kInf)));
     }
   }
-  if (ulps.size() < kFewest) return;  // non-finite values left out
+}
+
+// The floors of a channel's largest values (LargestValues::assume_floor) from the keys of a
+// sample (sample_floor_keys) at `share` (floor_share); none from too few (non-finite values
+// left out).
+void assume_sampled_floors(ChannelAccumulator& acc, std::vector<uint32_t>& ulps,
+                           std::vector<uint32_t>& ratios, double share) {
+  if (ulps.size() < kFewestFloorSamples) return;
   const auto floor_of = [&](std::vector<uint32_t>& keys) -> std::optional<uint32_t> {
     const auto nth = keys.end() - ptrdiff_t(std::max(1.0, double(keys.size()) * share));
     std::nth_element(keys.begin(), nth, keys.end());
@@ -831,6 +846,22 @@ void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_ru
   };
   if (const auto floor = floor_of(ulps)) acc.ulps.assume_floor(*floor);
   if (const auto floor = floor_of(ratios)) acc.ratios.assume_floor(*floor);
+}
+
+// The floors of a channel's largest values guessed from a sample of a frame compared whole
+// (sample_floor_keys, floor_share).
+void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_runs,
+                   const UlpTable& table, const ChannelAllowance& allowance, const Frame& reference,
+                   const float* gl_values, const float* own_values, int k,
+                   const Comparator::ChannelBounds* bounds) {
+  const size_t plain =
+      size_t(std::count_if(plain_runs.begin(), plain_runs.end(), [](int32_t p) { return p >= 0; }));
+  const auto share = floor_share(acc, double(plain), double(reference.pixel_count()), plain);
+  if (!share) return;
+  std::vector<uint32_t> ulps, ratios;
+  sample_floor_keys(plain_runs, table, allowance, reference, gl_values, own_values, k, bounds, ulps,
+                    ratios);
+  assume_sampled_floors(acc, ulps, ratios, *share);
 }
 
 }  // namespace
@@ -1165,6 +1196,79 @@ void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y
   else
     add_rows(std::false_type{});
   acc.tally = t;
+}
+
+void Comparator::add_floor_sample(const Expectation& expected, const Frame& gl) {
+  State& st = *state_;
+  const Frame& reference = expected.frame;
+  if (st.next_row != 0)
+    throw std::logic_error("Comparator: a floor sample after the first band of " + st.c.name);
+  if (reference.width != st.width || gl.width != st.width || gl.height != reference.height ||
+      reference.height > st.height || gl.components.size() != reference.components.size() ||
+      reference.components.size() != size_t(st.c.component_count()) ||
+      expected.edges.size() != reference.pixel_count())
+    throw std::invalid_argument("compare: a floor sample of another shape for case " + st.c.name);
+  // Plain runs as add_rows finds most of them: the same drawn triangle in both frames at every
+  // pixel, no edge bit, as many fragments (a pixel add_rows judges against the reference's own
+  // fragment by another way is only left out of the sample).
+  constexpr int kRun = ChannelAccumulator::kRun;
+  const int runs = (reference.width + kRun - 1) / kRun;
+  const bool counts = reference.fragments.size() == reference.pixel_count() &&
+                      gl.fragments.size() == gl.pixel_count();
+  const int32_t triangles = int32_t(std::min<size_t>(st.c.triangles.size(), INT32_MAX));
+  std::vector<int32_t> plain(size_t(runs) * size_t(reference.height), -1);
+  size_t plain_count = 0;
+  for (int y = 0; y < reference.height; ++y)
+    for (int r = 0; r < reference.width / kRun; ++r) {
+      const size_t first = reference.index(r * kRun, y);
+      const int32_t p = reference.primitive[first];
+      bool own = p >= 0 && p < triangles;
+      for (size_t i = first; own && i < first + kRun; ++i)
+        own = reference.primitive[i] == p && gl.primitive[i] == p && expected.edges[i] == 0 &&
+              (!counts || reference.fragments[i] == gl.fragments[i]);
+      if (!own) continue;
+      plain[size_t(y) * size_t(runs) + size_t(r)] = p;
+      ++plain_count;
+    }
+  st.sampled_rows += size_t(reference.height);
+  st.sampled_plain += plain_count;
+  st.sampled_ulps.resize(st.channels.size());
+  st.sampled_ratios.resize(st.channels.size());
+  parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
+    const int k = slot - 1;
+    const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+    std::optional<ChannelBounds> bounds;
+    if (const DeferredAllowance* deferred = allowance.deferred())
+      bounds = run_bounds(*deferred, plain, st.ulps, reference, k);
+    sample_floor_keys(plain, st.ulps, allowance, reference, channel_values(gl, k),
+                      channel_values(reference, k), k, bounds ? &*bounds : nullptr,
+                      st.sampled_ulps[size_t(slot)], st.sampled_ratios[size_t(slot)]);
+  });
+}
+
+void Comparator::guess_floors() {
+  State& st = *state_;
+  if (st.next_row != 0)
+    throw std::logic_error("Comparator: floors guessed after the first band of " + st.c.name);
+  if (st.sampled_rows > 0) {
+    // The frame's plain runs as the sample's share of them over its rows.
+    const double plain = double(st.sampled_plain) * double(st.height) / double(st.sampled_rows);
+    const double pixels = double(st.width) * double(st.height);
+    parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
+      ChannelAccumulator& acc = st.channels[size_t(slot)];
+      if (const auto share = floor_share(acc, plain, pixels, st.sampled_plain))
+        assume_sampled_floors(acc, st.sampled_ulps[size_t(slot)], st.sampled_ratios[size_t(slot)],
+                              *share);
+    });
+  }
+  st.sampled_ulps = {}, st.sampled_ratios = {};
+  st.sampled_rows = st.sampled_plain = 0;
+}
+
+bool Comparator::floors_held() const {
+  for (const ChannelAccumulator& acc : state_->channels)
+    if (!acc.ulps.complete() || !acc.ratios.complete()) return false;
+  return true;
 }
 
 CaseResult Comparator::finish() {

@@ -42,6 +42,22 @@ class Comparator {
   // band). y0 must be the row after the previous band's. Throws std::invalid_argument for bands
   // of another shape or out of order.
   void add_rows(const Expectation& expected, const Frame& gl, int y0);
+  // For a frame compared band by band, before its first band: the floors of each channel's
+  // largest values guessed from a sample of its rows (as compare() guesses them from a sample of
+  // its whole frame), so that values below them are dropped from the first band on, not only
+  // once as many as a percent of the frame's have been kept. add_floor_sample() takes a band of
+  // rows from anywhere in the frame (as add_rows() takes one, its allowance deferred or not),
+  // keeping a sample of its values, not the band; guess_floors() then assumes floors from
+  // every band sampled (none where too little of the sample is plain runs of one primitive).
+  // The stream may not bear a guess out: then floors_held() is false after the last band, and
+  // finish() is not to be trusted: compare the bands again with a fresh Comparator without
+  // guessing. Throws std::logic_error after the first band, std::invalid_argument for a band of
+  // another shape.
+  void add_floor_sample(const Expectation& expected, const Frame& gl);
+  void guess_floors();
+  // Whether every channel's largest values are those of every value added (always, unless
+  // floors were guessed).
+  bool floors_held() const;
   // The verdict and the statistics, as compare() gives them. Once.
   CaseResult finish();
 

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -154,6 +155,58 @@ TEST(DeferredAllowance, ALargeFrameGetsTheSameResultsAsTheAllowanceAtEveryPixel)
     CheckOptions strict;
     strict.strict_coverage = true;
     expect_same_results(c, {driver_models::render(c, driver_models::Driver::llvmpipe)}, strict);
+  }
+}
+
+// A frame compared band by band with its floors guessed from sample bands first
+// (Comparator::add_floor_sample, guess_floors, as a streamed check does): the same results as
+// the whole frame, when the stream bears the guess out; and floors_held() says when it does
+// not, which a sample misleading on purpose shows (the floors are assumed, not a no-op).
+TEST(DeferredAllowance, FloorsGuessedFromSampleBandsGiveTheWholeResults) {
+  const Case c = quad(1024, 1, 5);
+  const Frame gl = driver_models::render(c, driver_models::Driver::llvmpipe);
+  for (const ToleranceMode mode :
+       {ToleranceMode::spec, ToleranceMode::ulps, ToleranceMode::exact}) {
+    SCOPED_TRACE(int(mode));
+    CheckOptions o;
+    o.tolerance = mode;
+    const int bits = freedom_bits(o, 8);
+    const Tolerance t = tolerance_for(c, o, 8);
+    const std::string whole = json_of(compare::compare(c, expectation_for(c, o, 8), gl, t, 2));
+    // Rows of the reference as a streamed check draws them: the allowance deferred under the
+    // specification's, else none needed beyond the band's own.
+    const auto band = [&](int y0, int rows) {
+      return mode == ToleranceMode::spec ? ref::render_rows_deferred(c, o.model, bits, 2, y0, rows)
+                                         : expectation_rows(c, o, 8, y0, rows);
+    };
+    // Sample bands of 16 rows, one in two (512 rows of 16 runs: over 4096 plain runs).
+    const auto sampled = [&](const Frame& sample_gl) {
+      auto comparator = std::make_unique<compare::Comparator>(c, t, c.fb_width, c.fb_height, 2);
+      for (int y0 = 8; y0 < c.fb_height; y0 += 32)
+        comparator->add_floor_sample(band(y0, 16), sample_gl.rows(y0, 16));
+      comparator->guess_floors();
+      for (int y0 = 0; y0 < c.fb_height; y0 += 100) {
+        const int rows = std::min(100, c.fb_height - y0);
+        comparator->add_rows(band(y0, rows), gl.rows(y0, rows), y0);
+      }
+      return comparator;
+    };
+    const auto guessed = sampled(gl);
+    EXPECT_TRUE(guessed->floors_held());
+    EXPECT_EQ(json_of(guessed->finish()), whole);
+    // Sampled from a frame with every error ten thousand times GL's: floors far above the
+    // frame's hundredth largest errors, which the stream does not bear out.
+    Frame misleading = gl;
+    const Frame reference = ref::render(c, o.model, bits, 2).frame;
+    for (size_t k = 0; k < gl.components.size(); ++k)
+      for (size_t i = 0; i < gl.pixel_count(); ++i)
+        misleading.components[k][i] =
+            reference.components[k][i] + 1e4f * (gl.components[k][i] - reference.components[k][i]);
+    EXPECT_FALSE(sampled(misleading)->floors_held());
+    // Only before the first band.
+    compare::Comparator late(c, t, c.fb_width, c.fb_height, 1);
+    late.add_rows(band(0, 10), gl.rows(0, 10), 0);
+    EXPECT_THROW(late.add_floor_sample(band(10, 10), gl.rows(10, 10)), std::logic_error);
   }
 }
 
