@@ -101,7 +101,8 @@ std::vector<std::pair<int, int>> floor_sample_bands(const Case& c) {
 // back (glReadPixels of the band) and both are compared; GL's band is then digested on a thread
 // of its own while the next band is drawn, read and compared (the digest is one SHA-256 stream
 // in row order, which nothing else of a band needs). At most three bands of GL's frame (one read,
-// one hashed, one spare) and one of the reference's are alive at a time. The comparator's
+// one hashed, one spare) and two of the reference's (one compared, one drawn) are alive at a
+// time. The comparator's
 // floors are guessed first from bands spread over the frame (floor_sample_bands), as a frame
 // compared whole guesses them from a sample of itself: without them, a channel keeps every
 // value until it has a percent of the frame's, and its allowances are computed at every pixel
@@ -113,11 +114,11 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
   const bool deferred = o.deferred_allowance && deferral_pays(c);
   const Tolerance tolerance = tolerance_for(c, o, reported);
   renderer.draw(c);
-  Expectation expected;  // each band drawn in the last one's buffers
-  const auto draw_rows = [&](int y0, int n) {
-    expected = deferred ? ref::render_rows_deferred(c, o.model, freedom_bits(o, reported),
-                                                    o.threads, y0, n, std::move(expected))
-                        : expectation_rows(c, o, reported, y0, n);
+  // The reference's rows [y0, y0 + n), in the buffers of `storage` where it can.
+  const auto draw_rows = [&](int y0, int n, Expectation&& storage) {
+    return deferred ? ref::render_rows_deferred(c, o.model, freedom_bits(o, reported), o.threads,
+                                                y0, n, std::move(storage))
+                    : expectation_rows(c, o, reported, y0, n);
   };
   ref::FrameDigest digest(c.fb_width, c.fb_height);
   // Declared before the digest's future, whose destructor waits for it: the band it hashes
@@ -126,27 +127,43 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
   // (perf: a twentieth of the 2048x2048 scene's check).
   Frame hashing, spare;
   std::future<void> hashed;
-  // Every band compared by `comparator`, and hashed when `hash`.
+  // Every band compared by `comparator`, and hashed when `hash`. The reference's next band is
+  // drawn while this one is read back and compared, in the buffers of the band before
+  // (`drawn`): a band's drawing has parts on one thread (each triangle set up and prepared),
+  // as its reading back has, which the other's work fills.
   const auto compare_bands = [&](compare::Comparator& comparator, bool hash) {
+    Expectation drawn;
+    std::future<Expectation> next;  // after `drawn`: its destructor waits for the drawing
+    const auto draw_next = [&](int y0) {
+      if (y0 >= c.fb_height) return;
+      next = std::async(std::launch::async, [&, y0, storage = std::move(drawn)]() mutable {
+        return draw_rows(y0, std::min(rows, c.fb_height - y0), std::move(storage));
+      });
+    };
+    draw_next(0);
     for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
       const int n = std::min(rows, c.fb_height - y0);
-      draw_rows(y0, n);
+      Expectation expected = next.get();
+      draw_next(y0 + rows);
       Frame gl = renderer.read_rows_reusing(c, y0, n, std::move(spare));
       comparator.add_rows(expected, gl, y0);
       if (hashed.valid()) hashed.get();
       spare = std::exchange(hashing, std::move(gl));
       if (hash) hashed = std::async(std::launch::async, [&] { digest.add_rows(hashing); });
+      drawn = std::move(expected);
     }
     if (hashed.valid()) hashed.get();
   };
   std::optional<compare::Comparator> comparator;
   comparator.emplace(c, tolerance, c.fb_width, c.fb_height, o.threads);
   const std::vector<std::pair<int, int>> samples = floor_sample_bands(c);
+  Expectation sample;
   for (const auto& [y0, n] : samples) {
-    draw_rows(y0, n);
+    sample = draw_rows(y0, n, std::move(sample));
     spare = renderer.read_rows_reusing(c, y0, n, std::move(spare));
-    comparator->add_floor_sample(expected, spare);
+    comparator->add_floor_sample(sample, spare);
   }
+  sample = {};
   comparator->guess_floors();
   compare_bands(*comparator, true);
   if (!comparator->floors_held()) {
