@@ -18,6 +18,7 @@
 #include "check/check.hpp"
 #include "compare/compare.hpp"
 #include "driver_models/driver_models.hpp"
+#include "gl_harness/gl_harness.hpp"
 #include "ref/reference.hpp"
 #include "report/report.hpp"
 
@@ -208,6 +209,73 @@ TEST(DeferredAllowance, FloorsGuessedFromSampleBandsGiveTheWholeResults) {
     late.add_rows(band(0, 10), gl.rows(0, 10), 0);
     EXPECT_THROW(late.add_floor_sample(band(10, 10), gl.rows(10, 10)), std::logic_error);
   }
+}
+
+// A stand-in for GL (it tests check_streamed's logic, not a driver): draws `frame`, and gives
+// the bands read before the first read of row 0 (a streamed check's sample bands) from
+// `samples` instead.
+class SampledRenderer : public gl::Renderer {
+ public:
+  SampledRenderer(Frame frame, Frame samples)
+      : frame_(std::move(frame)), samples_(std::move(samples)) {
+    info_.renderer = "frame and sample bands (test)";
+    info_.subpixel_bits = 8;
+  }
+  const gl::GlInfo& info() const override { return info_; }
+  Frame render(const Case&) override { return frame_; }
+  void draw(const Case&) override { first_band_read_ = false; }
+  Frame read_rows(const Case&, int y0, int rows) override {
+    ++reads;
+    first_band_read_ = first_band_read_ || y0 == 0;
+    return (first_band_read_ ? frame_ : samples_).rows(y0, rows);
+  }
+  int reads = 0;
+
+ private:
+  gl::GlInfo info_;
+  Frame frame_, samples_;
+  bool first_band_read_ = false;
+};
+
+// A streamed check whose floors, guessed from its sample bands, the stream does not bear out
+// (sample bands whose errors are a thousand times the frame's): its bands compared again
+// without them, the whole check's result; and with honest sample bands, compared once.
+TEST(DeferredAllowance, AStreamedCheckWhoseFloorsDoNotHoldIsComparedAgain) {
+  // 2048x2048 (64 sample bands of two rows: 8192 runs), the noperspective pair and the flat
+  // component; errors of 0 to 3 float steps in the pair, by pixel.
+  const Case c = quad(2048, 0, 6);
+  const Frame reference = ref::render_frame(c, CheckOptions{}.model, 2);
+  Frame gl = reference, misleading = reference;
+  for (size_t k = 0; k < 2; ++k)
+    for (size_t i = 0; i < gl.pixel_count(); ++i) {
+      float& v = gl.components[k][i];
+      for (size_t step = (i * 2654435761u >> 7) % 4; step > 0; --step)
+        v = std::nextafter(v, INFINITY);
+      misleading.components[k][i] =
+          reference.components[k][i] + 1e3f * (v - reference.components[k][i]);
+    }
+  CheckOptions whole;
+  whole.deferred_allowance = true;
+  whole.threads = 2;
+  CheckOptions streamed = whole;
+  streamed.whole_frame_bytes = 0;
+  SampledRenderer honest(gl, gl), misled(gl, misleading);
+  const Checked expected = check_with_frames(c, honest, whole);
+  EXPECT_FALSE(expected.streamed);
+  const int reads_before = honest.reads;
+  const Checked once = check_with_frames(c, honest, streamed);
+  const int honest_reads = honest.reads - reads_before;
+  const Checked again = check_with_frames(c, misled, streamed);
+  EXPECT_TRUE(once.streamed && again.streamed);
+  EXPECT_EQ(json_of(once.result), json_of(expected.result));
+  EXPECT_EQ(json_of(again.result), json_of(expected.result));
+  EXPECT_EQ(once.result.gl_digest, ref::digest(gl));
+  EXPECT_EQ(again.result.gl_digest, ref::digest(gl));
+  // Each band read twice where the floors did not hold, once where they did (and the sample
+  // bands once in both).
+  const int bands = (c.fb_height + band_rows(c, streamed) - 1) / band_rows(c, streamed);
+  EXPECT_GT(honest_reads, bands);
+  EXPECT_EQ(misled.reads, honest_reads + bands);
 }
 
 // Every run of `length` pixels of one primitive in a row: lo <= each allowance <= hi, for the
