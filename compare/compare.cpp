@@ -611,6 +611,7 @@ struct Comparator::State {
   // add_floor_sample's keys by channel, and how many rows and plain runs they were taken from.
   std::vector<std::vector<uint32_t>> sampled_ulps, sampled_ratios;
   size_t sampled_rows = 0, sampled_plain = 0;
+  bool floors_guessed = false;  // guess_floors() has run on a sample
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height,
@@ -738,7 +739,9 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   // Then the values, channel by channel (depth, then each component), each in pixel order. The
   // channels share nothing but what they read, so several threads take one each: every
   // channel's figures are the same bits for any number of threads.
-  const bool whole = y0 == 0 && reference.height == st.height;
+  // A frame compared whole guesses its floors from itself, unless they were guessed from
+  // sample bands already (a stream of one band).
+  const bool whole = y0 == 0 && reference.height == st.height && !st.floors_guessed;
   parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
     if (whole)
       add_whole_channel(expected, gl, slot - 1);
@@ -993,8 +996,9 @@ void Comparator::add_band_channel(const Expectation& expected, const Frame& gl, 
   const DeferredAllowance* deferred = allowance.deferred();
   if (!deferred) return add_channel(expected, gl, y0, k);
   // The band's bounds as a whole frame's (run_bounds); the largest allowance the channel
-  // certainly has is also the largest of the bands before (the tally's: it only grows). No
-  // floors are guessed: a band cannot be compared again should they not hold.
+  // certainly has is also the largest of the bands before (the tally's: it only grows). Its
+  // floors are not guessed from the band: a band cannot be compared again should they not hold
+  // (the caller may guess them from sample bands first: guess_floors).
   ChannelBounds bounds = run_bounds(*deferred, st.plain_runs, st.ulps, expected.frame, k);
   bounds.largest_lo =
       std::max(bounds.largest_lo, st.channels[size_t(k + 1)].tally.largest_allowance_ulps);
@@ -1251,6 +1255,7 @@ void Comparator::guess_floors() {
   if (st.next_row != 0)
     throw std::logic_error("Comparator: floors guessed after the first band of " + st.c.name);
   if (st.sampled_rows > 0) {
+    st.floors_guessed = true;
     // The frame's plain runs as the sample's share of them over its rows.
     const double plain = double(st.sampled_plain) * double(st.height) / double(st.sampled_rows);
     const double pixels = double(st.width) * double(st.height);

@@ -72,9 +72,11 @@ class Comparator {
     std::vector<RunBounds> runs;
     double largest_lo = 0;
     // Whether no allowance up to hi, of ulp 1/inverse_ulp, can be the channel's largest (an
-    // infinite hi can).
+    // infinite hi can): below largest_lo strictly, since the run whose lo it is must not be
+    // left out of the largest itself (it is when its hi is its lo), or not above 0 (an
+    // allowance of 0 is never the largest counted).
     bool below_largest(double hi, double inverse_ulp) const {
-      return hi * inverse_ulp <= largest_lo;
+      return hi * inverse_ulp < largest_lo || hi <= 0;
     }
   };
 
@@ -89,7 +91,8 @@ class Comparator {
   // should the frame not bear them out.
   void add_whole_channel(const Expectation& expected, const Frame& gl, int k);
   // add_channel() of a band of a frame compared band by band: with a deferred allowance, bounds
-  // of it over the band's plain runs, as add_whole_channel finds them, and no floors guessed.
+  // of it over the band's plain runs, as add_whole_channel finds them; no floors guessed from
+  // the band (guess_floors guesses them from sample bands).
   void add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k);
   struct State;
   std::unique_ptr<State> state_;

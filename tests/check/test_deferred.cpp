@@ -180,14 +180,15 @@ TEST(DeferredAllowance, FloorsGuessedFromSampleBandsGiveTheWholeResults) {
       return mode == ToleranceMode::spec ? ref::render_rows_deferred(c, o.model, bits, 2, y0, rows)
                                          : expectation_rows(c, o, 8, y0, rows);
     };
-    // Sample bands of 16 rows, one in two (512 rows of 16 runs: over 4096 plain runs).
-    const auto sampled = [&](const Frame& sample_gl) {
+    // Sample bands of 16 rows, one in two (512 rows of 16 runs: over 4096 plain runs), then
+    // the frame in bands of `height` rows.
+    const auto sampled = [&](const Frame& sample_gl, int height = 100) {
       auto comparator = std::make_unique<compare::Comparator>(c, t, c.fb_width, c.fb_height, 2);
       for (int y0 = 8; y0 < c.fb_height; y0 += 32)
         comparator->add_floor_sample(band(y0, 16), sample_gl.rows(y0, 16));
       comparator->guess_floors();
-      for (int y0 = 0; y0 < c.fb_height; y0 += 100) {
-        const int rows = std::min(100, c.fb_height - y0);
+      for (int y0 = 0; y0 < c.fb_height; y0 += height) {
+        const int rows = std::min(height, c.fb_height - y0);
         comparator->add_rows(band(y0, rows), gl.rows(y0, rows), y0);
       }
       return comparator;
@@ -195,6 +196,11 @@ TEST(DeferredAllowance, FloorsGuessedFromSampleBandsGiveTheWholeResults) {
     const auto guessed = sampled(gl);
     EXPECT_TRUE(guessed->floors_held());
     EXPECT_EQ(json_of(guessed->finish()), whole);
+    // One band of the whole frame after the guess (which a whole frame makes of itself
+    // otherwise, and only before any value).
+    const auto one_band = sampled(gl, c.fb_height);
+    EXPECT_TRUE(one_band->floors_held());
+    EXPECT_EQ(json_of(one_band->finish()), whole);
     // Sampled from a frame with every error ten thousand times GL's: floors far above the
     // frame's hundredth largest errors, which the stream does not bear out.
     Frame misleading = gl;
