@@ -103,12 +103,11 @@ std::vector<std::pair<int, int>> floor_sample_bands(const Case& c) {
 // of its own while the next band is drawn, read and compared (the digest is one SHA-256 stream
 // in row order, which nothing else of a band needs). At most three bands of GL's frame (one read,
 // one hashed, one spare) and two of the reference's (one compared, one drawn) are alive at a
-// time. The comparator's
-// floors are guessed first from bands spread over the frame (floor_sample_bands), as a frame
-// compared whole guesses them from a sample of itself: without them, a channel keeps every
-// value until it has a percent of the frame's, and its allowances are computed at every pixel
-// until then (a sixth of the 2048x2048 scene's check). Should the stream not bear them out,
-// its bands are compared again without (GL's frame stays drawn).
+// time. The comparator's floors are guessed first from bands spread over the frame
+// (floor_sample_bands), as a frame compared whole guesses them from a sample of itself: without
+// them, a channel keeps every value until it has a percent of the frame's, and its allowances
+// are computed at every pixel until then (a sixth of the 2048x2048 scene's check). Should the
+// stream not bear them out, its bands are compared again without (GL's frame stays drawn).
 void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o, int reported,
                     Checked& out) {
   const int rows = band_rows(c, o);

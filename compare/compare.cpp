@@ -620,6 +620,37 @@ Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int
 
 Comparator::~Comparator() = default;
 
+namespace {
+
+// Whether pixel i is one of those most of a frame is: the same drawn triangle in both frames,
+// no edge bit, as many fragments (where both frames have counts). judged_against gives such a
+// pixel the reference's own fragment and coverage_label nothing, which is all this says
+// without calling either. Inlined into add_rows' loop over every pixel.
+class PlainlyOwn {
+ public:
+  PlainlyOwn(const Case& c, const Expectation& expected, const Frame& gl)
+      : expected_(expected),
+        gl_(gl),
+        // coverage_label's own test: these frames both have fragment counts.
+        counts_(expected.frame.fragments.size() == expected.frame.pixel_count() &&
+                gl.fragments.size() == gl.pixel_count()),
+        triangles_(int32_t(std::min<size_t>(c.triangles.size(), INT32_MAX))) {}
+  [[gnu::always_inline]] bool operator()(size_t i) const {
+    const Frame& reference = expected_.frame;
+    const int32_t p = reference.primitive[i];
+    return p == gl_.primitive[i] && p >= 0 && p < triangles_ && expected_.edges[i] == 0 &&
+           (!counts_ || reference.fragments[i] == gl_.fragments[i]);
+  }
+
+ private:
+  const Expectation& expected_;
+  const Frame& gl_;
+  const bool counts_;
+  const int32_t triangles_;
+};
+
+}  // namespace
+
 void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) {
   State& st = *state_;
   const Case& c = st.c;
@@ -664,10 +695,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   const int runs = (reference.width + kRun - 1) / kRun;
   st.plain_runs.assign(size_t(runs) * size_t(std::max(reference.height, 0)), -1);
   st.own_runs.assign(st.plain_runs.size(), 0);
-  // coverage_label's own test: this band's frames both have fragment counts.
-  const bool counts = reference.fragments.size() == reference.pixel_count() &&
-                      gl.fragments.size() == gl.pixel_count();
-  const int32_t triangles = int32_t(std::min<size_t>(c.triangles.size(), INT32_MAX));
+  const PlainlyOwn plainly_own(c, expected, gl);
   parallel_for(blocks, st.threads, [&](int b) {
     CoverageStats& cv = part[size_t(b)];
     const int first = int(int64_t(reference.height) * b / blocks);
@@ -676,11 +704,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
       for (int x = 0; x < reference.width; ++x) {
         const size_t i = reference.index(x, y);
         const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
-        // Most pixels: the same drawn triangle in both, no edge bit, as many fragments. Then
-        // judged_against gives the reference's own fragment and coverage_label nothing, which
-        // is all this says without calling either.
-        if (pr == pg && pr >= 0 && pr < triangles && expected.edges[i] == 0 &&
-            (!counts || reference.fragments[i] == gl.fragments[i])) {
+        if (plainly_own(i)) {
           judgement[i] = kOwn;
           ++cv.both;
           continue;
@@ -1212,24 +1236,21 @@ void Comparator::add_floor_sample(const Expectation& expected, const Frame& gl) 
       reference.components.size() != size_t(st.c.component_count()) ||
       expected.edges.size() != reference.pixel_count())
     throw std::invalid_argument("compare: a floor sample of another shape for case " + st.c.name);
-  // Plain runs as add_rows finds most of them: the same drawn triangle in both frames at every
-  // pixel, no edge bit, as many fragments (a pixel add_rows judges against the reference's own
-  // fragment by another way is only left out of the sample).
+  // Plain runs as add_rows finds most of them: every pixel plainly its own, of one primitive
+  // (a pixel add_rows judges against the reference's own fragment by another way is only left
+  // out of the sample).
   constexpr int kRun = ChannelAccumulator::kRun;
   const int runs = (reference.width + kRun - 1) / kRun;
-  const bool counts = reference.fragments.size() == reference.pixel_count() &&
-                      gl.fragments.size() == gl.pixel_count();
-  const int32_t triangles = int32_t(std::min<size_t>(st.c.triangles.size(), INT32_MAX));
+  const PlainlyOwn plainly_own(st.c, expected, gl);
   std::vector<int32_t> plain(size_t(runs) * size_t(reference.height), -1);
   size_t plain_count = 0;
   for (int y = 0; y < reference.height; ++y)
     for (int r = 0; r < reference.width / kRun; ++r) {
       const size_t first = reference.index(r * kRun, y);
       const int32_t p = reference.primitive[first];
-      bool own = p >= 0 && p < triangles;
+      bool own = true;
       for (size_t i = first; own && i < first + kRun; ++i)
-        own = reference.primitive[i] == p && gl.primitive[i] == p && expected.edges[i] == 0 &&
-              (!counts || reference.fragments[i] == gl.fragments[i]);
+        own = reference.primitive[i] == p && plainly_own(i);
       if (!own) continue;
       plain[size_t(y) * size_t(runs) + size_t(r)] = p;
       ++plain_count;
