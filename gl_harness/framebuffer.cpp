@@ -118,10 +118,6 @@ void deinterleave(const float* rgba, size_t pixels, int size, float* const* out)
   }
 }
 
-}  // namespace
-
-namespace {
-
 // The rows of a staging band: about kStagingBytes of `bytes_per_pixel` pixels `width` wide, at
 // least one row, at most `height`. A readback converted on the CPU (de-interleaved, shifted,
 // clamped) goes through one band at a time: the band GL has just written is still in the
@@ -188,7 +184,7 @@ void Framebuffer::read_depth(Frame& frame, int y0) {
 void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
   const int w = frame.width, h = frame.height;
   const int band = staging_rows(w, h, sizeof(float));
-  resize_large(counts_, size_t(w) * size_t(band));  // every value read back before it is used
+  resize_large(counts_, size_t(w) * size_t(band));     // every value read back before it is used
   resize_large(frame.fragments, frame.pixel_count());  // every value written below
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
   for (int b = 0; b < h; b += band) {
