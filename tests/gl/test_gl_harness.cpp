@@ -530,6 +530,47 @@ TEST_F(Gl, EveryVaryingSizeLandsInItsComponents) {
       EXPECT_EQ(bits(f.components[k][p]), bits(values[k])) << "component " << k;
 }
 
+// A readback converted on the CPU goes through a staging band of about a megabyte
+// (framebuffer.cpp): 1000 pixels wide, an RGBA32F attachment's band holds 65 rows and the
+// fragment counts' 262, so 300 rows take several bands of each, the last one short. Every
+// row read alone (a band of one row) is that row of the frame read whole: no band lands in
+// another's rows. The values change from row to row and pixel to pixel (perspective), and a
+// nearer triangle over a corner gives fragment counts of 2, so a misplaced band would show.
+TEST_F(Gl, ReadBackThroughStagingBandsPutsEveryRowInItsPlace) {
+  Case c = make_case("staging_bands", 1000, 300, {0, 0, 1000, 300});
+  c.depth_func = DepthFunc::less;
+  c.varyings = {varying("a", 3, Interpolation::smooth),
+                varying("b", 4, Interpolation::noperspective)};
+  const float w[4] = {1.0f, 2.0f, 4.0f, 3.0f};
+  const float xy[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (int i = 0; i < 4; ++i) {
+    std::vector<float> values;
+    for (int k = 0; k < 7; ++k)
+      values.push_back(float(1 + i * 7 + k) * (k % 2 ? -0.375f : 1.25f));
+    c.vertices.push_back(vertex(xy[i][0] * w[i], xy[i][1] * w[i], 0.25f * w[i], w[i], values));
+  }
+  c.triangles = {{0, 1, 2}, {0, 2, 3}};
+  c.vertices.push_back(vertex(-1, -1, -0.5f, 1, std::vector<float>(7, 3.0f)));
+  c.vertices.push_back(vertex(0, -1, -0.5f, 1, std::vector<float>(7, -1.0f)));
+  c.vertices.push_back(vertex(-1, 0, -0.5f, 1, std::vector<float>(7, 0.5f)));
+  c.triangles.push_back({4, 5, 6});
+  const Frame whole = gl().render(c);
+  ASSERT_EQ(whole.height, 300);
+  ASSERT_EQ(whole.components.size(), 7u);
+  ASSERT_EQ(whole.fragments.size(), whole.pixel_count());
+  EXPECT_GT(std::count(whole.fragments.begin(), whole.fragments.end(), uint16_t(2)), 10000);
+  EXPECT_NE(whole.components[0][whole.index(500, 10)], whole.components[0][whole.index(500, 290)]);
+  gl().draw(c);
+  for (int y = 0; y < c.fb_height; ++y) {
+    SCOPED_TRACE("row " + std::to_string(y));
+    const Frame row = gl().read_rows(c, y, 1);
+    const Frame expected = whole.rows(y, 1);
+    EXPECT_EQ(row.primitive, expected.primitive);
+    EXPECT_EQ(row.fragments, expected.fragments);
+    EXPECT_EQ(ref::digest(row), ref::digest(expected));  // depth and every component, bit for bit
+  }
+}
+
 TEST_F(Gl, SmoothIsPerspectiveCorrectAndNoperspectiveIsNot) {
   // Window triangle (0,0) (16,0) (0,16) in a 16x16 viewport, with w = 1, 2, 4 at the vertices.
   Case c = make_case("perspective", 16, 16, {0, 0, 16, 16});
