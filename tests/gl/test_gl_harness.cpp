@@ -532,7 +532,8 @@ TEST_F(Gl, EveryVaryingSizeLandsInItsComponents) {
 
 // A readback converted on the CPU goes through a staging band of about a megabyte
 // (framebuffer.cpp): 1000 pixels wide, an RGBA32F attachment's band holds 65 rows and the
-// fragment counts' 262, so 300 rows take several bands of each, the last one short. Every
+// fragment counts' and a 24-bit depth's 262, so 300 rows take several bands of each, the last
+// one short (with the default 32F depth, and from a second renderer with a 24-bit one). Every
 // row read alone (a band of one row) is that row of the frame read whole: no band lands in
 // another's rows. The values change from row to row and pixel to pixel (perspective), and a
 // nearer triangle over a corner gives fragment counts of 2, so a misplaced band would show.
@@ -547,27 +548,37 @@ TEST_F(Gl, ReadBackThroughStagingBandsPutsEveryRowInItsPlace) {
     std::vector<float> values;
     for (int k = 0; k < 7; ++k)
       values.push_back(float(1 + i * 7 + k) * (k % 2 ? -0.375f : 1.25f));
-    c.vertices.push_back(vertex(xy[i][0] * w[i], xy[i][1] * w[i], 0.25f * w[i], w[i], values));
+    c.vertices.push_back(
+        vertex(xy[i][0] * w[i], xy[i][1] * w[i], (0.2f * float(i) - 0.3f) * w[i], w[i], values));
   }
   c.triangles = {{0, 1, 2}, {0, 2, 3}};
   c.vertices.push_back(vertex(-1, -1, -0.5f, 1, std::vector<float>(7, 3.0f)));
   c.vertices.push_back(vertex(0, -1, -0.5f, 1, std::vector<float>(7, -1.0f)));
   c.vertices.push_back(vertex(-1, 0, -0.5f, 1, std::vector<float>(7, 0.5f)));
   c.triangles.push_back({4, 5, 6});
-  const Frame whole = gl().render(c);
-  ASSERT_EQ(whole.height, 300);
-  ASSERT_EQ(whole.components.size(), 7u);
-  ASSERT_EQ(whole.fragments.size(), whole.pixel_count());
-  EXPECT_GT(std::count(whole.fragments.begin(), whole.fragments.end(), uint16_t(2)), 10000);
-  EXPECT_NE(whole.components[0][whole.index(500, 10)], whole.components[0][whole.index(500, 290)]);
-  gl().draw(c);
-  for (int y = 0; y < c.fb_height; ++y) {
-    SCOPED_TRACE("row " + std::to_string(y));
-    const Frame row = gl().read_rows(c, y, 1);
-    const Frame expected = whole.rows(y, 1);
-    EXPECT_EQ(row.primitive, expected.primitive);
-    EXPECT_EQ(row.fragments, expected.fragments);
-    EXPECT_EQ(ref::digest(row), ref::digest(expected));  // depth and every component, bit for bit
+  Target unorm24 = target();
+  unorm24.depth_format = DepthFormat::unorm24;
+  const std::unique_ptr<Renderer> second = create_renderer(unorm24);
+  for (Renderer* renderer : {&gl(), second.get()}) {
+    SCOPED_TRACE(renderer == &gl() ? "32F depth" : "24-bit depth");
+    const Frame whole = renderer->render(c);
+    ASSERT_EQ(whole.height, 300);
+    ASSERT_EQ(whole.components.size(), 7u);
+    ASSERT_EQ(whole.fragments.size(), whole.pixel_count());
+    EXPECT_GT(std::count(whole.fragments.begin(), whole.fragments.end(), uint16_t(2)), 10000);
+    EXPECT_NE(whole.components[0][whole.index(500, 10)],
+              whole.components[0][whole.index(500, 290)]);
+    EXPECT_NE(whole.depth[whole.index(500, 10)], whole.depth[whole.index(500, 290)]);
+    renderer->draw(c);
+    for (int y = 0; y < c.fb_height; ++y) {
+      SCOPED_TRACE("row " + std::to_string(y));
+      const Frame row = renderer->read_rows(c, y, 1);
+      const Frame expected = whole.rows(y, 1);
+      EXPECT_EQ(row.primitive, expected.primitive);
+      EXPECT_EQ(row.fragments, expected.fragments);
+      EXPECT_EQ(row.depth, expected.depth);
+      EXPECT_EQ(ref::digest(row), ref::digest(expected));  // every component, bit for bit
+    }
   }
 }
 
