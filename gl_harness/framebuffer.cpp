@@ -133,21 +133,28 @@ int staging_rows(int width, int height, size_t bytes_per_pixel) {
   return int(std::clamp<size_t>(kStagingBytes / row, 1, size_t(std::max(height, 1))));
 }
 
+// Rows [0, height) of a readback `width` wide, `per_pixel` values of T a pixel, through
+// `staging`, one band of staging_rows at a time: band(b, rows, data) for rows [b, b + rows) in
+// turn, which reads them into data (every value, before any is used) and converts them.
+template <class T, class Band>
+void through_staging(std::vector<T>& staging, int width, int height, size_t per_pixel, Band band) {
+  const int step = staging_rows(width, height, per_pixel * sizeof(T));
+  resize_large(staging, size_t(std::max(width, 0)) * size_t(step) * per_pixel);
+  for (int b = 0; b < height; b += step)
+    band(b, std::min(step, height - b), staging.data());
+}
+
 }  // namespace
 
 void Framebuffer::read_varyings(const Case& c, Frame& frame, int y0) {
   const int n = int(c.varyings.size());
   const int w = frame.width, h = frame.height;
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  const int band = staging_rows(w, h, 4 * sizeof(float));
-  resize_large(rgba_, size_t(w) * size_t(band) * 4);  // every value read back before it is used
-  float* rgba = rgba_.data();
   int component = 0;
   for (int k = 0; k < n; ++k) {
     gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + k);
     const int size = c.varyings[k].size;
-    for (int b = 0; b < h; b += band) {
-      const int rows = std::min(band, h - b);
+    through_staging(rgba_, w, h, 4, [&](int b, int rows, float* rgba) {
       gl_.ReadPixels(0, y0 + b, w, rows, GL_RGBA, GL_FLOAT, rgba);
       // Rows come bottom first, as Frame wants: no flip. The varying's components in one pass
       // over the band's pixels (one per component read the RGBA band as many times).
@@ -155,7 +162,7 @@ void Framebuffer::read_varyings(const Case& c, Frame& frame, int y0) {
       for (int i = 0; i < size; ++i)
         out[i] = frame.components[size_t(component + i)].data() + frame.index(0, b);
       deinterleave(rgba, size_t(rows) * size_t(w), size, out);
-    }
+    });
     component += size;
   }
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0 + n);
@@ -170,30 +177,24 @@ void Framebuffer::read_depth(Frame& frame, int y0) {
     gl_.ReadPixels(0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, frame.depth.data());
     return;
   }
-  const int band = staging_rows(w, h, sizeof(GLuint));
-  resize_large(z_, size_t(w) * size_t(band));  // every value read back before it is used
-  for (int b = 0; b < h; b += band) {
-    const int rows = std::min(band, h - b);
-    gl_.ReadPixels(0, y0 + b, w, rows, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z_.data());
+  through_staging(z_, w, h, 1, [&](int b, int rows, GLuint* z) {
+    gl_.ReadPixels(0, y0 + b, w, rows, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, z);
     float* depth = frame.depth.data() + frame.index(0, b);
     for (size_t i = 0, count = size_t(rows) * size_t(w); i < count; ++i)
-      depth[i] = float(z_[i] >> 8);
-  }
+      depth[i] = float(z[i] >> 8);
+  });
 }
 
 void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
   const int w = frame.width, h = frame.height;
-  const int band = staging_rows(w, h, sizeof(float));
-  resize_large(counts_, size_t(w) * size_t(band));     // every value read back before it is used
   resize_large(frame.fragments, frame.pixel_count());  // every value written below
   gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-  for (int b = 0; b < h; b += band) {
-    const int rows = std::min(band, h - b);
-    gl_.ReadPixels(0, y0 + b, w, rows, GL_RED, GL_FLOAT, counts_.data());
+  through_staging(counts_, w, h, 1, [&](int b, int rows, float* counts) {
+    gl_.ReadPixels(0, y0 + b, w, rows, GL_RED, GL_FLOAT, counts);
     uint16_t* fragments = frame.fragments.data() + frame.index(0, b);
     for (size_t i = 0, count = size_t(rows) * size_t(w); i < count; ++i)
-      fragments[i] = uint16_t(std::clamp(counts_[i], 0.0f, 65535.0f));
-  }
+      fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
+  });
 }
 
 }  // namespace glrc::gl
