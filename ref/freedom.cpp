@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "ref/allowance.hpp"
+#include "ref/exact.hpp"
 
 namespace glrc::ref {
 
@@ -26,7 +29,109 @@ double snap_and_round(double x_w, double y_w, double m, int bits) {
          kPositionRoundings * kFloatUnitRoundoff * (std::max(std::fabs(x_w), std::fabs(y_w)) + m);
 }
 
+// The snapped differences (S_1 - S_0, S_2 - S_0) of three positions along one axis, in grid
+// steps, that one snapping function can give: the positions t_j (grid steps, relative to t_0)
+// each anywhere in [t_j - r_j, t_j + r_j] (the float rounding before snapping), one offset
+// a in [0, 1) for all three, and one rule: S = floor(a + t), ceil(a + t), or the nearest
+// integer (a tie either way, per vertex: a rule like ties-to-even goes both ways). Each S_j is
+// monotone in t_j, so over its interval it takes every integer from the rule at the low end to
+// the rule at the high end; as a moves, those ends change only where a + t_j ± r_j crosses an
+// integer (or a half), so a at every such crossing (each vertex's values on both sides of it,
+// the ends widened by kSlack) and between them gives every pair there is.
+std::vector<std::array<int64_t, 2>> snapped_differences(const std::array<double, 3>& t,
+                                                        const std::array<double, 3>& r) {
+  // Grid steps of widening: the doubles t_j and r_j are within this of the exact values.
+  constexpr double kSlack = 0x1p-20;
+  std::vector<std::array<int64_t, 2>> out;
+  for (int rule = 0; rule < 3; ++rule) {
+    const double shift = rule == 2 ? 0.5 : 0.0;  // nearest: floor(x + 1/2), ceil(x - 1/2)
+    std::vector<double> offsets{0.0};
+    for (size_t j = 0; j < 3; ++j)
+      for (double end : {t[j] - r[j], t[j] + r[j]}) {
+        const double a = shift - end - std::floor(shift - end);  // where a + end hits the grid
+        offsets.push_back(a);
+      }
+    std::sort(offsets.begin(), offsets.end());
+    const size_t crossings = offsets.size();
+    for (size_t k = 0; k + 1 < crossings; ++k)
+      offsets.push_back((offsets[k] + offsets[k + 1]) / 2);
+    offsets.push_back((offsets[crossings - 1] + 1) / 2);
+    for (double a : offsets) {
+      std::array<int64_t, 3> lo{}, hi{};
+      for (size_t j = 0; j < 3; ++j) {
+        const double x0 = a + t[j] - r[j] - kSlack, x1 = a + t[j] + r[j] + kSlack;
+        switch (rule) {
+          case 0:
+            lo[j] = int64_t(std::floor(x0)), hi[j] = int64_t(std::floor(x1));
+            break;
+          case 1:
+            lo[j] = int64_t(std::ceil(x0)), hi[j] = int64_t(std::ceil(x1));
+            break;
+          default:
+            lo[j] = int64_t(std::ceil(x0 - 0.5)), hi[j] = int64_t(std::floor(x1 + 0.5));
+            break;
+        }
+      }
+      for (int64_t s0 = lo[0]; s0 <= hi[0]; ++s0)
+        for (int64_t s1 = lo[1]; s1 <= hi[1]; ++s1)
+          for (int64_t s2 = lo[2]; s2 <= hi[2]; ++s2)
+            out.push_back({s1 - s0, s2 - s0});
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 }  // namespace
+
+bool orientation_may_change(const std::array<std::array<double, 2>, 3>& p,
+                            const std::array<double, 3>& rounding, int subpixel_bits) {
+  const double area2 =
+      (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+  // Each vertex within h_j of its place in x and in y moves 2·area by at most
+  // Σ_j h_j·(|E_j.x| + |E_j.y|) to first order (E_j the edge opposite vertex j: the gradient of
+  // 2·area in vertex j is E_j turned by 90 degrees), and by at most 8·h² more (the cross
+  // product of two moves of up to 2h per axis), h the largest h_j. The doubles' own rounding
+  // of p is allowed for by 2^-30 of the magnitudes.
+  double magnitude = 0;
+  for (const auto& v : p)
+    magnitude = std::max({magnitude, std::fabs(v[0]), std::fabs(v[1])});
+  const double slack = std::ldexp(1 + magnitude, -30);
+  auto moves = [&](double step) {
+    double bound = 0, largest = 0;
+    for (size_t j = 0; j < 3; ++j) {
+      const auto& a = p[(j + 1) % 3];
+      const auto& b = p[(j + 2) % 3];
+      const double h = step + rounding[j] + slack;
+      bound += h * (std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]));
+      largest = std::max(largest, h);
+    }
+    return bound + 8 * largest * largest;
+  };
+  // Rounding alone (an implementation that does not snap, or snaps as finely as it likes).
+  if (!(std::fabs(area2) > moves(0))) return true;
+  // Each grid of 2^-b pixels, b from the bits up: a finer grid moves each vertex less, so once
+  // the bound holds for one it holds for all finer ones. Within the bound, the area each grid
+  // gives is computed exactly, from every pair of snapped differences along x and along y.
+  for (int b = std::max(subpixel_bits, 0); b <= 48; ++b) {
+    const double step = std::ldexp(1.0, -b);
+    if (std::fabs(area2) > moves(step)) return false;
+    std::array<std::vector<std::array<int64_t, 2>>, 2> axis;
+    for (size_t k = 0; k < 2; ++k) {
+      std::array<double, 3> t{}, r{};
+      for (size_t j = 0; j < 3; ++j)
+        t[j] = (p[j][k] - p[0][k]) / step, r[j] = (rounding[j] + slack) / step;
+      axis[k] = snapped_differences(t, r);
+    }
+    for (const auto& x : axis[0])
+      for (const auto& y : axis[1]) {
+        const int128 snapped = int128(x[0]) * y[1] - int128(x[1]) * y[0];
+        if (snapped == 0 || (snapped > 0) != (area2 > 0)) return true;
+      }
+  }
+  return true;  // not decided within 2^-48 pixels: taken as free
+}
 
 ConcaveEnvelope::ConcaveEnvelope(const std::vector<std::array<double, 3>>& points) {
   if (points.empty()) return;
@@ -252,29 +357,19 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
         sliver_sources_.push_back({v[0], v[1]});
   }
 
-  // Orientation: 2·area moves by at most Σ_j δ_j·(|E_j.x| + |E_j.y|) to first order (E_j the
-  // edge opposite vertex j: the gradient of 2·area in vertex j is E_j turned by 90 degrees), and
-  // by at most 8·δ² more (the cross product of two moves of up to 2δ per axis).
+  // Orientation: whether some conforming implementation's snapped vertices give a doubled
+  // area of the other sign, or 0 (orientation_may_change).
   std::array<std::array<double, 2>, 3> p{};
-  std::array<double, 3> d{};
+  std::array<double, 3> rounding{};
   for (size_t j = 0; j < 3; ++j) {
     const auto& v = c.vertices[t.index[j]].clip;
     if (!(v[3] > 0)) return;
     p[j] = {vp.x + vp.width / 2.0 * (1 + double(v[0]) / v[3]),
             vp.y + vp.height / 2.0 * (1 + double(v[1]) / v[3])};
-    d[j] = snap_and_round(p[j][0], p[j][1], m, subpixel_bits);
+    rounding[j] =
+        snap_and_round(p[j][0], p[j][1], m, subpixel_bits) - std::ldexp(1.0, -subpixel_bits);
   }
-  const double area2 =
-      (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
-  double bound = 0;
-  for (size_t j = 0; j < 3; ++j) {
-    const auto& a = p[(j + 1) % 3];
-    const auto& b = p[(j + 2) % 3];
-    bound += d[j] * (std::fabs(b[0] - a[0]) + std::fabs(b[1] - a[1]));
-  }
-  const double largest_move = std::max({d[0], d[1], d[2]});
-  bound += 8 * largest_move * largest_move;
-  may_turn_over_ = !(std::fabs(area2) > bound);
+  may_turn_over_ = orientation_may_change(p, rounding, subpixel_bits);
 }
 
 double PositionFreedom::at(int px, int py) const {

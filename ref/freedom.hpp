@@ -107,6 +107,20 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
                                            std::vector<std::array<double, 3>>* z_clip = nullptr,
                                            bool* reaches_eye = nullptr);
 
+// Whether a triangle with window positions p (pixels, each within rounding[j] of where an
+// implementation computes it in float32, in x and in y) may have a doubled area of the other
+// sign, or 0, as some conforming implementation rasterizes it: one that does not snap (its
+// positions anywhere within their rounding), or one that snaps every vertex with one function
+// onto a grid of 2^-b pixels, b >= subpixel_bits: one offset for all three vertices and one
+// rule (down, up, or to the nearest, a tie either way), after the rounding. Snapped
+// differences are whole grid steps, which the box of ±2^-b around each vertex does not know:
+// two rim vertices of a thin fan triangle 0.3 pixels apart snap to the same side of each other
+// whatever the grid's offset. Exact for each grid (every pair of snapped differences along x
+// and y, a handful each, enumerated), in every grid down to the one where a first-order bound
+// on the vertices' moves decides it.
+bool orientation_may_change(const std::array<std::array<double, 2>, 3>& p,
+                            const std::array<double, 3>& rounding, int subpixel_bits);
+
 // The freedom of one triangle, per pixel: the largest of the polygons' envelopes (see above).
 class PositionFreedom {
  public:
@@ -154,7 +168,8 @@ class PositionFreedom {
   const std::vector<std::array<double, 2>>& polygon() const { return polygon_; }
   const std::vector<std::array<double, 2>>& guard_band_triangle() const { return whole_; }
   // Whether the triangle's orientation can change (it may turn over, or become degenerate)
-  // when each vertex moves within its freedom: then the coverage of the pixels it may reach is
+  // as some implementation snaps and rounds its vertices (orientation_may_change, from the
+  // triangle's own vertices): then the coverage of the pixels it may reach is
   // not decided by the specification. Needs every w_c > 0; a triangle reaching behind the eye
   // is never that thin: unless its plane holds the eye, its window image reaches the window's
   // sides where the polygon's vertices have w_c as small as the plane's distance from the eye,
