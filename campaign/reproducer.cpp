@@ -52,7 +52,13 @@ typedef void (*gl_proc)(void);
 #define GL_TRUE 1
 #define GL_ONE 1
 #define GL_TRIANGLES 0x0004
+#define GL_NEVER 0x0200
 #define GL_LESS 0x0201
+#define GL_EQUAL 0x0202
+#define GL_LEQUAL 0x0203
+#define GL_GREATER 0x0204
+#define GL_NOTEQUAL 0x0205
+#define GL_GEQUAL 0x0206
 #define GL_ALWAYS 0x0207
 #define GL_FRONT 0x0404
 #define GL_BACK 0x0405
@@ -221,6 +227,8 @@ struct scene {
   double depth_near, depth_far; /* glDepthRange */
   GLenum cull;       /* glCullFace's mode; 0: GL_CULL_FACE disabled */
   GLenum front_face, provoking_vertex, depth_func;
+  GLfloat depth_clear; /* glClearDepth */
+  int work_arounds;    /* 0: never the geometry shader's work-around for gl_PrimitiveID */
   int varying_count;
   const int *varying_sizes; /* 1 to 4 components each */
   int component_count;      /* the sum of the sizes */
@@ -412,7 +420,7 @@ struct frame {
   int32_t *primitive; /* gl_PrimitiveID; -1 where nothing was drawn */
   float *depth;       /* 1 where nothing was drawn */
   float *values;      /* component k of pixel i at values[k * pixels + i] */
-  float *fragments;   /* fragments that passed the depth test (the counting pass) */
+  float *fragments;   /* fragments rasterized, depth test or not (the counting pass) */
 };
 
 static const char *gl_error_name(GLenum e) {
@@ -525,7 +533,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, struct frame *
                                     GL_STENCIL_TEST, GL_DEPTH_CLAMP, GL_POLYGON_OFFSET_FILL,
                                     GL_SAMPLE_ALPHA_TO_COVERAGE, GL_RASTERIZER_DISCARD,
                                     GL_PRIMITIVE_RESTART};
-  static const GLfloat zero[4] = {0, 0, 0, 0}, far_depth = 1.0f;
+  static const GLfloat zero[4] = {0, 0, 0, 0};
   static const GLint no_primitive[4] = {-1, 0, 0, 0};
   const int n = s->varying_count, w = s->width, h = s->height;
   const size_t pixels = (size_t)w * (size_t)h;
@@ -587,7 +595,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, struct frame *
 
   for (k = 0; k < n; ++k) glClearBufferfv(GL_COLOR, k, zero);
   glClearBufferiv(GL_COLOR, n, no_primitive);
-  glClearBufferfv(GL_DEPTH, 0, &far_depth);
+  glClearBufferfv(GL_DEPTH, 0, &s->depth_clear);
 
   /* Interleaved: clip coordinates (attribute 0), then each varying (attribute k + 1). */
   glGenVertexArrays(1, &vertex_array);
@@ -610,15 +618,17 @@ static int draw_scene(const struct scene *s, int geometry_shader, struct frame *
   if (s->index_count > 0) glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
   if (!gl_ok("drawing")) goto done;
 
-  /* The same triangles again, positions only, adding 1 per fragment that passes the same depth
-     test: how many fragments each pixel received, which the primitive id cannot tell. */
+  /* The same triangles again, positions only, adding 1 per fragment rasterization produces,
+     without the depth test: how many fragments each pixel received, which the primitive id
+     cannot tell. Not through the depth test: which of two fragments of close depths passes it
+     is free, and a later nearer triangle may hide either, so the count would depend on it. */
   count_program = make_program(s->count_vertex_shader, NULL, s->count_fragment_shader);
   if (!count_program) goto done;
   glUseProgram(count_program);
   if (!(count_framebuffer = make_framebuffer(w, h, 1, &count_format, count_renderbuffers)))
     goto done;
   glClearBufferfv(GL_COLOR, 0, zero);
-  glClearBufferfv(GL_DEPTH, 0, &far_depth);
+  glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
@@ -718,18 +728,18 @@ static enum label coverage_label(int i, int gl_primitive, unsigned gl_fragments,
   const int reference = REF_PRIMITIVE[i];
   const unsigned char edges = REF_EDGES[i];
   /* Where either fragment may win the depth test, GL may keep any of them. */
-  if ((edges & EDGE_DEPTH_ORDER) && (gl_primitive == reference || candidate)) return NO_LABEL;
+  const int kept = gl_primitive == reference || ((edges & EDGE_DEPTH_ORDER) && candidate);
   /* Near a triangle the freedom may turn over, make vanish or appear: anything goes. */
   if (edges & EDGE_UNSTABLE)
-    return reference != gl_primitive || (COUNTS_CHECKED && gl_fragments != REF_FRAGMENTS[i])
-               ? WITHIN_SNAPPING
-               : NO_LABEL;
-  /* Watertightness: away from outer edges, as many fragments as the reference. */
+    return !kept || (COUNTS_CHECKED && gl_fragments != REF_FRAGMENTS[i]) ? WITHIN_SNAPPING
+                                                                          : NO_LABEL;
+  /* Watertightness: away from outer edges, as many fragments as the reference, counted
+     without the depth test (whose order between close depths is free). */
   if (COUNTS_CHECKED && !(edges & EDGE_SNAPPING) && gl_fragments != REF_FRAGMENTS[i]) {
     if (!(edges & EDGE_SHARED)) return FILL_RULE;
     return gl_fragments < REF_FRAGMENTS[i] ? GAP : DOUBLE_HIT;
   }
-  if (reference == gl_primitive) return NO_LABEL;
+  if (kept) return NO_LABEL;
   if (edges & EDGE_TIE) return EXACT_TIE;
   if (edges & (EDGE_SNAPPING | EDGE_SHARED)) return WITHIN_SNAPPING;
   return FILL_RULE;
@@ -813,6 +823,11 @@ int main(int argc, char **argv) {
              "drawing %s it\n", fault, wrong, gs_fault, use_geometry_shader ? "with" : "without");
   }
 
+  if (use_geometry_shader && !THE_CASE.work_arounds) {
+    printf("warning: gl_PrimitiveID without a geometry shader is wrong on '%s' (%s); the case "
+           "allows no work-around, so it is drawn without one\n", gl_renderer, fault);
+    use_geometry_shader = 0;
+  }
   if (!draw_scene(&THE_CASE, use_geometry_shader, &frame)) {
     printf("error: %s\n", error_text);
     printf("%s: FAIL, GL could not draw the case, on GL_RENDERER \"%s\", GL_VERSION \"%s\" (%s)\n",
@@ -1051,6 +1066,29 @@ const char* gl_cull(CullFace f) {
   return "0";
 }
 
+// GL's name of the depth function (the C text defines each).
+const char* gl_depth_func(DepthFunc f) {
+  switch (f) {
+    case DepthFunc::always:
+      return "GL_ALWAYS";
+    case DepthFunc::never:
+      return "GL_NEVER";
+    case DepthFunc::less:
+      return "GL_LESS";
+    case DepthFunc::lequal:
+      return "GL_LEQUAL";
+    case DepthFunc::greater:
+      return "GL_GREATER";
+    case DepthFunc::gequal:
+      return "GL_GEQUAL";
+    case DepthFunc::equal:
+      return "GL_EQUAL";
+    case DepthFunc::notequal:
+      return "GL_NOTEQUAL";
+  }
+  return "GL_ALWAYS";
+}
+
 // The arrays and the struct scene `name` of case `c`, drawn with `shaders`; its arrays' names
 // start with `prefix`.
 void write_scene(std::string& out, const Case& c, const ReproducerShaders& shaders,
@@ -1119,8 +1157,10 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
          (c.provoking == ProvokingVertex::last ? "GL_LAST_VERTEX_CONVENTION"
                                                : "GL_FIRST_VERTEX_CONVENTION") +
          ",\n";
-  out += std::string("    .depth_func = ") +
-         (c.depth_func == DepthFunc::less ? "GL_LESS" : "GL_ALWAYS") + ",\n";
+  out += std::string("    .depth_func = ") + gl_depth_func(c.depth_func) +
+         ", .depth_clear = " + hex_literal(c.depth_clear) + ", /* " +
+         comment_text(printable_number(c.depth_clear)) + " */\n";
+  out += std::string("    .work_arounds = ") + (c.work_arounds ? "1" : "0") + ",\n";
   out += "    .varying_count = " + std::to_string(c.varyings.size()) +
          ", .varying_sizes = " + prefix + "_varying_sizes,\n";
   out += "    .component_count = " + std::to_string(c.component_count()) + ",\n";
@@ -1235,8 +1275,9 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
                 "an edge, within the snapping band of an edge, near a triangle that may "
                 "turn over, or where another fragment may win the depth test)") +
             (tolerance.allow_boundary ? "" : " and this case allows no such difference") +
-            "; away from outer edges GL must write as many fragments as the reference (gaps and "
-            "double hits on shared edges fail). Values: depth, then every component, where GL's "
+            "; away from outer edges GL must rasterize as many fragments as the reference, "
+            "counted without the depth test (gaps and double hits on shared edges fail). Values: "
+            "depth, then every component, where GL's "
             "primitive is the reference's (or a candidate of the depth test): |GL - reference| "
             "must be at most the allowed absolute error; NaN or Inf from GL always fails; a "
             "reference value that is NaN or Inf (the specification determines none there) is not "

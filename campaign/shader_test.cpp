@@ -205,23 +205,24 @@ Decided decided(const Expectation& e, const Tolerance& t, const Case& c, size_t 
   const Frame& f = e.frame;
   const bool counts = f.fragments.size() == f.pixel_count();
   Decided d;
-  // Either fragment may win the depth test: GL may keep a candidate and write as many fragments
-  // as its order of passing gives. (coverage_label still judges a triangle that is neither; the
-  // probes leave such a pixel alone.)
-  if (edges & edge::depth_order) return d;
   if (edges & edge::unstable) {
     // Anything goes, unless the case allows no coverage difference at all.
     d.fragments = counts && !t.allow_boundary;
     d.primitive = !t.allow_boundary;
     return d;
   }
+  // The count is taken without the depth test, so it is decided even where the depth test's
+  // order is not.
   d.fragments = counts && !(edges & edge::snapping);
   d.primitive = !t.allow_boundary || !(edges & (edge::tie | edge::snapping | edge::shared));
-  // On the 24-bit depth buffer a fragment within its step of the cleared 1.0 may be stored as
-  // 1.0 and fail GL_LESS there, where the harness's 32-bit float depth keeps it.
-  if (c.depth_func == DepthFunc::less && f.primitive[i] != Frame::kNoPrimitive &&
-      f.depth[i] >= 1.0f - 0x1p-23f)
-    d = Decided{};
+  // Either fragment may win the depth test: GL may keep a candidate. (coverage_label still
+  // judges a triangle that is neither; the probes leave the triangle there alone.)
+  if (edges & edge::depth_order) d.primitive = false;
+  // On the 24-bit depth buffer a fragment within its step of the clear value may be stored as
+  // that value and fail the test against it, where the harness's 32-bit float depth keeps it.
+  if (c.depth_func != DepthFunc::always && f.primitive[i] != Frame::kNoPrimitive &&
+      std::fabs(f.depth[i] - c.depth_clear) <= 0x1p-23f)
+    d.primitive = false;
   return d;
 }
 
@@ -349,14 +350,16 @@ std::optional<std::string> shader_test_state_refusal(const Case& c) {
         "refuses their vertex data)";
     return why;
   }
-  if (c.cull != CullFace::none && c.depth_func == DepthFunc::less) {
+  if (c.cull != CullFace::none && c.depth_func != DepthFunc::always) {
     std::string why = "cull ";
     why += name_of(c.cull);
+    why += " with depth_func ";
+    why += name_of(c.depth_func);
     why +=
-        " with depth_func less cannot be expressed in a shader_test: shader_runner has no "
+        " cannot be expressed in a shader_test: shader_runner has no "
         "glCullFace command (its `enable` takes no GL_CULL_FACE), and culling in the fragment "
-        "shader cannot undo the depth writes of the early depth test that counting fragments "
-        "needs";
+        "shader cannot undo the depth writes of the early depth test that keeping only the "
+        "depth test's winners needs";
     return why;
   }
   const size_t pixels = size_t(std::max(c.fb_width, 0)) * size_t(std::max(c.fb_height, 0));
@@ -378,7 +381,15 @@ std::optional<std::string> shader_test_refusal(const Case& c, const Expectation&
     return std::string(
         "exact tolerance (a driver model's bits) cannot be expressed in a shader_test, which "
         "checks ranges of values");
-  if (c.depth_func == DepthFunc::less) {
+  if (c.depth_func != DepthFunc::always && c.depth_clear != 0.0f && c.depth_clear != 1.0f) {
+    std::string why = "depth_clear ";
+    why += decimal(c.depth_clear);
+    why +=
+        " with a depth test cannot be expressed in a shader_test: shader_runner's depth buffer has "
+        "24 bits, which hold only 0 and 1 of the clear values exactly";
+    return why;
+  }
+  if (c.depth_func != DepthFunc::always) {
     const compare::UlpTable ulps(c);
     const compare::ChannelAllowance depth(c, expected, tolerance, compare::kDepth);
     const Frame& f = expected.frame;
@@ -386,7 +397,9 @@ std::optional<std::string> shader_test_refusal(const Case& c, const Expectation&
       const int32_t p = f.primitive[i];
       if (p == Frame::kNoPrimitive) continue;
       if (depth.at(i, ulps.ulp(p, compare::kDepth)) < 0x1p-24) {
-        std::string why = "depth_func less with a depth allowance of ";
+        std::string why = "depth_func ";
+        why += name_of(c.depth_func);
+        why += " with a depth allowance of ";
         char number[32];
         std::snprintf(number, sizeof number, "%.3g", depth.at(i, ulps.ulp(p, compare::kDepth)));
         why += number;
@@ -418,7 +431,7 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   const int components = c.component_count();
   const int channels = components + 1;  // depth, then every component
   const std::vector<std::string> names = component_names(c);
-  const bool depth_test = c.depth_func == DepthFunc::less;
+  const bool depth_test = c.depth_func != DepthFunc::always;
   const size_t triangles = c.triangles.size();
   const Culled culls = culled(c);
   ShaderTest result;
@@ -573,9 +586,12 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
       "\"pass\" })\n";
   out += "#\n";
   out += comment_lines(
-      "How: the case is drawn once (de-indexed, each triangle's index as a flat int). Its "
+      "How: the case is drawn (de-indexed, each triangle's index as a flat int), and its "
       "fragment shader counts each pixel's fragments and keeps the last one's triangle and "
-      "verdict (atomics on a storage buffer); the verdict is 1 for NaN or Inf in depth "
+      "verdict (atomics on a storage buffer); with a depth test it is drawn twice, first "
+      "without the depth test only to count every fragment (a count through the depth test "
+      "would depend on which of two fragments of close depths passes it, which is free), then "
+      "with it only to keep the winners. The verdict is 1 for NaN or Inf in depth "
       "(gl_FragCoord.z) or any component, 2 for a value outside the range [lo, hi] stated for "
       "that pixel and triangle (the float32 values within the allowance of the exact value). A "
       "resolve draw then writes, per pixel, (fragments, kept triangle or -1, verdict, 1) into "
@@ -650,7 +666,7 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   out += "#extension GL_ARB_shader_storage_buffer_object : require\n";
   if (depth_test) {
     out += "#extension GL_ARB_shader_image_load_store : require\n";
-    out += "// Only fragments that pass the depth test run (and count), as the harness counts.\n";
+    out += "// Only fragments that pass the depth test run in the case's draw (and are kept).\n";
     out += "layout(early_fragment_tests) in;\n";
   }
   for (size_t k = 0; k < c.varyings.size(); ++k) {
@@ -659,7 +675,9 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
                ";  // ", glsl_comment(v.name), "\n");
   }
   out += "flat in int v_triangle;\n";
-  out += "uniform int resolve;  // 0: the case's draw; 1: the resolve draw\n";
+  out += depth_test ? "uniform int resolve;  // 0: the case's draw; 1: the resolve draw; 2: the "
+                      "count, no depth test\n"
+                    : "uniform int resolve;  // 0: the case's draw; 1: the resolve draw\n";
   out += "out vec4 colour;\n";
   const std::string pixel_count = std::to_string(pixels);
   out += "layout(std430, binding = 0) buffer Pixels {\n";
@@ -740,7 +758,7 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   out += "void main() {\n";
   out += "  ivec2 at = ivec2(gl_FragCoord.xy);\n";
   out += "  int i = at.y * WIDTH + at.x;\n";
-  out += "  if (resolve != 0) {\n";
+  out += "  if (resolve == 1) {\n";
   out +=
       "    colour = vec4(float(fragments[i]), float(int(kept[i] / 4u) - 1), float(kept[i] % 4u), "
       "1.0);\n";
@@ -768,6 +786,12 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
                " (shader_runner has no glCullFace)\n");
     out += cat("  if (", culled_condition(culls), ") discard;\n");
   }
+  if (depth_test) {
+    out += "  if (resolve == 2) {  // the count: every fragment, no depth test\n";
+    out += "    atomicAdd(fragments[i], 1u);\n";
+    out += "    colour = vec4(0.0);\n";
+    out += "    return;\n  }\n";
+  }
   out += "  uint verdict = 0u;\n";
   if (!checks.empty()) {
     out += "  bool listed = false;\n";
@@ -786,7 +810,7 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   out += free_spans.empty() ? "  if (!listed)\n" : "  if (!listed && !coverage_free(i))\n";
   out += "    for (int k = 0; k < CHANNELS; ++k)\n";
   out += "      if (non_finite(v[k])) verdict |= 1u;\n";
-  out += "  atomicAdd(fragments[i], 1u);\n";
+  if (!depth_test) out += "  atomicAdd(fragments[i], 1u);\n";
   out += "  atomicMax(kept[i], uint(v_triangle + 1) * 4u + verdict);\n";
   out += "  colour = vec4(0.0);\n}\n";
 
@@ -833,8 +857,22 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
         cat("viewport indexed 0 ", std::to_string(c.viewport.x), " ", std::to_string(c.viewport.y),
             " ", std::to_string(c.viewport.width), " ", std::to_string(c.viewport.height), "\n");
   if (c.provoking == ProvokingVertex::first) out += "provoking vertex first\n";
-  if (depth_test) out += "clear depth 1\nclear\nenable GL_DEPTH_TEST\ndepthfunc GL_LESS\n";
-  if (triangles > 0) out += cat("draw arrays GL_TRIANGLES 0 ", std::to_string(triangles * 3), "\n");
+  const std::string draw_case =
+      triangles > 0 ? cat("draw arrays GL_TRIANGLES 0 ", std::to_string(triangles * 3), "\n") : "";
+  if (depth_test) {
+    out +=
+        "# Every fragment counted first, without the depth test; then the case's draw with it.\n";
+    out += "uniform int resolve 2\n";
+    out += draw_case;
+    out += "uniform int resolve 0\n";
+    out +=
+        cat("clear depth ", c.depth_clear == 0.0f ? "0" : "1", "\nclear\nenable GL_DEPTH_TEST\n");
+    std::string func(name_of(c.depth_func));  // GL's name is the case file's, upper case
+    std::transform(func.begin(), func.end(), func.begin(),
+                   [](char ch) { return char(ch - 'a' + 'A'); });
+    out += cat("depthfunc GL_", func, "\n");
+  }
+  out += draw_case;
   out += "memory barrier GL_SHADER_STORAGE_BARRIER_BIT\n";
   out +=
       "\n# Resolve: per pixel (fragments, kept triangle or -1, verdict, 1) into an RGBA32F "

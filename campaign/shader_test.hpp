@@ -11,8 +11,9 @@
 //     in the fragment shader (discard by gl_FrontFacing, which is what culling draws, though not
 //     the driver's culling itself), and a case whose states need more is refused
 //     (shader_test_refusal): a depth range other than [0, 1], culling of every triangle (the
-//     shader would use no varying), or culling with depth_func less (a discard cannot undo the
-//     depth write of the early depth test below).
+//     shader would use no varying), culling with a depth test (a discard cannot undo the
+//     depth write of the early depth test below), or a depth test against a clear value other
+//     than 0 or 1 (its 24-bit depth buffer holds no other exactly).
 //   - Its probes compare colours read back with glReadPixels, within a `tolerance`, one pixel
 //     or one rectangle per line; NaN passes them (|NaN - e| > tolerance is false), and the only
 //     way to hand a shader per-pixel data is text: constant arrays in the GLSL, one uniform per
@@ -108,7 +109,7 @@ struct ShaderTest {
 std::optional<std::string> shader_test_state_refusal(const Case& c);
 
 // As shader_test_state_refusal, and what the expectation rules out: ToleranceMode::exact (a
-// driver model's bits, which a range of values does not express), and with depth_func less a
+// driver model's bits, which a range of values does not express), and with a depth test a
 // depth allowance below the 24-bit depth buffer's step (2^-24) at a pixel the reference covers,
 // where the rounding of the stored depth could decide the depth test the reference decides.
 std::optional<std::string> shader_test_refusal(const Case& c, const Expectation& expected,

@@ -86,7 +86,8 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
 
 void Loader::load_state(const CaseJson& state, Case& c) const {
   r_.object(state, "state");
-  r_.check_keys(state, "state", {"cull", "front_face", "provoking_vertex", "depth_func"});
+  r_.check_keys(state, "state",
+                {"cull", "front_face", "provoking_vertex", "depth_func", "depth_clear"});
   if (const CaseJson* v = Reader::find(state, "cull")) c.cull = r_.name<CullFace>(*v, "state.cull");
   if (const CaseJson* v = Reader::find(state, "front_face"))
     c.front_face = r_.name<FrontFace>(*v, "state.front_face");
@@ -94,6 +95,11 @@ void Loader::load_state(const CaseJson& state, Case& c) const {
     c.provoking = r_.name<ProvokingVertex>(*v, "state.provoking_vertex");
   if (const CaseJson* v = Reader::find(state, "depth_func"))
     c.depth_func = r_.name<DepthFunc>(*v, "state.depth_func");
+  if (const CaseJson* v = Reader::find(state, "depth_clear")) {
+    c.depth_clear = r_.float32(*v, "state.depth_clear");
+    if (!(c.depth_clear >= 0.0f && c.depth_clear <= 1.0f))
+      r_.fail("state.depth_clear", "a number in [0, 1]", Reader::describe(*v));
+  }
 }
 
 namespace {
@@ -200,7 +206,7 @@ Case Loader::load(const CaseJson& root) const {
   if (!root.is_object()) r_.fail("", "a JSON object at the top level", Reader::describe(root));
   r_.check_keys(root, "",
                 {"description", "framebuffer", "viewport", "depth_range", "state", "varyings",
-                 "transform", "vertices", "triangles", "tolerance"});
+                 "transform", "vertices", "triangles", "tolerance", "work_arounds"});
 
   const CaseJson& desc = r_.required(root, "", "description", "a one-line string");
   // Printed on terminals by list, diff and run: a control character (a line break, an escape
@@ -222,6 +228,12 @@ Case Loader::load(const CaseJson& root) const {
   load_triangles(Reader::find(root, "triangles"), c);
   check_noperspective(c);
   if (const CaseJson* t = Reader::find(root, "tolerance")) load_tolerance(*t, c);
+  if (const CaseJson* w = Reader::find(root, "work_arounds")) {
+    if (!w->is_boolean())
+      r_.fail("work_arounds", "true or false (whether the harness may work around a driver bug)",
+              Reader::describe(*w));
+    c.work_arounds = w->get<bool>();
+  }
   return c;
 }
 

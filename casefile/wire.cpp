@@ -74,7 +74,9 @@ json to_wire(const Case& c) {
           {"framebuffer", {c.fb_width, c.fb_height}},
           {"viewport", {c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height}},
           {"depth_range", scalars},
-          {"state", {int(c.cull), int(c.front_face), int(c.provoking), int(c.depth_func)}},
+          {"state",
+           {int(c.cull), int(c.front_face), int(c.provoking), int(c.depth_func),
+            std::bit_cast<uint32_t>(c.depth_clear), c.work_arounds}},
           {"varyings", varyings},
           {"vertices", c.vertices.size()},
           {"clip", clip},
@@ -101,6 +103,8 @@ Case from_wire(const json& j) {
     c.front_face = FrontFace(st.at(1).get<int>());
     c.provoking = ProvokingVertex(st.at(2).get<int>());
     c.depth_func = DepthFunc(st.at(3).get<int>());
+    c.depth_clear = std::bit_cast<float>(st.at(4).get<uint32_t>());
+    c.work_arounds = st.at(5).get<bool>();
     for (const json& v : j.at("varyings"))
       c.varyings.push_back(
           {v.at(0).get<std::string>(), v.at(1).get<int>(), Interpolation(v.at(2).get<int>())});

@@ -142,11 +142,15 @@ std::string to_case_file(const Case& c) {
       std::bit_cast<uint32_t>(c.depth_far) != std::bit_cast<uint32_t>(defaults.depth_far))
     add(out, "  \"depth_range\": {\"near\": ", number(c.depth_near),
         ", \"far\": ", number(c.depth_far), "},\n");
+  const bool clear_set =
+      std::bit_cast<uint32_t>(c.depth_clear) != std::bit_cast<uint32_t>(defaults.depth_clear);
   if (c.cull != defaults.cull || c.front_face != defaults.front_face ||
-      c.provoking != defaults.provoking || c.depth_func != defaults.depth_func)
+      c.provoking != defaults.provoking || c.depth_func != defaults.depth_func || clear_set)
     add(out, "  \"state\": {\"cull\": ", name(c.cull), ", \"front_face\": ", name(c.front_face),
         ", \"provoking_vertex\": ", name(c.provoking), ", \"depth_func\": ", name(c.depth_func),
-        "},\n");
+        clear_set ? ", \"depth_clear\": " + number(c.depth_clear) : "", "},\n");
+  if (c.work_arounds != defaults.work_arounds)
+    add(out, "  \"work_arounds\": ", c.work_arounds ? "true" : "false", ",\n");
 
   if (!c.varyings.empty()) {
     out += "  \"varyings\": [\n";

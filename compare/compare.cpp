@@ -547,27 +547,26 @@ std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, 
   using Label = CoverageStats::Label;
   const Frame& reference = expected.frame;
   const uint8_t edges = expected.edges[i];
-  // Watertightness: away from outer edges, GL must write as many fragments as the reference;
-  // near a shared edge that is one, never zero or two.
+  // Watertightness: away from outer edges, GL must rasterize as many fragments as the
+  // reference; near a shared edge that is one, never zero or two. Both count every fragment,
+  // passing the depth test or not (core/frame.hpp), so the count is decided even where the
+  // depth test's order is free.
   const bool counts = reference.fragments.size() == reference.pixel_count() &&
                       gl.fragments.size() == gl.pixel_count();
-  // Where either fragment may win the depth test, GL may keep any of them, and write as many
-  // fragments as its own order of passing gives.
-  if ((edges & edge::depth_order) &&
-      (gl.primitive[i] == reference.primitive[i] || expected.candidate(i, gl.primitive[i])))
-    return std::nullopt;
+  // Where either fragment may win the depth test, GL may keep any of them.
+  const bool kept = reference.primitive[i] == gl.primitive[i] ||
+                    ((edges & edge::depth_order) && expected.candidate(i, gl.primitive[i]));
   // Near a triangle the freedom may turn over, make vanish or make appear, any primitive and
   // any count is what some conforming implementation draws.
   if (edges & edge::unstable) {
-    const bool differs = reference.primitive[i] != gl.primitive[i] ||
-                         (counts && gl.fragments[i] != reference.fragments[i]);
+    const bool differs = !kept || (counts && gl.fragments[i] != reference.fragments[i]);
     return differs ? std::optional(Label::within_snapping) : std::nullopt;
   }
   if (counts && !(edges & edge::snapping) && gl.fragments[i] != reference.fragments[i]) {
     if (!(edges & edge::shared)) return Label::fill_rule;
     return gl.fragments[i] < reference.fragments[i] ? Label::gap : Label::double_hit;
   }
-  if (reference.primitive[i] == gl.primitive[i]) return std::nullopt;
+  if (kept) return std::nullopt;
   if (edges & edge::tie) return Label::exact_tie;
   if (edges & (edge::snapping | edge::shared)) return Label::within_snapping;
   return Label::fill_rule;

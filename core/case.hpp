@@ -38,7 +38,32 @@ struct Vertex {
 enum class CullFace { none, front, back, front_and_back };
 enum class FrontFace { ccw, cw };
 enum class ProvokingVertex { last, first };  // glProvokingVertex; GL's default is last
-enum class DepthFunc { always, less };
+// glDepthFunc. always and less first: their numbers are the wire format's (casefile/wire.cpp).
+enum class DepthFunc { always, less, never, equal, lequal, greater, notequal, gequal };
+// Whether a fragment at depth z passes the depth test against the stored value (glDepthFunc,
+// OpenGL 4.6 section 17.3.4: the incoming value compared with the stored one), both float32 as
+// in a 32F depth buffer. The reference and the driver models test with it.
+inline bool depth_test(DepthFunc f, float z, float stored) {
+  switch (f) {
+    case DepthFunc::always:
+      return true;
+    case DepthFunc::never:
+      return false;
+    case DepthFunc::less:
+      return z < stored;
+    case DepthFunc::lequal:
+      return z <= stored;
+    case DepthFunc::greater:
+      return z > stored;
+    case DepthFunc::gequal:
+      return z >= stored;
+    case DepthFunc::equal:
+      return z == stored;
+    case DepthFunc::notequal:
+      return z != stored;
+  }
+  return false;
+}
 // The case file's names (cases/README.md).
 template <>
 struct Names<CullFace> {
@@ -65,9 +90,15 @@ struct Names<ProvokingVertex> {
 };
 template <>
 struct Names<DepthFunc> {
-  static constexpr std::array<std::pair<DepthFunc, std::string_view>, 2> table{{
+  static constexpr std::array<std::pair<DepthFunc, std::string_view>, 8> table{{
       {DepthFunc::always, "always"},
       {DepthFunc::less, "less"},
+      {DepthFunc::never, "never"},
+      {DepthFunc::equal, "equal"},
+      {DepthFunc::lequal, "lequal"},
+      {DepthFunc::greater, "greater"},
+      {DepthFunc::notequal, "notequal"},
+      {DepthFunc::gequal, "gequal"},
   }};
 };
 
@@ -131,6 +162,13 @@ struct Case {
   FrontFace front_face = FrontFace::ccw;
   ProvokingVertex provoking = ProvokingVertex::last;
   DepthFunc depth_func = DepthFunc::always;
+  // glClearDepth: the depth buffer's value before the first triangle, in [0, 1] (greater and
+  // gequal draw nothing against 1.0).
+  float depth_clear = 1.0f;
+  // Whether the harness may work around a driver bug it finds in its first draw (gl_PrimitiveID
+  // read without a geometry shader: gl_harness/first_draw.hpp). A case that checks the feature
+  // itself turns this off, so that the bug is a failure of that case.
+  bool work_arounds = true;
 
   std::vector<Varying> varyings;
   std::vector<Vertex> vertices;
@@ -146,6 +184,18 @@ struct Case {
   }
 };
 
+// For each triangle of c, the first triangle (by primitive, possibly itself) whose three clip
+// positions are bitwise the same as its own, in the same order. GL's invariance rules (OpenGL
+// 4.6 appendix A.3, the corollaries of rule 2: fragment generation, and the window x, y and z of
+// every fragment generated, do not depend on the framebuffer's contents; with A.1's
+// repeatability, the same primitive under the same state generates the same fragments) make such
+// copies rasterize identically with identical depths, so the depth test between a triangle and
+// an earlier copy is decided as for
+// equal depths, whatever rounding either involves (the reference's depth test, ref/render.cpp;
+// selftest's fault of a copy that wins it). Only the same order counts: a copy with its
+// vertices rotated is another primitive to GL (its attribute planes may be anchored at another
+// vertex), and its depths may differ within the allowance.
+std::vector<int32_t> identical_triangles(const Case& c);
 // Channel names of a case's frame, in Frame::components order: "name.x", "name.y", ...
 std::vector<std::string> component_names(const Case& c);
 // The varying each component belongs to.

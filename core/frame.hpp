@@ -21,11 +21,16 @@ struct Frame {
 
   int width = 0, height = 0;
   std::vector<int32_t> primitive;  // gl_PrimitiveID of the covering triangle, or kNoPrimitive
-  std::vector<float> depth;        // z_w; 1.0 (the clear value) where not covered
+  std::vector<float> depth;        // z_w; the clear value (Case::depth_clear) where not covered
   // components[k][pixel]: varying component k (Case component order); 0 where not covered.
   std::vector<std::vector<float>> components;
-  // How many fragments were written at each pixel (passing the depth test): 1 inside a
-  // watertight mesh, 0 in a gap, 2 where a shared edge was drawn twice. Empty when unknown.
+  // How many fragments rasterization produced at each pixel, every drawn (not culled, not
+  // clipped) triangle's, whether or not they pass the depth test: 1 inside a watertight mesh
+  // drawn once, 0 in a gap, 2 where a shared edge was drawn twice, one more for each triangle
+  // hidden beneath another. Counted without the depth test because the count checks coverage,
+  // and which of two fragments whose depths are within rounding of each other passes is free
+  // (a later, nearer fragment may then hide either): a count taken with the depth test would
+  // depend on that order. Empty when unknown.
   std::vector<uint16_t> fragments;
 
   Frame() = default;

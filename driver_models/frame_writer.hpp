@@ -1,6 +1,7 @@
 // The per-fragment end of both pipelines: depth test against the 32F depth buffer (cleared to
-// 1.0), then depth, primitive id and every component written, last writer wins; the number of
-// fragments that passed is counted per pixel (Frame::fragments).
+// 1.0), then depth, primitive id and every component written, last writer wins; every fragment,
+// passing the depth test or not, is counted per pixel (Frame::fragments), as GL's counting pass
+// counts them.
 #pragma once
 
 #include <cstdint>

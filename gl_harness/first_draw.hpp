@@ -37,11 +37,11 @@ FirstDrawVerdict judge_first_draw(const Frame& f);
 // it could not draw at all).
 struct FirstDrawChoice {
   bool geometry_shader = false;  // supply gl_PrimitiveID through a geometry shader
-  std::string warning;           // "" when the draw chosen is right; else one line
+  std::string warning;           // "" when the plain draw is right; else one line
 };
 // The geometry shader is used only when it draws right where the plain draw does not (the
-// softpipe case), or, when both are wrong, when it gets fewer pixels wrong; a wrong draw is a
-// warning, never an error.
+// softpipe case: the warning names the bug and the work-around), or, when both are wrong, when
+// it gets fewer pixels wrong; a wrong draw is a warning, never an error.
 FirstDrawChoice choose_first_draw(const FirstDrawVerdict& plain,
                                   const std::optional<FirstDrawVerdict>& with_geometry_shader);
 

@@ -19,6 +19,28 @@
 namespace glrc::gl {
 namespace {
 
+GLenum gl_depth_func(DepthFunc f) {
+  switch (f) {
+    case DepthFunc::always:
+      return GL_ALWAYS;
+    case DepthFunc::never:
+      return GL_NEVER;
+    case DepthFunc::less:
+      return GL_LESS;
+    case DepthFunc::lequal:
+      return GL_LEQUAL;
+    case DepthFunc::greater:
+      return GL_GREATER;
+    case DepthFunc::gequal:
+      return GL_GEQUAL;
+    case DepthFunc::equal:
+      return GL_EQUAL;
+    case DepthFunc::notequal:
+      return GL_NOTEQUAL;
+  }
+  return GL_ALWAYS;
+}
+
 // One line: shader logs and messages go into RenderError::what().
 std::string one_line(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ' || s.back() == '\0'))
@@ -126,7 +148,7 @@ class GlRenderer final : public Renderer {
     gl_.UseProgram(program_for(c));
     framebuffer_.bind(c.name, w, h, case_colour_formats(n));
     set_state(c);
-    clear(n);
+    clear(c, n);
     draw(c, objects);
     check_error(c, "drawing");
     count_fragments(c);
@@ -165,8 +187,11 @@ class GlRenderer final : public Renderer {
   }
 
   // Draws the case again with positions only, into its own framebuffer, adding 1 per fragment
-  // that passes the same depth test: how many fragments each pixel received, which the final
-  // primitive id cannot tell (a shared edge drawn twice shows only its last triangle).
+  // rasterization produces, without the depth test: how many fragments each pixel received,
+  // which the final primitive id cannot tell (a shared edge drawn twice shows only its last
+  // triangle). Not through the depth test, because which of two fragments whose depths are
+  // within rounding of each other passes it is free, and a later nearer triangle may then hide
+  // either: the count would depend on that order (core/frame.hpp). Culling and clipping stay.
   void count_fragments(const Case& c) {
     if (!count_program_) {
       const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
@@ -175,9 +200,9 @@ class GlRenderer final : public Renderer {
     }
     gl_.UseProgram(count_program_);
     count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
-    const GLfloat zero[4] = {0, 0, 0, 0}, far = 1.0f;
+    const GLfloat zero[4] = {0, 0, 0, 0};
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
-    gl_.ClearBufferfv(GL_DEPTH, 0, &far);
+    gl_.Disable(GL_DEPTH_TEST);  // set_state enables it again for the next case
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
     gl_.BlendFunc(GL_ONE, GL_ONE);
@@ -264,7 +289,7 @@ class GlRenderer final : public Renderer {
                                choice.warning);
   }
 
-  // Programs are cached without the geometry shader's part in their key: switching drops them.
+  // Programs of the other choice are not needed again: switching drops them.
   void use_geometry_shader(bool on) {
     for (auto& [key, program] : programs_)
       gl_.DeleteProgram(program);
@@ -293,9 +318,10 @@ class GlRenderer final : public Renderer {
   }
 
   GLuint program_for(const Case& c) {
-    std::string key = program_key(c);
+    // The work-around only where the case allows it (Case::work_arounds).
+    const bool gs = info_.primitive_id_from_geometry_shader && c.work_arounds;
+    std::string key = program_key(c) + (gs ? "gs" : "");
     if (auto it = programs_.find(key); it != programs_.end()) return it->second;
-    const bool gs = info_.primitive_id_from_geometry_shader;
     std::vector<GLuint> shaders;
     try {
       shaders.push_back(compile(GL_VERTEX_SHADER, vertex_shader_source(c), c));
@@ -335,7 +361,7 @@ class GlRenderer final : public Renderer {
     gl_.Viewport(c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height);
     gl_.DepthRange(double(c.depth_near), double(c.depth_far));  // exact: float ⊂ double
     gl_.Enable(GL_DEPTH_TEST);
-    gl_.DepthFunc(c.depth_func == DepthFunc::less ? GL_LESS : GL_ALWAYS);
+    gl_.DepthFunc(gl_depth_func(c.depth_func));
     gl_.DepthMask(GL_TRUE);
     if (c.cull == CullFace::none) {
       gl_.Disable(GL_CULL_FACE);
@@ -358,14 +384,13 @@ class GlRenderer final : public Renderer {
     gl_.ClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
   }
 
-  void clear(int n) {
+  void clear(const Case& c, int n) {
     const GLfloat zero[4] = {0, 0, 0, 0};
     for (int k = 0; k < n; ++k)
       gl_.ClearBufferfv(GL_COLOR, k, zero);
     const GLint none[4] = {Frame::kNoPrimitive, 0, 0, 0};
     gl_.ClearBufferiv(GL_COLOR, n, none);
-    const GLfloat far = 1.0f;
-    gl_.ClearBufferfv(GL_DEPTH, 0, &far);
+    gl_.ClearBufferfv(GL_DEPTH, 0, &c.depth_clear);
   }
 
   void draw(const Case& c, CaseObjects& objects) {

@@ -9,9 +9,4 @@ namespace glrc::ref {
 
 Plane depth_plane(const TriangleSetup& t, const Barycentrics& b);
 
-// Whether a fragment at depth z passes against the stored value.
-inline bool depth_test(DepthFunc f, float z, float stored) {
-  return f == DepthFunc::always || z < stored;
-}
-
 }  // namespace glrc::ref

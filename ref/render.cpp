@@ -53,6 +53,9 @@ struct Settings {
   TriangleAllowances* deferred = nullptr;
   // The depth's allowance deferred too: no depth test needs it while drawing.
   bool deferred_depth = false;
+  // With an allowance: each triangle's first identical copy (identical_triangles), for the
+  // depth test's invariance.
+  std::vector<int32_t> twin;
 };
 
 // Fragments that may win the depth test instead of the reference's, by pixel.
@@ -261,27 +264,54 @@ class FragmentBlocks {
       // no pixel centre is; but they move with its vertices, inwards too.
       if (w.clipped && viewport_side_distance(c.viewport, px, py) <= block_.delta[j])
         r.edges[i] |= edge::snapping;
+      // Every fragment rasterization produces is counted, whether or not it passes the depth
+      // test: the count checks coverage, which must not depend on the depth order GL leaves
+      // free between fragments within rounding of each other (core/frame.hpp).
+      ++f.fragments[i];
       const float z = z_[j], z_allowed = z_allowed_[j];
-      // Depths within each other's allowances: either fragment may win the depth test.
-      auto close = [&](float other, float other_allowed) {
-        return std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed);
+      const bool passes = depth_test(c.depth_func, z, f.depth[i]);
+      if (c.depth_func == DepthFunc::always || f.primitive[i] == Frame::kNoPrimitive) {
+        if (!passes) continue;
+        take(j, i);
+        ++needed;
+        continue;
+      }
+      // The fragments GL may hold at the pixel when this one arrives are the reference's
+      // winner and its candidates. Against one of them (depth `other`), this fragment may pass
+      // the test, and may fail it: where their depths are within each other's allowances,
+      // either; else as the exact depths say. Against an earlier copy of its own triangle
+      // (bitwise-identical clip positions, in the same order: Settings::twin) GL's invariance
+      // rules give both the same depth, so the test is decided as for equal depths.
+      const bool equal_passes = depth_test(c.depth_func, z, z);
+      auto may = [&](bool pass, int32_t other_primitive, float other, float other_allowed) {
+        if (s.twin[size_t(other_primitive)] == s.twin[size_t(p)]) return pass == equal_passes;
+        if (std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed))
+          return true;
+        return depth_test(c.depth_func, z, other) == pass;
       };
-      const bool ordered = c.depth_func != DepthFunc::always && f.fragments[i] > 0;
-      const bool contested = ordered && close(f.depth[i], r.allowed.depth[i]);
-      if (!depth_test(c.depth_func, z, f.depth[i])) {
-        if (!contested) continue;
+      // Looked up, not inserted: most pixels have no candidates.
+      const auto it = candidates.find(i);
+      std::vector<Candidate>* others = it != candidates.end() ? &it->second : nullptr;
+      // A candidate this fragment surely passes against is replaced wherever GL holds it.
+      if (others)
+        std::erase_if(*others, [&](const Candidate& o) {
+          return !may(false, o.primitive, o.depth, o.allowed_depth);
+        });
+      if (!passes) {
+        // A candidate itself where it may pass against any fragment GL may hold.
+        bool kept = may(true, f.primitive[i], f.depth[i], r.allowed.depth[i]);
+        for (size_t k = 0; !kept && others && k < others->size(); ++k) {
+          const Candidate& o = (*others)[k];
+          kept = may(true, o.primitive, o.depth, o.allowed_depth);
+        }
+        if (!kept) continue;
         role_[j] = Role::loser;
         ++needed, ++losers;
         continue;
       }
-      // Keep the candidates that may still win against the new winner (looked up, not
-      // inserted: a pixel drawn over by a clear winner needs no entry).
-      if (const auto it = candidates.find(i); it != candidates.end())
-        std::erase_if(it->second,
-                      [&](const Candidate& o) { return !close(o.depth, o.allowed_depth); });
-      // The old winner is one when it was close: its allowances as they were drawn, or as
-      // the deferred allowance of its triangle gives them.
-      if (contested) {
+      // The old winner is a candidate where this one may fail against it: its allowances as
+      // they were drawn, or as the deferred allowance of its triangle gives them.
+      if (may(false, f.primitive[i], f.depth[i], r.allowed.depth[i])) {
         Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
         for (size_t k = 0; k < planes.size(); ++k) {
           old.values.push_back(f.components[k][i]);
@@ -290,14 +320,7 @@ class FragmentBlocks {
         }
         candidates[i].push_back(std::move(old));
       }
-      f.primitive[i] = p;
-      f.depth[i] = z;
-      ++f.fragments[i];
-      if (!s.deferred_depth) {
-        r.allowed.primitive[i] = p;
-        r.allowed.depth[i] = z_allowed;
-      }
-      role_[j] = Role::winner;
+      take(j, i);
       ++needed;
     }
     if (needed == 0) return;
@@ -357,6 +380,18 @@ class FragmentBlocks {
     }
   }
 
+  // Lane j's fragment is the reference's at pixel i (the depth test passed).
+  void take(int j, size_t i) {
+    Frame& f = r_.frame;
+    f.primitive[i] = p_;
+    f.depth[i] = z_[j];
+    if (!s_.deferred_depth) {
+      r_.allowed.primitive[i] = p_;
+      r_.allowed.depth[i] = z_allowed_[j];
+    }
+    role_[j] = Role::winner;
+  }
+
   enum class Role : uint8_t { none, winner, loser };
   const Settings& s_;
   const Prepared& w_;
@@ -411,12 +446,12 @@ class FrameBlocks {
     for (int j = 0; j < count; ++j) {
       const size_t i = f.index(px_[j], py_[j] - s_.row0);
       index_[j] = i;
+      ++f.fragments[i];  // every fragment, passing the depth test or not (FragmentBlocks)
       drawn_[j] = depth_test(s_.c.depth_func, z_[j], f.depth[i]);
       if (!drawn_[j]) continue;
       ++drawn;
       f.primitive[i] = p_;
       f.depth[i] = z_[j];
-      ++f.fragments[i];
     }
     if (drawn == 0) return;
     if (drawn == count) {
@@ -624,6 +659,8 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   // The components are cleared where nothing is drawn once everything is (clear_uncovered):
   // every fragment drawn writes all of them, in the frame and in the allowance alike.
   r.frame.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
+  // Frame's clear depth is 1.0, GL's default; the case's glClearDepth where it differs.
+  if (c.depth_clear != 1.0f) std::fill(r.frame.depth.begin(), r.frame.depth.end(), c.depth_clear);
   // Without a depth test, no fragment may win it instead of another (no candidates), and the
   // depth's allowance is only compared: deferred with the components'.
   const bool deferred_depth = deferred && c.depth_func == DepthFunc::always;
@@ -663,6 +700,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);
   for (int v : component_varying(c))
     s.component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
+  if (allowance && c.depth_func != DepthFunc::always) s.twin = identical_triangles(c);
 
   const int count = int(c.triangles.size());
   // Each vertex a triangle uses to the window once, shared by its triangles (WindowCorners),

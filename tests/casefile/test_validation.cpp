@@ -115,7 +115,13 @@ TEST_F(CaseFileTest, DepthRangeAndState) {
   EXPECT_CASE_ERROR(with(R"("depth_range": {"far": -0.25}, )" + kTri), "depth_range.far");
   EXPECT_CASE_ERROR(with(R"("state": {"front_face": "CCW"}, )" + kTri), "state.front_face");
   EXPECT_CASE_ERROR(with(R"("state": {"provoking_vertex": 1}, )" + kTri), "state.provoking_vertex");
-  EXPECT_CASE_ERROR(with(R"("state": {"depth_func": "lequal"}, )" + kTri), "state.depth_func");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_func": "LEQUAL"}, )" + kTri), "state.depth_func");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_func": "le"}, )" + kTri), "state.depth_func");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_clear": 1.5}, )" + kTri), "state.depth_clear");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_clear": -0.25}, )" + kTri), "state.depth_clear");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_clear": "nan"}, )" + kTri), "state.depth_clear");
+  EXPECT_CASE_ERROR(with(R"("work_arounds": 0, )" + kTri), "work_arounds");
+  EXPECT_CASE_ERROR(with(R"("work_arounds": "no", )" + kTri), "work_arounds");
   EXPECT_CASE_ERROR(with(R"("state": [], )" + kTri), "state");
 }
 

@@ -26,6 +26,8 @@ void expect_same(const Case& a, const Case& b) {
   EXPECT_EQ(a.front_face, b.front_face);
   EXPECT_EQ(a.provoking, b.provoking);
   EXPECT_EQ(a.depth_func, b.depth_func);
+  EXPECT_EQ(bits(a.depth_clear), bits(b.depth_clear));
+  EXPECT_EQ(a.work_arounds, b.work_arounds);
   ASSERT_EQ(a.varyings.size(), b.varyings.size());
   for (size_t i = 0; i < a.varyings.size(); ++i) {
     EXPECT_EQ(a.varyings[i].name, b.varyings[i].name);
@@ -59,7 +61,8 @@ TEST_F(CaseFileTest, EverySuiteCaseCrossesTheWireUnchanged) {
 
 TEST_F(CaseFileTest, WireKeepsNegativeZeroSubnormalsAndOverrides) {
   Case c = load_text(R"({"description": "d", "depth_range": {"near": 1, "far": 0.25},
-    "state": {"cull": "back", "front_face": "cw", "provoking_vertex": "first", "depth_func": "less"},
+    "state": {"cull": "back", "front_face": "cw", "provoking_vertex": "first", "depth_func": "notequal",
+              "depth_clear": "0x1p-149"}, "work_arounds": false,
     "varyings": [{"name": "a", "size": 1, "interpolation": "flat"},
                  {"name": "b", "size": 3, "interpolation": "noperspective"}],
     "vertices": [{"clip": [-0.0, "0x1p-149", 0, 1], "a": -0.0, "b": [1, 2, 3]},

@@ -1,5 +1,6 @@
 // Writing a Case as a case file (casefile/write.hpp): load(to_case_file(c)) is c, every field and
 // every float bit, for the whole suite and for floats that a decimal JSON number cannot carry.
+#include <bit>
 #include <cfloat>
 #include <cmath>
 #include <vector>
@@ -40,6 +41,8 @@ void expect_same(const Case& a, const Case& b) {
   EXPECT_EQ(a.front_face, b.front_face);
   EXPECT_EQ(a.provoking, b.provoking);
   EXPECT_EQ(a.depth_func, b.depth_func);
+  EXPECT_EQ(std::bit_cast<uint32_t>(a.depth_clear), std::bit_cast<uint32_t>(b.depth_clear));
+  EXPECT_EQ(a.work_arounds, b.work_arounds);
   ASSERT_EQ(a.varyings.size(), b.varyings.size());
   for (size_t i = 0; i < a.varyings.size(); ++i) {
     EXPECT_EQ(a.varyings[i].name, b.varyings[i].name);
@@ -129,7 +132,9 @@ Case hostile_case() {
   c.cull = CullFace::front_and_back;
   c.front_face = FrontFace::cw;
   c.provoking = ProvokingVertex::first;
-  c.depth_func = DepthFunc::less;
+  c.depth_func = DepthFunc::gequal;
+  c.depth_clear = 0.25f;
+  c.work_arounds = false;
   c.varyings = {{"a", 1, Interpolation::flat},
                 {"bb", 2, Interpolation::noperspective},
                 {"c3", 3, Interpolation::smooth},

@@ -40,7 +40,7 @@ TEST(Names, EveryTableIsABijection) {
   expect_table_is_a_bijection<CullFace>(4);
   expect_table_is_a_bijection<FrontFace>(2);
   expect_table_is_a_bijection<ProvokingVertex>(2);
-  expect_table_is_a_bijection<DepthFunc>(2);
+  expect_table_is_a_bijection<DepthFunc>(8);
   expect_table_is_a_bijection<ToleranceMode>(3);
   expect_table_is_a_bijection<Status>(9);
 }

@@ -303,10 +303,16 @@ TEST(FirstDraw, GeometryShaderOnlyWhereItDrawsRight) {
   FirstDrawChoice c = choose_first_draw(right, std::nullopt);
   EXPECT_FALSE(c.geometry_shader);
   EXPECT_EQ(c.warning, "");
-  // softpipe 22.3.6: nothing without, right with a geometry shader. Not a fault.
+  // softpipe 22.3.6: nothing without, right with a geometry shader. Worked around, and the
+  // warning names the bug and the work-around.
   c = choose_first_draw(nothing, right);
   EXPECT_TRUE(c.geometry_shader);
-  EXPECT_EQ(c.warning, "");
+  EXPECT_EQ(c.warning,
+            "gl_PrimitiveID read in a fragment shader without a geometry shader is wrong (the "
+            "first draw, one triangle covering a 4x4 framebuffer: pixel (0, 0) expected "
+            "primitive 0 and flat value 1, got primitive none and value 0 (16 of 16 pixels "
+            "wrong)); worked around: cases are drawn with a pass-through geometry shader, except "
+            "those with \"work_arounds\": false");
   // A wrong flat value with and without: a warning, no geometry shader, the run goes on.
   c = choose_first_draw(wrong, wrong);
   EXPECT_FALSE(c.geometry_shader);
@@ -345,7 +351,17 @@ TEST_F(Gl, InfoNamesDriverAndVersion) {
   for (char ch : info.renderer)
     lower_renderer += char(std::tolower((unsigned char)ch));
   EXPECT_NE(lower_renderer.find(target().driver), std::string::npos) << info.renderer;
-  EXPECT_TRUE(info.warnings.empty()) << info.warnings.front();  // the first draw is right
+  // The first draw is right, or (softpipe) right with the work-around, which is reported.
+  if (info.primitive_id_from_geometry_shader) {
+    ASSERT_EQ(info.warnings.size(), 1u);
+    EXPECT_NE(info.warnings[0].find("gl_PrimitiveID read in a fragment shader without a geometry "
+                                    "shader is wrong"),
+              std::string::npos)
+        << info.warnings[0];
+    EXPECT_NE(info.warnings[0].find("worked around"), std::string::npos) << info.warnings[0];
+  } else {
+    EXPECT_TRUE(info.warnings.empty()) << info.warnings.front();
+  }
   if (is_mesa_cpu_driver(target().driver)) {
     EXPECT_NE(info.version.find("Mesa"), std::string::npos) << info.version;
     // What the driver models of the reference are built on (MESA_NOTES.md).
