@@ -69,6 +69,24 @@ int centre_minus_vertex(int pixel, int o, int n, float q, float w) {
   return lhs > rhs ? 1 : lhs < rhs ? -1 : 0;
 }
 
+// Whether triangle t is thin in the window: its height over its longest edge under a pixel
+// (unclipped: every w_c > 0; the double's window positions are close enough to tell).
+bool thin(const Case& c, const std::array<uint32_t, 3>& t) {
+  std::array<std::array<double, 2>, 3> p{};
+  for (int k = 0; k < 3; ++k) {
+    const std::array<float, 4>& clip = c.vertices[t[size_t(k)]].clip;
+    if (!(clip[3] > 0)) return false;
+    p[size_t(k)] = window_of(c, clip);
+  }
+  const double area2 = std::fabs((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) -
+                                 (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
+  double longest = 0;
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, std::hypot(p[size_t((k + 1) % 3)][0] - p[size_t(k)][0],
+                                           p[size_t((k + 1) % 3)][1] - p[size_t(k)][1]));
+  return longest > 0 && area2 / longest < 1.0;
+}
+
 // Pixels whose centre lies exactly on a horizontal edge that two drawn (unclipped) triangles
 // share, lying on its two sides; the edge's ends excluded.
 std::vector<size_t> centres_on_shared_horizontal_edges(const Case& c, const Frame& f) {
@@ -228,6 +246,64 @@ std::vector<Fault> make_faults() {
                           (bits & edge::snapping) || f.primitive[i] < 0 || f.fragments[i] == 2)
                         continue;
                       f.fragments[i] = 2;  // the values GL wrote stay: one of the two triangles'
+                      any = true;
+                    }
+                    return any;
+                  }});
+  list.push_back({"thin-shared-edge-drawn-twice",
+                  "a centre beside an edge two thin triangles share (a fan's sub-pixel rim "
+                  "steps) rasterized by both of them",
+                  nullptr, [](const Case& c, const Expectation& e, Frame& f) {
+                    if (f.fragments.empty() || e.frame.fragments.size() != f.pixel_count())
+                      return false;
+                    for (size_t i = 0; i < f.pixel_count(); ++i) {
+                      const int32_t p = e.frame.primitive[i];
+                      // Where the count is decided on a shared edge, beside a thin triangle.
+                      if (!(e.edges[i] & edge::shared) ||
+                          (e.edges[i] & (edge::snapping | edge::unstable)) || p < 0 ||
+                          size_t(p) >= c.triangles.size() || !thin(c, c.triangles[size_t(p)]) ||
+                          f.fragments[i] != e.frame.fragments[i])
+                        continue;
+                      ++f.fragments[i];  // the kept fragment and its values stay
+                      return true;
+                    }
+                    return false;
+                  }});
+  list.push_back({"hidden-fragment-dropped",
+                  "one fragment of a triangle hidden beneath a nearer one not rasterized (a "
+                  "crack the depth test hides)",
+                  nullptr, [](const Case&, const Expectation& e, Frame& f) {
+                    if (f.fragments.empty() || e.frame.fragments.size() != f.pixel_count())
+                      return false;
+                    for (size_t i = 0; i < f.pixel_count(); ++i) {
+                      // Where the count is decided (no band of an outer edge, nothing that
+                      // may turn over) and a fragment lies beneath the kept one.
+                      if ((e.edges[i] & (edge::snapping | edge::unstable)) ||
+                          e.frame.fragments[i] < 2 || f.fragments[i] != e.frame.fragments[i])
+                        continue;
+                      --f.fragments[i];  // the kept fragment and its values stay
+                      return true;
+                    }
+                    return false;
+                  }});
+  list.push_back({"identical-copy-wins-depth-test",
+                  "a bitwise-identical copy of an earlier triangle passes the depth test against "
+                  "it where equal depths fail (its depths not invariant, as softpipe's Z "
+                  "invariance bug of 2011)",
+                  nullptr, [](const Case& c, const Expectation& e, Frame& f) {
+                    if (depth_test(c.depth_func, 0.5f, 0.5f)) return false;  // a copy wins there
+                    // Each triangle's last identical copy.
+                    const std::vector<int32_t> first = identical_triangles(c);
+                    std::vector<int32_t> last(first.size(), -1);
+                    for (size_t t = 0; t < first.size(); ++t)
+                      last[size_t(first[t])] = int32_t(t);
+                    bool any = false;
+                    for (size_t i = 0; i < f.pixel_count(); ++i) {
+                      const int32_t p = e.frame.primitive[i];
+                      if (p < 0 || size_t(p) >= first.size() || f.primitive[i] != p) continue;
+                      const int32_t copy = last[size_t(first[size_t(p)])];
+                      if (copy <= p) continue;
+                      f.primitive[i] = copy;  // the values GL wrote stay: the copy's may be equal
                       any = true;
                     }
                     return any;

@@ -25,7 +25,9 @@ struct Fault {
 // The faults, in a fixed order: smooth computed as noperspective; provoking vertex flipped;
 // positions shifted by half a pixel; depth range nudged by 1e-4; one value in one pixel changed
 // by 1e-3 relative; varyings kept to 11 mantissa bits; two varying components swapped; one pixel
-// dropped on a shared edge; every centre on a shared horizontal edge drawn by both triangles.
+// dropped on a shared edge; every centre on a shared horizontal edge drawn by both triangles;
+// a centre beside an edge two thin triangles share drawn twice; one fragment of a hidden
+// triangle dropped; an identical copy winning the depth test.
 const std::vector<Fault>& faults();
 
 // x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).

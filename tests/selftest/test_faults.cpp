@@ -14,11 +14,14 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, NineInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 9u);
+TEST(Faults, TwelveInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 12u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
   EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
-  EXPECT_EQ(faults().back().name, "shared-horizontal-edge-drawn-twice");
+  EXPECT_EQ(faults()[8].name, "shared-horizontal-edge-drawn-twice");
+  EXPECT_EQ(faults()[9].name, "thin-shared-edge-drawn-twice");
+  EXPECT_EQ(faults()[10].name, "hidden-fragment-dropped");
+  EXPECT_EQ(faults().back().name, "identical-copy-wins-depth-test");
 }
 
 TEST(Faults, KeepMantissaBitsRoundsToNearestEven) {
