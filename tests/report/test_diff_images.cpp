@@ -404,8 +404,8 @@ TEST(CoverageImage, ALargeFrameIsShrunkAndKeepsItsOneFailingPixel) {
   ASSERT_EQ(upscale_factor(550, 500), 1);
   EXPECT_EQ(canvas.width, 550 + 2 * 12);
   constexpr int kTitle = 50;
-  EXPECT_EQ(canvas.height, kTitle + 500 + 144);
-  // Shown pixel (400, 166), image row 500 - 1 - 166: the reference-only red, ringed around.
+  EXPECT_EQ(canvas.height, kTitle + 500 + 190);
+  // Shown pixel (400, 166), image row 500 - 1 - 166: the fill-rule red, ringed around.
   const int x = (canvas.width - 550) / 2 + 400, y = kTitle + 500 - 1 - 166;
   const float* p = &canvas.rgb[(size_t(y) * size_t(canvas.width) + size_t(x)) * 3];
   EXPECT_EQ(p[0], 0.9f);
