@@ -31,23 +31,6 @@ std::string worst_text(const CaseResult& r, Field field, Format format) {
   return format(worst);
 }
 
-// The kind of a coverage mismatch, as the statistics name it.
-const char* label_text(CoverageStats::Label l) {
-  switch (l) {
-    case CoverageStats::Label::exact_tie:
-      return "exact tie";
-    case CoverageStats::Label::within_snapping:
-      return "within snapping";
-    case CoverageStats::Label::fill_rule:
-      return "fill-rule error";
-    case CoverageStats::Label::gap:
-      return "gap on a shared edge";
-    case CoverageStats::Label::double_hit:
-      return "double hit on a shared edge";
-  }
-  return "mismatch";
-}
-
 }  // namespace
 
 std::string case_line(const CaseResult& r) {

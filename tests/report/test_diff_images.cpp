@@ -404,8 +404,8 @@ TEST(CoverageImage, ALargeFrameIsShrunkAndKeepsItsOneFailingPixel) {
   ASSERT_EQ(upscale_factor(550, 500), 1);
   EXPECT_EQ(canvas.width, 550 + 2 * 12);
   constexpr int kTitle = 50;
-  EXPECT_EQ(canvas.height, kTitle + 500 + 144);
-  // Shown pixel (400, 166), image row 500 - 1 - 166: the reference-only red, ringed around.
+  EXPECT_EQ(canvas.height, kTitle + 500 + 190);
+  // Shown pixel (400, 166), image row 500 - 1 - 166: the fill-rule red, ringed around.
   const int x = (canvas.width - 550) / 2 + 400, y = kTitle + 500 - 1 - 166;
   const float* p = &canvas.rgb[(size_t(y) * size_t(canvas.width) + size_t(x)) * 3];
   EXPECT_EQ(p[0], 0.9f);
@@ -432,6 +432,156 @@ TEST(CoverageImage, ALargeFrameIsShrunkAndKeepsItsOneFailingPixel) {
   EXPECT_THROW(odd.add_rows(Expectation{ref.rows(3, 2), std::vector<uint8_t>(size_t(w) * 2, 0), {}},
                             gl.rows(3, 2), 3),
                std::invalid_argument);
+}
+
+// The colour of canvas pixel (x, y), and how many pixels of the w x h rectangle at (x0, y0)
+// have exactly that colour.
+Rgb colour_at(const Canvas& canvas, int x, int y) {
+  const float* p = &canvas.rgb[(size_t(y) * size_t(canvas.width) + size_t(x)) * 3];
+  return {p[0], p[1], p[2]};
+}
+bool same_colour(Rgb a, Rgb b) {
+  return a.r == b.r && a.g == b.g && a.b == b.b;
+}
+int pixels_of_colour(const Canvas& canvas, int x0, int y0, int w, int h, Rgb colour) {
+  int n = 0;
+  for (int y = y0; y < y0 + h; ++y)
+    for (int x = x0; x < x0 + w; ++x)
+      n += same_colour(colour_at(canvas, x, y), colour);
+  return n;
+}
+
+// A count-only mismatch (both frames name primitive 0, GL wrote 2 fragments where the reference
+// wrote 1) is painted in its label's colour: fill rule away from every edge, double hit beside a
+// shared edge; it is no "other primitive" (orange, the colour these pixels had when the picture
+// was painted by which frame covered what), and has no mark, while a GL-only pixel has one.
+TEST(CoverageImage, ACountOnlyMismatchIsPaintedInItsLabelsColour) {
+  const Case c = one_triangle_case();
+  Frame ref = reference_frame();
+  ref.fragments.assign(ref.pixel_count(), 0);
+  for (size_t i = 0; i < ref.pixel_count(); ++i)
+    ref.fragments[i] = ref.primitive[i] == Frame::kNoPrimitive ? 0 : 1;
+  Frame allowed(kW, kH, 1);
+  allowed.primitive = ref.primitive;
+  allowed.components[0].assign(allowed.pixel_count(), 2 * kUlp);
+  allowed.depth.assign(allowed.pixel_count(), 0x1p-23f);
+  // Two frame pixels apart at least, so that no pixel's ring reaches another's block.
+  std::vector<uint8_t> edges(kW * kH, 0);
+  edges[ref.index(4, 1)] = edge::shared;
+  edges[ref.index(1, 3)] = edge::shared;
+  Frame gl = ref;
+  gl.fragments[gl.index(1, 1)] = 2;  // no edge bit: a fill-rule error
+  gl.fragments[gl.index(4, 1)] = 2;  // beside a shared edge: a double hit
+  gl.fragments[gl.index(1, 3)] = 0;  // beside a shared edge: a gap
+  gl.primitive[gl.index(6, 3)] = 0, gl.fragments[gl.index(6, 3)] = 1;  // GL only: fill rule
+  const Expectation expected{ref, edges, allowed};
+  const Tolerance t;
+  const CaseResult r = compare::compare(c, expected, gl, t);
+  ASSERT_EQ(r.coverage.fill_rule, 2u);
+  ASSERT_EQ(r.coverage.double_hits, 1u);
+  ASSERT_EQ(r.coverage.gaps, 1u);
+  ASSERT_EQ(r.coverage.exact_tie + r.coverage.within_snapping, 0u);
+
+  const Canvas canvas = render_coverage(expected, gl, r.coverage, std::nullopt);
+  const int factor = upscale_factor(kW, kH);
+  constexpr int kTitle = 50;
+  const int x0 = (canvas.width - kW * factor) / 2;
+  // Frame pixel (x, y)'s block: image row kH - 1 - y.
+  const auto block_x = [&](int x) { return x0 + x * factor; };
+  const auto block_y = [&](int y) { return kTitle + (kH - 1 - y) * factor; };
+  const Rgb red{0.9f, 0.1f, 0.1f}, magenta{0.95f, 0.0f, 0.95f}, cyan{0.0f, 0.9f, 0.9f};
+  const Rgb other_primitive{1.0f, 0.55f, 0.0f};
+  EXPECT_TRUE(same_colour(label_colour(CoverageStats::Label::fill_rule), red));
+  // Every pixel of each count-only block in its label's colour: no mark.
+  const auto block_pixels = [&](int x, int y, Rgb colour) {
+    return pixels_of_colour(canvas, block_x(x), block_y(y), factor, factor, colour);
+  };
+  EXPECT_EQ(block_pixels(1, 1, red), factor * factor);
+  EXPECT_EQ(block_pixels(1, 1, other_primitive), 0);
+  EXPECT_EQ(block_pixels(4, 1, magenta), factor * factor);
+  EXPECT_EQ(block_pixels(1, 3, cyan), factor * factor);
+  // The GL-only pixel: red around a white mark in its centre (GL covers what the reference
+  // does not).
+  EXPECT_TRUE(same_colour(colour_at(canvas, block_x(6) + 2, block_y(3) + 2), red));
+  EXPECT_TRUE(same_colour(colour_at(canvas, block_x(6) + factor / 2, block_y(3) + factor / 2),
+                          Rgb{1, 1, 1}));
+  EXPECT_LT(block_pixels(6, 3, red), factor * factor);
+  // An agreeing pixel keeps its primitive's grey.
+  EXPECT_EQ(block_pixels(3, 3, Rgb{0.24f, 0.24f, 0.24f}), factor * factor);
+
+  // The legend's counts are the comparison's.
+  for (const LegendEntry& e : coverage_legend(r.coverage)) {
+    EXPECT_EQ(e.count, label_count(r.coverage, e.label));
+    EXPECT_TRUE(same_colour(e.colour, label_colour(e.label)));
+  }
+}
+
+// A shrunk picture shows each block's most severe label: a double hit beside a fill-rule error
+// and an exact tie in one 2 x 2 block.
+TEST(CoverageImage, AShrunkBlockShowsItsMostSevereLabel) {
+  constexpr int w = 1100, h = 1000;
+  ASSERT_EQ(map_factor(w, h, 1), 2);
+  Frame ref(w, h, 0);
+  ref.primitive.assign(ref.pixel_count(), 0);
+  ref.fragments.assign(ref.pixel_count(), 1);
+  Frame gl = ref;
+  std::vector<uint8_t> edges(ref.pixel_count(), 0);
+  gl.fragments[gl.index(800, 332)] = 2;  // a fill-rule error, first in row order
+  gl.fragments[gl.index(801, 333)] = 2;  // a double hit
+  edges[ref.index(801, 333)] = edge::shared;
+  gl.primitive[gl.index(800, 333)] = Frame::kNoPrimitive;  // an exact tie
+  edges[ref.index(800, 333)] = edge::tie;
+  const Expectation expected{ref, edges, Frame()};
+  ASSERT_EQ(compare::coverage_label(expected, gl, ref.index(800, 332)),
+            CoverageStats::Label::fill_rule);
+  ASSERT_EQ(compare::coverage_label(expected, gl, ref.index(801, 333)),
+            CoverageStats::Label::double_hit);
+  ASSERT_EQ(compare::coverage_label(expected, gl, ref.index(800, 333)),
+            CoverageStats::Label::exact_tie);
+  const Canvas canvas = render_coverage(expected, gl, CoverageStats{}, std::nullopt);
+  constexpr int kTitle = 50;
+  const int x = (canvas.width - 550) / 2 + 400, y = kTitle + 500 - 1 - 166;
+  EXPECT_TRUE(same_colour(colour_at(canvas, x, y), Rgb{0.95f, 0.0f, 0.95f}));
+}
+
+// The legend lists every label once with its count from CoverageStats, as "fill-rule error: 3",
+// in the label's colour.
+TEST(CoverageImage, TheLegendGivesEachLabelsCount) {
+  CoverageStats stats;
+  stats.exact_tie = 1, stats.within_snapping = 2, stats.fill_rule = 3, stats.gaps = 4;
+  stats.double_hits = 5;
+  const std::vector<LegendEntry> legend = coverage_legend(stats);
+  std::vector<std::string> texts;
+  for (const LegendEntry& e : legend) {
+    texts.push_back(e.text);
+    EXPECT_EQ(e.count, label_count(stats, e.label));
+    EXPECT_TRUE(same_colour(e.colour, label_colour(e.label)));
+  }
+  EXPECT_EQ(texts, (std::vector<std::string>{"fill-rule error: 3", "gap on a shared edge: 4",
+                                             "double hit on a shared edge: 5", "exact tie: 1",
+                                             "within snapping: 2"}));
+  // One colour per label, the explained ones lighter (a larger sum of channels) than any
+  // failure's.
+  for (size_t a = 0; a < legend.size(); ++a)
+    for (size_t b = a + 1; b < legend.size(); ++b)
+      EXPECT_FALSE(same_colour(legend[a].colour, legend[b].colour)) << a << " " << b;
+  const auto lightness = [](Rgb c) { return c.r + c.g + c.b; };
+  for (const LegendEntry& e : legend)
+    for (const LegendEntry& f : legend)
+      if (compare::explained(e.label) && !compare::explained(f.label)) {
+        EXPECT_GT(lightness(e.colour), lightness(f.colour)) << e.text << " " << f.text;
+      }
+
+  // Each label's swatch is in the picture's legend, below the frame.
+  const Frame ref = reference_frame();
+  const Canvas canvas = render_coverage(Expectation{ref, std::vector<uint8_t>(kW * kH, 0), {}}, ref,
+                                        stats, std::nullopt);
+  const int legend_top = 50 + kH * upscale_factor(kW, kH);
+  for (const LegendEntry& e : legend)
+    EXPECT_GE(
+        pixels_of_colour(canvas, 0, legend_top, canvas.width, canvas.height - legend_top, e.colour),
+        14 * 14)
+        << e.text;
 }
 
 TEST_F(ReportTest, DiffImagesShowNonFiniteValuesInMagenta) {
