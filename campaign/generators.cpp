@@ -359,6 +359,305 @@ Case states(Random& r) {
   return c;
 }
 
+// The dense generator's size classes, in pixels: the sizes at which drivers change rasterizer
+// paths (llvmpipe's 4x4, 16x16 and 64x64 blocks among them) each get shared edges.
+enum class SizeClass { tiny, small, medium, large };
+SizeClass any_size_class(Random& r) {
+  return SizeClass(r.below(4));
+}
+double size_in(Random& r, SizeClass size) {
+  switch (size) {
+    case SizeClass::tiny:
+      return r.binades(-4, -1);  // 1/16 to 1 pixel: sub-pixel
+    case SizeClass::small:
+      return r.uniform(1, 4);
+    case SizeClass::medium:
+      return r.uniform(16, 64);
+    case SizeClass::large:
+      break;
+  }
+  return r.uniform(64, 384);
+}
+
+// w_c of one vertex of a dense scene: within [0.2, 3.2], the range of the clip-heavy scenes
+// that showed issue 44's false failures, so noperspective stays loadable everywhere.
+double dense_w(Random& r) {
+  return r.uniform(0.2, 3.2);
+}
+
+// Three window points around (cx, cy), at radii within [0.4, 1] of `size`, a third of a turn
+// apart give or take 25 degrees: no two are half a turn apart, so the triangle contains the
+// centre, and triangles made this way around one centre overlap there.
+std::array<std::array<double, 2>, 3> around(Random& r, double cx, double cy, double size) {
+  const double turn = r.uniform(0, 360);
+  std::array<std::array<double, 2>, 3> p;
+  for (int k = 0; k < 3; ++k) {
+    const double radius = size * r.uniform(0.4, 1);
+    const double jitter = r.uniform(-25, 25);
+    p[size_t(k)] = on_circle(cx, cy, radius, turn + 120 * k + jitter);
+  }
+  return p;
+}
+
+double on_grid(double x, double units) {
+  return std::floor(x * units + 0.5) / units;
+}
+
+// A depth plane z_c = a·x_c + b·y_c + c·w_c, homogeneous, so that every point on it has z_n =
+// a·x_n + b·y_n + c: two triangles of its points lie in one depth plane in the window, however
+// the implementation interpolates, and so contest every pixel they share. Every number is on a
+// grid that keeps the plane exact in float32: a, b, c multiples of 1/64 (|a|, |b| <= 1/4, |c|
+// <= 25/64), x_n and y_n of 2^-10 (|x_n|, |y_n| <= 3), w_c of 1/8 (2/8 to 25/8); x_c then
+// has at most 17 significant bits and z_c is a multiple of 2^-19 below 2^3, so computing z_c
+// rounds nothing.
+struct DepthPlane {
+  double a = 0, b = 0, c = 0;
+};
+DepthPlane any_depth_plane(Random& r) {
+  DepthPlane p;
+  if (r.chance(0.7)) {  // else parallel to the window: equal z_n at every vertex
+    p.a = r.between(-16, 16) / 64.0;
+    p.b = r.between(-16, 16) / 64.0;
+  }
+  p.c = r.between(-25, 25) / 64.0;
+  return p;
+}
+// The point of `plane` nearest window point (x_w, y_w) on the grids, with w_c = w (a multiple
+// of 1/8).
+std::array<float, 4> on_plane(const Case& c, const DepthPlane& plane, double x_w, double y_w,
+                              double w) {
+  const double x_n =
+      std::clamp(on_grid(2 * (x_w - c.viewport.x) / c.viewport.width - 1, 1024), -3.0, 3.0);
+  const double y_n =
+      std::clamp(on_grid(2 * (y_w - c.viewport.y) / c.viewport.height - 1, 1024), -3.0, 3.0);
+  const double x_c = x_n * w, y_c = y_n * w;
+  const double z_c = plane.a * x_c + plane.b * y_c + plane.c * w;
+  return {float(x_c), float(y_c), float(z_c), float(w)};
+}
+
+// One float `steps` ulps from x, towards `direction`'s sign.
+float ulps_away(float x, int steps, double direction) {
+  for (int k = 0; k < steps; ++k)
+    x = std::nextafter(x, direction > 0 ? INFINITY : -INFINITY);
+  return x;
+}
+
+// The triangles of a dense scene, and the nearer triangles still to come over its pairs.
+struct DenseScene {
+  Case& c;
+  std::vector<std::array<std::array<float, 4>, 3>> covers;
+
+  int triangles() const { return int(c.triangles.size() + covers.size()); }
+  uint32_t vertex(const std::array<float, 4>& clip) {
+    c.vertices.push_back({clip, {}});
+    return uint32_t(c.vertices.size() - 1);
+  }
+};
+
+// Two different triangles of one depth plane overlapping around a centre, the second one's
+// z_c moved `ulps` ulps up or down at each vertex (0: exactly on the plane; a z_c of 0 stays,
+// since a denormal beside it is outside GL's specified range), and then, later in the scene, a
+// triangle clearly nearer over the centre, which hides their depth contest there: issue 44's
+// smallest false failure, two triangles in one depth plane and a nearer one over both.
+void coplanar_pair(DenseScene& s, Random& r, int ulps) {
+  const Case& c = s.c;
+  const double vw = c.viewport.width, vh = c.viewport.height;
+  const SizeClass size = SizeClass(r.between(1, 3));  // sub-pixel pairs rarely share a centre
+  const double extent = size_in(r, size);
+  const double cx = r.uniform(0, vw), cy = r.uniform(0, vh);
+  const DepthPlane plane = any_depth_plane(r);
+  const bool perspective = r.chance(0.6);
+  double nearest = INFINITY;  // the least z_n of the pair's vertices
+  for (int t = 0; t < 2; ++t) {
+    const auto p = around(r, cx, cy, extent);
+    std::array<std::array<float, 4>, 3> clip;
+    for (size_t k = 0; k < 3; ++k) {
+      const double w = perspective ? r.between(2, 25) / 8.0 : 1.0;
+      clip[k] = on_plane(c, plane, p[k][0], p[k][1], w);
+      if (t == 1 && ulps > 0) {
+        const double direction = r.sign();
+        if (clip[k][2] != 0) clip[k][2] = ulps_away(clip[k][2], ulps, direction);
+      }
+      nearest = std::min(nearest, double(clip[k][2]) / double(clip[k][3]));
+    }
+    add_triangle(s.c, clip);
+  }
+  // Clearly nearer than the pair wherever they meet: a constant z_n below its least vertex
+  // depth (the least over a triangle is at a vertex), by 0.01 to 0.2, and above -1 while the
+  // pair's nearest vertex is, so the near plane leaves it.
+  const double margin = r.uniform(0.01, 0.2);
+  const double z = std::max(nearest - margin, (nearest - 1) / 2);
+  const double cover_extent = size_in(r, SizeClass(r.between(1, 3)));
+  const auto p = around(r, cx, cy, cover_extent);
+  std::array<std::array<float, 4>, 3> cover;
+  for (size_t k = 0; k < 3; ++k) {
+    const double w = dense_w(r);
+    cover[k] = clip_at(c, p[k][0], p[k][1], z, w);
+  }
+  s.covers.push_back(cover);
+}
+
+// A bitwise-identical copy of an earlier triangle: the same clip positions in the same order,
+// new vertices with their own values. Mostly one of the last few, which nothing has hidden yet.
+void identical_copy(DenseScene& s, Random& r) {
+  const auto n = uint64_t(s.c.triangles.size());
+  const uint64_t t = r.chance(0.5) ? n - 1 - r.below(std::min<uint64_t>(n, 8)) : r.below(n);
+  const auto original = s.c.triangles[t];
+  std::array<std::array<float, 4>, 3> clip;
+  for (size_t k = 0; k < 3; ++k)
+    clip[k] = s.c.vertices[original[k]].clip;
+  add_triangle(s.c, clip);
+}
+
+// z_n over a fan or strip: affine in the window position around (cx, cy), from -1.1 to 1.1 at
+// the centre (so some cross the near or far plane), changing by up to 0.5 over `extent`.
+struct DepthSlope {
+  double z0, zx, zy, cx, cy;
+  double at(double x, double y) const { return z0 + zx * (x - cx) + zy * (y - cy); }
+};
+DepthSlope any_slope(Random& r, double cx, double cy, double extent) {
+  DepthSlope d{0, 0, 0, cx, cy};
+  d.z0 = r.uniform(-1.1, 1.1);
+  d.zx = r.uniform(-0.5, 0.5) / extent;
+  d.zy = r.uniform(-0.5, 0.5) / extent;
+  return d;
+}
+
+// A fan of up to `room` triangles of one size class around a centre in the viewport: every
+// rim vertex but the ends shared by two triangles, the centre by all, by index.
+void fan(DenseScene& s, Random& r, int room) {
+  const Case& c = s.c;
+  const double vw = c.viewport.width, vh = c.viewport.height;
+  const double radius = size_in(r, any_size_class(r));
+  const double cx = r.uniform(0, vw), cy = r.uniform(0, vh);
+  const DepthSlope depth = any_slope(r, cx, cy, radius);
+  const bool perspective = r.chance(0.6);
+  const int n = r.between(2, std::min(room, 16));
+  const bool closed = n >= 3 && r.chance(0.5);
+  const double arc = closed ? 360 : r.uniform(30, 300);
+  const double turn = r.uniform(0, 360);
+  auto vertex = [&](double x, double y) {
+    const double w = perspective ? dense_w(r) : 1.0;
+    return s.vertex(clip_at(c, x, y, depth.at(x, y), w));
+  };
+  const uint32_t centre = vertex(cx, cy);
+  uint32_t first = 0, previous = 0;
+  for (int k = 0; k <= n; ++k) {
+    uint32_t here;
+    if (k == n && closed) {
+      here = first;
+    } else {
+      const auto p = on_circle(cx, cy, radius, turn + arc * k / n);
+      here = vertex(p[0], p[1]);
+    }
+    if (k == 0) first = here;
+    if (k > 0) s.c.triangles.push_back({centre, previous, here});
+    previous = here;
+  }
+}
+
+// A strip drawn as a triangle list, up to `room` triangles of one size class: two rows of
+// vertices along a random direction, each inner vertex shared by three triangles, by index.
+void strip(DenseScene& s, Random& r, int room) {
+  const Case& c = s.c;
+  const double vw = c.viewport.width, vh = c.viewport.height;
+  const double step = size_in(r, any_size_class(r));
+  const double width = step * r.uniform(0.5, 1.5);
+  const double x0 = r.uniform(0, vw), y0 = r.uniform(0, vh);
+  const int segments = r.between(1, std::min(room / 2, 16));
+  const DepthSlope depth = any_slope(r, x0, y0, step * segments);
+  const bool perspective = r.chance(0.6);
+  double dy = 0, dx = 0;
+  casefile::sincos_degrees(r.uniform(0, 360), dy, dx);
+  auto vertex = [&](double along, double across) {
+    const double x = x0 + along * dx - across * dy, y = y0 + along * dy + across * dx;
+    const double w = perspective ? dense_w(r) : 1.0;
+    return s.vertex(clip_at(c, x, y, depth.at(x, y), w));
+  };
+  uint32_t a = vertex(0, 0);
+  const double shift = r.uniform(-0.3, 0.3);
+  uint32_t b = vertex(shift * step, width);
+  for (int k = 1; k <= segments; ++k) {
+    const uint32_t next_a = vertex(k * step, 0);
+    const double next_shift = r.uniform(-0.3, 0.3);
+    const uint32_t next_b = vertex((k + next_shift) * step, width);
+    s.c.triangles.push_back({a, b, next_a});
+    s.c.triangles.push_back({next_a, b, next_b});
+    a = next_a, b = next_b;
+  }
+}
+
+// One triangle of issue 44's clip-heavy scenes: x_c, y_c within ±3 w_c, z_c within ±1.2 w_c.
+void clip_heavy(DenseScene& s, Random& r) {
+  std::array<std::array<float, 4>, 3> clip;
+  for (auto& p : clip) {
+    const double w = dense_w(r);
+    const double z = r.uniform(-1.2, 1.2) * w;
+    const double y = r.uniform(-3, 3) * w;
+    const double x = r.uniform(-3, 3) * w;
+    p = {float(x), float(y), float(z), float(w)};
+  }
+  add_triangle(s.c, clip);
+}
+
+// One triangle of a size class near the viewport (a quarter of it beyond each side), each
+// vertex with its own z_n within ±1.2 and w_c: clipped by the near or far plane at times.
+void loose(DenseScene& s, Random& r) {
+  const Case& c = s.c;
+  const double vw = c.viewport.width, vh = c.viewport.height;
+  const double size = size_in(r, any_size_class(r));
+  const double cx = r.uniform(-0.25 * vw, 1.25 * vw), cy = r.uniform(-0.25 * vh, 1.25 * vh);
+  std::array<std::array<float, 4>, 3> clip;
+  for (auto& p : clip) {
+    const double x = cx + size * r.uniform(-1, 1);
+    const double y = cy + size * r.uniform(-1, 1);
+    const double z = r.uniform(-1.2, 1.2);
+    const double w = dense_w(r);
+    p = clip_at(c, x, y, z, w);
+  }
+  add_triangle(s.c, clip);
+}
+
+Case dense(Random& r) {
+  Case c;
+  set_framebuffer_drawn(c, r, 64, 512, 64, 512);
+  c.depth_func = DepthFunc::less;
+  const int count = r.between(100, 800);
+  DenseScene s{c, {}};
+  while (s.triangles() < count) {
+    // The pairs' nearer triangles come after a random number of others.
+    while (!s.covers.empty() && r.chance(0.5)) {
+      add_triangle(c, s.covers.front());
+      s.covers.erase(s.covers.begin());
+    }
+    const int room = count - s.triangles();
+    uint64_t kind = r.below(20);
+    // A pair and its cover take three triangles, a copy an earlier one; else a loose one.
+    if (room < 3 || (kind >= 7 && kind < 9 && c.triangles.empty())) kind = 19;
+    if (kind < 5) {
+      coplanar_pair(s, r, 0);
+    } else if (kind < 7) {
+      coplanar_pair(s, r, r.between(1, 4));
+    } else if (kind < 9) {
+      identical_copy(s, r);
+    } else if (kind < 13) {
+      fan(s, r, room);
+    } else if (kind < 16) {
+      strip(s, r, room);
+    } else if (kind < 18) {
+      clip_heavy(s, r);
+    } else {
+      loose(s, r);
+    }
+  }
+  for (const auto& cover : s.covers)
+    add_triangle(c, cover);
+  add_varying(c, 2, any_interpolation(r));
+  if (r.chance(0.5)) add_varying(c, 1, any_interpolation(r));
+  fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  return c;
+}
+
 // What casefile::load demands and a generator may not have ensured: noperspective only where
 // every vertex a triangle uses has w_c > 0 (cases/README.md); such varyings become smooth.
 void make_loadable(Case& c) {
@@ -389,6 +688,10 @@ const std::vector<Generator>& generators() {
        "cull, front face, provoking vertex, depth range (reversed too), depth function, "
        "viewports",
        states},
+      {"dense",
+       "hundreds of triangles with the depth test: coplanar and near-coplanar pairs under nearer "
+       "triangles, identical copies, clipped ones, shared edges of every size",
+       dense},
   };
   return all;
 }

@@ -33,7 +33,18 @@ struct Generator {
 //   attributes  values from 1e-30 to 1e30, mixed signs and magnitudes in one vector, all three
 //               qualifiers, up to 7 varyings;
 //   states      cull, front face, provoking vertex, depth range (reversed too), depth function,
-//               viewport offsets and sizes.
+//               viewport offsets and sizes;
+//   dense       100 to 800 triangles with the depth test (less) in framebuffers 64 to 512
+//               pixels a side: pairs of different triangles in one exact depth plane, or a few
+//               ulps of z_c apart, each under a later, clearly nearer triangle (hidden depth
+//               contests, issue 44); bitwise-identical copies of earlier triangles; clip-heavy
+//               triangles (x_c, y_c within ±3 w_c, z_c within ±1.2 w_c, w_c in [0.2, 3.2]);
+//               fans and strips sharing vertices by index, of sub-pixel, small (< 4 px), medium
+//               (16 to 64 px) and large (64 to 384 px) triangles.
+// New generators go last, and none is ever removed or reordered: a campaign of every generator
+// makes case I with generator I mod n, so adding one changes which case such a campaign's
+// `--replay S:I` names (a campaign of named generators, and `--generator G --replay S:I`,
+// which each case's description gives, are unchanged).
 const std::vector<Generator>& generators();
 // The generator of that name, or nullptr.
 const Generator* find_generator(std::string_view name);

@@ -3,9 +3,15 @@
 // a triangle has a vertex with w_c < 1), and a whole campaign on that fault.
 #include <gtest/gtest.h>
 
+#include <gmpxx.h>
+
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "campaign/campaign.hpp"
@@ -54,8 +60,8 @@ TEST(Random, IsSplitMix64) {
 }
 
 TEST(Generators, EveryNameIsFoundAndNothingElse) {
-  EXPECT_EQ(generators().size(), 5u);
-  for (const char* name : {"sizes", "clip", "mesh", "attributes", "states"})
+  EXPECT_EQ(generators().size(), 6u);
+  for (const char* name : {"sizes", "clip", "mesh", "attributes", "states", "dense"})
     EXPECT_NE(find_generator(name), nullptr) << name;
   EXPECT_EQ(find_generator("Clip"), nullptr);
   EXPECT_EQ(find_generator(""), nullptr);
@@ -113,6 +119,203 @@ TEST(Generators, AimWhereTheySay) {
   EXPECT_GT(tiny, 10);
   EXPECT_GT(huge, 10);
   EXPECT_GT(long_framebuffer, 3);
+}
+
+// The dense generator's scenes, looked at the way issue 44's false failures need them.
+using ClipTriangle = std::array<std::array<float, 4>, 3>;
+
+ClipTriangle clip_of(const Case& c, size_t t) {
+  ClipTriangle out;
+  for (size_t k = 0; k < 3; ++k)
+    out[k] = c.vertices[c.triangles[t][k]].clip;
+  return out;
+}
+
+bool inside_clip_volume(const std::array<float, 4>& p) {
+  return p[3] > 0 && std::fabs(p[0]) < p[3] && std::fabs(p[1]) < p[3] && std::fabs(p[2]) < p[3];
+}
+bool unclipped(const ClipTriangle& t) {
+  return std::all_of(t.begin(), t.end(), inside_clip_volume);
+}
+
+// A point inside the clip volume in window coordinates: x_w, y_w and z_n.
+using WindowPoint = std::array<double, 3>;
+using WindowTriangle = std::array<WindowPoint, 3>;
+WindowPoint in_window(const Case& c, const std::array<float, 4>& p) {
+  const double w = p[3];
+  return {c.viewport.x + (p[0] / w + 1) * c.viewport.width / 2,
+          c.viewport.y + (p[1] / w + 1) * c.viewport.height / 2, p[2] / w};
+}
+WindowTriangle in_window(const Case& c, const ClipTriangle& t) {
+  return {in_window(c, t[0]), in_window(c, t[1]), in_window(c, t[2])};
+}
+
+// z_n at window point (x, y) when the point is strictly inside the window triangle.
+std::optional<double> depth_inside(const WindowTriangle& t, double x, double y) {
+  auto edge = [&](size_t a, size_t b, double px, double py) {
+    return (t[b][0] - t[a][0]) * (py - t[a][1]) - (t[b][1] - t[a][1]) * (px - t[a][0]);
+  };
+  const double area = edge(0, 1, t[2][0], t[2][1]);
+  if (std::fabs(area) < 0.5) return std::nullopt;  // thin: its pixels are no evidence here
+  const double l0 = edge(1, 2, x, y) / area, l1 = edge(2, 0, x, y) / area;
+  const double l2 = edge(0, 1, x, y) / area;
+  if (l0 <= 0 || l1 <= 0 || l2 <= 0) return std::nullopt;
+  return l0 * t[0][2] + l1 * t[1][2] + l2 * t[2][2];
+}
+
+// Whether the four clip positions lie in one hyperplane through the origin of clip space, so
+// that their points share one depth plane: the exact 4x4 determinant (a float is a rational).
+bool linearly_dependent(const std::array<std::array<float, 4>, 4>& rows) {
+  std::array<std::array<mpq_class, 4>, 4> m;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < 4; ++j)
+      m[i][j] = mpq_class(double(rows[i][j]));
+  for (size_t col = 0; col < 4; ++col) {
+    size_t pivot = col;
+    while (pivot < 4 && m[pivot][col] == 0)
+      ++pivot;
+    if (pivot == 4) return true;
+    std::swap(m[pivot], m[col]);
+    for (size_t i = col + 1; i < 4; ++i) {
+      const mpq_class f = m[i][col] / m[col][col];
+      for (size_t j = col; j < 4; ++j)
+        m[i][j] -= f * m[col][j];
+    }
+  }
+  return false;
+}
+
+// The same determinant in doubles, relative to the product of the rows' lengths (Hadamard's
+// bound on it): rounding leaves about 1e-16 of dependent rows, the near-coplanar pairs' are
+// about 1e-7, so above 1e-9 rules dependence out without rationals.
+double relative_determinant(const std::array<std::array<float, 4>, 4>& rows) {
+  auto at = [&](size_t i, size_t j) { return double(rows[i][j]); };
+  // Laplace along the first row.
+  auto minor = [&](size_t skip) {
+    std::array<size_t, 3> k{};
+    for (size_t j = 0, n = 0; j < 4; ++j)
+      if (j != skip) k[n++] = j;
+    return at(1, k[0]) * (at(2, k[1]) * at(3, k[2]) - at(2, k[2]) * at(3, k[1])) -
+           at(1, k[1]) * (at(2, k[0]) * at(3, k[2]) - at(2, k[2]) * at(3, k[0])) +
+           at(1, k[2]) * (at(2, k[0]) * at(3, k[1]) - at(2, k[1]) * at(3, k[0]));
+  };
+  double det = 0, bound = 1;
+  for (size_t j = 0; j < 4; ++j)
+    det += (j % 2 ? -1 : 1) * at(0, j) * minor(j);
+  for (size_t i = 0; i < 4; ++i)
+    bound *= std::hypot(std::hypot(at(i, 0), at(i, 1)), std::hypot(at(i, 2), at(i, 3)));
+  return bound > 0 ? std::fabs(det) / bound : 0;
+}
+
+// Both triangles in one depth plane, exactly: each vertex of b on a's plane.
+bool exactly_coplanar(const ClipTriangle& a, const ClipTriangle& b) {
+  for (const auto& p : b) {
+    const std::array<std::array<float, 4>, 4> rows{a[0], a[1], a[2], p};
+    if (relative_determinant(rows) > 1e-9 || !linearly_dependent(rows)) return false;
+  }
+  return true;
+}
+
+// A pixel centre inside a, b and c (window triangles) where c is nearer than a by more than
+// 1e-3 in z_n: a contest of a and b hidden under c.
+bool hidden_under(const Case& cs, const WindowTriangle& a, const WindowTriangle& b,
+                  const WindowTriangle& c) {
+  // The intersection of their bounding boxes and the framebuffer.
+  double x0 = 0, x1 = cs.fb_width, y0 = 0, y1 = cs.fb_height;
+  for (const WindowTriangle* t : {&a, &b, &c}) {
+    const auto [left, right] = std::minmax({(*t)[0][0], (*t)[1][0], (*t)[2][0]});
+    const auto [bottom, top] = std::minmax({(*t)[0][1], (*t)[1][1], (*t)[2][1]});
+    x0 = std::max(x0, left), x1 = std::min(x1, right);
+    y0 = std::max(y0, bottom), y1 = std::min(y1, top);
+  }
+  if (x0 >= x1 || y0 >= y1) return false;
+  // At most 64 x 64 pixel centres, evenly spread over the boxes' intersection.
+  const double step_x = std::max(1.0, std::ceil((x1 - x0) / 64));
+  const double step_y = std::max(1.0, std::ceil((y1 - y0) / 64));
+  for (double y = std::floor(y0) + 0.5; y < y1; y += step_y)
+    for (double x = std::floor(x0) + 0.5; x < x1; x += step_x) {
+      const auto za = depth_inside(a, x, y), zb = depth_inside(b, x, y);
+      const auto zc = depth_inside(c, x, y);
+      if (za && zb && zc && *zc < *za - 1e-3) return true;
+    }
+  return false;
+}
+
+TEST(Generators, DenseScenesHideDepthContestsUnderNearerTriangles) {
+  const auto dense = only("dense");
+  int hidden_contests = 0, copies = 0;
+  std::set<std::string> shared_edge_sizes;
+  const int samples = 12;
+  for (uint64_t seed = 1; seed <= 3; ++seed)
+    for (uint64_t index = 0; index < uint64_t(samples / 3); ++index) {
+      const Case c = generate(dense, seed, index);
+      SCOPED_TRACE(c.name);
+      EXPECT_EQ(c.depth_func, DepthFunc::less);
+      EXPECT_GE(c.triangles.size(), 100u);
+      EXPECT_LE(c.triangles.size(), 800u);
+      EXPECT_GE(std::min(c.fb_width, c.fb_height), 64);
+      EXPECT_LE(std::max(c.fb_width, c.fb_height), 512);
+      // A case file the loader takes as it is.
+      const std::string text = casefile::to_case_file(c);
+      Case loaded;
+      ASSERT_NO_THROW(loaded = casefile::parse(text, c.name, c.name)) << text.substr(0, 400);
+      EXPECT_EQ(casefile::to_case_file(loaded), text);
+
+      std::vector<ClipTriangle> clip;
+      int clipped = 0;
+      for (size_t t = 0; t < c.triangles.size(); ++t) {
+        clip.push_back(clip_of(c, t));
+        clipped += !unclipped(clip.back());
+      }
+      EXPECT_GT(clipped, 0);
+      EXPECT_LT(clipped, int(clip.size()));
+
+      // A bitwise-identical copy of an earlier triangle, in the same order, with other values.
+      bool copy = false;
+      for (size_t j = 0; j < clip.size() && !copy; ++j)
+        for (size_t i = 0; i < j && !copy; ++i)
+          copy = std::memcmp(&clip[i], &clip[j], sizeof(ClipTriangle)) == 0 &&
+                 c.triangles[i] != c.triangles[j] &&
+                 c.vertices[c.triangles[i][0]].values != c.vertices[c.triangles[j][0]].values;
+      copies += copy;
+
+      // Two different triangles in one exact depth plane, overlapping, and a later nearer one
+      // over both: issue 44's smallest false failure.
+      bool hidden = false;
+      for (size_t j = 0; j < clip.size() && !hidden; ++j) {
+        if (!unclipped(clip[j])) continue;
+        const auto wj = in_window(c, clip[j]);
+        for (size_t i = 0; i < j && !hidden; ++i) {
+          if (!unclipped(clip[i]) || std::memcmp(&clip[i], &clip[j], sizeof(ClipTriangle)) == 0 ||
+              !exactly_coplanar(clip[i], clip[j]))
+            continue;
+          const auto wi = in_window(c, clip[i]);
+          for (size_t k = j + 1; k < clip.size() && !hidden; ++k)
+            hidden = unclipped(clip[k]) && hidden_under(c, wi, wj, in_window(c, clip[k]));
+        }
+      }
+      hidden_contests += hidden;
+
+      // Edges two triangles share by vertex index, by their length in the window.
+      std::map<std::pair<uint32_t, uint32_t>, int> edges;
+      for (const auto& t : c.triangles)
+        for (size_t k = 0; k < 3; ++k)
+          ++edges[std::minmax(t[k], t[(k + 1) % 3])];
+      for (const auto& [edge, users] : edges) {
+        const auto& p = c.vertices[edge.first].clip;
+        const auto& q = c.vertices[edge.second].clip;
+        if (users < 2 || !inside_clip_volume(p) || !inside_clip_volume(q)) continue;
+        const WindowPoint from = in_window(c, p), to = in_window(c, q);
+        const double length = std::hypot(to[0] - from[0], to[1] - from[1]);
+        if (length < 1) shared_edge_sizes.insert("tiny");
+        if (length >= 1 && length < 4) shared_edge_sizes.insert("small");
+        if (length >= 16 && length <= 64) shared_edge_sizes.insert("medium");
+        if (length > 64) shared_edge_sizes.insert("large");
+      }
+    }
+  EXPECT_GE(hidden_contests, samples / 2);
+  EXPECT_GE(copies, samples / 2);
+  EXPECT_EQ(shared_edge_sizes, (std::set<std::string>{"tiny", "small", "medium", "large"}));
 }
 
 TEST(Failures, ClassesComeInPrecedenceOrderWithTheChannelsKind) {

@@ -197,7 +197,8 @@ TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
   const std::string out = " --out '" + (dir_ / "o").string() + "'";
   const std::pair<std::string, std::string> cases[] = {
       {"fuzz --generator bogus" + out,
-       "--generator: expected one of sizes, clip, mesh, attributes, states, got \"bogus\""},
+       "--generator: expected one of sizes, clip, mesh, attributes, states, dense, got "
+       "\"bogus\""},
       {"fuzz --replay 12" + out, "--replay: expected SEED:INDEX"},
       {"fuzz --replay 1:x" + out, "--replay: expected SEED:INDEX"},
       {"fuzz --replay 1:2 --seed 3" + out, "--replay: expected no --seed, --count or --time"},
