@@ -201,8 +201,10 @@ Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size
 
 // How pixel i's coverage disagrees with what is expected, or nothing where it does not: a
 // different primitive is an exact tie, within snapping or a fill-rule error by the expected
-// edge bits; a different fragment count (when both frames have counts) away from outer edges is
-// a gap or double hit near a shared edge, else a fill-rule error.
+// edge bits (GL may keep a candidate of the depth test where the depth order is free); a
+// different fragment count (when both frames have counts: every fragment rasterized, through the
+// depth test or not) away from outer edges is a gap or double hit near a shared edge, else a
+// fill-rule error, where the depth order is free too.
 std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
                                                    size_t i);
 // Labels that the specification's freedom explains (exact tie, within snapping).
