@@ -1066,27 +1066,12 @@ const char* gl_cull(CullFace f) {
   return "0";
 }
 
-// GL's name of the depth function (the C text defines each).
-const char* gl_depth_func(DepthFunc f) {
-  switch (f) {
-    case DepthFunc::always:
-      return "GL_ALWAYS";
-    case DepthFunc::never:
-      return "GL_NEVER";
-    case DepthFunc::less:
-      return "GL_LESS";
-    case DepthFunc::lequal:
-      return "GL_LEQUAL";
-    case DepthFunc::greater:
-      return "GL_GREATER";
-    case DepthFunc::gequal:
-      return "GL_GEQUAL";
-    case DepthFunc::equal:
-      return "GL_EQUAL";
-    case DepthFunc::notequal:
-      return "GL_NOTEQUAL";
-  }
-  return "GL_ALWAYS";
+// GL's name of the depth function, which the C text defines: the case file's, upper case.
+std::string gl_depth_func(DepthFunc f) {
+  std::string name(name_of(f));
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](char ch) { return char(ch - 'a' + 'A'); });
+  return "GL_" + name;
 }
 
 // The arrays and the struct scene `name` of case `c`, drawn with `shaders`; its arrays' names
