@@ -42,11 +42,12 @@ float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpo
         break;
     }
   }
-  // z + polygon offset (0 here), then clamp(z, 0, 1) as max then min (maxps/minps return the
-  // second operand for NaN).
+  // z + polygon offset (0 here), then lp_build_clamp(z, 0, 1) (gallivm/lp_bld_arit.c): min
+  // with 1 first, then max with 0. minps/maxps return the second operand for NaN, so a NaN
+  // depth (a triangle set up from a NaN window position) becomes 1.
   float z = ftz(evaluate(k.z, x, y, fma) + 0.0f);
-  z = z > 0.0f ? z : 0.0f;
   z = z < 1.0f ? z : 1.0f;
+  z = z > 0.0f ? z : 0.0f;
   return z;
 }
 

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/case.hpp"
@@ -14,7 +15,8 @@
 namespace glrc::driver_models {
 
 // Three half-edge functions in fixed point and the pixel rectangle worth testing (the
-// triangle's bounding box clipped to the framebuffer: draw_regions without scissor).
+// triangle's bounding box clipped to the framebuffer: draw_regions without scissor), for the
+// triangles llvmpipe's 32-bit rasterizers draw (boxes up to 128 px), where nothing wraps.
 struct LlvmpipeEdges {
   std::array<int64_t, 3> c{};
   std::array<int64_t, 3> dcdx{}, dcdy{};  // already scaled by FIXED_ONE
@@ -30,6 +32,14 @@ inline bool llvmpipe_covers(const LlvmpipeEdges& e, int px, int py) {
     if (e.c[i] + e.dcdy[i] * py - e.dcdx[i] * px - 1 < 0) return false;
   return true;
 }
+
+// Calls covered(px, py) once for each framebuffer pixel llvmpipe shades for the triangle:
+// do_triangle_ccw's bounding box and planes, lp_setup_bin_triangle's tiles, and the
+// hierarchical tests of the rasterizer it picks. Wherever no 32-bit value wraps this is the
+// plain edge test of llvmpipe_covers; a vertex far outside (a NaN window position snaps to
+// INT32_MIN) wraps the edge steps and covers what the blocks' sign tests say.
+void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
+                       const std::function<void(int, int)>& covered);
 
 // The fragment shader's inputs and depth at pixel (px, py) (lp_bld_interp.c,
 // attribs_update_simple; lp_state_fs.c, lp_build_depth_clamp): `values` gets one float per

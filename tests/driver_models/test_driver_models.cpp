@@ -93,6 +93,28 @@ TEST(DriverModelClipper, NoperspectiveOnTheXPlaneIsNaN) {
   }
 }
 
+// A zero-area triangle through the eye: the clipper's vertex at w_c = 0 is (0, 0, 0, 0), its
+// window position NaN. llvmpipe snaps NaN to INT32_MIN, its 32-bit edge steps wrap, and the
+// whole-tile rasterizer then fills every row from the line y_w = 10.5 up, twice (two fan
+// triangles), with NaN values and depth 1 (min(NaN, 1) is 1): what Mesa 22.3.6 draws.
+// softpipe's setup draws nothing from a NaN position.
+TEST(DriverModelCoverage, LlvmpipeFillsAboveATriangleThroughTheEye) {
+  const Case c = load_case("degenerate_through_eye");
+  const Frame l = render(c, Driver::llvmpipe);
+  for (int y = 0; y < l.height; ++y)
+    for (int x = 0; x < l.width; ++x) {
+      const size_t p = l.index(x, y);
+      EXPECT_EQ(l.fragments[p], y >= 10 ? 2 : 0) << x << "," << y;
+      if (y < 10) continue;
+      EXPECT_EQ(l.primitive[p], 0) << x << "," << y;
+      EXPECT_TRUE(std::isnan(l.components[0][p])) << x << "," << y;
+      EXPECT_EQ(l.depth[p], 1.0f) << x << "," << y;
+    }
+  const Frame s = render(c, Driver::softpipe);
+  for (size_t p = 0; p < s.pixel_count(); ++p)
+    EXPECT_EQ(s.fragments[p], 0) << p;
+}
+
 // llvmpipe evaluates planes with fused multiply-adds where the CPU has FMA, softpipe never:
 // the option changes llvmpipe's bits and leaves softpipe's alone.
 TEST(DriverModelOptions, FmaMattersOnlyToLlvmpipe) {

@@ -48,12 +48,6 @@ ModelShared& model_shared() {
   return s;
 }
 
-// What the models do not reproduce (driver_models/README.md, "Not modelled"): a triangle
-// through the eye, whose clipped vertex there llvmpipe sets up from rounding noise.
-bool modelled(const Case& c, driver_models::Driver d) {
-  return !(d == driver_models::Driver::llvmpipe && c.name == "degenerate_through_eye");
-}
-
 // Destroyed before main() returns, while Mesa and LLVM are still alive.
 class ModelRendererEnvironment : public ::testing::Environment {
  public:
@@ -153,7 +147,6 @@ TEST_F(DriverModel, EverySuiteCaseIsBitExact) {
   int cases = 0;
   for (const auto& path : casefile::collect({std::string(GLRC_SOURCE_DIR) + "/cases"})) {
     const Case c = casefile::load(path);
-    if (!modelled(c, driver())) continue;
     expect_bit_exact(c, gl(), driver(), tally);
     ++cases;
   }
@@ -173,7 +166,6 @@ TEST_F(DriverModel, LlvmpipeFmaChoiceIsTheCpus) {
   uint64_t differing = 0;
   for (const auto& path : casefile::collect({std::string(GLRC_SOURCE_DIR) + "/cases"})) {
     const Case c = casefile::load(path);
-    if (!modelled(c, driver())) continue;
     differing += difference(c, gl().render(c), driver_models::render(c, driver(), other)).pixels;
   }
   std::cout << "[ driver_models ] llvmpipe with fma=" << other.fma << " instead of " << !other.fma
