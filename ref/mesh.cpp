@@ -33,6 +33,13 @@ int compare(const WindowPoint& p, const WindowPoint& q) {
   return cmp(mpq_class(p.v->y_h * q.v->w_c), mpq_class(q.v->y_h * p.v->w_c));
 }
 
+// Whether two window points come from the same clip coordinates (x_h, y_h and w_c fix x_c and
+// y_c).
+bool same_clip(const WindowPoint& p, const WindowPoint& q) {
+  return &p == &q || (p.v->w_c == q.v->w_c && p.v->x_h == q.v->x_h && p.v->y_h == q.v->y_h &&
+                      p.v->z_c == q.v->z_c);
+}
+
 // One drawn triangle's edge: its ends, the smaller first, so that triangles naming the same two
 // window points in either order have the same ends.
 struct EdgeUse {
@@ -115,16 +122,23 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
   parallel_for(int(groups.size()), threads, [&](int g) {
     const auto [first, end] = groups[size_t(g)];
     const EdgeUse& r = uses[first];
-    bool positive = false, negative = false;
+    size_t positive = 0, negative = 0;
     for (size_t u = first; u < end; ++u) {
       const EdgeUse& k = uses[u];
+      // The same window points from other clip coordinates (another z_c, or every coordinate
+      // scaled): the clipper may cut the two triangles' edges apart (near and far by z_c, the
+      // new vertex's rounding by its inputs), and then their polygons' edges are not one line.
+      if (!same_clip(*k.a, *r.a) || !same_clip(*k.b, *r.b)) return;
       rel[u] = u == first
                    ? 1
                    : side(triangle(r.triangle), r.edge, triangle(k.triangle).v[size_t(k.edge)]);
-      positive = positive || rel[u] > 0;
-      negative = negative || rel[u] < 0;
+      positive += rel[u] > 0;
+      negative += rel[u] < 0;
     }
-    if (!positive || !negative) return;
+    // A centre near the edge goes to the same side for every user (they rasterize one snapped
+    // edge alike), so the users' fragments there number those of one side: decided only where
+    // both sides have as many (a copy of one user on one side makes it 1 or 2).
+    if (positive == 0 || positive != negative) return;
     for (size_t u = first; u < end; ++u)
       if (rel[u] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
   });

@@ -13,8 +13,10 @@
 namespace glrc::ref {
 
 // shared[t][i]: edge i of triangle t (the edge opposite vertex i) is also an edge of another
-// drawn triangle lying on its other side. Both ends must have identical clip coordinates and
-// w_c > 0; a culled or zero-area neighbour leaves the edge outer. `threads`: how many threads
+// drawn triangle lying on its other side, and as many of the edge's users lie on each side (so
+// that the fragments near it number the same whichever side a centre goes to). Every user's
+// ends must have identical clip coordinates and w_c > 0; a culled or zero-area neighbour leaves
+// the edge outer. `threads`: how many threads
 // decide the shared ends' sides (parallel_for's count); the result is the same for any.
 std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles,
                                               int threads = 1);

@@ -227,16 +227,24 @@ TEST(SharedEdges, AQuadsDiagonalIsSharedAnOverlapIsNot) {
   c.varyings = {};
   for (auto [x, y] : {std::pair{-1.0f, -1.0f}, {1.0f, -1.0f}, {1.0f, 1.0f}, {-1.0f, 1.0f}})
     c.vertices.push_back({{x, y, 0, 1}, {}});
-  c.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 1, 2}};  // the third overlaps the first
+  // The third overlaps the first: a centre on the diagonal gets 2 fragments on their side, 1 on
+  // the other's, so the diagonal is no shared edge; a copy of the second too makes it one again.
+  c.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 1, 2}};
   std::vector<TriangleSetup> setups;
   for (int p = 0; p < 3; ++p)
     setups.push_back(setup_triangle(c, Model{}, p));
-  const auto shared = shared_edges(setups);
+  auto shared = shared_edges(setups);
+  for (const auto& e : shared)
+    EXPECT_EQ(e, (std::array<bool, 3>{false, false, false}));
+  c.triangles.push_back({0, 2, 3});
+  setups.push_back(setup_triangle(c, Model{}, 3));
+  shared = shared_edges(setups);
   // Edge i is opposite the triangle's i-th vertex: the diagonal 0-2 is edge 1 of (0, 1, 2) and
   // edge 2 of (0, 2, 3).
   EXPECT_EQ(shared[0], (std::array<bool, 3>{false, true, false}));
   EXPECT_EQ(shared[1], (std::array<bool, 3>{false, false, true}));
-  EXPECT_EQ(shared[2], (std::array<bool, 3>{false, true, false}));  // shares with triangle 1
+  EXPECT_EQ(shared[2], (std::array<bool, 3>{false, true, false}));
+  EXPECT_EQ(shared[3], (std::array<bool, 3>{false, false, true}));
 
   // Pixels along the diagonal are marked shared, not snapping; the outer edges snapping.
   c.triangles = {{0, 1, 2}, {0, 2, 3}};
