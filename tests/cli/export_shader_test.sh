@@ -70,7 +70,7 @@ export_case gap "$source/tests/cli/data/softpipe_gap.json" softpipe
 expect gap softpipe fail "$(printf 'Probe color at (13,11)\n  Expected: 1.000000')"
 expect gap llvmpipe pass
 export_case double_hit "$source/tests/cli/data/softpipe_double_hit.json" softpipe
-expect double_hit softpipe fail "$(printf 'Probe color at (62,14)\n  Expected: 1.000000')"
+expect double_hit softpipe fail "$(printf 'Probe color at (14,4)\n  Expected: 1.000000')"
 expect double_hit llvmpipe pass
 export_case steep "$source/cases/steep_edge_interior.json" softpipe
 expect steep softpipe fail "$(printf 'Probe color at (56,27)\n  Expected: 1.000000 0.000000 0.000000 1.000000\n  Observed: 0.000000 -1.000000 0.000000 1.000000')"

@@ -129,7 +129,7 @@ TEST_F(Export, SoftpipeSharedEdgeFailuresOnSoftpipeOnly) {
   if (!has_cc_) GTEST_SKIP() << "no C compiler (cc)";
   const std::pair<const char*, const char*> cases[] = {
       {"softpipe_gap", "gap at (13, 11): 0 fragments, reference 1\n"},
-      {"softpipe_double_hit", "double hit at (62, 14): 2 fragments, reference 1\n"},
+      {"softpipe_double_hit", "double hit at (14, 4): 2 fragments, reference 1\n"},
   };
   for (const auto& [name, failure] : cases) {
     const std::string file = source("tests/cli/data/") + name + ".json";
