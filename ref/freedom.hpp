@@ -117,7 +117,8 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
 // two rim vertices of a thin fan triangle 0.3 pixels apart snap to the same side of each other
 // whatever the grid's offset. Exact for each grid (every pair of snapped differences along x
 // and y, a handful each, enumerated), in every grid down to the one where a first-order bound
-// on the vertices' moves decides it.
+// on the vertices' moves decides it; a grid finer than a vertex's rounding (4 steps or more)
+// that the bound does not decide is taken as free.
 bool orientation_may_change(const std::array<std::array<double, 2>, 3>& p,
                             const std::array<double, 3>& rounding, int subpixel_bits);
 
