@@ -87,10 +87,10 @@ Frame render(const Case& c, Driver d, const Options& o) {
     // harness works around it with a pass-through geometry shader, except in a case that turns
     // work-arounds off; its counting pass reads no gl_PrimitiveID and counts as usual.
     if (!c.work_arounds) {
-      const Frame cleared(c.fb_width, c.fb_height, c.component_count());
-      frame.primitive = cleared.primitive;
-      frame.components = cleared.components;
+      std::fill(frame.primitive.begin(), frame.primitive.end(), Frame::kNoPrimitive);
       std::fill(frame.depth.begin(), frame.depth.end(), c.depth_clear);
+      for (std::vector<float>& component : frame.components)
+        std::fill(component.begin(), component.end(), 0.0f);
     }
   }
   return frame;
