@@ -96,6 +96,8 @@ typedef void (*gl_proc)(void);
 #define GL_MULTISAMPLE 0x809D
 #define GL_SAMPLE_ALPHA_TO_COVERAGE 0x809E
 #define GL_R32F 0x822E
+#define GL_RG 0x8227
+#define GL_RG32F 0x8230
 #define GL_R32I 0x8235
 #define GL_MAJOR_VERSION 0x821B
 #define GL_MINOR_VERSION 0x821C
@@ -237,7 +239,8 @@ struct scene {
   int index_count;          /* 3 per triangle */
   const GLuint *indices;
   const char *vertex_shader, *geometry_shader, *fragment_shader, *fragment_after_geometry;
-  const char *count_vertex_shader, *count_fragment_shader; /* the fragment-count pass */
+  /* The fragment-count pass, with its pass-through geometry shader for gl_PrimitiveID. */
+  const char *count_vertex_shader, *count_geometry_shader, *count_fragment_shader;
 };
 )C";
 
@@ -421,6 +424,7 @@ struct frame {
   float *depth;       /* 1 where nothing was drawn */
   float *values;      /* component k of pixel i at values[k * pixels + i] */
   float *fragments;   /* fragments rasterized, depth test or not (the counting pass) */
+  float *traces;      /* per pixel: the sums of p + 1 and of the hash of p over them */
 };
 
 static const char *gl_error_name(GLenum e) {
@@ -528,7 +532,10 @@ static GLint gl_integer(GLenum name) {
 
 /* Draws scene `s` (with the pass-through geometry shader when `geometry_shader`), then counts
    its fragments, and reads both back into `f`. 0 with error_text set when GL refuses. */
-static int draw_scene(const struct scene *s, int geometry_shader, struct frame *f) {
+/* `count_geometry_shader`: the counting pass reads gl_PrimitiveID through the pass-through
+   geometry shader (where the first draw needs it, whatever the case's work_arounds). */
+static int draw_scene(const struct scene *s, int geometry_shader, int count_geometry_shader,
+                      struct frame *f) {
   static const GLenum caps_off[] = {GL_DITHER, GL_BLEND, GL_MULTISAMPLE, GL_SCISSOR_TEST,
                                     GL_STENCIL_TEST, GL_DEPTH_CLAMP, GL_POLYGON_OFFSET_FILL,
                                     GL_SAMPLE_ALPHA_TO_COVERAGE, GL_RASTERIZER_DISCARD,
@@ -538,9 +545,9 @@ static int draw_scene(const struct scene *s, int geometry_shader, struct frame *
   const int n = s->varying_count, w = s->width, h = s->height;
   const size_t pixels = (size_t)w * (size_t)h;
   const GLsizei stride = (GLsizei)((4 + s->component_count) * sizeof(float));
-  GLenum formats[9], count_format = GL_R32F;
+  GLenum formats[9], count_formats[2] = {GL_R32F, GL_RG32F};
   GLuint program = 0, count_program = 0, framebuffer = 0, count_framebuffer = 0;
-  GLuint renderbuffers[10], count_renderbuffers[2], vertex_array = 0, buffers[2] = {0, 0};
+  GLuint renderbuffers[10], count_renderbuffers[3], vertex_array = 0, buffers[2] = {0, 0};
   GLint dims[2] = {0, 0};
   float *rgba = NULL;
   size_t i, offset = 4;
@@ -621,13 +628,18 @@ static int draw_scene(const struct scene *s, int geometry_shader, struct frame *
   /* The same triangles again, positions only, adding 1 per fragment rasterization produces,
      without the depth test: how many fragments each pixel received, which the primitive id
      cannot tell. Not through the depth test: which of two fragments of close depths passes it
-     is free, and a later nearer triangle may hide either, so the count would depend on it. */
-  count_program = make_program(s->count_vertex_shader, NULL, s->count_fragment_shader);
+     is free, and a later nearer triangle may hide either, so the count would depend on it.
+     Beside it each pixel's trace: the sums of p + 1 and of a hash of p over its fragments,
+     which tell whose fragments they were. */
+  count_program = make_program(s->count_vertex_shader,
+                               count_geometry_shader ? s->count_geometry_shader : NULL,
+                               s->count_fragment_shader);
   if (!count_program) goto done;
   glUseProgram(count_program);
-  if (!(count_framebuffer = make_framebuffer(w, h, 1, &count_format, count_renderbuffers)))
+  if (!(count_framebuffer = make_framebuffer(w, h, 2, count_formats, count_renderbuffers)))
     goto done;
   glClearBufferfv(GL_COLOR, 0, zero);
+  glClearBufferfv(GL_COLOR, 1, zero);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
@@ -657,6 +669,8 @@ static int draw_scene(const struct scene *s, int geometry_shader, struct frame *
   glBindFramebuffer(GL_FRAMEBUFFER, count_framebuffer);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
   glReadPixels(0, 0, w, h, GL_RED, GL_FLOAT, f->fragments);
+  glReadBuffer(GL_COLOR_ATTACHMENT0 + 1);
+  glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, f->traces);
   ok = gl_ok("reading fragment counts");
 
 done:
@@ -674,7 +688,7 @@ done:
   }
   if (count_framebuffer) {
     glDeleteFramebuffers(1, &count_framebuffer);
-    glDeleteRenderbuffers(2, count_renderbuffers);
+    glDeleteRenderbuffers(3, count_renderbuffers);
   }
   if (program) glDeleteProgram(program);
   if (count_program) glDeleteProgram(count_program);
@@ -686,7 +700,8 @@ static int alloc_frame(struct frame *f, size_t pixels, int components) {
   f->depth = (float *)calloc(pixels, sizeof *f->depth);
   f->values = (float *)calloc(pixels * (size_t)(components > 0 ? components : 1), sizeof *f->values);
   f->fragments = (float *)calloc(pixels, sizeof *f->fragments);
-  return f->primitive && f->depth && f->values && f->fragments;
+  f->traces = (float *)calloc(2 * pixels, sizeof *f->traces);
+  return f->primitive && f->depth && f->values && f->fragments && f->traces;
 }
 
 /* ---- The harness's first draw: does gl_PrimitiveID need a geometry shader? ---- */
@@ -745,6 +760,28 @@ static enum label coverage_label(int i, int gl_primitive, unsigned gl_fragments,
   return FILL_RULE;
 }
 
+/* Where the edge bits excuse coverage that differs (compare::count_excused): whether GL's trace
+   there is one a conforming implementation may give, from the embedded list of them
+   (TRACED_PIXELS, TRACES; made by glrefcheck from the reference's choices there). 1: it is, or
+   nothing is known (no list for the pixel, or sums that are not exact integers). */
+static int trace_admitted(int i, unsigned gl_fragments, const float *trace) {
+  int lo = 0, hi = TRACED_COUNT, k;
+  const float ids = trace[0], hashes = trace[1];
+  while (lo < hi) {
+    const int mid = lo + (hi - lo) / 2;
+    if (TRACED_PIXELS[mid].pixel < i) lo = mid + 1; else hi = mid;
+  }
+  if (lo == TRACED_COUNT || TRACED_PIXELS[lo].pixel != i) return 1;
+  if (!(ids >= 0 && ids < 16777216.0f && ids == floor(ids)) ||
+      !(hashes >= 0 && hashes < 16777216.0f && hashes == floor(hashes)))
+    return 1;
+  for (k = TRACED_PIXELS[lo].first; k < TRACED_PIXELS[lo].first + TRACED_PIXELS[lo].count; ++k)
+    if (TRACES[k][0] == gl_fragments && TRACES[k][1] == (unsigned)ids &&
+        TRACES[k][2] == (unsigned)hashes)
+      return 1;
+  return 0;
+}
+
 static const char *number(char *buffer, size_t size, double v) {
   if (isnan(v)) return "nan";
   if (isinf(v)) return v < 0 ? "-inf" : "inf";
@@ -776,7 +813,7 @@ int main(int argc, char **argv) {
   const struct candidate *candidate = CANDIDATES, *candidates_end = CANDIDATES + CANDIDATE_COUNT;
   long judged = 0, undetermined = 0, undetermined_non_finite = 0, covered = 0;
   double worst_ratio = 0;
-  int use_geometry_shader = 0, wrong, status, x, y, k, major, minor;
+  int use_geometry_shader = 0, count_geometry_shader = 0, wrong, status, x, y, k, major, minor;
 
   if (argc > 2 || (strcmp(backend, "egl") && strcmp(backend, "osmesa"))) {
     fprintf(stderr, "usage: %s [egl|osmesa]  (GALLIUM_DRIVER picks Mesa's driver)\n", argv[0]);
@@ -808,11 +845,11 @@ int main(int argc, char **argv) {
   /* softpipe (Mesa 22.3.6) draws nothing when the fragment shader reads gl_PrimitiveID and no
      geometry shader runs; on llvmpipe a geometry shader changes bits. So, as the harness: the
      plain draw unless it is wrong and the geometry shader's is right. */
-  if (!draw_scene(&FIRST_DRAW, 0, &probe))
+  if (!draw_scene(&FIRST_DRAW, 0, 0, &probe))
     return no_gl("'%s' fails a first draw: %s", gl_renderer, error_text);
   wrong = first_draw_wrong(&probe, fault, sizeof fault);
   if (wrong > 0) {
-    const int gs_wrong = draw_scene(&FIRST_DRAW, 1, &probe)
+    const int gs_wrong = draw_scene(&FIRST_DRAW, 1, 1, &probe)
                              ? first_draw_wrong(&probe, gs_fault, sizeof gs_fault)
                              : (snprintf(gs_fault, sizeof gs_fault, "no draw: %.200s", error_text),
                                 FIRST_DRAW.width * FIRST_DRAW.height);
@@ -823,12 +860,13 @@ int main(int argc, char **argv) {
              "drawing %s it\n", fault, wrong, gs_fault, use_geometry_shader ? "with" : "without");
   }
 
+  count_geometry_shader = use_geometry_shader;
   if (use_geometry_shader && !THE_CASE.work_arounds) {
     printf("warning: gl_PrimitiveID without a geometry shader is wrong on '%s' (%s); the case "
            "allows no work-around, so it is drawn without one\n", gl_renderer, fault);
     use_geometry_shader = 0;
   }
-  if (!draw_scene(&THE_CASE, use_geometry_shader, &frame)) {
+  if (!draw_scene(&THE_CASE, use_geometry_shader, count_geometry_shader, &frame)) {
     printf("error: %s\n", error_text);
     printf("%s: FAIL, GL could not draw the case, on GL_RENDERER \"%s\", GL_VERSION \"%s\" (%s)\n",
            CASE_NAME, gl_renderer, gl_version, platform);
@@ -850,6 +888,14 @@ int main(int argc, char **argv) {
       other = gl_primitive != reference ? candidate_of(first, candidate, gl_primitive) : NULL;
 
       label = coverage_label(i, gl_primitive, gl_fragments, other);
+      /* Coverage the edge bits excuse (compare::count_excused), from fragments no conforming
+         implementation rasterizes there: the count's own label (compare::untraceable_label). */
+      if (COUNTS_CHECKED && (REF_EDGES[i] & (EDGE_SNAPPING | EDGE_UNSTABLE | EDGE_SHARED)) &&
+          (label == EXACT_TIE || label == WITHIN_SNAPPING ||
+           (label == NO_LABEL && gl_fragments != REF_FRAGMENTS[i])) &&
+          !trace_admitted(i, gl_fragments, &frame.traces[2 * (size_t)i]))
+        label = !(REF_EDGES[i] & EDGE_SHARED) || gl_fragments == REF_FRAGMENTS[i] ? FILL_RULE
+                : gl_fragments < REF_FRAGMENTS[i] ? GAP : DOUBLE_HIT;
       if (label != NO_LABEL && (!(label == EXACT_TIE || label == WITHIN_SNAPPING) || !ALLOW_BOUNDARY)) {
         ++coverage_failures;
         if (failures < MOST_PRINTED) {
@@ -1158,6 +1204,7 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
   out += "    .fragment_shader = " + prefix + "_fragment_shader,\n";
   out += "    .fragment_after_geometry = " + prefix + "_fragment_after_geometry,\n";
   out += "    .count_vertex_shader = count_vertex_shader,\n";
+  out += "    .count_geometry_shader = count_geometry_shader,\n";
   out += "    .count_fragment_shader = count_fragment_shader};\n\n";
 }
 
@@ -1291,6 +1338,8 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   out += "};\n";
   out += "static const char count_vertex_shader[] =\n    " + c_string(setup.count_vertex) + ";\n";
   out +=
+      "static const char count_geometry_shader[] =\n    " + c_string(setup.count_geometry) + ";\n";
+  out +=
       "static const char count_fragment_shader[] =\n    " + c_string(setup.count_fragment) + ";\n";
   write_scene(out, c, setup.shaders, "case", "THE_CASE", "CASE_NAME");
   out +=
@@ -1396,6 +1445,28 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   }
   if (expected.candidates.empty()) out += "    {-1, -1, {0}, {0}} /* none */\n";
   out += "};\n";
+  // The traces a conforming implementation may give where the edge bits excuse a count.
+  out +=
+      "/* Where the edge bits excuse coverage (EDGE_SNAPPING, EDGE_UNSTABLE, EDGE_SHARED), the "
+      "traces a\n   conforming implementation may give: fragments, the sum of p + 1 and the sum "
+      "of a hash of p\n   over them (TRACES[first .. first + count)); sorted by pixel. A pixel "
+      "not listed is not\n   judged by its trace. */\n";
+  out += "struct traced {\n  int pixel, first, count;\n};\n";
+  size_t listed = 0;
+  std::string pixels_text, traces_text;
+  for (const AdmittedTraces& a : setup.admitted) {
+    pixels_text += "    {" + std::to_string(a.pixel) + ", " + std::to_string(listed) + ", " +
+                   std::to_string(a.traces.size()) + "},\n";
+    for (const FragmentTrace& t : a.traces)
+      traces_text += "    {" + std::to_string(t.count) + ", " + std::to_string(t.id_sum) + ", " +
+                     std::to_string(t.hash_sum) + "},\n";
+    listed += a.traces.size();
+  }
+  if (setup.admitted.empty()) pixels_text = "    {-1, 0, 0} /* none */\n";
+  if (listed == 0) traces_text = "    {0, 0, 0} /* none */\n";
+  out += "#define TRACED_COUNT " + std::to_string(setup.admitted.size()) + "\n";
+  out += "static const struct traced TRACED_PIXELS[] = {\n" + pixels_text + "};\n";
+  out += "static const unsigned TRACES[][3] = {\n" + traces_text + "};\n";
   const std::optional<std::string> outside = outside_specified_range(c);
   out += "/* Why the case asks for more than GL specifies, if it does. */\n";
   out += "static const char OUTSIDE_SPECIFIED_RANGE[] = " + c_string(outside.value_or("")) + ";\n";

@@ -16,8 +16,10 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "core/case.hpp"
+#include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 
 namespace glrc::campaign {
@@ -49,10 +51,14 @@ struct CReproducerSetup {
   // chooses.
   Case first_draw;
   ReproducerShaders first_draw_shaders;
-  std::string count_vertex, count_fragment;  // the fragment-count pass's
-  std::string file_name;                     // the .c file's name, for its compile line
-  std::string exported_by;                   // the command that wrote it, for the header
-  std::string model;                         // words for the model the expectation is of
+  std::string count_vertex, count_geometry, count_fragment;  // the fragment-count pass's
+  // Where the edge bits may excuse coverage, the traces a conforming implementation may give
+  // (admitted() of ref::fragment_choices there), sorted by pixel: the C file judges GL's trace
+  // against them as compare/ does (compare::TraceSource). A pixel not listed is not judged.
+  std::vector<AdmittedTraces> admitted;
+  std::string file_name;    // the .c file's name, for its compile line
+  std::string exported_by;  // the command that wrote it, for the header
+  std::string model;        // words for the model the expectation is of
 };
 
 // `cc -std=c99 -O2 -o NAME NAME.c -ldl -lm` for a C file `file` ending in ".c" (quoted for a

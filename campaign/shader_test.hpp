@@ -53,7 +53,12 @@
 // that many, chosen first where the coverage is free, then on triangles the clipper cuts, then
 // on edge pixels, then spread evenly over the rest; NaN and Inf are checked everywhere. So a
 // large case's finite wrong value at a pixel not listed passes here while `run` fails it; its
-// C reproducer (--format c) judges every pixel.
+// C reproducer (--format c) judges every pixel. Fragment traces (core/fragment_trace.hpp) are
+// not checked here: where the edge bits leave a pixel's count free (an outer edge's or clip
+// plane's band, a triangle that may turn over), any count passes, as it did in `run` before
+// traces, so a double hit on a shared edge inside another triangle's band passes here while
+// `run` and the C reproducer fail it (probes of a value cannot say whose fragments a count came
+// from).
 //
 // Every float is written so that it reads back as the same float32: vertex data and probes as
 // decimals that C's strtod and a cast to float give back exactly (shader_runner's strtof_hex

@@ -46,6 +46,21 @@ Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_b
   return r;
 }
 
+std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& expected,
+                                            const CheckOptions& o, int reported_bits) {
+  const Frame& f = expected.frame;
+  if (f.fragments.size() != f.pixel_count() || expected.edges.size() != f.pixel_count()) return {};
+  std::vector<size_t> pixels;
+  for (size_t i = 0; i < f.pixel_count(); ++i)
+    if (expected.edges[i] & (edge::snapping | edge::unstable | edge::shared)) pixels.push_back(i);
+  const std::vector<FragmentChoices> choices =
+      ref::fragment_choices(c, o.model, freedom_bits(o, reported_bits), pixels, o.threads);
+  std::vector<AdmittedTraces> out;
+  for (size_t k = 0; k < pixels.size(); ++k)
+    if (auto traces = admitted(choices[k])) out.push_back({pixels[k], std::move(*traces)});
+  return out;
+}
+
 std::string tolerance_text(const CheckOptions& o, int reported_bits) {
   if (o.tolerance == ToleranceMode::exact) return "exact";
   if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps) return "ulps";
@@ -75,6 +90,21 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 }
 
 namespace {
+
+// What judges the counts the edge bits excuse (compare::TraceSource): GL's traces from the
+// renderer's counting pass of the case it drew last, the reference's choices from its set-up.
+// None against a driver model, whose frame is matched bit for bit or by fixed ULPs.
+std::optional<compare::TraceSource> trace_source(const Case& c, gl::Renderer& renderer,
+                                                 const CheckOptions& o, int reported) {
+  if (o.driver_model) return std::nullopt;
+  return compare::TraceSource{[&c, &renderer](const std::vector<size_t>& pixels) {
+                                return renderer.fragment_traces(c, pixels);
+                              },
+                              [&c, &o, reported](const std::vector<size_t>& pixels) {
+                                return ref::fragment_choices(c, o.model, freedom_bits(o, reported),
+                                                             pixels, o.threads);
+                              }};
+}
 
 // Bands of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
 // are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about 8192 runs of
@@ -173,7 +203,8 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
     comparator.emplace(c, tolerance, c.fb_width, c.fb_height, o.threads);
     compare_bands(*comparator, false);
   }
-  out.result = comparator->finish();
+  const std::optional<compare::TraceSource> traces = trace_source(c, renderer, o, reported);
+  out.result = comparator->finish(traces ? &*traces : nullptr);
   out.result.gl_digest = digest.hex();
   out.streamed = true;
 }
@@ -214,8 +245,9 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
     std::future<std::string> gl_digest =
         std::async(std::launch::async, [&] { return ref::digest(out.gl); });
     out.reference = reference.get();
-    out.result =
-        compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported), o.threads);
+    const std::optional<compare::TraceSource> traces = trace_source(c, renderer, o, reported);
+    out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported),
+                                  o.threads, traces ? &*traces : nullptr);
     out.result.gl_digest = gl_digest.get();
   } catch (const gl::RenderError& e) {
     // The reference's own error comes first, as when it was drawn before GL.

@@ -6,8 +6,10 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/case.hpp"
+#include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 #include "core/model.hpp"
 #include "core/result.hpp"
@@ -93,6 +95,13 @@ Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_b
 std::string tolerance_text(const CheckOptions& o, int reported_bits);
 // RunInfo's words for the model: o.model.describe(), or the driver model's name.
 std::string model_text(const CheckOptions& o);
+
+// For a reproducer of case c drawn to `expected` (expectation_for's, no driver model): at every
+// pixel whose coverage its edge bits may excuse (edge::snapping, edge::unstable, edge::shared), the
+// traces a conforming implementation may give (ref::fragment_choices, admitted()), sorted by
+// pixel; a pixel where admitted() gives no list is left out. Empty without fragment counts.
+std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& expected,
+                                            const CheckOptions& o, int reported_bits);
 
 // One case checked, with the frames a heatmap needs.
 struct Checked {

@@ -14,6 +14,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <type_traits>
 
 namespace glrc::compare {
@@ -572,6 +573,25 @@ std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, 
   return Label::fill_rule;
 }
 
+bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
+                   const std::optional<CoverageStats::Label>& label) {
+  const Frame& reference = expected.frame;
+  if (reference.fragments.size() != reference.pixel_count() ||
+      gl.fragments.size() != gl.pixel_count() ||
+      !(expected.edges[i] & (edge::snapping | edge::unstable | edge::shared)))
+    return false;
+  // A mismatch the bands explain, or a count they leave free.
+  if (label) return explained(*label);
+  return gl.fragments[i] != reference.fragments[i];
+}
+
+CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i) {
+  using Label = CoverageStats::Label;
+  const uint16_t g = gl.fragments[i], r = expected.frame.fragments[i];
+  if (!(expected.edges[i] & edge::shared) || g == r) return Label::fill_rule;
+  return g < r ? Label::gap : Label::double_hit;
+}
+
 // What a Comparator gathers between bands.
 struct Comparator::State {
   State(const Case& the_case, const Tolerance& t, int w, int h, int threads_)
@@ -611,6 +631,16 @@ struct Comparator::State {
   std::vector<std::vector<uint32_t>> sampled_ulps, sampled_ratios;
   size_t sampled_rows = 0, sampled_plain = 0;
   bool floors_guessed = false;  // guess_floors() has run on a sample
+  // The pixels count_excused found, for finish() to trace (at most kMostTracedPixels).
+  struct Excused {
+    size_t pixel = 0;  // window index
+    CoverageStats::Pixel at;
+    std::optional<CoverageStats::Label> label;  // coverage_label's
+    CoverageStats::Label untraceable = CoverageStats::Label::fill_rule;
+    uint16_t gl_fragments = 0;
+  };
+  std::vector<Excused> excused;
+  uint64_t excused_beyond = 0;  // found beyond kMostTracedPixels
 };
 
 Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height,
@@ -690,6 +720,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   // sums, and the first mismatches kept are the first of the blocks' own first ones, in order.
   const int blocks = std::clamp(4 * st.threads, 1, std::max(reference.height, 1));
   std::vector<CoverageStats> part(static_cast<size_t>(blocks));
+  std::vector<std::vector<State::Excused>> excused(static_cast<size_t>(blocks));
   constexpr int kRun = ChannelAccumulator::kRun;
   const int runs = (reference.width + kRun - 1) / kRun;
   st.plain_runs.assign(size_t(runs) * size_t(std::max(reference.height, 0)), -1);
@@ -722,6 +753,13 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
           ++cv.other_primitive;
         }
         const std::optional<Label> label = coverage_label(expected, gl, i);
+        if (count_excused(expected, gl, i, label))
+          excused[size_t(b)].push_back({size_t(y0 + y) * size_t(st.width) + size_t(x),
+                                        {x, y0 + y, pr, pg, label && explained(*label),
+                                         label.value_or(Label::within_snapping)},
+                                        label,
+                                        untraceable_label(expected, gl, i),
+                                        gl.fragments[i]});
         if (!label) continue;
         ++(*label == Label::exact_tie         ? cv.exact_tie
            : *label == Label::within_snapping ? cv.within_snapping
@@ -758,6 +796,12 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
     for (const CoverageStats::Pixel& m : cv.mismatches)
       if (cov.mismatches.size() < kMismatchesKept) cov.mismatches.push_back(m);
   }
+  for (const std::vector<State::Excused>& list : excused)
+    for (const State::Excused& e : list)
+      if (st.excused.size() < kMostTracedPixels)
+        st.excused.push_back(e);
+      else
+        ++st.excused_beyond;
 
   // Then the values, channel by channel (depth, then each component), each in pixel order. The
   // channels share nothing but what they read, so several threads take one each: every
@@ -1306,8 +1350,82 @@ bool Comparator::floors_held() const {
   return true;
 }
 
-CaseResult Comparator::finish() {
+namespace {
+
+// Whether a mismatch labelled l counts against the verdict under tolerance t (add_rows' rule).
+bool counts_against(CoverageStats::Label l, const Tolerance& t) {
+  return !explained(l) || !t.allow_boundary || t.mode == ToleranceMode::exact;
+}
+
+// The counter of label l.
+uint64_t& label_counter(CoverageStats& cov, CoverageStats::Label l) {
+  using Label = CoverageStats::Label;
+  return l == Label::exact_tie         ? cov.exact_tie
+         : l == Label::within_snapping ? cov.within_snapping
+         : l == Label::gap             ? cov.gaps
+         : l == Label::double_hit      ? cov.double_hits
+                                       : cov.fill_rule;
+}
+
+}  // namespace
+
+void Comparator::trace_excused(CoverageStats& cov, const TraceSource* traces) {
   State& st = *state_;
+  cov.counts_untraced += st.excused_beyond;
+  if (st.excused.empty()) return;
+  if (!traces || !traces->gl || !traces->choices) {
+    cov.counts_untraced += st.excused.size();
+    return;
+  }
+  std::vector<size_t> pixels;
+  pixels.reserve(st.excused.size());
+  for (const State::Excused& e : st.excused)
+    pixels.push_back(e.pixel);
+  const std::vector<std::optional<FragmentTrace>> gl = traces->gl(pixels);
+  const std::vector<FragmentChoices> choices = traces->choices(pixels);
+  if (gl.size() != pixels.size() || choices.size() != pixels.size())
+    throw std::logic_error("compare: a trace source gave " + std::to_string(gl.size()) +
+                           " traces and " + std::to_string(choices.size()) + " choices for " +
+                           std::to_string(pixels.size()) + " pixels");
+  const Tolerance& t = st.r.tolerance;
+  for (size_t k = 0; k < pixels.size(); ++k) {
+    const State::Excused& e = st.excused[k];
+    // A trace of another count than the frame's is not this frame's (a fault planted in the
+    // frame alone, or a pass that went wrong): not judged.
+    const std::optional<std::vector<FragmentTrace>> allowed =
+        gl[k] && gl[k]->count == e.gl_fragments ? admitted(choices[k]) : std::nullopt;
+    if (!allowed) {
+      ++cov.counts_untraced;
+      continue;
+    }
+    ++cov.counts_traced;
+    const auto key = [](const FragmentTrace& i) { return std::tie(i.count, i.id_sum, i.hash_sum); };
+    if (std::binary_search(allowed->begin(), allowed->end(), *gl[k],
+                           [&](const auto& a, const auto& b) { return key(a) < key(b); }))
+      continue;
+    // No conforming implementation rasterizes these fragments here: the count's own label.
+    if (e.label) {
+      --label_counter(cov, *e.label);
+      if (explained(*e.label)) --cov.boundary;
+      if (counts_against(*e.label, t)) --cov.failures;
+    }
+    ++label_counter(cov, e.untraceable);
+    ++cov.failures;
+    CoverageStats::Pixel at = e.at;
+    at.label = e.untraceable, at.boundary = false;
+    cov.traced_failures.push_back(at);
+    const auto kept = std::find_if(cov.mismatches.begin(), cov.mismatches.end(),
+                                   [&](const auto& m) { return m.x == at.x && m.y == at.y; });
+    if (kept != cov.mismatches.end())
+      *kept = at;
+    else if (cov.mismatches.size() < kMismatchesKept)
+      cov.mismatches.push_back(at);
+  }
+}
+
+CaseResult Comparator::finish(const TraceSource* traces) {
+  State& st = *state_;
+  trace_excused(st.r.coverage, traces);
   CaseResult r = std::move(st.r);
   for (size_t slot = 0; slot < st.channels.size(); ++slot) {
     ChannelAccumulator& acc = st.channels[slot];
@@ -1341,10 +1459,10 @@ CaseResult Comparator::finish() {
 }
 
 CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
-                   const Tolerance& tolerance, int threads) {
+                   const Tolerance& tolerance, int threads, const TraceSource* traces) {
   Comparator comparator(c, tolerance, expected.frame.width, expected.frame.height, threads);
   comparator.add_rows(expected, gl, 0);
-  return comparator.finish();
+  return comparator.finish(traces);
 }
 
 }  // namespace glrc::compare

@@ -5,25 +5,45 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 #include "core/result.hpp"
 
 namespace glrc::compare {
 
+// Where GL's coverage differs from the reference's at a pixel whose edge bits excuse it (the
+// band of an outer edge or clip plane or of a shared edge, a triangle that may turn over), the
+// count and the kept primitive alone cannot tell a free triangle's extra fragment from a double
+// hit on an edge two other triangles share beside it: the fragment traces can
+// (core/fragment_trace.hpp). What gives them for such pixels once every row is compared
+// (Comparator::finish): GL's traces and the reference's choices at `pixels` (window indices
+// x + y·width), in their order. A pixel whose GL trace is not known, whose count differs from
+// the frame's, or whose choices admit no list (admitted()) stays excused, as without traces
+// (CoverageStats::untraced).
+struct TraceSource {
+  std::function<std::vector<std::optional<FragmentTrace>>(const std::vector<size_t>& pixels)> gl;
+  std::function<std::vector<FragmentChoices>(const std::vector<size_t>& pixels)> choices;
+};
+// At most this many such pixels are traced in a case; the rest stay excused (untraced).
+inline constexpr size_t kMostTracedPixels = 100000;
+
 // Judges a GL frame against what a correct implementation may produce. Spec tolerance needs
 // expected.allowed; coverage mismatches are labelled from expected.edges; fragment counts are
-// checked for watertightness where both frames have them. Sets status to pass or fail, or to
-// skip for a failing case outside the range GL specifies (outside_specified_range, with the
-// reason in the message), and fills the statistics. `threads`: how many judge the channels at
-// once (0: every core the process may use); the result is the same for any number.
+// checked for watertightness where both frames have them, and with `traces`, where only the
+// edge bits excuse a count, by which triangles GL's fragments came from. Sets status to pass or
+// fail, or to skip for a failing case outside the range GL specifies (outside_specified_range,
+// with the reason in the message), and fills the statistics. `threads`: how many judge the
+// channels at once (0: every core the process may use); the result is the same for any number.
 CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
-                   const Tolerance& tolerance, int threads = 1);
+                   const Tolerance& tolerance, int threads = 1,
+                   const TraceSource* traces = nullptr);
 
 // The same comparison, band of rows by band of rows, so that neither frame need be held whole:
 // the result of adding a frame's bands in order, top row of each following the last, is the
@@ -58,8 +78,9 @@ class Comparator {
   // Whether every channel's largest values are those of every value added (always, unless
   // floors were guessed).
   bool floors_held() const;
-  // The verdict and the statistics, as compare() gives them. Once.
-  CaseResult finish();
+  // The verdict and the statistics, as compare() gives them, the counts the edge bits excuse
+  // judged by `traces` where given. Once.
+  CaseResult finish(const TraceSource* traces = nullptr);
 
   // Bounds of a deferred allowance over a run of pixels of one row (DeferredAllowance::range).
   struct RunBounds {
@@ -81,6 +102,8 @@ class Comparator {
   };
 
  private:
+  // finish()'s judging of the pixels count_excused found, by `traces` (the rest untraced).
+  void trace_excused(CoverageStats& cov, const TraceSource* traces);
   // The values of channel k (kDepth or a component) in the band add_rows is comparing.
   // `bounds`: for a component whose allowance is deferred, bounds of it over each of the band's
   // plain runs (add_whole_channel), or none: every run's allowances are computed.
@@ -207,6 +230,18 @@ Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size
 // fill-rule error, where the depth order is free too.
 std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
                                                    size_t i);
+// The label of pixel i whose coverage its edge bits excuse (count_excused), once its trace shows
+// the fragments came from no set of triangles a conforming implementation may rasterize there:
+// a gap or double hit near a shared edge (fewer or more fragments than the reference's), else
+// (as many, from other triangles; or away from shared edges) a fill-rule error.
+CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i);
+// Whether pixel i's coverage differs from the reference's where its edge bits (a band, a
+// shared edge, a triangle that may turn over) excuse it, both frames having counts: a
+// mismatch coverage_label explains, or a count it leaves free (no label). The pixels a trace
+// judges; a pixel where GL agrees (the same primitive and count) is not traced.
+bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
+                   const std::optional<CoverageStats::Label>& label);
+
 // Labels that the specification's freedom explains (exact tie, within snapping).
 inline bool explained(CoverageStats::Label l) {
   return l == CoverageStats::Label::exact_tie || l == CoverageStats::Label::within_snapping;

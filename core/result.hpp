@@ -94,7 +94,11 @@ struct CoverageStats {
   // to (gaps) and pixels reached twice (double hits). Always failures.
   uint64_t gaps = 0, double_hits = 0;
   bool fragments_checked = false;  // whether GL reported fragment counts
-  uint64_t failures = 0;           // mismatches that count against the verdict
+  // Pixels whose count differed where the edge bits excuse it (compare::count_excused): judged
+  // by which triangles GL's fragments came from (core/fragment_trace.hpp), or left excused (no
+  // trace from GL, too many choices, or beyond compare::kMostTracedPixels).
+  uint64_t counts_traced = 0, counts_untraced = 0;
+  uint64_t failures = 0;  // mismatches that count against the verdict
   enum class Label { exact_tie, within_snapping, fill_rule, gap, double_hit };
   struct Pixel {
     int x = 0, y = 0;
@@ -103,6 +107,10 @@ struct CoverageStats {
     Label label = Label::fill_rule;
   };
   std::vector<Pixel> mismatches;  // first few, for the report
+  // Every pixel the traces failed (at most compare::kMostTracedPixels), with its label: the
+  // label compare::coverage_label gives there is the excused one (the coverage picture paints
+  // these instead).
+  std::vector<Pixel> traced_failures;
 };
 
 template <>

@@ -2,6 +2,7 @@
 #include "gl_harness/framebuffer.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace glrc::gl {
@@ -195,6 +196,44 @@ void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
     for (size_t i = 0, count = size_t(rows) * size_t(w); i < count; ++i)
       fragments[i] = uint16_t(std::clamp(counts[i], 0.0f, 65535.0f));
   });
+}
+
+std::vector<std::optional<FragmentTrace>> Framebuffer::read_fragment_traces(
+    const std::vector<size_t>& pixels) {
+  std::vector<std::optional<FragmentTrace>> out(pixels.size());
+  if (width_ <= 0 || height_ <= 0) return out;
+  // The pixels asked for, row by row: each row's span between its first and last read once.
+  std::vector<size_t> order(pixels.size());
+  for (size_t k = 0; k < order.size(); ++k)
+    order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return pixels[a] < pixels[b]; });
+  const size_t w = size_t(width_), total = w * size_t(height_);
+  std::vector<float> counts, sums;
+  gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  for (size_t first = 0; first < order.size();) {
+    if (pixels[order[first]] >= total) break;  // sorted: every later one is outside too
+    const size_t row = pixels[order[first]] / w;
+    size_t end = first;
+    while (end < order.size() && pixels[order[end]] < total && pixels[order[end]] / w == row)
+      ++end;
+    const int x0 = int(pixels[order[first]] % w), x1 = int(pixels[order[end - 1]] % w);
+    const int n = x1 - x0 + 1;
+    counts.resize(size_t(n)), sums.resize(2 * size_t(n));
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl_.ReadPixels(x0, int(row), n, 1, GL_RED, GL_FLOAT, counts.data());
+    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
+    gl_.ReadPixels(x0, int(row), n, 1, GL_RG, GL_FLOAT, sums.data());
+    for (size_t k = first; k < end; ++k) {
+      const size_t j = pixels[order[k]] % w - size_t(x0);
+      const float count = counts[j], id_sum = sums[2 * j], hash_sum = sums[2 * j + 1];
+      // Integers below 2^24 each (a NaN fails every test), as exact float sums are.
+      const auto whole = [](float v) { return v >= 0 && v < 0x1p24f && v == std::floor(v); };
+      if (!whole(count) || !whole(id_sum) || !whole(hash_sum)) continue;
+      out[order[k]] = FragmentTrace{uint32_t(count), uint32_t(id_sum), uint32_t(hash_sum)};
+    }
+    first = end;
+  }
+  return out;
 }
 
 }  // namespace glrc::gl

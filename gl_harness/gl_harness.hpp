@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 #include "core/names.hpp"
 
@@ -112,6 +113,15 @@ class Renderer {
   virtual Frame read_rows_reusing(const Case& c, int y0, int rows, Frame&& storage) {
     storage = Frame();
     return read_rows(c, y0, rows);
+  }
+  // The fragment traces (core/fragment_trace.hpp) of the case last drawn (render() or draw()),
+  // at `pixels` (window indices x + y·fb_width), in their order, from the same counting pass as
+  // its fragment counts: nothing for a pixel whose sums were not exact in float32, or from a
+  // renderer that keeps no traces. This default (renderers that are no GL: tests) keeps none.
+  virtual std::vector<std::optional<FragmentTrace>> fragment_traces(
+      const Case& c, const std::vector<size_t>& pixels) {
+    (void)c;
+    return std::vector<std::optional<FragmentTrace>>(pixels.size());
   }
 
  private:

@@ -2,6 +2,7 @@
 // the framebuffer of framebuffer.hpp and read back into a Frame; the state the case controls,
 // its vertex data, the fragment-count pass, the first draw, and create_renderer.
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -115,7 +116,8 @@ class GlRenderer final : public Renderer {
       context_->make_current();
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
-      if (count_program_) gl_.DeleteProgram(count_program_);
+      for (GLuint program : count_programs_)
+        if (program) gl_.DeleteProgram(program);
       framebuffer_.release();
       count_framebuffer_.release();
     } catch (...) {
@@ -166,6 +168,15 @@ class GlRenderer final : public Renderer {
     read_rows_into(c, y0, rows, frame);
     return frame;
   }
+  std::vector<std::optional<FragmentTrace>> fragment_traces(
+      const Case& c, const std::vector<size_t>& pixels) override {
+    if (!drawn_) throw RenderError("case '" + c.name + "': traces read before it was drawn");
+    context_->make_current();
+    count_framebuffer_.use();
+    auto traces = count_framebuffer_.read_fragment_traces(pixels);
+    check_error(c, "reading fragment traces");
+    return traces;
+  }
 
  private:
   // read_rows() into `frame`, whose buffers are reused (Frame::reset).
@@ -192,16 +203,31 @@ class GlRenderer final : public Renderer {
   // triangle). Not through the depth test, because which of two fragments whose depths are
   // within rounding of each other passes it is free, and a later nearer triangle may then hide
   // either: the count would depend on that order (core/frame.hpp). Culling and clipping stay.
+  // Beside the count, each pixel's fragment trace (core/fragment_trace.hpp), read only where
+  // asked (fragment_traces). gl_PrimitiveID through the pass-through geometry shader where
+  // this driver needs it, whatever the case's work_arounds say: the pass is the harness's own
+  // instrument, not the case's draw.
   void count_fragments(const Case& c) {
-    if (!count_program_) {
-      const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
-      const GLuint fs = compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c);
-      count_program_ = link({vs, fs}, c);
+    GLuint& program = count_programs_[info_.primitive_id_from_geometry_shader ? 1 : 0];
+    if (!program) {
+      std::vector<GLuint> shaders;
+      try {
+        shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c));
+        if (info_.primitive_id_from_geometry_shader)
+          shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
+        shaders.push_back(compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c));
+      } catch (...) {
+        for (GLuint shader : shaders)
+          gl_.DeleteShader(shader);
+        throw;
+      }
+      program = link(shaders, c);
     }
-    gl_.UseProgram(count_program_);
-    count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
+    gl_.UseProgram(program);
+    count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F, GL_RG32F});
     const GLfloat zero[4] = {0, 0, 0, 0};
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
+    gl_.ClearBufferfv(GL_COLOR, 1, zero);
     gl_.Disable(GL_DEPTH_TEST);  // set_state enables it again for the next case
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
@@ -442,7 +468,8 @@ class GlRenderer final : public Renderer {
   // The case's (case_colour_formats) and the fragment-count pass's (R32F).
   Framebuffer framebuffer_, count_framebuffer_;
   bool drawn_ = false;  // both hold the last draw()'s case
-  GLuint count_program_ = 0;
+  // The fragment-count pass's programs: without, and with the pass-through geometry shader.
+  std::array<GLuint, 2> count_programs_{};
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
   bool set_provoking_vertex_ = true;  // Target::set_provoking_vertex

@@ -105,10 +105,36 @@ std::string count_vertex_shader_source() {
          "void main() { gl_Position = a_clip; }\n";
 }
 
+std::string count_geometry_shader_source() {
+  return "#version 330 core\n"
+         "layout(triangles) in;\n"
+         "layout(triangle_strip, max_vertices = 3) out;\n"
+         "void main() {\n"
+         "  for (int i = 0; i < 3; ++i) {\n"
+         "    gl_Position = gl_in[i].gl_Position;\n"
+         "    gl_PrimitiveID = gl_PrimitiveIDIn;\n"
+         "    EmitVertex();\n"
+         "  }\n"
+         "  EndPrimitive();\n"
+         "}\n";
+}
+
 std::string count_fragment_shader_source() {
+  // fragment_hash (core/fragment_trace.hpp) in uint arithmetic, which wraps modulo 2^32. Both
+  // terms are integers below 2^24, exact in float32.
   return "#version 330 core\n"
          "layout(location = 0) out float o_count;\n"
-         "void main() { o_count = 1.0; }\n";
+         "layout(location = 1) out vec2 o_trace;\n"
+         "void main() {\n"
+         "  o_count = 1.0;\n"
+         "  uint x = uint(gl_PrimitiveID);\n"
+         "  x ^= x >> 16u;\n"
+         "  x *= 0x7feb352du;\n"
+         "  x ^= x >> 15u;\n"
+         "  x *= 0x846ca68bu;\n"
+         "  x ^= x >> 16u;\n"
+         "  o_trace = vec2(float(gl_PrimitiveID + 1), float((x >> 20u) + 1u));\n"
+         "}\n";
 }
 
 }  // namespace glrc::gl

@@ -161,24 +161,35 @@ std::pair<int, int> CoverageTest::row_span(int py, double reach, int x0, int x1)
   return row_spans(reach, x0, x1, py, py).at(py);
 }
 
-uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
-                               bool unstable, double z_freedom) const {
-  uint8_t bits = 0;
+CoverageTest::Bands CoverageTest::bands(int px, int py, double freedom, double z_freedom) const {
+  Bands out;
   // Distances first: a centre far outside any band needs no exact sign.
   std::array<double, 3> d{}, band{};
   for (int i = 0; i < 3; ++i) {
     d[i] = edges_[i].distance(px, py);
     band[i] = freedom * band_scale_[i];
-    if (d[i] < -band[i]) return 0;
+    if (d[i] < -band[i]) return out;
   }
   double near_d = INFINITY, far_d = INFINITY;
   const double near_band = freedom + z_freedom * clip_.near_scale;
   const double far_band = freedom + z_freedom * clip_.far_scale;
-  if (clip_.crosses_near && (near_d = clip_.near.distance(px, py)) < -near_band) return 0;
-  if (clip_.crosses_far && (far_d = clip_.far.distance(px, py)) < -far_band) return 0;
+  if (clip_.crosses_near && (near_d = clip_.near.distance(px, py)) < -near_band) return out;
+  if (clip_.crosses_far && (far_d = clip_.far.distance(px, py)) < -far_band) return out;
+  out.reached = true;
   for (int i = 0; i < 3; ++i)
-    if (d[i] <= band[i]) bits |= shared[i] ? edge::shared : edge::snapping;
-  if (near_d <= near_band || far_d <= far_band) bits |= edge::snapping;
+    if (d[i] <= band[i]) out.edges |= uint8_t(1u << i);
+  out.plane = near_d <= near_band || far_d <= far_band;
+  return out;
+}
+
+uint8_t CoverageTest::classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
+                               bool unstable, double z_freedom) const {
+  const Bands b = bands(px, py, freedom, z_freedom);
+  if (!b.reached) return 0;
+  uint8_t bits = 0;
+  for (int i = 0; i < 3; ++i)
+    if (b.edges & (1u << i)) bits |= shared[size_t(i)] ? edge::shared : edge::snapping;
+  if (b.plane) bits |= edge::snapping;
   if (unstable) bits |= edge::unstable;
   if (bits == 0) return 0;
 

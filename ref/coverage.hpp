@@ -138,6 +138,16 @@ class CoverageTest {
   // by the freedom; every centre inside it grown by the bands is marked edge::unstable.
   uint8_t classify(int px, int py, double freedom, const std::array<bool, 3>& shared,
                    bool unstable = false, double z_freedom = 0) const;
+  // The bands classify() tests, each apart: whether the centre of (px, py) is inside the
+  // triangle grown by the bands (`reached`; outside, no conforming implementation covers it),
+  // and then which edges' bands (bit i: edge i) and whether a near or far plane's band hold it.
+  // Inside and in no band, every conforming implementation covers it.
+  struct Bands {
+    bool reached = false;
+    uint8_t edges = 0;
+    bool plane = false;
+  };
+  Bands bands(int px, int py, double freedom, double z_freedom = 0) const;
   // (z_freedom: the z_n freedom at the pixel, PositionFreedom::z_clip_at, which widens the near
   // and far planes' bands by z_freedom · DepthClip's scale pixels.)
   // Whether classify(px, py, freedom, ...) is 0 for every freedom up to `largest` (the centre is

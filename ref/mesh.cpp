@@ -62,10 +62,10 @@ int side(const TriangleSetup& t, int i, const WindowVertex& v) {
   return sgn(e.a * (v.x_h - half * v.w_c) + e.b * (v.y_h - half * v.w_c) + e.c * v.w_c);
 }
 
-// shared_edges over n triangles, triangle(t) the t-th.
+// shared_edge_groups over n triangles, triangle(t) the t-th.
 template <class Triangle>
-std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& triangle, int threads) {
-  std::vector<std::array<bool, 3>> shared(n, {false, false, false});
+SharedEdges shared_edges_of(size_t n, const Triangle& triangle, int threads) {
+  SharedEdges shared(n);
   // Each vertex's window point, computed once for all the drawn triangles that use it (a mesh
   // shares its vertices; an edge names two of them), by the vertex's index in the case.
   // Sized once, before any point is taken: EdgeUse keeps pointers into it.
@@ -117,7 +117,8 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
   }
   // The groups on every thread: each side() is exact rational arithmetic (a fan of 4,400
   // triangles has 4,400 shared edges), and each (triangle, edge) is in one group, so each
-  // writes its own elements of `shared` and of `rel` (each use's side) only.
+  // writes its own elements of `shared` and of `rel` (each use's side) only. A shared edge is
+  // named by its group's index.
   std::vector<int> rel(uses.size(), 0);
   parallel_for(int(groups.size()), threads, [&](int g) {
     const auto [first, end] = groups[size_t(g)];
@@ -140,23 +141,36 @@ std::vector<std::array<bool, 3>> shared_edges_of(size_t n, const Triangle& trian
     // both sides have as many (a copy of one user on one side makes it 1 or 2).
     if (positive == 0 || positive != negative) return;
     for (size_t u = first; u < end; ++u)
-      if (rel[u] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = true;
+      if (rel[u] != 0) shared[uses[u].triangle][size_t(uses[u].edge)] = {g, rel[u] > 0};
   });
   return shared;
 }
 
+std::vector<std::array<bool, 3>> flags(const SharedEdges& edges) {
+  std::vector<std::array<bool, 3>> out(edges.size());
+  for (size_t t = 0; t < edges.size(); ++t)
+    for (size_t i = 0; i < 3; ++i)
+      out[t][i] = edges[t][i].shared();
+  return out;
+}
+
 }  // namespace
+
+SharedEdges shared_edge_groups(const std::vector<std::optional<TriangleSetup>>& triangles,
+                               int threads) {
+  return shared_edges_of(
+      triangles.size(), [&](size_t t) -> const TriangleSetup& { return *triangles[t]; }, threads);
+}
 
 std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles,
                                               int threads) {
-  return shared_edges_of(
-      triangles.size(), [&](size_t t) -> const TriangleSetup& { return triangles[t]; }, threads);
+  return flags(shared_edges_of(
+      triangles.size(), [&](size_t t) -> const TriangleSetup& { return triangles[t]; }, threads));
 }
 
 std::vector<std::array<bool, 3>> shared_edges(
     const std::vector<std::optional<TriangleSetup>>& triangles, int threads) {
-  return shared_edges_of(
-      triangles.size(), [&](size_t t) -> const TriangleSetup& { return *triangles[t]; }, threads);
+  return flags(shared_edge_groups(triangles, threads));
 }
 
 }  // namespace glrc::ref

@@ -24,4 +24,17 @@ std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& 
 std::vector<std::array<bool, 3>> shared_edges(
     const std::vector<std::optional<TriangleSetup>>& triangles, int threads = 1);
 
+// Which shared edge a triangle's edge is, where shared_edges says it is one: the edge's name
+// (the same for every user of it, different for every other shared edge), and the side of it the
+// triangle lies on (first: the side of the edge's first user, in primitive order).
+struct SharedEdge {
+  int32_t group = -1;  // -1: not shared
+  bool first_side = false;
+  bool shared() const { return group >= 0; }
+};
+using SharedEdges = std::vector<std::array<SharedEdge, 3>>;
+// shared_edges(), naming each shared edge and side (ref/fragment_choices.cpp).
+SharedEdges shared_edge_groups(const std::vector<std::optional<TriangleSetup>>& triangles,
+                               int threads = 1);
+
 }  // namespace glrc::ref

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 #include "core/model.hpp"
 
@@ -61,6 +62,17 @@ Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_
 // the buffers of `storage` where given. Throws as render_rows().
 Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads, int y0,
                                int rows, Reference&& storage = {});
+
+// What a conforming implementation may rasterize at each of `pixels` (window indices
+// x + y·fb_width, each inside the framebuffer), for judging a fragment trace
+// (core/fragment_trace.hpp): the triangles that surely cover the centre, those that may (free,
+// or as a shared edge gives the centre to their side), from the position freedom of an
+// implementation of `freedom_bits` subpixel bits (at least 4), as render() finds its edge bits.
+// The reference's own count is sure.count plus the members it draws. Sets every triangle up
+// again (render()'s set-up and position freedom, not its planes or allowances): for the few
+// pixels whose count differs, not for a frame. `threads` as render()'s.
+std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
+                                              const std::vector<size_t>& pixels, int threads = 1);
 
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.

@@ -23,19 +23,12 @@
 #include "ref/mesh.hpp"
 #include "ref/reference.hpp"
 #include "ref/setup.hpp"
+#include "ref/sliver.hpp"
 #include "ref/tiles.hpp"
 
 namespace glrc::ref {
 
 namespace {
-
-// How far the centre of pixel (px, py) is from the nearest side of the viewport, pixels.
-// Always inlined: once per pixel of a clipped triangle, into FragmentBlocks' AVX2 copy too
-// (GCC does not inline a function of the default target into a target_clones copy unasked).
-[[gnu::always_inline]] inline double viewport_side_distance(const Viewport& vp, int px, int py) {
-  const double x = px + 0.5, y = py + 0.5;
-  return std::min({x - vp.x, double(vp.x) + vp.width - x, y - vp.y, double(vp.y) + vp.height - y});
-}
 
 // What every triangle shares: the case, the model, the allowance's freedom.
 struct Settings {
@@ -124,13 +117,6 @@ struct Prepared {
   ComponentValues values;  // of `planes`
 };
 
-// A triangle of zero area (det = 0): no pixel centre lies inside it, but the vertices an
-// implementation rasterizes may each lie up to `delta` pixels from the exact ones in x and in y
-// (freedom.hpp), and then make a sliver that covers centres near the segment its window image
-// is. The sliver lies in the convex hull of the moved vertices, so within the segment grown by
-// the square [-delta, delta]²: every centre there is edge::unstable, any primitive and any
-// fragment count being what some conforming implementation draws. A triangle through the eye
-// (PositionFreedom::reaches_eye) has a vertex of undefined position: every centre of the viewport.
 // Marks the centres of rows [y0, y1], columns [x0, x1] (window coordinates) edge::unstable.
 void mark_unstable(int x0, int y0, int x1, int y1, int row0, const Frame& f,
                    std::vector<uint8_t>& edges) {
@@ -139,52 +125,17 @@ void mark_unstable(int x0, int y0, int x1, int y1, int row0, const Frame& f,
       edges[f.index(px, py - row0)] |= edge::unstable;
 }
 
-struct Sliver {
-  std::array<double, 2> a{}, b{};  // the segment's ends, window coordinates (pixels)
-  double delta = 0;                // how far the sliver's vertices may lie from it, pixels
-  bool anywhere = false;           // through the eye: every centre
-
-  // The ends are the farthest two of the freedom's sources: collinear in exact arithmetic, so
-  // the segment between them holds every one; `delta` grows by the doubles' rounding of them.
-  explicit Sliver(const PositionFreedom& freedom) : anywhere(freedom.reaches_eye()) {
-    const auto& points = freedom.sliver_sources();
-    double farthest = -1, magnitude = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-      magnitude = std::max({magnitude, std::fabs(points[i][0]), std::fabs(points[i][1])});
-      for (size_t j = i; j < points.size(); ++j) {
-        const double d = std::hypot(points[j][0] - points[i][0], points[j][1] - points[i][1]);
-        if (d > farthest) farthest = d, a = points[i], b = points[j];
-      }
-    }
-    delta = freedom.largest() + std::ldexp(1 + magnitude, -30);
+// Marks the centres of rows [y0, y1] a zero-area triangle's slivers may cover (Sliver), in
+// columns [x0, x1], edge::unstable: any primitive and any fragment count there is what some
+// conforming implementation draws.
+void mark_sliver(const Sliver& sliver, int x0, int y0, int x1, int y1, int row0, const Frame& f,
+                 std::vector<uint8_t>& edges) {
+  for (int py = y0; py <= y1; ++py) {
+    const auto [first, last] = sliver.row_span(py, x0, x1);
+    for (int px = first; px <= last; ++px)
+      edges[f.index(px, py - row0)] |= edge::unstable;
   }
-
-  // Marks the centres of rows [y0, y1] within the grown segment, in columns [x0, x1].
-  void mark(int x0, int y0, int x1, int y1, int row0, const Frame& f,
-            std::vector<uint8_t>& edges) const {
-    if (anywhere) return mark_unstable(x0, y0, x1, y1, row0, f, edges);
-    const double dx = b[0] - a[0], dy = b[1] - a[1];
-    for (int py = y0; py <= y1; ++py) {
-      const double y = py + 0.5;
-      // The part of the segment within delta of the row, a + t·(b - a) for t in [t0, t1].
-      double t0 = 0, t1 = 1;
-      if (dy != 0) {
-        t0 = (y - delta - a[1]) / dy, t1 = (y + delta - a[1]) / dy;
-        if (t0 > t1) std::swap(t0, t1);
-        t0 = std::max(t0, 0.0), t1 = std::min(t1, 1.0);
-        if (!(t0 <= t1)) continue;
-      } else if (!(std::fabs(y - a[1]) <= delta)) {
-        continue;
-      }
-      const double xa = a[0] + t0 * dx, xb = a[0] + t1 * dx;
-      const double lo = std::min(xa, xb) - delta - 0.5, hi = std::max(xa, xb) + delta - 0.5;
-      const int first = std::max(x0, int(std::clamp(std::ceil(lo), -1e9, 1e9)));
-      const int last = std::min(x1, int(std::clamp(std::floor(hi), -1e9, 1e9)));
-      for (int px = first; px <= last; ++px)
-        edges[f.index(px, py - row0)] |= edge::unstable;
-    }
-  }
-};
+}
 
 // kRowBlock floats from `from` to `to` (apart), a block's lanes to a frame: a copy of a size
 // the compiler sees, which becomes one or two vector moves (std::copy_n, not seeing its count
@@ -703,31 +654,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   if (allowance && c.depth_func != DepthFunc::always) s.twin = identical_triangles(c);
 
   const int count = int(c.triangles.size());
-  // Each vertex a triangle uses to the window once, shared by its triangles (WindowCorners),
-  // then each triangle set up in its place: a TriangleSetup default-constructed first costs its
-  // rationals' allocations.
-  std::vector<uint8_t> used(c.vertices.size(), 0);
-  for (const auto& triangle : c.triangles)
-    for (uint32_t i : triangle)
-      used[i] = 1;
-  std::vector<WindowCorners::Pointer> window(c.vertices.size());
-  pool.parallel_for(int(c.vertices.size()), [&](int i) {
-    if (used[size_t(i)])
-      window[size_t(i)] = std::make_shared<const WindowVertex>(to_window(c.vertices[size_t(i)], c));
-  });
-  std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
-  pool.parallel_for(count, [&](int p) {
-    // Constructed from the returned value directly (no default construction, no move).
-    struct SetUp {
-      const Case& c;
-      const Model& m;
-      int p;
-      const std::vector<WindowCorners::Pointer>& window;
-      operator TriangleSetup() const { return setup_triangle(c, m, p, window); }
-    };
-    setups[size_t(p)].emplace(SetUp{c, m, p, window});
-  });
-  window = {};  // the setups hold the vertices they use
+  std::vector<std::optional<TriangleSetup>> setups = setup_triangles(c, m, pool);
   // Which edges are shared marks edge bits only.
   const std::vector<std::array<bool, 3>> shared =
       edges ? shared_edges(setups, threads)
@@ -772,8 +699,9 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
             w && w->reach.y0 <= rows[size_t(b)].y1 && w->reach.y1 >= rows[size_t(b)].y0)
           draw_rows(s, *w, first + k, rows[size_t(b)], r, candidates[size_t(b)]);
         else if (const auto& sliver = slivers[size_t(k)])
-          sliver->mark(s.viewport.x0, std::max(s.viewport.y0, rows[size_t(b)].y0), s.viewport.x1,
-                       std::min(s.viewport.y1, rows[size_t(b)].y1), s.row0, f, r.edges);
+          mark_sliver(*sliver, s.viewport.x0, std::max(s.viewport.y0, rows[size_t(b)].y0),
+                      s.viewport.x1, std::min(s.viewport.y1, rows[size_t(b)].y1), s.row0, f,
+                      r.edges);
     });
     release(prepared, pool);
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace glrc::ref {
 
@@ -261,6 +262,36 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
   t.v = WindowCorners(std::move(corners));
   set_up(c, m, t);
   return t;
+}
+
+std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
+                                                          WorkerPool& pool) {
+  const int count = int(c.triangles.size());
+  // Each vertex a triangle uses to the window once, shared by its triangles (WindowCorners),
+  // then each triangle set up in its place: a TriangleSetup default-constructed first costs its
+  // rationals' allocations.
+  std::vector<uint8_t> used(c.vertices.size(), 0);
+  for (const auto& triangle : c.triangles)
+    for (uint32_t i : triangle)
+      used[i] = 1;
+  std::vector<WindowCorners::Pointer> window(c.vertices.size());
+  pool.parallel_for(int(c.vertices.size()), [&](int i) {
+    if (used[size_t(i)])
+      window[size_t(i)] = std::make_shared<const WindowVertex>(to_window(c.vertices[size_t(i)], c));
+  });
+  std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
+  pool.parallel_for(count, [&](int p) {
+    // Constructed from the returned value directly (no default construction, no move).
+    struct SetUp {
+      const Case& c;
+      const Model& m;
+      int p;
+      const std::vector<WindowCorners::Pointer>& window;
+      operator TriangleSetup() const { return setup_triangle(c, m, p, window); }
+    };
+    setups[size_t(p)].emplace(SetUp{c, m, p, window});
+  });
+  return setups;
 }
 
 }  // namespace glrc::ref

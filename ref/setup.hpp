@@ -12,6 +12,7 @@
 
 #include "core/case.hpp"
 #include "core/model.hpp"
+#include "core/parallel.hpp"
 #include "ref/exact.hpp"
 #include "ref/viewport.hpp"
 
@@ -105,6 +106,12 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive);
 // several triangles and transformed once, not once per corner, and shared by them.
 TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
                              const std::vector<WindowCorners::Pointer>& window);
+
+// Every triangle of c set up (setup_triangle), in primitive order, on `pool`'s threads: each
+// vertex a triangle uses transformed to the window once, shared by its triangles. Every element
+// holds a setup.
+std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
+                                                          WorkerPool& pool);
 
 // The window-pixel region of the viewport inside the framebuffer.
 PixelBox viewport_box(const Case& c);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -210,6 +211,18 @@ std::vector<LegendEntry> coverage_legend(const CoverageStats& stats) {
   return entries;
 }
 
+namespace {
+
+// CoverageStats::traced_failures by pixel.
+std::map<std::pair<int, int>, CoverageStats::Label> traced_labels(const CoverageStats& stats) {
+  std::map<std::pair<int, int>, CoverageStats::Label> out;
+  for (const CoverageStats::Pixel& p : stats.traced_failures)
+    out[{p.x, p.y}] = p.label;
+  return out;
+}
+
+}  // namespace
+
 CoverageCanvas::CoverageCanvas(int width, int height, const CoverageStats& stats,
                                const std::optional<std::string>& font, bool explained_fail)
     : width_(width),
@@ -222,6 +235,7 @@ CoverageCanvas::CoverageCanvas(int width, int height, const CoverageStats& stats
       explained_fail_(explained_fail),
       font_(font),
       legend_(coverage_legend(stats)),
+      traced_(traced_labels(stats)),
       canvas_(std::max(shown_width_ * factor_, kMinWidth) + 2 * kMargin,
               kTitleHeight + shown_height_ * factor_ + kLegendHeight, kBackground) {
   const int text_width = canvas_.width - 2 * kMargin;
@@ -262,7 +276,11 @@ void CoverageCanvas::add_rows(const Expectation& expected, const Frame& gl, int 
     for (int y = by * shrink_; y < std::min(reference.height, (by + 1) * shrink_); ++y)
       for (int x = bx * shrink_; x < std::min(width_, (bx + 1) * shrink_); ++x) {
         const size_t i = reference.index(x, y);
-        const auto label = has_band ? compare::coverage_label(expected, gl, i) : std::nullopt;
+        // A count the traces failed: its own label, not the excused one coverage_label gives.
+        const auto traced = traced_.find({x, y0 + y});
+        const auto label = traced != traced_.end() ? std::optional(traced->second)
+                           : has_band              ? compare::coverage_label(expected, gl, i)
+                                                   : std::nullopt;
         const bool band = has_band && edge_band[i] != 0;
         const bool fails = label && (explained_fail_ || !compare::explained(*label));
         failing += fails;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -73,6 +74,8 @@ class CoverageCanvas {
   bool explained_fail_;
   std::optional<std::string> font_;
   std::vector<LegendEntry> legend_;
+  // The pixels whose labels the fragment traces decided (CoverageStats::traced_failures).
+  std::map<std::pair<int, int>, CoverageStats::Label> traced_;
   Canvas canvas_;
   std::vector<std::pair<int, int>> failing_;  // shown pixels to ring
 };

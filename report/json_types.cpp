@@ -61,6 +61,8 @@ void to_json(json& j, const CoverageStats& c) {
        {"gaps", c.gaps},
        {"double_hits", c.double_hits},
        {"fragments_checked", c.fragments_checked},
+       {"counts_traced", c.counts_traced},
+       {"counts_untraced", c.counts_untraced},
        {"failures", c.failures},
        {"mismatches", c.mismatches}};
 }
@@ -238,6 +240,9 @@ void read(const Reader& r, const json& j, const std::string& path, CoverageStats
   c.gaps = count(r, j, path, "gaps");
   c.double_hits = count(r, j, path, "double_hits");
   c.fragments_checked = boolean(r, j, path, "fragments_checked");
+  // Added later than the first results.json: 0 when absent.
+  c.counts_traced = j.contains("counts_traced") ? count(r, j, path, "counts_traced") : 0;
+  c.counts_untraced = j.contains("counts_untraced") ? count(r, j, path, "counts_untraced") : 0;
   c.failures = count(r, j, path, "failures");
   c.mismatches.clear();
   r.elements(

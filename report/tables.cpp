@@ -76,11 +76,15 @@ std::string stats_table(const CaseResult& r) {
   table += fmt::format(
       "coverage: both {}, reference only {}, GL only {}, other primitive {}; mismatches: "
       "exact tie {}, within snapping {}, fill-rule error {}; shared edges: gaps {}, double hits "
-      "{}{}; failures {}{}\n",
+      "{}{}{}; failures {}{}\n",
       cov.both, cov.reference_only, cov.gl_only, cov.other_primitive, cov.exact_tie,
       cov.within_snapping, cov.fill_rule, cov.gaps, cov.double_hits,
-      cov.fragments_checked ? "" : " (no fragment counts)", cov.failures,
-      r.tolerance.allow_boundary ? " (ties and snapping allowed)" : "");
+      cov.fragments_checked ? "" : " (no fragment counts)",
+      cov.counts_traced + cov.counts_untraced == 0
+          ? ""
+          : fmt::format("; counts in bands traced to triangles {}, untraced {}", cov.counts_traced,
+                        cov.counts_untraced),
+      cov.failures, r.tolerance.allow_boundary ? " (ties and snapping allowed)" : "");
   return table;
 }
 

@@ -130,6 +130,9 @@ TEST_F(Export, SoftpipeSharedEdgeFailuresOnSoftpipeOnly) {
   const std::pair<const char*, const char*> cases[] = {
       {"softpipe_gap", "gap at (13, 11): 0 fragments, reference 1\n"},
       {"softpipe_double_hit", "double hit at (14, 4): 2 fragments, reference 1\n"},
+      // The same beside a third triangle's snapping band, where the count alone is free: the
+      // fragment trace shows both triangles of the shared edge.
+      {"softpipe_double_hit_beside_band", "double hit at (14, 4): 2 fragments, reference 1\n"},
   };
   for (const auto& [name, failure] : cases) {
     const std::string file = source("tests/cli/data/") + name + ".json";
@@ -305,6 +308,7 @@ TEST(ExportLibrary, EmbedsTheHarnessShadersAndExactFloats) {
                               glrc::gl::fragment_shader_source(setup.first_draw, false),
                               glrc::gl::fragment_shader_source(setup.first_draw, true)};
   setup.count_vertex = glrc::gl::count_vertex_shader_source();
+  setup.count_geometry = glrc::gl::count_geometry_shader_source();
   setup.count_fragment = glrc::gl::count_fragment_shader_source();
   setup.file_name = "repro.c";
   setup.exported_by = "test";

@@ -332,6 +332,97 @@ TEST(Compare, CoverageLabelsAndWatertightness) {
   EXPECT_EQ(coverage_label(expect(ref, band), gl, ref.index(1, 1)), std::nullopt);
 }
 
+// A count the edge bits excuse (an outer edge's band) judged by the fragment traces: GL's
+// fragments from a set the choices admit pass, from another set fail with the count's own label;
+// without a trace (or one of another count than the frame's) the count stays excused.
+TEST(Compare, TracesJudgeTheCountsTheBandsExcuse) {
+  const Case c = two_varyings_case();
+  Frame ref = reference_frame(c);
+  ref.fragments.assign(ref.pixel_count(), 0);
+  for (size_t i = 0; i < ref.pixel_count(); ++i)
+    ref.fragments[i] = ref.primitive[i] >= 0;
+  std::vector<uint8_t> band(ref.pixel_count(), 0);
+  // Near an outer edge of a third triangle (5) and an edge triangles 0 and 1 share.
+  const size_t i = ref.index(3, 3);
+  band[i] = edge::snapping | edge::shared;
+  ref.primitive[i] = 0, ref.fragments[i] = 1;
+  Frame gl = ref;
+  gl.fragments[i] = 2;  // two fragments: 0 and 5 (legal), or 0 and 1 (a double hit)
+  // The choices there: one of 0 and 1 by the shared edge's side, and 5 or not.
+  FragmentChoices choices;
+  choices.edges = 1;
+  choices.members = {{0, false, {{0, true}}}, {1, false, {{0, false}}}, {5, true, {}}};
+  std::optional<FragmentTrace> trace;
+  std::vector<size_t> asked;
+  const TraceSource source{[&](const std::vector<size_t>& pixels) {
+                             asked = pixels;
+                             return std::vector<std::optional<FragmentTrace>>(pixels.size(), trace);
+                           },
+                           [&](const std::vector<size_t>& pixels) {
+                             return std::vector<FragmentChoices>(pixels.size(), choices);
+                           }};
+  const Tolerance t = ulps_tolerance();
+  auto traced = [](std::initializer_list<int32_t> primitives) {
+    FragmentTrace out;
+    for (int32_t p : primitives)
+      out += fragment_trace(p);
+    return out;
+  };
+  // Without traces (or a trace source that has none) the band excuses the count.
+  CaseResult r = compare(c, expect(ref, band), gl, t);
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(r.coverage.counts_untraced, 1u);
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(asked, std::vector<size_t>{i});
+  EXPECT_EQ(r.coverage.counts_untraced, 1u);
+  // The third triangle's fragment beside the reference's: admitted.
+  trace = traced({0, 5});
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(r.coverage.counts_traced, 1u);
+  EXPECT_EQ(r.coverage.counts_untraced, 0u);
+  // Both triangles of the shared edge: a double hit, the band notwithstanding.
+  trace = traced({0, 1});
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(r.coverage.double_hits, 1u);
+  EXPECT_EQ(r.coverage.failures, 1u);
+  EXPECT_EQ(r.coverage.boundary, 0u);
+  ASSERT_EQ(r.coverage.traced_failures.size(), 1u);
+  EXPECT_EQ(r.coverage.traced_failures[0].label, CoverageStats::Label::double_hit);
+  ASSERT_EQ(r.coverage.mismatches.size(), 1u);
+  EXPECT_EQ(r.coverage.mismatches[0].label, CoverageStats::Label::double_hit);
+  EXPECT_NE(r.message.find("1 double hit on a shared edge"), std::string::npos) << r.message;
+  // A trace of another count than the frame's is not this frame's: not judged.
+  trace = traced({0, 1, 5});
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(r.coverage.counts_untraced, 1u);
+  // One fragment, of the third triangle alone (neither side of the shared edge), kept where the
+  // band excuses another primitive: as many fragments as the reference's, from triangles no
+  // conforming implementation gives, a fill-rule error.
+  gl.fragments[i] = 1, gl.primitive[i] = 5;
+  trace = traced({5});
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(r.coverage.fill_rule, 1u);
+  EXPECT_EQ(r.coverage.within_snapping, 0u);
+  // The other side's triangle instead: admitted.
+  gl.primitive[i] = 1;
+  trace = traced({1});
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::pass);
+  EXPECT_EQ(r.coverage.within_snapping, 1u);
+  EXPECT_EQ(r.coverage.counts_traced, 1u);
+  gl.fragments[i] = 0, gl.primitive[i] = Frame::kNoPrimitive;
+  trace = traced({});
+  r = compare(c, expect(ref, band), gl, t, 1, &source);
+  EXPECT_EQ(r.status, Status::fail);
+  EXPECT_EQ(r.coverage.gaps, 1u);
+  EXPECT_EQ(r.coverage.within_snapping, 0u);
+}
+
 }  // namespace
 }  // namespace glrc::compare
 

@@ -408,6 +408,45 @@ TEST_F(Gl, ConstantQuadIsExactEverywhere) {
     }
 }
 
+// The counting pass's traces (core/fragment_trace.hpp): GL's sums of p + 1 and of the hash of p
+// are fragment_trace()'s, for one fragment of each of 2,000 triangles (primitive ids up to 1,999,
+// each triangle around its own pixel centre), and for two triangles drawn over one centre.
+TEST_F(Gl, FragmentTracesAreTheHarnessOwnSums) {
+  constexpr int kSide = 50, kCount = 2000;
+  Case c = make_case("traces", kSide, kCount / kSide + 1, {0, 0, kSide, kCount / kSide + 1});
+  const float w = float(kSide), h = float(kCount / kSide + 1);
+  // A small triangle around the centre of pixel (x, y), in clip coordinates.
+  auto around = [&](int x, int y) {
+    const float cx = (2 * (x + 0.5f)) / w - 1, cy = (2 * (y + 0.5f)) / h - 1;
+    const float dx = 0.6f / w, dy = 0.6f / h;
+    const uint32_t first = uint32_t(c.vertices.size());
+    c.vertices.push_back(vertex(cx - dx, cy - dy, 0, 1, {}));
+    c.vertices.push_back(vertex(cx + dx, cy - dy, 0, 1, {}));
+    c.vertices.push_back(vertex(cx, cy + dy, 0, 1, {}));
+    c.triangles.push_back({first, first + 1, first + 2});
+  };
+  for (int p = 0; p < kCount; ++p)
+    around(p % kSide, p / kSide);
+  around(0, kCount / kSide);  // primitives 2000 and 2001 over one centre
+  around(0, kCount / kSide);
+  const Frame f = gl().render(c);
+  std::vector<size_t> pixels;
+  for (int p = 0; p < kCount; ++p)
+    pixels.push_back(f.index(p % kSide, p / kSide));
+  pixels.push_back(f.index(0, kCount / kSide));
+  pixels.push_back(f.index(1, kCount / kSide));  // nothing there
+  const std::vector<std::optional<FragmentTrace>> traces = gl().fragment_traces(c, pixels);
+  ASSERT_EQ(traces.size(), pixels.size());
+  for (int p = 0; p < kCount; ++p) {
+    ASSERT_TRUE(traces[size_t(p)].has_value()) << p;
+    EXPECT_EQ(*traces[size_t(p)], fragment_trace(p)) << "primitive " << p;
+  }
+  FragmentTrace two = fragment_trace(kCount);
+  two += fragment_trace(kCount + 1);
+  EXPECT_EQ(traces[size_t(kCount)], two);
+  EXPECT_EQ(traces[size_t(kCount) + 1], FragmentTrace{});
+}
+
 TEST_F(Gl, RowZeroIsTheBottom) {
   // A 20x12 framebuffer; the quad covers only the bottom half of the viewport (y_c in [-1,0]).
   Case c = make_case("bottom_half", 20, 12, {0, 0, 20, 12});

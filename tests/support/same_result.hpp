@@ -30,6 +30,8 @@ inline void expect_same_result(const CaseResult& a, const CaseResult& b) {
   EXPECT_EQ(x.failures, y.failures);
   EXPECT_EQ(x.boundary, y.boundary);
   EXPECT_EQ(x.fragments_checked, y.fragments_checked);
+  EXPECT_EQ(x.counts_traced, y.counts_traced);
+  EXPECT_EQ(x.counts_untraced, y.counts_untraced);
   ASSERT_EQ(x.mismatches.size(), y.mismatches.size());
   for (size_t i = 0; i < x.mismatches.size(); ++i) {
     EXPECT_EQ(x.mismatches[i].x, y.mismatches[i].x);

@@ -1,0 +1,170 @@
+// Fragment choices (reference.hpp, core/fragment_trace.hpp): per pixel, which triangles a
+// conforming implementation surely rasterizes there, which it may, and which shared edges give
+// the pixel to one side or the other. Each triangle is judged as render.cpp judges it for its
+// edge bits, with the same freedom, bands and reach, one triangle at a time instead of their
+// bits OR-ed together:
+//   - outside the triangle grown by its bands (CoverageTest::bands), no implementation covers
+//     the centre;
+//   - inside it and in no band, every implementation covers it, as the reference does;
+//   - in the band of an outer edge or of a near or far plane, or near a triangle the freedom may
+//     turn over, it may or may not (free);
+//   - in the band of an edge it shares (ref/mesh.hpp: every user's ends from the same clip
+//     coordinates, as many users on each side), it covers exactly when the centre goes to its
+//     side: every user rasterizes that one edge alike (the same vertices snapped the same way,
+//     the same tie rule from opposite normals), so the side is one choice for all of them.
+// Where that cannot say how often one primitive covers the centre, nothing is decided
+// (FragmentChoices::anything): a vertex through the eye, or a clipped polygon that may turn
+// over (its fan triangles may fold onto each other).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "ref/coverage.hpp"
+#include "ref/freedom.hpp"
+#include "ref/mesh.hpp"
+#include "ref/reference.hpp"
+#include "ref/setup.hpp"
+#include "ref/sliver.hpp"
+#include "ref/viewport.hpp"
+
+namespace glrc::ref {
+
+namespace {
+
+// One triangle's part at one pixel, before the shared edges are numbered for the pixel.
+struct Part {
+  size_t pixel = 0;  // index into the pixels asked for
+  int32_t primitive = -1;
+  enum class Kind { sure, member, anything } kind = Kind::sure;
+  bool free = false;
+  std::vector<std::pair<int32_t, bool>> sides;  // (shared edge's group, first side)
+};
+
+// Triangle p's parts at the pixels (window indices x + y·fb_width) it may reach.
+void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, int32_t p,
+              const std::array<SharedEdge, 3>& shared, const std::vector<size_t>& pixels,
+              const PixelBox& viewport, std::vector<Part>& out) {
+  const bool either_face = c.cull != CullFace::front_and_back;
+  if (!t.has_edges) {
+    // Zero area: drawn by no model, but a sliver of some implementation's (Sliver).
+    if (!either_face) return;
+    const PositionFreedom freedom(c, t, bits);
+    if (!freedom.reaches_eye() && freedom.sliver_sources().empty()) return;
+    const Sliver sliver(freedom);
+    // A sliver from a clipped polygon may fold onto itself: any count.
+    const bool folds = freedom.reaches_eye() || freedom.generations() > 0;
+    for (size_t k = 0; k < pixels.size(); ++k) {
+      const int px = int(pixels[k] % size_t(c.fb_width)), py = int(pixels[k] / size_t(c.fb_width));
+      if (px < viewport.x0 || px > viewport.x1 || py < viewport.y0 || py > viewport.y1) continue;
+      const auto [first, last] = sliver.row_span(py, px, px);
+      if (first > last) continue;
+      out.push_back({k, p, folds ? Part::Kind::anything : Part::Kind::member, true, {}});
+    }
+    return;
+  }
+  // A triangle this model does not draw may still be drawn by another implementation when its
+  // orientation is not decided by the freedom (render.cpp's test).
+  if (!t.drawn && !either_face) return;
+  const PositionFreedom freedom(c, t, bits);
+  const bool eye = freedom.reaches_eye();
+  const bool unstable = eye || freedom.may_turn_over();
+  if (!t.drawn && !unstable) return;
+  // render.cpp's Prepared::reach: the box grown by the margin, in the viewport.
+  const int margin = 1 + int(std::min(std::ceil(freedom.largest() * 1.5), 1e6));
+  const PixelBox reach{
+      std::max(viewport.x0, t.box.x0 - margin), std::max(viewport.y0, t.box.y0 - margin),
+      std::min(viewport.x1, t.box.x1 + margin), std::min(viewport.y1, t.box.y1 + margin)};
+  const CoverageTest coverage(t, m);
+  for (size_t k = 0; k < pixels.size(); ++k) {
+    const int px = int(pixels[k] % size_t(c.fb_width)), py = int(pixels[k] / size_t(c.fb_width));
+    const bool in_viewport =
+        px >= viewport.x0 && px <= viewport.x1 && py >= viewport.y0 && py <= viewport.y1;
+    if (eye) {
+      // Every centre of the viewport (render.cpp's mark_unstable), and any count.
+      if (in_viewport) out.push_back({k, p, Part::Kind::anything, true, {}});
+      continue;
+    }
+    if (px < reach.x0 || px > reach.x1 || py < reach.y0 || py > reach.y1) continue;
+    const CoverageTest::Bands b =
+        coverage.bands(px, py, freedom.at(px, py), freedom.z_clip_at(px, py));
+    if (!b.reached) continue;
+    if (unstable) {
+      // A clipped polygon that may turn over may fold onto itself: any count.
+      const bool folds = freedom.generations() > 0;
+      out.push_back({k, p, folds ? Part::Kind::anything : Part::Kind::member, true, {}});
+      continue;
+    }
+    // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where no
+    // centre is, but move with its vertices, inwards too (render.cpp's FragmentBlocks).
+    const bool side = freedom.generations() > 0 &&
+                      viewport_side_distance(c.viewport, px, py) <= freedom.at(px, py);
+    if (b.edges == 0 && !b.plane) {
+      // Every implementation covers it, but for the sides; the reference's own coverage
+      // counts it.
+      if (!coverage.covers(px, py)) continue;
+      out.push_back({k, p, side ? Part::Kind::member : Part::Kind::sure, side, {}});
+      continue;
+    }
+    Part part{k, p, Part::Kind::member, b.plane || side, {}};
+    for (size_t i = 0; i < 3; ++i) {
+      if (!(b.edges & (1u << i))) continue;
+      if (shared[i].shared())
+        part.sides.emplace_back(shared[i].group, shared[i].first_side);
+      else
+        part.free = true;
+    }
+    if (part.sides.empty()) part.free = true;
+    out.push_back(std::move(part));
+  }
+}
+
+}  // namespace
+
+std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
+                                              const std::vector<size_t>& pixels, int threads) {
+  std::vector<FragmentChoices> out(pixels.size());
+  if (pixels.empty()) return out;
+  const int bits = std::max(freedom_bits, 4);  // render.cpp's Settings::bits
+  WorkerPool pool(thread_count(threads));
+  const std::vector<std::optional<TriangleSetup>> setups = setup_triangles(c, m, pool);
+  const SharedEdges shared = shared_edge_groups(setups, thread_count(threads));
+  const PixelBox viewport = viewport_box(c);
+  // Each triangle's parts on some thread, then put together in primitive order.
+  std::vector<std::vector<Part>> parts(setups.size());
+  pool.parallel_for(int(setups.size()), [&](int p) {
+    parts_of(c, m, bits, *setups[size_t(p)], p, shared[size_t(p)], pixels, viewport,
+             parts[size_t(p)]);
+  });
+  // Per pixel, its shared edges numbered from 0 in the order they come.
+  std::vector<std::map<int32_t, uint32_t>> edge_names(pixels.size());
+  for (const std::vector<Part>& list : parts)
+    for (const Part& part : list) {
+      FragmentChoices& f = out[part.pixel];
+      switch (part.kind) {
+        case Part::Kind::anything:
+          f.anything = true;
+          break;
+        case Part::Kind::sure:
+          f.sure += fragment_trace(part.primitive);
+          break;
+        case Part::Kind::member: {
+          FragmentChoices::Member member{part.primitive, part.free, {}};
+          for (const auto& [group, first_side] : part.sides) {
+            auto [it, added] = edge_names[part.pixel].emplace(group, f.edges);
+            if (added) ++f.edges;
+            member.sides.emplace_back(it->second, first_side);
+          }
+          f.members.push_back(std::move(member));
+          break;
+        }
+      }
+    }
+  return out;
+}
+
+}  // namespace glrc::ref
