@@ -46,6 +46,21 @@ Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_b
   return r;
 }
 
+// What judges the counts the edge bits excuse (compare::TraceSource): GL's traces from the
+// renderer's counting pass of the case it drew last, the reference's choices from its set-up.
+// None against a driver model, whose frame is matched bit for bit or by fixed ULPs.
+std::optional<compare::TraceSource> trace_source(const Case& c, gl::Renderer& renderer,
+                                                 const CheckOptions& o, int reported) {
+  if (o.driver_model) return std::nullopt;
+  return compare::TraceSource{[&c, &renderer](const std::vector<size_t>& pixels) {
+                                return renderer.fragment_traces(c, pixels);
+                              },
+                              [&c, &o, reported](const std::vector<size_t>& pixels) {
+                                return ref::fragment_choices(c, o.model, freedom_bits(o, reported),
+                                                             pixels, o.threads);
+                              }};
+}
+
 std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& expected,
                                             const CheckOptions& o, int reported_bits) {
   const Frame& f = expected.frame;
@@ -90,21 +105,6 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 }
 
 namespace {
-
-// What judges the counts the edge bits excuse (compare::TraceSource): GL's traces from the
-// renderer's counting pass of the case it drew last, the reference's choices from its set-up.
-// None against a driver model, whose frame is matched bit for bit or by fixed ULPs.
-std::optional<compare::TraceSource> trace_source(const Case& c, gl::Renderer& renderer,
-                                                 const CheckOptions& o, int reported) {
-  if (o.driver_model) return std::nullopt;
-  return compare::TraceSource{[&c, &renderer](const std::vector<size_t>& pixels) {
-                                return renderer.fragment_traces(c, pixels);
-                              },
-                              [&c, &o, reported](const std::vector<size_t>& pixels) {
-                                return ref::fragment_choices(c, o.model, freedom_bits(o, reported),
-                                                             pixels, o.threads);
-                              }};
-}
 
 // Bands of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
 // are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about 8192 runs of

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/compare.hpp"
 #include "core/case.hpp"
 #include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
@@ -95,6 +96,14 @@ Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_b
 std::string tolerance_text(const CheckOptions& o, int reported_bits);
 // RunInfo's words for the model: o.model.describe(), or the driver model's name.
 std::string model_text(const CheckOptions& o);
+
+// What judges the coverage the edge bits excuse (compare::TraceSource), for case c just drawn
+// by `renderer` (its traces are of the case it drew last): GL's traces from the renderer's
+// counting pass, the reference's choices from ref::fragment_choices under o's model and the
+// freedom of `reported_bits`. None with a driver model, whose frame is matched bit for bit or by
+// fixed ULPs. Holds references to c, renderer and o.
+std::optional<compare::TraceSource> trace_source(const Case& c, gl::Renderer& renderer,
+                                                 const CheckOptions& o, int reported_bits);
 
 // For a reproducer of case c drawn to `expected` (expectation_for's, no driver model): at every
 // pixel whose coverage its edge bits may excuse (edge::snapping, edge::unstable, edge::shared), the

@@ -12,7 +12,8 @@ std::optional<std::vector<FragmentTrace>> admitted(const FragmentChoices& choice
   size_t free = 0;
   for (const FragmentChoices::Member& m : choices.members)
     free += m.free;
-  if (free >= 64 || sides > kMostTraceChoices || (sides << free) > kMostTraceChoices)
+  // (free first: a shift by 64 or more, or one that carries bits out, would say nothing.)
+  if (free > 12 || sides > kMostTraceChoices || (sides << free) > kMostTraceChoices)
     return std::nullopt;
   std::vector<FragmentTrace> out;
   std::vector<FragmentTrace> optional;

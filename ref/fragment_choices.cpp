@@ -45,9 +45,37 @@ struct Part {
   std::vector<std::pair<int32_t, bool>> sides;  // (shared edge's group, first side)
 };
 
-// Triangle p's parts at the pixels (window indices x + y·fb_width) it may reach.
+// The pixels asked for (window indices x + y·width) in window order, to find those of a run of
+// rows without a pass over all of them: each triangle looks only at the rows it may reach.
+class PixelIndex {
+ public:
+  PixelIndex(const std::vector<size_t>& pixels, int width) : pixels_(pixels), width_(width) {
+    order_.resize(pixels.size());
+    for (size_t k = 0; k < order_.size(); ++k)
+      order_[k] = k;
+    std::sort(order_.begin(), order_.end(),
+              [&](size_t a, size_t b) { return pixels[a] < pixels[b]; });
+  }
+  // f(k, px, py) for every pixel k asked for in rows [y0, y1] (y0 <= y1), in window order.
+  template <class F>
+  void for_each_in_rows(int y0, int y1, F&& f) const {
+    if (y0 > y1) return;
+    const size_t w = size_t(width_);
+    auto it = std::lower_bound(order_.begin(), order_.end(), size_t(std::max(y0, 0)) * w,
+                               [&](size_t k, size_t at) { return pixels_[k] < at; });
+    for (; it != order_.end() && pixels_[*it] < (size_t(y1) + 1) * w; ++it)
+      f(*it, int(pixels_[*it] % w), int(pixels_[*it] / w));
+  }
+
+ private:
+  const std::vector<size_t>& pixels_;
+  int width_;
+  std::vector<size_t> order_;  // indices into pixels_, by window index
+};
+
+// Triangle p's parts at the pixels it may reach.
 void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, int32_t p,
-              const std::array<SharedEdge, 3>& shared, const std::vector<size_t>& pixels,
+              const std::array<SharedEdge, 3>& shared, const PixelIndex& pixels,
               const PixelBox& viewport, std::vector<Part>& out) {
   const bool either_face = c.cull != CullFace::front_and_back;
   if (!t.has_edges) {
@@ -58,13 +86,12 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
     const Sliver sliver(freedom);
     // A sliver from a clipped polygon may fold onto itself: any count.
     const bool folds = freedom.reaches_eye() || freedom.generations() > 0;
-    for (size_t k = 0; k < pixels.size(); ++k) {
-      const int px = int(pixels[k] % size_t(c.fb_width)), py = int(pixels[k] / size_t(c.fb_width));
-      if (px < viewport.x0 || px > viewport.x1 || py < viewport.y0 || py > viewport.y1) continue;
+    pixels.for_each_in_rows(viewport.y0, viewport.y1, [&](size_t k, int px, int py) {
+      if (px < viewport.x0 || px > viewport.x1) return;
       const auto [first, last] = sliver.row_span(py, px, px);
-      if (first > last) continue;
+      if (first > last) return;
       out.push_back({k, p, folds ? Part::Kind::anything : Part::Kind::member, true, {}});
-    }
+    });
     return;
   }
   // A triangle this model does not draw may still be drawn by another implementation when its
@@ -79,25 +106,25 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
   const PixelBox reach{
       std::max(viewport.x0, t.box.x0 - margin), std::max(viewport.y0, t.box.y0 - margin),
       std::min(viewport.x1, t.box.x1 + margin), std::min(viewport.y1, t.box.y1 + margin)};
+  if (eye) {
+    // Every centre of the viewport (render.cpp's mark_unstable), and any count.
+    pixels.for_each_in_rows(viewport.y0, viewport.y1, [&](size_t k, int px, int) {
+      if (px >= viewport.x0 && px <= viewport.x1)
+        out.push_back({k, p, Part::Kind::anything, true, {}});
+    });
+    return;
+  }
   const CoverageTest coverage(t, m);
-  for (size_t k = 0; k < pixels.size(); ++k) {
-    const int px = int(pixels[k] % size_t(c.fb_width)), py = int(pixels[k] / size_t(c.fb_width));
-    const bool in_viewport =
-        px >= viewport.x0 && px <= viewport.x1 && py >= viewport.y0 && py <= viewport.y1;
-    if (eye) {
-      // Every centre of the viewport (render.cpp's mark_unstable), and any count.
-      if (in_viewport) out.push_back({k, p, Part::Kind::anything, true, {}});
-      continue;
-    }
-    if (px < reach.x0 || px > reach.x1 || py < reach.y0 || py > reach.y1) continue;
+  pixels.for_each_in_rows(reach.y0, reach.y1, [&](size_t k, int px, int py) {
+    if (px < reach.x0 || px > reach.x1) return;
     const CoverageTest::Bands b =
         coverage.bands(px, py, freedom.at(px, py), freedom.z_clip_at(px, py));
-    if (!b.reached) continue;
+    if (!b.reached) return;
     if (unstable) {
       // A clipped polygon that may turn over may fold onto itself: any count.
       const bool folds = freedom.generations() > 0;
       out.push_back({k, p, folds ? Part::Kind::anything : Part::Kind::member, true, {}});
-      continue;
+      return;
     }
     // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where no
     // centre is, but move with its vertices, inwards too (render.cpp's FragmentBlocks).
@@ -106,9 +133,9 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
     if (b.edges == 0 && !b.plane) {
       // Every implementation covers it, but for the sides; the reference's own coverage
       // counts it.
-      if (!coverage.covers(px, py)) continue;
+      if (!coverage.covers(px, py)) return;
       out.push_back({k, p, side ? Part::Kind::member : Part::Kind::sure, side, {}});
-      continue;
+      return;
     }
     Part part{k, p, Part::Kind::member, b.plane || side, {}};
     for (size_t i = 0; i < 3; ++i) {
@@ -120,7 +147,7 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
     }
     if (part.sides.empty()) part.free = true;
     out.push_back(std::move(part));
-  }
+  });
 }
 
 }  // namespace
@@ -134,10 +161,11 @@ std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int
   const std::vector<std::optional<TriangleSetup>> setups = setup_triangles(c, m, pool);
   const SharedEdges shared = shared_edge_groups(setups, thread_count(threads));
   const PixelBox viewport = viewport_box(c);
+  const PixelIndex index(pixels, c.fb_width);
   // Each triangle's parts on some thread, then put together in primitive order.
   std::vector<std::vector<Part>> parts(setups.size());
   pool.parallel_for(int(setups.size()), [&](int p) {
-    parts_of(c, m, bits, *setups[size_t(p)], p, shared[size_t(p)], pixels, viewport,
+    parts_of(c, m, bits, *setups[size_t(p)], p, shared[size_t(p)], index, viewport,
              parts[size_t(p)]);
   });
   // Per pixel, its shared edges numbered from 0 in the order they come.
