@@ -73,6 +73,36 @@ class PixelIndex {
   std::vector<size_t> order_;  // indices into pixels_, by window index
 };
 
+// Whether triangle p may reach a pixel asked for. A triangle inside the clip volume (nothing
+// clipped: no new vertex, no guard-band variant) lies in the viewport, and each vertex's freedom
+// is 2^-bits plus the rounding of a window position below 2^14 plus the viewport's magnitude
+// (freedom.cpp's snap_and_round), under 0.1 pixel for bits >= 4: it covers or classifies no
+// centre farther than 1 + ceil(1.5·0.1) = 2 pixels beyond the box of its window vertices (here
+// in double, off by far less than a pixel), so one 4 pixels beyond reaches none. Any other
+// triangle may reach anything. Its users share a shared edge's ends, so a shared edge near a
+// pixel keeps all its users: their sides stay as the whole case's.
+bool may_reach(const Case& c, int p, const PixelIndex& pixels) {
+  const Viewport& vp = c.viewport;
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (uint32_t k : c.triangles[size_t(p)]) {
+    const auto& v = c.vertices[k].clip;
+    if (!(v[3] > 0 && std::fabs(v[0]) <= v[3] && std::fabs(v[1]) <= v[3] &&
+          std::fabs(v[2]) <= v[3]))
+      return true;
+    const double x = vp.x + vp.width / 2.0 * (1 + double(v[0]) / v[3]);
+    const double y = vp.y + vp.height / 2.0 * (1 + double(v[1]) / v[3]);
+    lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x);
+    lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
+  }
+  constexpr double kReach = 4;
+  // Centres (px + 1/2, py + 1/2) within the box grown by kReach.
+  const int x0 = int(std::floor(lo[0] - kReach)), x1 = int(std::ceil(hi[0] + kReach));
+  bool near = false;
+  pixels.for_each_in_rows(int(std::floor(lo[1] - kReach)), int(std::ceil(hi[1] + kReach)),
+                          [&](size_t, int px, int) { near = near || (px >= x0 && px <= x1); });
+  return near;
+}
+
 // Triangle p's parts at the pixels it may reach.
 void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, int32_t p,
               const std::array<SharedEdge, 3>& shared, const PixelIndex& pixels,
@@ -158,15 +188,23 @@ std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int
   if (pixels.empty()) return out;
   const int bits = std::max(freedom_bits, 4);  // render.cpp's Settings::bits
   WorkerPool pool(thread_count(threads));
-  const std::vector<std::optional<TriangleSetup>> setups = setup_triangles(c, m, pool);
+  const PixelIndex index(pixels, c.fb_width);
+  // Only the triangles that may reach a pixel asked (most of a large case's are far from the
+  // few pixels traced), set up and judged, in primitive order.
+  std::vector<int> kept;
+  for (int p = 0; p < int(c.triangles.size()); ++p)
+    if (may_reach(c, p, index)) kept.push_back(p);
+  std::vector<std::optional<TriangleSetup>> setups(kept.size());
+  pool.parallel_for(int(kept.size()), [&](int k) {
+    setups[size_t(k)].emplace(setup_triangle(c, m, kept[size_t(k)]));
+  });
   const SharedEdges shared = shared_edge_groups(setups, thread_count(threads));
   const PixelBox viewport = viewport_box(c);
-  const PixelIndex index(pixels, c.fb_width);
   // Each triangle's parts on some thread, then put together in primitive order.
   std::vector<std::vector<Part>> parts(setups.size());
-  pool.parallel_for(int(setups.size()), [&](int p) {
-    parts_of(c, m, bits, *setups[size_t(p)], p, shared[size_t(p)], index, viewport,
-             parts[size_t(p)]);
+  pool.parallel_for(int(setups.size()), [&](int k) {
+    parts_of(c, m, bits, *setups[size_t(k)], kept[size_t(k)], shared[size_t(k)], index, viewport,
+             parts[size_t(k)]);
   });
   // Per pixel, its shared edges numbered from 0 in the order they come.
   std::vector<std::map<int32_t, uint32_t>> edge_names(pixels.size());
