@@ -239,8 +239,10 @@ struct scene {
   int index_count;          /* 3 per triangle */
   const GLuint *indices;
   const char *vertex_shader, *geometry_shader, *fragment_shader, *fragment_after_geometry;
-  /* The fragment-count pass, with its pass-through geometry shader for gl_PrimitiveID. */
+  /* The fragment-count pass, and the trace pass with its pass-through geometry shader for
+     gl_PrimitiveID. */
   const char *count_vertex_shader, *count_geometry_shader, *count_fragment_shader;
+  const char *trace_fragment_shader;
 };
 )C";
 
@@ -546,7 +548,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   const size_t pixels = (size_t)w * (size_t)h;
   const GLsizei stride = (GLsizei)((4 + s->component_count) * sizeof(float));
   GLenum formats[9], count_formats[2] = {GL_R32F, GL_RG32F};
-  GLuint program = 0, count_program = 0, framebuffer = 0, count_framebuffer = 0;
+  GLuint program = 0, count_program = 0, trace_program = 0, framebuffer = 0, count_framebuffer = 0;
   GLuint renderbuffers[10], count_renderbuffers[3], vertex_array = 0, buffers[2] = {0, 0};
   GLint dims[2] = {0, 0};
   float *rgba = NULL;
@@ -629,13 +631,15 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
      without the depth test: how many fragments each pixel received, which the primitive id
      cannot tell. Not through the depth test: which of two fragments of close depths passes it
      is free, and a later nearer triangle may hide either, so the count would depend on it.
-     Beside it each pixel's trace: the sums of p + 1 and of a hash of p over its fragments,
-     which tell whose fragments they were. */
-  count_program = make_program(s->count_vertex_shader,
-                               count_geometry_shader ? s->count_geometry_shader : NULL,
-                               s->count_fragment_shader);
+     Then, into a second attachment, each pixel's trace: the sums of p + 1 and of a hash of p
+     over its fragments, which tell whose fragments they were (gl_PrimitiveID through the
+     geometry shader where the first draw needs one). */
+  count_program = make_program(s->count_vertex_shader, NULL, s->count_fragment_shader);
   if (!count_program) goto done;
-  glUseProgram(count_program);
+  trace_program = make_program(s->count_vertex_shader,
+                               count_geometry_shader ? s->count_geometry_shader : NULL,
+                               s->trace_fragment_shader);
+  if (!trace_program) goto done;
   if (!(count_framebuffer = make_framebuffer(w, h, 2, count_formats, count_renderbuffers)))
     goto done;
   glClearBufferfv(GL_COLOR, 0, zero);
@@ -644,7 +648,12 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
-  glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
+  for (k = 0; k < 2; ++k) {
+    const GLenum target = GL_COLOR_ATTACHMENT0 + k; /* each program's location 0 */
+    glDrawBuffers(1, &target);
+    glUseProgram(k == 0 ? count_program : trace_program);
+    glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
+  }
   glDisable(GL_BLEND);
   if (!gl_ok("counting fragments")) goto done;
 
@@ -692,6 +701,7 @@ done:
   }
   if (program) glDeleteProgram(program);
   if (count_program) glDeleteProgram(count_program);
+  if (trace_program) glDeleteProgram(trace_program);
   return ok;
 }
 
@@ -1205,7 +1215,8 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
   out += "    .fragment_after_geometry = " + prefix + "_fragment_after_geometry,\n";
   out += "    .count_vertex_shader = count_vertex_shader,\n";
   out += "    .count_geometry_shader = count_geometry_shader,\n";
-  out += "    .count_fragment_shader = count_fragment_shader};\n\n";
+  out += "    .count_fragment_shader = count_fragment_shader,\n";
+  out += "    .trace_fragment_shader = trace_fragment_shader};\n\n";
 }
 
 // Throws std::invalid_argument unless `e` is an expectation of case `c` the C file can embed.
@@ -1341,6 +1352,8 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
       "static const char count_geometry_shader[] =\n    " + c_string(setup.count_geometry) + ";\n";
   out +=
       "static const char count_fragment_shader[] =\n    " + c_string(setup.count_fragment) + ";\n";
+  out +=
+      "static const char trace_fragment_shader[] =\n    " + c_string(setup.trace_fragment) + ";\n";
   write_scene(out, c, setup.shaders, "case", "THE_CASE", "CASE_NAME");
   out +=
       "/* The harness's first draw: one triangle over a 4x4 framebuffer, one flat float of 1; "

@@ -52,6 +52,7 @@ struct CReproducerSetup {
   Case first_draw;
   ReproducerShaders first_draw_shaders;
   std::string count_vertex, count_geometry, count_fragment;  // the fragment-count pass's
+  std::string trace_fragment;                                // the fragment-trace pass's
   // Where the edge bits may excuse coverage, the traces a conforming implementation may give
   // (admitted() of ref::fragment_choices there), sorted by pixel: the C file judges GL's trace
   // against them as compare/ does (compare::TraceSource). A pixel not listed is not judged.

@@ -198,43 +198,37 @@ void Framebuffer::read_fragment_counts(Frame& frame, int y0) {
   });
 }
 
-std::vector<std::optional<FragmentTrace>> Framebuffer::read_fragment_traces(
-    const std::vector<size_t>& pixels) {
-  std::vector<std::optional<FragmentTrace>> out(pixels.size());
+std::vector<float> Framebuffer::read_at(const std::vector<size_t>& pixels, GLenum attachment,
+                                        GLenum format, int channels) {
+  std::vector<float> out(pixels.size() * size_t(channels), NAN);
   if (width_ <= 0 || height_ <= 0 || pixels.empty()) return out;
-  const size_t w = size_t(width_), total = w * size_t(height_);
+  const size_t w = size_t(width_), total = w * size_t(height_), n = size_t(channels);
   // The rows asked, read as one block where they are many (a glReadPixels is a round trip
   // through the driver: a thousand rows one by one took longer than the block), else each row's
   // span between its first and last pixel.
   std::vector<size_t> order;
   for (size_t k = 0; k < pixels.size(); ++k)
     if (pixels[k] < total) order.push_back(k);
+  if (order.empty()) return out;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return pixels[a] < pixels[b]; });
   size_t rows = 0;
   for (size_t k = 0; k < order.size(); ++k)
     rows += k == 0 || pixels[order[k]] / w != pixels[order[k - 1]] / w;
   constexpr size_t kRowsOneByOne = 16;
-  std::vector<float> counts, sums;
+  std::vector<float> block;
   gl_.PixelStorei(GL_PACK_ALIGNMENT, 1);
-  // Reads [x0, x0 + n) of rows [y0, y0 + m) into counts and sums, then takes the traces of
-  // order[first, end) from them.
-  const auto read = [&](int x0, int n, int y0, int m, size_t first, size_t end) {
-    counts.resize(size_t(n) * size_t(m)), sums.resize(2 * size_t(n) * size_t(m));
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT0);
-    gl_.ReadPixels(x0, y0, n, m, GL_RED, GL_FLOAT, counts.data());
-    gl_.ReadBuffer(GL_COLOR_ATTACHMENT1);
-    gl_.ReadPixels(x0, y0, n, m, GL_RG, GL_FLOAT, sums.data());
+  gl_.ReadBuffer(attachment);
+  // Reads [x0, x0 + width) of rows [y0, y0 + height), then takes order[first, end) from it.
+  const auto read = [&](int x0, int width, int y0, int height, size_t first, size_t end) {
+    block.resize(size_t(width) * size_t(height) * n);
+    gl_.ReadPixels(x0, y0, width, height, format, GL_FLOAT, block.data());
     for (size_t k = first; k < end; ++k) {
       const size_t i = pixels[order[k]];
-      const size_t j = (i / w - size_t(y0)) * size_t(n) + (i % w - size_t(x0));
-      const float count = counts[j], id_sum = sums[2 * j], hash_sum = sums[2 * j + 1];
-      // Integers below 2^24 each (a NaN fails every test), as exact float sums are.
-      const auto whole = [](float v) { return v >= 0 && v < 0x1p24f && v == std::floor(v); };
-      if (!whole(count) || !whole(id_sum) || !whole(hash_sum)) continue;
-      out[order[k]] = FragmentTrace{uint32_t(count), uint32_t(id_sum), uint32_t(hash_sum)};
+      const size_t j = (i / w - size_t(y0)) * size_t(width) + (i % w - size_t(x0));
+      for (size_t c = 0; c < n; ++c)
+        out[order[k] * n + c] = block[j * n + c];
     }
   };
-  if (order.empty()) return out;
   if (rows > kRowsOneByOne) {
     const int y0 = int(pixels[order.front()] / w), y1 = int(pixels[order.back()] / w);
     read(0, width_, y0, y1 - y0 + 1, 0, order.size());

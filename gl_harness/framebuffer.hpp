@@ -78,11 +78,13 @@ class Framebuffer {
   // The fragment-count pass's R32F attachment 0 into frame.fragments (resized to the pixel
   // count), each count clamped to 0 .. 65535.
   void read_fragment_counts(Frame& frame, int y0 = 0);
-  // The fragment-count pass's traces at `pixels` (window indices x + y·width of the bound
-  // framebuffer): the count from attachment 0, the two sums from the RG32F attachment 1
-  // (core/fragment_trace.hpp); nothing for a pixel whose sums are not exact (not integers below
-  // 2^24) or not in the framebuffer. One glReadPixels of each attachment per row asked for.
-  std::vector<std::optional<FragmentTrace>> read_fragment_traces(const std::vector<size_t>& pixels);
+  // The values of colour attachment `attachment` (GL_COLOR_ATTACHMENTk) at `pixels` (window
+  // indices x + y·width of the bound framebuffer), `channels` floats each (read as `format`,
+  // GL_RED or GL_RG), in the pixels' order; NaN for a pixel outside the framebuffer. One
+  // glReadPixels per row asked, or one of every row between the first and last where the rows
+  // are many.
+  std::vector<float> read_at(const std::vector<size_t>& pixels, GLenum attachment, GLenum format,
+                             int channels);
   // Binds (GL_FRAMEBUFFER) the FBO the last bind() made, as it is: to read it again.
   void use() const;
 

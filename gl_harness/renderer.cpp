@@ -3,6 +3,7 @@
 // its vertex data, the fragment-count pass, the first draw, and create_renderer.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -79,6 +80,7 @@ class GlRenderer final : public Renderer {
         gl_(*context_),
         framebuffer_(gl_, t.depth_format),
         count_framebuffer_(gl_, t.depth_format),
+        trace_framebuffer_(gl_, t.depth_format),
         set_provoking_vertex_(t.set_provoking_vertex) {
     auto string = [this](GLenum name) {
       const GLubyte* s = gl_.GetString(name);
@@ -116,10 +118,12 @@ class GlRenderer final : public Renderer {
       context_->make_current();
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
-      for (GLuint program : count_programs_)
+      if (count_program_) gl_.DeleteProgram(count_program_);
+      for (GLuint program : trace_programs_)
         if (program) gl_.DeleteProgram(program);
       framebuffer_.release();
       count_framebuffer_.release();
+      trace_framebuffer_.release();
     } catch (...) {
       // Tearing down: the context goes anyway.
     }
@@ -137,7 +141,7 @@ class GlRenderer final : public Renderer {
   }
 
   void draw(const Case& c) override {
-    drawn_ = false;
+    drawn_ = traced_ = false;
     validate(c);
     context_->make_current();
     while (gl_.GetError() != GL_NO_ERROR) {
@@ -172,9 +176,22 @@ class GlRenderer final : public Renderer {
       const Case& c, const std::vector<size_t>& pixels) override {
     if (!drawn_) throw RenderError("case '" + c.name + "': traces read before it was drawn");
     context_->make_current();
+    if (!traced_) trace_fragments(c);
+    traced_ = true;
     count_framebuffer_.use();
-    auto traces = count_framebuffer_.read_fragment_traces(pixels);
+    const std::vector<float> counts =
+        count_framebuffer_.read_at(pixels, GL_COLOR_ATTACHMENT0, GL_RED, 1);
+    trace_framebuffer_.use();
+    const std::vector<float> sums =
+        trace_framebuffer_.read_at(pixels, GL_COLOR_ATTACHMENT0, GL_RG, 2);
     check_error(c, "reading fragment traces");
+    std::vector<std::optional<FragmentTrace>> traces(pixels.size());
+    // Integers below 2^24 each (a NaN fails every test), as exact float sums are.
+    const auto whole = [](float v) { return v >= 0 && v < 0x1p24f && v == std::floor(v); };
+    for (size_t k = 0; k < pixels.size(); ++k)
+      if (whole(counts[k]) && whole(sums[2 * k]) && whole(sums[2 * k + 1]))
+        traces[k] =
+            FragmentTrace{uint32_t(counts[k]), uint32_t(sums[2 * k]), uint32_t(sums[2 * k + 1])};
     return traces;
   }
 
@@ -203,31 +220,16 @@ class GlRenderer final : public Renderer {
   // triangle). Not through the depth test, because which of two fragments whose depths are
   // within rounding of each other passes it is free, and a later nearer triangle may then hide
   // either: the count would depend on that order (core/frame.hpp). Culling and clipping stay.
-  // Beside the count, each pixel's fragment trace (core/fragment_trace.hpp), read only where
-  // asked (fragment_traces). gl_PrimitiveID through the pass-through geometry shader where
-  // this driver needs it, whatever the case's work_arounds say: the pass is the harness's own
-  // instrument, not the case's draw.
   void count_fragments(const Case& c) {
-    GLuint& program = count_programs_[info_.primitive_id_from_geometry_shader ? 1 : 0];
-    if (!program) {
-      std::vector<GLuint> shaders;
-      try {
-        shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c));
-        if (info_.primitive_id_from_geometry_shader)
-          shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
-        shaders.push_back(compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c));
-      } catch (...) {
-        for (GLuint shader : shaders)
-          gl_.DeleteShader(shader);
-        throw;
-      }
-      program = link(shaders, c);
+    if (!count_program_) {
+      const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
+      const GLuint fs = compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c);
+      count_program_ = link({vs, fs}, c);
     }
-    gl_.UseProgram(program);
-    count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F, GL_RG32F});
+    gl_.UseProgram(count_program_);
+    count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
     const GLfloat zero[4] = {0, 0, 0, 0};
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
-    gl_.ClearBufferfv(GL_COLOR, 1, zero);
     gl_.Disable(GL_DEPTH_TEST);  // set_state enables it again for the next case
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
@@ -235,6 +237,42 @@ class GlRenderer final : public Renderer {
     gl_.DrawElements(GL_TRIANGLES, GLsizei(c.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
     gl_.Disable(GL_BLEND);
     check_error(c, "counting fragments");
+  }
+
+  // The count pass again, once a case and only where traces are asked (a case's coverage
+  // differs inside a band: seldom), each fragment adding its trace's terms (p + 1, the hash of
+  // p) instead of 1, into a framebuffer of its own: the case's state (culling, viewport) is
+  // still set, its vertices are given again. gl_PrimitiveID through the pass-through geometry
+  // shader where this driver needs it, whatever the case's work_arounds say: the pass is the
+  // harness's own instrument, not the case's draw.
+  void trace_fragments(const Case& c) {
+    GLuint& program = trace_programs_[info_.primitive_id_from_geometry_shader ? 1 : 0];
+    if (!program) {
+      std::vector<GLuint> shaders;
+      try {
+        shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c));
+        if (info_.primitive_id_from_geometry_shader)
+          shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
+        shaders.push_back(compile(GL_FRAGMENT_SHADER, trace_fragment_shader_source(), c));
+      } catch (...) {
+        for (GLuint shader : shaders)
+          gl_.DeleteShader(shader);
+        throw;
+      }
+      program = link(shaders, c);
+    }
+    CaseObjects objects(gl_);
+    gl_.UseProgram(program);
+    trace_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_RG32F});
+    const GLfloat zero[4] = {0, 0, 0, 0};
+    gl_.ClearBufferfv(GL_COLOR, 0, zero);
+    gl_.Disable(GL_DEPTH_TEST);
+    gl_.Enable(GL_BLEND);
+    gl_.BlendEquation(GL_FUNC_ADD);
+    gl_.BlendFunc(GL_ONE, GL_ONE);
+    draw(c, objects);
+    gl_.Disable(GL_BLEND);
+    check_error(c, "tracing fragments");
   }
 
   GLint integer(GLenum name) const {
@@ -466,10 +504,12 @@ class GlRenderer final : public Renderer {
   GlInfo info_;
   std::map<std::string, GLuint> programs_;
   // The case's (case_colour_formats) and the fragment-count pass's (R32F).
-  Framebuffer framebuffer_, count_framebuffer_;
+  Framebuffer framebuffer_, count_framebuffer_, trace_framebuffer_;
   bool drawn_ = false;  // both hold the last draw()'s case
-  // The fragment-count pass's programs: without, and with the pass-through geometry shader.
-  std::array<GLuint, 2> count_programs_{};
+  GLuint count_program_ = 0;
+  // The fragment-trace pass's programs: without, and with the pass-through geometry shader.
+  std::array<GLuint, 2> trace_programs_{};
+  bool traced_ = false;  // the trace pass drawn for the case drawn last
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
   bool set_provoking_vertex_ = true;  // Target::set_provoking_vertex

@@ -120,13 +120,17 @@ std::string count_geometry_shader_source() {
 }
 
 std::string count_fragment_shader_source() {
+  return "#version 330 core\n"
+         "layout(location = 0) out float o_count;\n"
+         "void main() { o_count = 1.0; }\n";
+}
+
+std::string trace_fragment_shader_source() {
   // fragment_hash (core/fragment_trace.hpp) in uint arithmetic, which wraps modulo 2^32. Both
   // terms are integers below 2^24, exact in float32.
   return "#version 330 core\n"
-         "layout(location = 0) out float o_count;\n"
-         "layout(location = 1) out vec2 o_trace;\n"
+         "layout(location = 0) out vec2 o_trace;\n"
          "void main() {\n"
-         "  o_count = 1.0;\n"
          "  uint x = uint(gl_PrimitiveID);\n"
          "  x ^= x >> 16u;\n"
          "  x *= 0x7feb352du;\n"

@@ -48,13 +48,17 @@ std::string geometry_shader_source(const Case& c);
 std::string fragment_shader_source(const Case& c, bool after_geometry_shader);
 
 // The fragment-count pass's program, the same for every case: positions only (location 0
-// `a_clip`), and every fragment writes 1.0 to location 0 `o_count` and its trace's sums'
-// terms, p + 1 and fragment_hash(p) for p = gl_PrimitiveID (core/fragment_trace.hpp), to
-// location 1 `o_trace`, which additive blending sums per pixel. `after_geometry_shader`: with
-// count_geometry_shader_source's pass-through geometry shader, which supplies gl_PrimitiveID
-// where a driver needs one (GlInfo::primitive_id_from_geometry_shader).
+// `a_clip`), and every fragment writes 1.0 to location 0 `o_count`, which additive blending
+// sums per pixel.
 std::string count_vertex_shader_source();
-std::string count_geometry_shader_source();
 std::string count_fragment_shader_source();
+// The fragment-trace pass's (drawn only where traces are asked, Renderer::fragment_traces): the
+// count pass's vertex shader, then every fragment writes its trace's terms, p + 1 and
+// fragment_hash(p) for p = gl_PrimitiveID (core/fragment_trace.hpp), to location 0 `o_trace`,
+// which additive blending sums per pixel; through count_geometry_shader_source's pass-through
+// geometry shader where a driver needs one for gl_PrimitiveID
+// (GlInfo::primitive_id_from_geometry_shader).
+std::string count_geometry_shader_source();
+std::string trace_fragment_shader_source();
 
 }  // namespace glrc::gl

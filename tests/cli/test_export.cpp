@@ -310,6 +310,7 @@ TEST(ExportLibrary, EmbedsTheHarnessShadersAndExactFloats) {
   setup.count_vertex = glrc::gl::count_vertex_shader_source();
   setup.count_geometry = glrc::gl::count_geometry_shader_source();
   setup.count_fragment = glrc::gl::count_fragment_shader_source();
+  setup.trace_fragment = glrc::gl::trace_fragment_shader_source();
   setup.file_name = "repro.c";
   setup.exported_by = "test";
   setup.model = o.model.describe();

@@ -42,10 +42,10 @@ size_t occurrences(const std::string& text, const std::string& what) {
 
 TEST(Shaders, EveryShaderIsGlsl330Core) {
   const Case c = three_varyings();
-  for (const std::string& s :
-       {vertex_shader_source(c), geometry_shader_source(c), fragment_shader_source(c, false),
-        fragment_shader_source(c, true), count_vertex_shader_source(),
-        count_geometry_shader_source(), count_fragment_shader_source()})
+  for (const std::string& s : {vertex_shader_source(c), geometry_shader_source(c),
+                               fragment_shader_source(c, false), fragment_shader_source(c, true),
+                               count_vertex_shader_source(), count_geometry_shader_source(),
+                               count_fragment_shader_source(), trace_fragment_shader_source()})
     EXPECT_EQ(s.rfind("#version 330 core\n", 0), 0u) << s;
 }
 
@@ -134,8 +134,9 @@ TEST(Shaders, CountPassTakesPositionsAndWritesOnePerFragment) {
   EXPECT_TRUE(has(fs, "layout(location = 0) out float o_count;\n")) << fs;
   EXPECT_TRUE(has(fs, "o_count = 1.0;")) << fs;
   // The trace's terms: p + 1, and the hash of p (fragment_hash, in uint arithmetic).
-  EXPECT_TRUE(has(fs, "layout(location = 1) out vec2 o_trace;\n")) << fs;
-  EXPECT_TRUE(has(fs, "float(gl_PrimitiveID + 1)")) << fs;
+  const std::string trace = trace_fragment_shader_source();
+  EXPECT_TRUE(has(trace, "layout(location = 0) out vec2 o_trace;\n")) << trace;
+  EXPECT_TRUE(has(trace, "float(gl_PrimitiveID + 1)")) << trace;
   const std::string gs = count_geometry_shader_source();
   EXPECT_TRUE(has(gs, "gl_PrimitiveID = gl_PrimitiveIDIn;")) << gs;
 }
