@@ -5,7 +5,8 @@
 // The C file draws the case exactly as gl_harness/ does (the harness's own GLSL, clip
 // coordinates to gl_Position untouched, one RGBA32F attachment per varying, an R32I
 // gl_PrimitiveID attachment, 32-bit float depth, the case's states, then the fragment-count pass
-// with additive blending into R32F under the same depth test), reads the frame back with
+// with additive blending into R32F without the depth test, and the fragment-trace pass beside
+// it), reads the frame back with
 // glReadPixels, and judges every pixel as compare/ does: coverage by compare::coverage_label's
 // rules over the embedded edge bits, fragment counts where the reference requires them (gaps
 // and double hits on shared edges), and depth and every component where GL's primitive is the
