@@ -115,9 +115,11 @@ class Renderer {
     return read_rows(c, y0, rows);
   }
   // The fragment traces (core/fragment_trace.hpp) of the case last drawn (render() or draw()),
-  // at `pixels` (window indices x + y·fb_width), in their order, from the same counting pass as
-  // its fragment counts: nothing for a pixel whose sums were not exact in float32, or from a
-  // renderer that keeps no traces. This default (renderers that are no GL: tests) keeps none.
+  // at `pixels` (window indices x + y·fb_width), in their order: its fragment counts, and the
+  // sums of a trace pass drawn the first time a case is asked (the count pass again, each
+  // fragment adding p + 1 and the hash of p); nothing for a pixel whose sums were not exact in
+  // float32, or from a renderer that keeps no traces. Throws RenderError before a draw. This
+  // default (renderers that are no GL: tests) keeps none.
   virtual std::vector<std::optional<FragmentTrace>> fragment_traces(
       const Case& c, const std::vector<size_t>& pixels) {
     (void)c;
