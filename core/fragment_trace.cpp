@@ -11,7 +11,7 @@ std::optional<std::vector<FragmentTrace>> admitted(const FragmentChoices& choice
   uint64_t sides = uint64_t(1) << choices.edges;
   size_t free = 0;
   for (const FragmentChoices::Member& m : choices.members)
-    free += m.free;
+    free += size_t(m.free) + size_t(m.folds);
   // (free first: a shift by 64 or more, or one that carries bits out, would say nothing.)
   if (free > 12 || sides > kMostTraceChoices || (sides << free) > kMostTraceChoices)
     return std::nullopt;
@@ -30,6 +30,7 @@ std::optional<std::vector<FragmentTrace>> admitted(const FragmentChoices& choice
         optional.push_back(fragment_trace(m.primitive));
       else
         base += fragment_trace(m.primitive);
+      if (m.folds) optional.push_back(fragment_trace(m.primitive));  // a second cover
     }
     for (uint64_t subset = 0; subset < (uint64_t(1) << optional.size()); ++subset) {
       FragmentTrace ids = base;

@@ -66,6 +66,10 @@ struct FragmentChoices {
     bool free = false;
     // (index into `edges`, side: true for the edge's first side).
     std::vector<std::pair<uint32_t, bool>> sides;
+    // A clipped polygon's: where it covers, it may cover twice (its fan folding within the
+    // clipper's rounding). Twice at most is assumed, not derived: a third cover would need two
+    // folded fan triangles over one centre.
+    bool folds = false;
   };
   FragmentTrace sure;
   std::vector<Member> members;

@@ -14,7 +14,7 @@
 //     the same tie rule from opposite normals), so the side is one choice for all of them.
 // Where that cannot say how often one primitive covers the centre, nothing is decided
 // (FragmentChoices::anything): a vertex through the eye, or a clipped polygon that may turn
-// over (its fan triangles may fold onto each other).
+// over. A clipped polygon in its own bands may cover a centre twice (its fan folding).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -43,6 +43,7 @@ struct Part {
   enum class Kind { sure, member, anything } kind = Kind::sure;
   bool free = false;
   std::vector<std::pair<int32_t, bool>> sides;  // (shared edge's group, first side)
+  bool folds = false;                           // FragmentChoices::Member::folds
 };
 
 // The pixels asked for (window indices x + y·width) in window order, to find those of a run of
@@ -167,7 +168,11 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
       out.push_back({k, p, side ? Part::Kind::member : Part::Kind::sure, side, {}});
       return;
     }
-    Part part{k, p, Part::Kind::member, b.plane || side, {}};
+    // A clipped polygon is drawn as a fan of triangles from vertices the clipper rounds: a thin
+    // one may turn non-convex within that rounding, and its fan then fold, covering a centre
+    // in its bands twice, though the triangle itself keeps its orientation (a fuzz campaign's
+    // sliver cut by y = -w: llvmpipe gives 2 fragments of it beside two of its edges).
+    Part part{k, p, Part::Kind::member, b.plane || side, {}, freedom.generations() > 0};
     for (size_t i = 0; i < 3; ++i) {
       if (!(b.edges & (1u << i))) continue;
       if (shared[i].shared())
@@ -219,7 +224,7 @@ std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int
           f.sure += fragment_trace(part.primitive);
           break;
         case Part::Kind::member: {
-          FragmentChoices::Member member{part.primitive, part.free, {}};
+          FragmentChoices::Member member{part.primitive, part.free, {}, part.folds};
           for (const auto& [group, first_side] : part.sides) {
             auto [it, added] = edge_names[part.pixel].emplace(group, f.edges);
             if (added) ++f.edges;

@@ -125,6 +125,26 @@ TEST(FragmentChoices, ATriangleThatMayTurnOverIsFreeAndTheRestStayDecided) {
   EXPECT_TRUE(contains(*traces, fragment_trace(0)));
 }
 
+TEST(FragmentChoices, AClippedPolygonMayCoverTwiceInItsBands) {
+  // A thin triangle the y = -w plane cuts (found by `fuzz --generator sizes --seed 91` on
+  // llvmpipe): its clipped polygon's fan folds within the clipper's rounding, and llvmpipe
+  // covers the centre of (6, 21), in the bands of two of its edges, twice.
+  Case c = base_case(55, 61);
+  c.vertices = {{{-0.99731445f, 0.18984985f, 0, 1}, {}},
+                {{-0.20507812f, -1.4545898f, 0, 1}, {}},
+                {{-0.4701004f, -0.90405273f, 0, 1}, {}}};
+  c.triangles = {{0, 1, 2}};
+  const std::vector<FragmentChoices> choices = fragment_choices(c, Model{}, 8, {21 * 55 + 6});
+  const auto traces = admitted(choices[0]);
+  ASSERT_TRUE(traces.has_value());
+  FragmentTrace twice = fragment_trace(0);
+  twice += fragment_trace(0);
+  EXPECT_TRUE(contains(*traces, FragmentTrace{}));
+  EXPECT_TRUE(contains(*traces, fragment_trace(0)));
+  EXPECT_TRUE(contains(*traces, twice));
+  EXPECT_EQ(traces->size(), 3u);
+}
+
 TEST(FragmentChoices, ReachingTheEyeDecidesNothing) {
   // A triangle whose plane holds the eye (vertex 2 is -1/2 times vertex 0 in x, y and w):
   // every centre of the viewport may be covered any number of times.
