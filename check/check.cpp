@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <future>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "compare/compare.hpp"
+#include "ref/mesh.hpp"
 #include "ref/reference.hpp"
 
 namespace glrc::check {
@@ -34,31 +36,48 @@ bool deferral_pays(const Case& c) {
   return c.component_count() > 0 && pixels >= 4096.0 * double(c.triangles.size());
 }
 
+namespace {
+
+// expectation_for(), its triangles' set-up handed back in `setup` (none with a driver model).
+Expectation expectation_and_setup(const Case& c, const CheckOptions& o, int reported_bits,
+                                  Expectation storage,
+                                  std::shared_ptr<const ref::CaseSetup>& setup) {
+  const int bits = freedom_bits(o, reported_bits);
+  if (o.driver_model) {
+    ref::Reference r = ref::render(c, o.model, bits, o.threads, std::move(storage));
+    // The driver model replaces the frame only: the edge bits still name ties and bands.
+    r.frame = driver_models::render(c, *o.driver_model);
+    return r;
+  }
+  if (o.deferred_allowance && deferral_pays(c))
+    return ref::render_deferred(c, o.model, bits, o.threads, std::move(storage), setup);
+  return ref::render(c, o.model, bits, o.threads, std::move(storage), setup);
+}
+
+}  // namespace
+
 Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_bits,
                             Expectation storage) {
-  if (o.deferred_allowance && !o.driver_model && deferral_pays(c))
-    return ref::render_deferred(c, o.model, freedom_bits(o, reported_bits), o.threads,
-                                std::move(storage));
-  ref::Reference r =
-      ref::render(c, o.model, freedom_bits(o, reported_bits), o.threads, std::move(storage));
-  // The driver model replaces the frame only: the edge bits still name ties and bands.
-  if (o.driver_model) r.frame = driver_models::render(c, *o.driver_model);
-  return r;
+  std::shared_ptr<const ref::CaseSetup> setup;
+  return expectation_and_setup(c, o, reported_bits, std::move(storage), setup);
 }
 
 // What judges the counts the edge bits excuse (compare::TraceSource): GL's traces from the
 // renderer's counting pass of the case it drew last, the reference's choices from its set-up.
 // None against a driver model, whose frame is matched bit for bit or by fixed ULPs.
 std::optional<compare::TraceSource> trace_source(const Case& c, gl::Renderer& renderer,
-                                                 const CheckOptions& o, int reported) {
+                                                 const CheckOptions& o, int reported,
+                                                 std::shared_ptr<const ref::CaseSetup> setup) {
   if (o.driver_model) return std::nullopt;
-  return compare::TraceSource{[&c, &renderer](const std::vector<size_t>& pixels) {
-                                return renderer.fragment_traces(c, pixels);
-                              },
-                              [&c, &o, reported](const std::vector<size_t>& pixels) {
-                                return ref::fragment_choices(c, o.model, freedom_bits(o, reported),
-                                                             pixels, o.threads);
-                              }};
+  return compare::TraceSource{
+      [&c, &renderer](const std::vector<size_t>& pixels) {
+        return renderer.fragment_traces(c, pixels);
+      },
+      [&c, &o, reported, setup = std::move(setup)](const std::vector<size_t>& pixels) {
+        const int bits = freedom_bits(o, reported);
+        return setup ? ref::fragment_choices(c, o.model, bits, pixels, o.threads, *setup)
+                     : ref::fragment_choices(c, o.model, bits, pixels, o.threads);
+      }};
 }
 
 std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& expected,
@@ -226,11 +245,13 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
   // The reference is drawn while GL draws: it needs no GL, and a driver's first draw of a case
   // spends most of its time compiling shaders on one core (llvmpipe's LLVM), not drawing.
   std::future<Expectation> reference;
+  // The reference's set-up of the triangles, kept for the traces' choices (trace_source).
+  std::shared_ptr<const ref::CaseSetup> setup;
   if (streamed)
     last = {};
   else
     reference = std::async(std::launch::async, [&, storage = std::move(last.reference)]() mutable {
-      return expectation_for(c, o, reported, std::move(storage));
+      return expectation_and_setup(c, o, reported, std::move(storage), setup);
     });
   try {
     if (streamed) {
@@ -245,7 +266,8 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
     std::future<std::string> gl_digest =
         std::async(std::launch::async, [&] { return ref::digest(out.gl); });
     out.reference = reference.get();
-    const std::optional<compare::TraceSource> traces = trace_source(c, renderer, o, reported);
+    const std::optional<compare::TraceSource> traces =
+        trace_source(c, renderer, o, reported, std::move(setup));
     out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported),
                                   o.threads, traces ? &*traces : nullptr);
     out.result.gl_digest = gl_digest.get();

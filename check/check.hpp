@@ -4,6 +4,7 @@
 // tests all judge a case through this, so a verdict is decided in one place.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,10 @@
 #include "core/result.hpp"
 #include "driver_models/driver_models.hpp"
 #include "gl_harness/gl_harness.hpp"
+
+namespace glrc::ref {
+struct CaseSetup;  // ref/mesh.hpp
+}  // namespace glrc::ref
 
 namespace glrc::check {
 
@@ -101,9 +106,11 @@ std::string model_text(const CheckOptions& o);
 // by `renderer` (its traces are of the case it drew last): GL's traces from the renderer's
 // counting pass, the reference's choices from ref::fragment_choices under o's model and the
 // freedom of `reported_bits`. None with a driver model, whose frame is matched bit for bit or by
-// fixed ULPs. Holds references to c, renderer and o.
+// fixed ULPs. Holds references to c, renderer and o. `setup`: where given, the reference's own
+// set-up of c's triangles under o.model (ref::render's), reused instead of set up again.
 std::optional<compare::TraceSource> trace_source(const Case& c, gl::Renderer& renderer,
-                                                 const CheckOptions& o, int reported_bits);
+                                                 const CheckOptions& o, int reported_bits,
+                                                 std::shared_ptr<const ref::CaseSetup> setup = {});
 
 // For a reproducer of case c drawn to `expected` (expectation_for's, no driver model): at every
 // pixel whose coverage its edge bits may excuse (edge::snapping, edge::unstable, edge::shared), the

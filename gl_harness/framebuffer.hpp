@@ -81,8 +81,8 @@ class Framebuffer {
   // The values of colour attachment `attachment` (GL_COLOR_ATTACHMENTk) at `pixels` (window
   // indices x + y·width of the bound framebuffer), `channels` floats each (read as `format`,
   // GL_RED or GL_RG), in the pixels' order; NaN for a pixel outside the framebuffer. One
-  // glReadPixels per row asked, or one of every row between the first and last where the rows
-  // are many.
+  // glReadPixels per run of rows asked, of the columns the run's pixels span, each at most
+  // 2^17 floats.
   std::vector<float> read_at(const std::vector<size_t>& pixels, GLenum attachment, GLenum format,
                              int channels);
   // Binds (GL_FRAMEBUFFER) the FBO the last bind() made, as it is: to read it again.

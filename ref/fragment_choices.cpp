@@ -21,6 +21,8 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -187,29 +189,46 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
 
 }  // namespace
 
-std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
-                                              const std::vector<size_t>& pixels, int threads) {
+namespace {
+
+// fragment_choices() from `given`, render()'s set-up of the whole case, or where null from the
+// triangles that may reach a pixel asked, set up here.
+std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_bits,
+                                    const std::vector<size_t>& pixels, int threads,
+                                    const CaseSetup* given) {
   std::vector<FragmentChoices> out(pixels.size());
   if (pixels.empty()) return out;
+  if (given && given->triangles.size() != c.triangles.size())
+    throw std::invalid_argument("fragment_choices: a set-up of " +
+                                std::to_string(given->triangles.size()) +
+                                " triangles for a case of " + std::to_string(c.triangles.size()));
   const int bits = std::max(freedom_bits, 4);  // render.cpp's Settings::bits
   WorkerPool pool(thread_count(threads));
   const PixelIndex index(pixels, c.fb_width);
   // Only the triangles that may reach a pixel asked (most of a large case's are far from the
-  // few pixels traced), set up and judged, in primitive order.
+  // few pixels traced), judged in primitive order; set up here only without render()'s.
   std::vector<int> kept;
   for (int p = 0; p < int(c.triangles.size()); ++p)
     if (may_reach(c, p, index)) kept.push_back(p);
-  std::vector<std::optional<TriangleSetup>> setups(kept.size());
-  pool.parallel_for(int(kept.size()), [&](int k) {
-    setups[size_t(k)].emplace(setup_triangle(c, m, kept[size_t(k)]));
-  });
-  const SharedEdges shared = shared_edge_groups(setups, thread_count(threads));
+  std::optional<CaseSetup> own;
+  if (!given) {
+    own.emplace();
+    own->triangles = setup_triangles(c, m, kept, pool);
+    own->shared = shared_edge_groups(own->triangles, thread_count(threads));
+    own->threads = threads;
+  }
+  const auto setup_of = [&](size_t k) -> const TriangleSetup& {
+    return given ? *given->triangles[size_t(kept[k])] : *own->triangles[k];
+  };
+  const auto shared_of = [&](size_t k) -> const std::array<SharedEdge, 3>& {
+    return given ? given->shared[size_t(kept[k])] : own->shared[k];
+  };
   const PixelBox viewport = viewport_box(c);
   // Each triangle's parts on some thread, then put together in primitive order.
-  std::vector<std::vector<Part>> parts(setups.size());
-  pool.parallel_for(int(setups.size()), [&](int k) {
-    parts_of(c, m, bits, *setups[size_t(k)], kept[size_t(k)], shared[size_t(k)], index, viewport,
-             parts[size_t(k)]);
+  std::vector<std::vector<Part>> parts(kept.size());
+  pool.parallel_for(int(kept.size()), [&](int k) {
+    parts_of(c, m, bits, setup_of(size_t(k)), kept[size_t(k)], shared_of(size_t(k)), index,
+             viewport, parts[size_t(k)]);
   });
   // Per pixel, its shared edges numbered from 0 in the order they come.
   std::vector<std::map<int32_t, uint32_t>> edge_names(pixels.size());
@@ -236,6 +255,19 @@ std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int
       }
     }
   return out;
+}
+
+}  // namespace
+
+std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
+                                              const std::vector<size_t>& pixels, int threads) {
+  return choose(c, m, freedom_bits, pixels, threads, nullptr);
+}
+
+std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
+                                              const std::vector<size_t>& pixels, int threads,
+                                              const CaseSetup& setup) {
+  return choose(c, m, freedom_bits, pixels, threads, &setup);
 }
 
 }  // namespace glrc::ref

@@ -173,4 +173,9 @@ std::vector<std::array<bool, 3>> shared_edges(
   return flags(shared_edge_groups(triangles, threads));
 }
 
+CaseSetup::~CaseSetup() {
+  WorkerPool pool(thread_count(threads));
+  pool.parallel_for(int(triangles.size()), [&](int k) { triangles[size_t(k)].reset(); });
+}
+
 }  // namespace glrc::ref

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -36,5 +37,20 @@ using SharedEdges = std::vector<std::array<SharedEdge, 3>>;
 // shared_edges(), naming each shared edge and side (ref/fragment_choices.cpp).
 SharedEdges shared_edge_groups(const std::vector<std::optional<TriangleSetup>>& triangles,
                                int threads = 1);
+
+// A case's triangles set up under one model (setup_triangles: every element holds one), each
+// edge's sharing named (shared_edge_groups): render()'s set-up, kept for fragment_choices()
+// to reuse instead of setting every triangle up again (reference.hpp). Freed on `threads`
+// threads: its triangles hold many GMP numbers each.
+struct CaseSetup {
+  std::vector<std::optional<TriangleSetup>> triangles;
+  SharedEdges shared;
+  int threads = 1;
+
+  CaseSetup() = default;
+  CaseSetup(const CaseSetup&) = delete;
+  CaseSetup& operator=(const CaseSetup&) = delete;
+  ~CaseSetup();
+};
 
 }  // namespace glrc::ref

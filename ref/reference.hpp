@@ -44,6 +44,15 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
 Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
                           Reference&& storage = {});
 
+// A case's triangles as render() sets them up (ref/mesh.hpp).
+struct CaseSetup;
+// render() and render_deferred() that hand their set-up of c's triangles under m back in
+// `setup` (instead of freeing it), for fragment_choices() to reuse: the same bits.
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                 Reference&& storage, std::shared_ptr<const CaseSetup>& setup);
+Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                          Reference&& storage, std::shared_ptr<const CaseSetup>& setup);
+
 // render(c, m, std::nullopt, threads).frame, bit for bit, without the edge bits (which `digest`
 // does not hash): neither the edges triangles share nor the bands along them are looked for.
 Frame render_frame(const Case& c, const Model& m, int threads = 1);
@@ -68,11 +77,17 @@ Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, 
 // (core/fragment_trace.hpp): the triangles that surely cover the centre, those that may (free,
 // or as a shared edge gives the centre to their side), from the position freedom of an
 // implementation of `freedom_bits` subpixel bits (at least 4), as render() finds its edge bits.
-// The reference's own count is sure.count plus the members it draws. Sets every triangle up
-// again (render()'s set-up and position freedom, not its planes or allowances): for the few
-// pixels whose count differs, not for a frame. `threads` as render()'s.
+// The reference's own count is sure.count plus the members it draws. Sets up again the
+// triangles that may reach a pixel asked (render()'s set-up and position freedom, not its
+// planes or allowances): for the few pixels whose count differs, not for a frame. `threads` as
+// render()'s.
 std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
                                               const std::vector<size_t>& pixels, int threads = 1);
+// The same from `setup`, render()'s set-up of c's triangles under m (render(..., setup)),
+// instead of setting them up again.
+std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int freedom_bits,
+                                              const std::vector<size_t>& pixels, int threads,
+                                              const CaseSetup& setup);
 
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.

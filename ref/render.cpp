@@ -592,8 +592,10 @@ void clear_uncovered(Reference& r, WorkerPool& pool) {
 // render_rows(), and without `edges` its frame alone (render_frame): no edge bits, so neither
 // the shared edges nor the bands are looked for. In `storage`'s buffers, where given.
 // `deferred`: with an allowance, its components computed where asked for (render_deferred).
+// `keep`: where given, the triangles' set-up is handed back there instead of freed.
 Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
-               int row_count, bool edges, Reference* storage = nullptr, bool deferred = false) {
+               int row_count, bool edges, Reference* storage = nullptr, bool deferred = false,
+               std::shared_ptr<const CaseSetup>* keep = nullptr) {
   if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
@@ -656,9 +658,11 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   const int count = int(c.triangles.size());
   std::vector<std::optional<TriangleSetup>> setups = setup_triangles(c, m, pool);
   // Which edges are shared marks edge bits only.
-  const std::vector<std::array<bool, 3>> shared =
-      edges ? shared_edges(setups, threads)
-            : std::vector<std::array<bool, 3>>(setups.size(), {false, false, false});
+  SharedEdges groups = edges ? shared_edge_groups(setups, threads) : SharedEdges(setups.size());
+  std::vector<std::array<bool, 3>> shared(groups.size());
+  for (size_t t = 0; t < groups.size(); ++t)
+    for (size_t i = 0; i < 3; ++i)
+      shared[t][i] = groups[t][i].shared();
 
   const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
   std::vector<CandidateMap> candidates(rows.size());
@@ -705,7 +709,15 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     });
     release(prepared, pool);
   }
-  release(setups, pool);
+  if (keep) {
+    auto setup = std::make_shared<CaseSetup>();
+    setup->triangles = std::move(setups);
+    setup->shared = std::move(groups);
+    setup->threads = threads;
+    *keep = std::move(setup);
+  } else {
+    release(setups, pool);
+  }
   clear_uncovered(r, pool);
   // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.
   // (Only with an allowance are there any.)
@@ -740,6 +752,16 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
 Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
                           Reference&& storage) {
   return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true);
+}
+
+Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                 Reference&& storage, std::shared_ptr<const CaseSetup>& setup) {
+  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, false, &setup);
+}
+
+Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                          Reference&& storage, std::shared_ptr<const CaseSetup>& setup) {
+  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true, &setup);
 }
 
 Frame render_frame(const Case& c, const Model& m, int threads) {

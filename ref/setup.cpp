@@ -264,15 +264,17 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
   return t;
 }
 
-std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
-                                                          WorkerPool& pool) {
-  const int count = int(c.triangles.size());
-  // Each vertex a triangle uses to the window once, shared by its triangles (WindowCorners),
-  // then each triangle set up in its place: a TriangleSetup default-constructed first costs its
-  // rationals' allocations.
+namespace {
+
+// Triangles primitive(0 .. count-1) of c set up, in that order: each vertex they use transformed
+// to the window once, shared by its triangles (WindowCorners), then each triangle set up in its
+// place: a TriangleSetup default-constructed first costs its rationals' allocations.
+template <class Primitive>
+std::vector<std::optional<TriangleSetup>> set_up_each(const Case& c, const Model& m, int count,
+                                                      Primitive primitive, WorkerPool& pool) {
   std::vector<uint8_t> used(c.vertices.size(), 0);
-  for (const auto& triangle : c.triangles)
-    for (uint32_t i : triangle)
+  for (int k = 0; k < count; ++k)
+    for (uint32_t i : c.triangles[size_t(primitive(k))])
       used[i] = 1;
   std::vector<WindowCorners::Pointer> window(c.vertices.size());
   pool.parallel_for(int(c.vertices.size()), [&](int i) {
@@ -280,7 +282,7 @@ std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const M
       window[size_t(i)] = std::make_shared<const WindowVertex>(to_window(c.vertices[size_t(i)], c));
   });
   std::vector<std::optional<TriangleSetup>> setups(static_cast<size_t>(count));
-  pool.parallel_for(count, [&](int p) {
+  pool.parallel_for(count, [&](int k) {
     // Constructed from the returned value directly (no default construction, no move).
     struct SetUp {
       const Case& c;
@@ -289,9 +291,24 @@ std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const M
       const std::vector<WindowCorners::Pointer>& window;
       operator TriangleSetup() const { return setup_triangle(c, m, p, window); }
     };
-    setups[size_t(p)].emplace(SetUp{c, m, p, window});
+    setups[size_t(k)].emplace(SetUp{c, m, primitive(k), window});
   });
   return setups;
+}
+
+}  // namespace
+
+std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
+                                                          WorkerPool& pool) {
+  return set_up_each(
+      c, m, int(c.triangles.size()), [](int p) { return p; }, pool);
+}
+
+std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
+                                                          const std::vector<int>& primitives,
+                                                          WorkerPool& pool) {
+  return set_up_each(
+      c, m, int(primitives.size()), [&](int k) { return primitives[size_t(k)]; }, pool);
 }
 
 }  // namespace glrc::ref

@@ -112,6 +112,10 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
 // holds a setup.
 std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
                                                           WorkerPool& pool);
+// The triangles `primitives` of c (indices into c.triangles) set up likewise, in that order.
+std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
+                                                          const std::vector<int>& primitives,
+                                                          WorkerPool& pool);
 
 // The window-pixel region of the viewport inside the framebuffer.
 PixelBox viewport_box(const Case& c);

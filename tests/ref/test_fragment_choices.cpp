@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 
 #include "core/fragment_trace.hpp"
 #include "ref/coverage.hpp"
+#include "ref/mesh.hpp"
 #include "ref/reference.hpp"
 #include "ref/setup.hpp"
 
@@ -198,6 +200,19 @@ TEST(FragmentChoices, EveryConformingRasterizationIsAdmitted) {
     }
     const std::vector<size_t> pixels = every_pixel(c);
     const std::vector<FragmentChoices> choices = fragment_choices(c, Model{}, 4, pixels, 2);
+    // The same from render()'s own set-up of the triangles, as a check reuses it, at pixels of
+    // one corner (so that the triangles kept are not all of them).
+    std::shared_ptr<const CaseSetup> setup;
+    render(c, Model{}, 4, 2, Reference{}, setup);
+    ASSERT_TRUE(setup);
+    std::vector<size_t> corner;
+    for (size_t i : pixels)
+      if (i % 32 < 10 && i / 32 < 10) corner.push_back(i);
+    const std::vector<FragmentChoices> reused = fragment_choices(c, Model{}, 4, corner, 2, *setup);
+    ASSERT_EQ(reused.size(), corner.size());
+    for (size_t k = 0; k < corner.size(); ++k)
+      EXPECT_EQ(admitted(reused[k]), admitted(choices[corner[k]]))
+          << "scene " << scene << ", pixel " << corner[k];
     for (const Model& m : {Model{8, Planes::unsnapped, TieBreak::bottom_left},
                            Model{4, Planes::unsnapped, TieBreak::top_left},
                            Model{6, Planes::unsnapped, TieBreak::top_right},
