@@ -76,40 +76,90 @@ class PixelIndex {
   std::vector<size_t> order_;  // indices into pixels_, by window index
 };
 
-// Whether triangle p may reach a pixel asked for. A triangle inside the clip volume (nothing
+// Where triangle p may reach a centre, in double: a triangle inside the clip volume (nothing
 // clipped: no new vertex, no guard-band variant) lies in the viewport, and each vertex's freedom
 // is 2^-bits plus the rounding of a window position below 2^14 plus the viewport's magnitude
-// (freedom.cpp's snap_and_round), under 0.1 pixel for bits >= 4: it covers or classifies no
-// centre farther than 1 + ceil(1.5·0.1) = 2 pixels beyond the box of its window vertices (here
-// in double, off by far less than a pixel), so one 4 pixels beyond reaches none. Any other
+// (freedom.cpp's snap_and_round), under 0.1 pixel for bits >= 4. Every triangle its vertices so
+// moved make (turned over or not) lies within that distance of the triangle itself (each of its
+// points is a convex combination of the moved vertices, so within it of the same combination of
+// the vertices), and it covers or classifies no centre farther than 1 + ceil(1.5·0.1) = 2
+// pixels beyond it: one more than kReach pixels outside an edge's line, or beyond the box of its
+// window vertices, is reached by none (here in double, off by far less than a pixel). Any other
 // triangle may reach anything. Its users share a shared edge's ends, so a shared edge near a
 // pixel keeps all its users: their sides stay as the whole case's.
-bool may_reach(const Case& c, int p, const PixelIndex& pixels) {
-  const Viewport& vp = c.viewport;
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (uint32_t k : c.triangles[size_t(p)]) {
-    const auto& v = c.vertices[k].clip;
-    if (!(v[3] > 0 && std::fabs(v[0]) <= v[3] && std::fabs(v[1]) <= v[3] &&
-          std::fabs(v[2]) <= v[3]))
-      return true;
-    const double x = vp.x + vp.width / 2.0 * (1 + double(v[0]) / v[3]);
-    const double y = vp.y + vp.height / 2.0 * (1 + double(v[1]) / v[3]);
-    lo[0] = std::min(lo[0], x), hi[0] = std::max(hi[0], x);
-    lo[1] = std::min(lo[1], y), hi[1] = std::max(hi[1], y);
+class Reach {
+ public:
+  Reach(const Case& c, int p) {
+    const Viewport& vp = c.viewport;
+    std::array<std::array<double, 2>, 3> v{};
+    for (size_t i = 0; i < 3; ++i) {
+      const auto& clip = c.vertices[c.triangles[size_t(p)][i]].clip;
+      if (!(clip[3] > 0 && std::fabs(clip[0]) <= clip[3] && std::fabs(clip[1]) <= clip[3] &&
+            std::fabs(clip[2]) <= clip[3]))
+        return;
+      v[i] = {vp.x + vp.width / 2.0 * (1 + double(clip[0]) / clip[3]),
+              vp.y + vp.height / 2.0 * (1 + double(clip[1]) / clip[3])};
+      lo_[0] = std::min(lo_[0], v[i][0]), hi_[0] = std::max(hi_[0], v[i][0]);
+      lo_[1] = std::min(lo_[1], v[i][1]), hi_[1] = std::max(hi_[1], v[i][1]);
+    }
+    bounded_ = true;
+    // Each edge's line as a·x + b·y + c, (a, b) of unit length, >= 0 on the triangle's side. A
+    // triangle whose doubled area is within double's rounding has no side to trust: its box
+    // alone.
+    const double area = (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) -
+                        (v[2][0] - v[0][0]) * (v[1][1] - v[0][1]);
+    const double size = std::max(hi_[0] - lo_[0], hi_[1] - lo_[1]);
+    if (!(std::fabs(area) > 1e-6 * size * size)) return;
+    for (size_t i = 0; i < 3; ++i) {
+      const auto& from = v[(i + 1) % 3];
+      const auto& to = v[(i + 2) % 3];
+      const double a = from[1] - to[1], b = to[0] - from[0];
+      const double length = std::hypot(a, b) * (area > 0 ? 1 : -1);
+      edges_[i] = {a / length, b / length, -(a * from[0] + b * from[1]) / length};
+    }
+    sided_ = true;
   }
-  constexpr double kReach = 4;
-  // Centres (px + 1/2, py + 1/2) within the box grown by kReach.
-  const int x0 = int(std::floor(lo[0] - kReach)), x1 = int(std::ceil(hi[0] + kReach));
+  // Whether no implementation's version of the triangle covers or classifies the centre of
+  // pixel (px, py).
+  bool beyond(int px, int py) const {
+    if (!bounded_) return false;
+    const double x = px + 0.5, y = py + 0.5;
+    if (x < lo_[0] - kReach || x > hi_[0] + kReach || y < lo_[1] - kReach || y > hi_[1] + kReach)
+      return true;
+    if (!sided_) return false;
+    for (const auto& [a, b, c] : edges_)
+      if (a * x + b * y + c < -kReach) return true;
+    return false;
+  }
+  // Rows [y0, y1] that may hold a centre it reaches (y0 > y1: none), within `viewport`.
+  std::pair<int, int> rows(const PixelBox& viewport) const {
+    if (!bounded_) return {viewport.y0, viewport.y1};
+    return {std::max(viewport.y0, int(std::floor(lo_[1] - kReach))),
+            std::min(viewport.y1, int(std::ceil(hi_[1] + kReach)))};
+  }
+
+ private:
+  static constexpr double kReach = 4;
+  double lo_[2] = {INFINITY, INFINITY}, hi_[2] = {-INFINITY, -INFINITY};
+  bool bounded_ = false;  // inside the clip volume: the box and, where sided_, the edges hold
+  bool sided_ = false;
+  std::array<std::array<double, 3>, 3> edges_{};
+};
+
+// Whether triangle p may reach a pixel asked for.
+bool may_reach(const Reach& reach, const PixelIndex& pixels, const PixelBox& viewport) {
+  const auto [y0, y1] = reach.rows(viewport);
   bool near = false;
-  pixels.for_each_in_rows(int(std::floor(lo[1] - kReach)), int(std::ceil(hi[1] + kReach)),
-                          [&](size_t, int px, int) { near = near || (px >= x0 && px <= x1); });
+  pixels.for_each_in_rows(y0, y1, [&](size_t, int px, int py) {
+    near = near || !reach.beyond(px, py);
+  });
   return near;
 }
 
 // Triangle p's parts at the pixels it may reach.
 void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, int32_t p,
-              const std::array<SharedEdge, 3>& shared, const PixelIndex& pixels,
-              const PixelBox& viewport, std::vector<Part>& out) {
+              const std::array<SharedEdge, 3>& shared, const Reach& near,
+              const PixelIndex& pixels, const PixelBox& viewport, std::vector<Part>& out) {
   const bool either_face = c.cull != CullFace::front_and_back;
   if (!t.has_edges) {
     // Zero area: drawn by no model, but a sliver of some implementation's (Sliver).
@@ -149,7 +199,7 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
   }
   const CoverageTest coverage(t, m);
   pixels.for_each_in_rows(reach.y0, reach.y1, [&](size_t k, int px, int py) {
-    if (px < reach.x0 || px > reach.x1) return;
+    if (px < reach.x0 || px > reach.x1 || near.beyond(px, py)) return;
     const CoverageTest::Bands b =
         coverage.bands(px, py, freedom.at(px, py), freedom.z_clip_at(px, py));
     if (!b.reached) return;
@@ -207,9 +257,11 @@ std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_b
   const PixelIndex index(pixels, c.fb_width);
   // Only the triangles that may reach a pixel asked (most of a large case's are far from the
   // few pixels traced), judged in primitive order; set up here only without render()'s.
+  const PixelBox viewport = viewport_box(c);
   std::vector<int> kept;
+  std::vector<Reach> reach;
   for (int p = 0; p < int(c.triangles.size()); ++p)
-    if (may_reach(c, p, index)) kept.push_back(p);
+    if (Reach r(c, p); may_reach(r, index, viewport)) kept.push_back(p), reach.push_back(r);
   std::optional<CaseSetup> own;
   if (!given) {
     own.emplace();
@@ -223,12 +275,11 @@ std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_b
   const auto shared_of = [&](size_t k) -> const std::array<SharedEdge, 3>& {
     return given ? given->shared[size_t(kept[k])] : own->shared[k];
   };
-  const PixelBox viewport = viewport_box(c);
   // Each triangle's parts on some thread, then put together in primitive order.
   std::vector<std::vector<Part>> parts(kept.size());
   pool.parallel_for(int(kept.size()), [&](int k) {
-    parts_of(c, m, bits, setup_of(size_t(k)), kept[size_t(k)], shared_of(size_t(k)), index,
-             viewport, parts[size_t(k)]);
+    parts_of(c, m, bits, setup_of(size_t(k)), kept[size_t(k)], shared_of(size_t(k)),
+             reach[size_t(k)], index, viewport, parts[size_t(k)]);
   });
   // Per pixel, its shared edges numbered from 0 in the order they come.
   std::vector<std::map<int32_t, uint32_t>> edge_names(pixels.size());
