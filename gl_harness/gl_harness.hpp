@@ -116,8 +116,9 @@ class Renderer {
   }
   // The fragment traces (core/fragment_trace.hpp) of the case last drawn (render() or draw()),
   // at `pixels` (window indices x + y·fb_width), in their order: its fragment counts, and the
-  // sums of a trace pass drawn the first time a case is asked (the count pass again, each
-  // fragment adding p + 1 and the hash of p); nothing for a pixel whose sums were not exact in
+  // sums of p + 1 and the hash of p over its fragments (the count pass's second attachment, or
+  // where gl_PrimitiveID needs the geometry shader a trace pass drawn the first time a case is
+  // asked: the count pass again); nothing for a pixel whose sums were not exact in
   // float32, or from a renderer that keeps no traces. Throws RenderError before a draw. This
   // default (renderers that are no GL: tests) keeps none.
   virtual std::vector<std::optional<FragmentTrace>> fragment_traces(

@@ -181,9 +181,11 @@ class GlRenderer final : public Renderer {
     count_framebuffer_.use();
     const std::vector<float> counts =
         count_framebuffer_.read_at(pixels, GL_COLOR_ATTACHMENT0, GL_RED, 1);
-    trace_framebuffer_.use();
+    const bool apart = !traces_in_count_pass();
+    if (apart) trace_framebuffer_.use();
     const std::vector<float> sums =
-        trace_framebuffer_.read_at(pixels, GL_COLOR_ATTACHMENT0, GL_RG, 2);
+        (apart ? trace_framebuffer_ : count_framebuffer_)
+            .read_at(pixels, GLenum(GL_COLOR_ATTACHMENT0 + !apart), GL_RG, 2);
     check_error(c, "reading fragment traces");
     std::vector<std::optional<FragmentTrace>> traces(pixels.size());
     // Integers below 2^24 each (a NaN fails every test), as exact float sums are.
@@ -220,16 +222,30 @@ class GlRenderer final : public Renderer {
   // triangle). Not through the depth test, because which of two fragments whose depths are
   // within rounding of each other passes it is free, and a later nearer triangle may then hide
   // either: the count would depend on that order (core/frame.hpp). Culling and clipping stay.
+  // Where gl_PrimitiveID needs no geometry shader, each fragment also adds its trace's terms
+  // into a second attachment (RG32F), read where traces are asked: no second draw, and no
+  // second program to compile, for a case whose traces are read (8 bytes a pixel more, and a
+  // little more blending, for every case). Elsewhere (softpipe) the count pass stays as it is
+  // and the trace pass draws them apart (trace_fragments).
+  bool traces_in_count_pass() const { return !info_.primitive_id_from_geometry_shader; }
+
   void count_fragments(const Case& c) {
+    const bool traces = traces_in_count_pass();
     if (!count_program_) {
       const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
-      const GLuint fs = compile(GL_FRAGMENT_SHADER, count_fragment_shader_source(), c);
+      const GLuint fs = compile(
+          GL_FRAGMENT_SHADER,
+          traces ? count_and_trace_fragment_shader_source() : count_fragment_shader_source(), c);
       count_program_ = link({vs, fs}, c);
     }
     gl_.UseProgram(count_program_);
-    count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
+    if (traces)
+      count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F, GL_RG32F});
+    else
+      count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
     const GLfloat zero[4] = {0, 0, 0, 0};
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
+    if (traces) gl_.ClearBufferfv(GL_COLOR, 1, zero);
     gl_.Disable(GL_DEPTH_TEST);  // set_state enables it again for the next case
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
@@ -237,9 +253,11 @@ class GlRenderer final : public Renderer {
     gl_.DrawElements(GL_TRIANGLES, GLsizei(c.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
     gl_.Disable(GL_BLEND);
     check_error(c, "counting fragments");
+    traced_ = traces;
   }
 
-  // The count pass again, once a case and only where traces are asked (a case's coverage
+  // Where the count pass does not trace (traces_in_count_pass): the count pass again, once a
+  // case and only where traces are asked (a case's coverage
   // differs inside a band: seldom), each fragment adding its trace's terms (p + 1, the hash of
   // p) instead of 1, into a framebuffer of its own: the case's state (culling, viewport) is
   // still set, its vertices are given again. gl_PrimitiveID through the pass-through geometry
@@ -358,6 +376,9 @@ class GlRenderer final : public Renderer {
     for (auto& [key, program] : programs_)
       gl_.DeleteProgram(program);
     programs_.clear();
+    // The count pass traces only where no geometry shader is needed (traces_in_count_pass).
+    if (count_program_) gl_.DeleteProgram(count_program_);
+    count_program_ = 0;
     info_.primitive_id_from_geometry_shader = on;
   }
 

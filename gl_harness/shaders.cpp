@@ -125,20 +125,36 @@ std::string count_fragment_shader_source() {
          "void main() { o_count = 1.0; }\n";
 }
 
+namespace {
+
+// fragment_hash (core/fragment_trace.hpp) in uint arithmetic, which wraps modulo 2^32, and the
+// trace's terms: both integers below 2^24, exact in float32.
+constexpr const char* kTraceTerms =
+    "vec2 trace_terms() {\n"
+    "  uint x = uint(gl_PrimitiveID);\n"
+    "  x ^= x >> 16u;\n"
+    "  x *= 0x7feb352du;\n"
+    "  x ^= x >> 15u;\n"
+    "  x *= 0x846ca68bu;\n"
+    "  x ^= x >> 16u;\n"
+    "  return vec2(float(gl_PrimitiveID + 1), float((x >> 20u) + 1u));\n"
+    "}\n";
+
+}  // namespace
+
 std::string trace_fragment_shader_source() {
-  // fragment_hash (core/fragment_trace.hpp) in uint arithmetic, which wraps modulo 2^32. Both
-  // terms are integers below 2^24, exact in float32.
-  return "#version 330 core\n"
-         "layout(location = 0) out vec2 o_trace;\n"
-         "void main() {\n"
-         "  uint x = uint(gl_PrimitiveID);\n"
-         "  x ^= x >> 16u;\n"
-         "  x *= 0x7feb352du;\n"
-         "  x ^= x >> 15u;\n"
-         "  x *= 0x846ca68bu;\n"
-         "  x ^= x >> 16u;\n"
-         "  o_trace = vec2(float(gl_PrimitiveID + 1), float((x >> 20u) + 1u));\n"
-         "}\n";
+  return std::string(
+             "#version 330 core\n"
+             "layout(location = 0) out vec2 o_trace;\n") +
+         kTraceTerms + "void main() { o_trace = trace_terms(); }\n";
+}
+
+std::string count_and_trace_fragment_shader_source() {
+  return std::string(
+             "#version 330 core\n"
+             "layout(location = 0) out float o_count;\n"
+             "layout(location = 1) out vec2 o_trace;\n") +
+         kTraceTerms + "void main() {\n  o_count = 1.0;\n  o_trace = trace_terms();\n}\n";
 }
 
 }  // namespace glrc::gl

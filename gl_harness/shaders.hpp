@@ -52,7 +52,8 @@ std::string fragment_shader_source(const Case& c, bool after_geometry_shader);
 // sums per pixel.
 std::string count_vertex_shader_source();
 std::string count_fragment_shader_source();
-// The fragment-trace pass's (drawn only where traces are asked, Renderer::fragment_traces): the
+// The fragment-trace pass's (drawn only where traces are asked, Renderer::fragment_traces, on a
+// driver that needs the geometry shader for gl_PrimitiveID): the
 // count pass's vertex shader, then every fragment writes its trace's terms, p + 1 and
 // fragment_hash(p) for p = gl_PrimitiveID (core/fragment_trace.hpp), to location 0 `o_trace`,
 // which additive blending sums per pixel; through count_geometry_shader_source's pass-through
@@ -60,5 +61,8 @@ std::string count_fragment_shader_source();
 // (GlInfo::primitive_id_from_geometry_shader).
 std::string count_geometry_shader_source();
 std::string trace_fragment_shader_source();
+// Both at once: 1.0 to location 0 `o_count`, the trace's terms to location 1 `o_trace` (where a
+// driver needs no geometry shader for gl_PrimitiveID, the count pass sums both).
+std::string count_and_trace_fragment_shader_source();
 
 }  // namespace glrc::gl

@@ -106,8 +106,8 @@ class Reach {
     // Each edge's line as a·x + b·y + c, (a, b) of unit length, >= 0 on the triangle's side. A
     // triangle whose doubled area is within double's rounding has no side to trust: its box
     // alone.
-    const double area = (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) -
-                        (v[2][0] - v[0][0]) * (v[1][1] - v[0][1]);
+    const double area =
+        (v[1][0] - v[0][0]) * (v[2][1] - v[0][1]) - (v[2][0] - v[0][0]) * (v[1][1] - v[0][1]);
     const double size = std::max(hi_[0] - lo_[0], hi_[1] - lo_[1]);
     if (!(std::fabs(area) > 1e-6 * size * size)) return;
     for (size_t i = 0; i < 3; ++i) {
@@ -150,16 +150,15 @@ class Reach {
 bool may_reach(const Reach& reach, const PixelIndex& pixels, const PixelBox& viewport) {
   const auto [y0, y1] = reach.rows(viewport);
   bool near = false;
-  pixels.for_each_in_rows(y0, y1, [&](size_t, int px, int py) {
-    near = near || !reach.beyond(px, py);
-  });
+  pixels.for_each_in_rows(y0, y1,
+                          [&](size_t, int px, int py) { near = near || !reach.beyond(px, py); });
   return near;
 }
 
 // Triangle p's parts at the pixels it may reach.
 void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, int32_t p,
-              const std::array<SharedEdge, 3>& shared, const Reach& near,
-              const PixelIndex& pixels, const PixelBox& viewport, std::vector<Part>& out) {
+              const std::array<SharedEdge, 3>& shared, const Reach& near, const PixelIndex& pixels,
+              const PixelBox& viewport, std::vector<Part>& out) {
   const bool either_face = c.cull != CullFace::front_and_back;
   if (!t.has_edges) {
     // Zero area: drawn by no model, but a sliver of some implementation's (Sliver).
@@ -198,8 +197,12 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
     return;
   }
   const CoverageTest coverage(t, m);
+  const double largest = freedom.largest(), z_largest = freedom.z_clip_largest();
   pixels.for_each_in_rows(reach.y0, reach.y1, [&](size_t k, int px, int py) {
     if (px < reach.x0 || px > reach.x1 || near.beyond(px, py)) return;
+    // At the freedom's largest first: every band grows with the freedom, so a centre that one
+    // does not reach, none does, and the freedom's envelopes need not be evaluated there.
+    if (!coverage.bands(px, py, largest, z_largest).reached) return;
     const CoverageTest::Bands b =
         coverage.bands(px, py, freedom.at(px, py), freedom.z_clip_at(px, py));
     if (!b.reached) return;
@@ -258,10 +261,14 @@ std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_b
   // Only the triangles that may reach a pixel asked (most of a large case's are far from the
   // few pixels traced), judged in primitive order; set up here only without render()'s.
   const PixelBox viewport = viewport_box(c);
+  std::vector<std::optional<Reach>> reaches(c.triangles.size());
+  pool.parallel_for(int(c.triangles.size()), [&](int p) {
+    if (Reach r(c, p); may_reach(r, index, viewport)) reaches[size_t(p)] = r;
+  });
   std::vector<int> kept;
   std::vector<Reach> reach;
   for (int p = 0; p < int(c.triangles.size()); ++p)
-    if (Reach r(c, p); may_reach(r, index, viewport)) kept.push_back(p), reach.push_back(r);
+    if (reaches[size_t(p)]) kept.push_back(p), reach.push_back(*reaches[size_t(p)]);
   std::optional<CaseSetup> own;
   if (!given) {
     own.emplace();
