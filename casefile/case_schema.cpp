@@ -206,7 +206,11 @@ Case Loader::load(const CaseJson& root) const {
   if (!root.is_object()) r_.fail("", "a JSON object at the top level", Reader::describe(root));
   r_.check_keys(root, "",
                 {"description", "framebuffer", "viewport", "depth_range", "state", "varyings",
-                 "transform", "vertices", "triangles", "tolerance", "work_arounds"});
+                 "transform", "vertices", "triangles", "tolerance", "work_arounds", "written_by"});
+  // What wrote the file, with its stamp (cli's fuzz; report/stamp.hpp): for whoever writes it
+  // again, nothing the case draws.
+  if (const CaseJson* w = Reader::find(root, "written_by"); w && !w->is_string())
+    r_.fail("written_by", "a string (what wrote this file, and its stamp)", Reader::describe(*w));
 
   const CaseJson& desc = r_.required(root, "", "description", "a one-line string");
   // Printed on terminals by list, diff and run: a control character (a line break, an escape

@@ -21,7 +21,10 @@ int cmd_diff(const Options& o) {
     throw InputError("diff: expected exactly one case, got " + std::to_string(cases.size()) +
                      " (use --filter or name one file)");
   const Case& c = cases[0];
-  const std::filesystem::path out = output_folder(o.out);
+  const OutputFolder folder = output_folder(o.out);
+  const std::filesystem::path& out = folder.path;
+  // The last diff's images go first: none of another case stays beside this one's.
+  clear_diff_images(out);
   auto renderer = open_renderer(o);
   const ModelChoice model = choose_model(o, *renderer);
   check::CheckOptions judged = check_options(o);
@@ -48,6 +51,7 @@ int cmd_diff(const Options& o) {
   if (const std::string table = report::worst_pixels_table(r, 10); !table.empty())
     fmt::print("{}\n", table);
   const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r);
+  record_diff_images(out, files);
   fmt::print("wrote {} to {}/\n", report::count_text(files.size(), "image", "images"), o.out);
   return fails_run(r.status) ? 1 : 0;
 }

@@ -2,18 +2,19 @@
 #include "cli/validators.hpp"
 
 #include <fmt/core.h>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "cli/output_dir.hpp"
 #include "cli/session.hpp"
+#include "core/text.hpp"
 #include "report/html.hpp"
 #include "report/report.hpp"
 #include "report/run_compare.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 namespace {
@@ -38,15 +39,24 @@ void make_parent(const std::string& file) {
   if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
 }
 
+// Through a temporary file and a rename (report::write_file_atomically): a failed write leaves
+// the last one whole.
 void write_text(const std::string& file, const std::string& text) {
   make_parent(file);
-  errno = 0;
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  // The stream keeps no reason; the open or write under it left one in errno.
-  if (!out)
-    throw std::runtime_error("cannot write " + file +
-                             (errno ? ": " + std::string(std::strerror(errno)) : ""));
+  report::write_file_atomically(file, text);
+}
+
+// The comparison's JSON with its stamp as a first field (report/stamp.hpp).
+std::string stamped_json(const std::string& json) {
+  if (json.rfind("{\n", 0) != 0) throw std::logic_error("comparison_json: expected an object");
+  return report::stamped("{\n  \"written_by\": \"glrefcheck compare " +
+                         report::stamp_placeholder() + "\",\n" + json.substr(2));
+}
+
+// The comparison's Markdown under a comment holding its stamp (no Markdown renderer shows it).
+std::string stamped_markdown(const std::string& markdown) {
+  return report::stamped("<!-- written by glrefcheck compare " + report::stamp_placeholder() +
+                         " -->\n" + markdown);
 }
 
 }  // namespace
@@ -78,14 +88,27 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
 int cmd_compare(const CompareOptions& o) {
   const report::RunResults base = read_run(o.base);
   const report::RunResults current = read_run(o.current);
-  // Each output replaces only a file it wrote before (the top of each format says glrefcheck).
-  if (!o.json.empty()) check_replaceable(o.json, "--json", "{\n  \"base\": {");
-  if (!o.markdown.empty()) check_replaceable(o.markdown, "--markdown", "## glrefcheck compare");
-  if (!o.html.empty()) check_replaceable(o.html, "--html", "<title>glrefcheck compare");
+  // Two outputs into one file would leave only the last.
+  const std::vector<std::pair<const char*, const std::string*>> outputs = {
+      {"--json", &o.json}, {"--markdown", &o.markdown}, {"--html", &o.html}};
+  for (size_t a = 0; a < outputs.size(); ++a)
+    for (size_t b = a + 1; b < outputs.size(); ++b) {
+      if (outputs[a].second->empty() || outputs[b].second->empty()) continue;
+      std::error_code ec;
+      if (std::filesystem::weakly_canonical(*outputs[a].second, ec) ==
+          std::filesystem::weakly_canonical(*outputs[b].second, ec))
+        throw InputError(fmt::format("{} and {}: expected two different files, got \"{}\" for both",
+                                     outputs[a].first, outputs[b].first,
+                                     printable(*outputs[a].second, 200)));
+    }
+  // Each output replaces only a file glrefcheck wrote and nobody changed since (its stamp).
+  if (!o.json.empty()) check_replaceable(o.json, "--json");
+  if (!o.markdown.empty()) check_replaceable(o.markdown, "--markdown");
+  if (!o.html.empty()) check_replaceable(o.html, "--html");
   const report::RunComparison c = report::compare_runs(base, current, o.factor, o.min_ulps);
   fmt::print("{}", report::comparison_text(c));
-  if (!o.json.empty()) write_text(o.json, report::comparison_json(c));
-  if (!o.markdown.empty()) write_text(o.markdown, report::comparison_markdown(c));
+  if (!o.json.empty()) write_text(o.json, stamped_json(report::comparison_json(c)));
+  if (!o.markdown.empty()) write_text(o.markdown, stamped_markdown(report::comparison_markdown(c)));
   if (!o.html.empty()) {
     make_parent(o.html);
     report::write_comparison_html(o.html, c, report::run_folder(o.base),

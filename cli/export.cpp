@@ -14,6 +14,7 @@
 #include "gl_harness/first_draw.hpp"
 #include "gl_harness/shaders.hpp"
 #include "report/report.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 namespace {
@@ -80,7 +81,7 @@ int export_shader_test(const ExportOptions& o, const CLI::App& command, const Ca
     message += *why;
     throw InputError(message);
   }
-  check_replaceable(out, "--out", campaign::kShaderTestSignature);
+  check_replaceable(out, "--out");
   const Expectation expected = check::expectation_for(c, options, reported_bits);
   const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
   if (const auto why = campaign::shader_test_refusal(c, expected, tolerance)) {
@@ -94,7 +95,9 @@ int export_shader_test(const ExportOptions& o, const CLI::App& command, const Ca
   setup.exported_by = command_line(o, command);
   setup.model = model_words(o, options);
   const campaign::ShaderTest test = campaign::shader_test(c, expected, tolerance, setup);
-  report::write_file_atomically(out, test.text);
+  // Its stamp last (report/stamp.hpp): an export replaces this file only while it is unchanged.
+  report::write_file_atomically(out, report::stamped(test.text + "# written by glrefcheck export " +
+                                                     report::stamp_placeholder() + "\n"));
   fmt::print(
       "wrote {}: run with {} (values checked against their ranges at {} of {} (pixel, "
       "triangle) pairs, for NaN and Inf everywhere; coverage at {} pixels in {} probes)\n",
@@ -177,7 +180,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   if (!out.ends_with(".c") || out.size() < 3 || out.ends_with("/.c"))
     throw InputError("--out: expected a file name ending in .c, got \"" + printable(out, 200) +
                      "\"");
-  check_replaceable(out, "--out", campaign::kCReproducerSignature);
+  check_replaceable(out, "--out");
 
   const Expectation expected = check::expectation_for(c, options, reported_bits);
   const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
@@ -194,7 +197,11 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   setup.exported_by = command_line(o, command);
   setup.model = options.model.describe() +
                 (o.driver.empty() ? "" : " (what `identify` finds for " + o.driver + ")");
-  report::write_file_atomically(out, campaign::c_reproducer(c, expected, tolerance, setup));
+  // Its stamp last (report/stamp.hpp): an export replaces this file only while it is unchanged.
+  report::write_file_atomically(
+      out,
+      report::stamped(campaign::c_reproducer(c, expected, tolerance, setup) +
+                      "/* written by glrefcheck export " + report::stamp_placeholder() + " */\n"));
   fmt::print("wrote {}: compile with {}, run with {} [egl|osmesa]\n", out,
              campaign::c_compile_command(out),
              (out.find('/') == std::string::npos ? "./" : "") + out.substr(0, out.size() - 2));

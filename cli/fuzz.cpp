@@ -21,12 +21,10 @@
 #include "report/html.hpp"
 #include "report/json_types.hpp"
 #include "report/report.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 namespace {
-
-// What every case file fuzz writes holds: --emit replaces only such a file.
-constexpr const char* kEmitSignature = "glrefcheck fuzz";
 
 std::vector<const campaign::Generator*> chosen_generators(const FuzzOptions& f) {
   std::vector<const campaign::Generator*> chosen;
@@ -65,8 +63,14 @@ std::pair<uint64_t, uint64_t> parse_replay(const std::string& text) {
           whole(std::string_view(text).substr(colon + 1), what)};
 }
 
+// A case file with its stamp in "written_by" (report/stamp.hpp; the case format ignores the
+// field): --emit replaces only a file fuzz wrote that nobody edited since.
 void write_case_file(const std::filesystem::path& file, const Case& c) {
-  report::write_file_atomically(file, casefile::to_case_file(c));
+  const std::string text = casefile::to_case_file(c);
+  if (text.rfind("{\n", 0) != 0) throw std::logic_error("to_case_file: expected an object");
+  report::write_file_atomically(
+      file, report::stamped("{\n  \"written_by\": \"glrefcheck fuzz " +
+                            report::stamp_placeholder() + "\",\n" + text.substr(2)));
 }
 
 }  // namespace
@@ -134,7 +138,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     const auto [seed, index] = parse_replay(f.replay);
     if (!f.emit.empty()) {
       const Case c = campaign::generate(co.generators, seed, index);
-      check_replaceable(f.emit, "--emit", kEmitSignature);
+      check_replaceable(f.emit, "--emit");
       write_case_file(f.emit, c);
       fmt::print("wrote {}: {}, {} triangles, {} varyings\n", f.emit, c.name, c.triangles.size(),
                  c.varyings.size());
@@ -160,7 +164,8 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   std::optional<MesaPrefix> prefix;
   if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
-  const std::filesystem::path out = output_folder(o.out);
+  const OutputFolder folder = output_folder(o.out);
+  const std::filesystem::path& out = folder.path;
   clear_run_outputs(out);
   std::error_code ec;
   std::filesystem::remove_all(out / "failures", ec);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/output_dir.hpp"
 #include "identify/identify.hpp"
 
 namespace glrc::cli {
@@ -167,7 +168,8 @@ ModelChoice choose_model(const Options& o, gl::Renderer& renderer) {
 
 int cmd_identify(const Options& o) {
   const auto start = Clock::now();
-  const std::filesystem::path out = output_folder(o.out);
+  const OutputFolder folder = output_folder(o.out);
+  const std::filesystem::path& out = folder.path;
   auto renderer = open_renderer(o);
   auto raw = open_raw_renderer(o);
   const gl::GlInfo& info = renderer->info();

@@ -20,6 +20,7 @@
 #include "cli/fuzz.hpp"
 #include "cli/identify.hpp"
 #include "cli/mesa_prefix.hpp"
+#include "cli/output_dir.hpp"
 #include "cli/run.hpp"
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
@@ -144,7 +145,7 @@ void reexec_with_mesa(const Options& o, char** argv) {
   const MesaPrefix prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const char* done = std::getenv("GLRC_MESA_PREFIX_APPLIED");
   if (done && prefix.root == done) return;
-  for (const auto& [name, value] : mesa_environment(prefix, output_folder(o.out)))
+  for (const auto& [name, value] : mesa_environment(prefix, output_folder(o.out).path))
     setenv(name.c_str(), value.c_str(), 1);
   setenv("GLRC_MESA_PREFIX_APPLIED", prefix.root.c_str(), 1);
   execv("/proc/self/exe", argv);

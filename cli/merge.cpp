@@ -67,7 +67,8 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
     throw InputError(std::string("merge: ") + e.what());
   }
   check_apart(dirs, out_dir);
-  const std::filesystem::path out = output_folder(out_dir);
+  const OutputFolder folder = output_folder(out_dir);
+  const std::filesystem::path& out = folder.path;
   clear_run_outputs(out);
   std::filesystem::remove_all(out / "failures");
   std::filesystem::create_directories(out / "failures");
@@ -134,7 +135,8 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
   const RunInfo& info = merged.run;
   const std::vector<CaseResult>& list = merged.cases;
   check_apart(dirs, out_dir);
-  const std::filesystem::path out = output_folder(out_dir);
+  const OutputFolder folder = output_folder(out_dir);
+  const std::filesystem::path& out = folder.path;
   // Heatmaps and files of an earlier run or merge here would be taken for this merge's.
   clear_run_outputs(out);
   for (size_t k = 0; k < shards.size(); ++k) {
@@ -166,7 +168,10 @@ int cmd_report(const std::string& dir, const std::string& file) {
   const std::filesystem::path run_dir = report::run_folder(dir);
   const std::filesystem::path html =
       file.empty() ? run_dir / "report.html" : std::filesystem::path(file);
-  check_replaceable(html, file.empty() ? "report" : "--out", "<title>glrefcheck");
+  // A run folder's own page is glrefcheck's where the folder is (marked); any other file only
+  // while its stamp holds.
+  if (!file.empty() || !is_marked(run_dir))
+    check_replaceable(html, file.empty() ? "report" : "--out");
   report::write_run_html(html, results, run_dir);
   fmt::print("wrote {}\n", html.string());
   return 0;

@@ -7,7 +7,6 @@
 
 #include <filesystem>
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace glrc::cli {
@@ -18,17 +17,52 @@ inline constexpr const char* kJournalFile = "journal.jsonl";
 // be the folder's own failures.csv, which the run replaces).
 inline constexpr const char* kInputsFolder = ".glrefcheck-inputs";
 
-// `option` (--out) names the folder in messages. Creates and marks the folder, or checks that it
-// is marked or empty; InputError otherwise, and for a path that is not
-// UTF-8, a file, or a folder that cannot be written. (Declared with its default in session.hpp.)
-std::filesystem::path output_folder(const std::string& out, const std::string& option);
+// The lock file of an output folder (FolderLock).
+inline constexpr const char* kLockFile = ".glrefcheck.lock";
 
-// A file an option names for glrefcheck to write (`compare --json`, `report --out`): fine if it
-// does not exist, or if it is a regular file whose first 4 KiB hold `signature` (what glrefcheck
-// writes at the top of such a file). Anything else is the user's: InputError naming `option`,
-// before anything is written.
-void check_replaceable(const std::filesystem::path& file, const std::string& option,
-                       std::string_view signature);
+// An output folder held by this process, as long as the value lives: its kLockFile locked with
+// flock(2), which the kernel releases when the process ends however it ends (a lock a killed
+// glrefcheck left is simply taken by the next), holding the holder's pid and command line for
+// the glrefcheck it refuses. Closed across exec (workers do not hold it).
+class FolderLock {
+ public:
+  FolderLock() = default;
+  FolderLock(FolderLock&& other) noexcept;
+  FolderLock& operator=(FolderLock&& other) noexcept;
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock();
+  bool held() const { return fd_ >= 0; }
+
+ private:
+  friend FolderLock lock_folder(const std::filesystem::path& dir, const std::string& option);
+  explicit FolderLock(int fd) : fd_(fd) {}
+  int fd_ = -1;
+};
+
+// Takes `dir`'s lock (dir must exist and be glrefcheck's: marked, or being claimed by
+// output_folder). InputError naming `option`, the folder and the holder (its pid and command)
+// when another process holds it, or when the lock file cannot be made.
+FolderLock lock_folder(const std::filesystem::path& dir, const std::string& option);
+
+// An output folder claimed for this process: its path, and its lock held.
+struct OutputFolder {
+  std::filesystem::path path;
+  FolderLock lock;
+};
+
+// `option` (--out) names the folder in messages. Creates and marks the folder, or checks that it
+// is marked or empty, then locks it (lock_folder): a second glrefcheck writing into it at once is
+// refused. InputError otherwise, and for a path that is not UTF-8, a file, or a folder that
+// cannot be written. Only the folder named is marked, never a parent made on the way: that is no
+// output the user named. (Declared with its default in session.hpp.)
+OutputFolder output_folder(const std::string& out, const std::string& option);
+
+// A file an option names for glrefcheck to write (`fuzz --emit`, `compare --json`, `report
+// --out`, `export --out`): fine if it does not exist, or if it is a regular file whose stamp its
+// text still matches (report/stamp.hpp: glrefcheck wrote it and nobody changed it since).
+// Anything else is the user's: InputError naming `option`, before anything is written.
+void check_replaceable(const std::filesystem::path& file, const std::string& option);
 
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);
@@ -37,6 +71,14 @@ bool is_marked(const std::filesystem::path& dir);
 // failures.csv, junit.xml, report.html, the journal, cases/, logs/, the inputs' copies), so that
 // nothing of it is taken for this run's. Nothing else: identify.json and diff's images stay.
 void clear_run_outputs(const std::filesystem::path& dir);
+
+// `diff`'s images in a marked folder: the names its last diff wrote (record_diff_images, in
+// kDiffImagesFile) are deleted before the next one writes its own, so that no image of another
+// case is taken for this one's. Names not plain file names in the folder are left alone.
+inline constexpr const char* kDiffImagesFile = ".glrefcheck-diff-images";
+void clear_diff_images(const std::filesystem::path& dir);
+void record_diff_images(const std::filesystem::path& dir,
+                        const std::vector<std::filesystem::path>& files);
 
 // The run's own files and folders in a run folder, relative to it.
 const std::vector<std::string>& run_output_names();

@@ -26,6 +26,7 @@ int cmd_run(const Options& given) {
   const auto start = Clock::now();
   Options o = given;
   std::filesystem::path out;
+  FolderLock lock;  // the output folder held while the run writes into it
   std::optional<JournalContents> earlier;
   std::vector<Case> all;
   std::optional<Journal> journal;
@@ -36,6 +37,9 @@ int cmd_run(const Options& given) {
       throw InputError("--resume: expected a path in UTF-8, got \"" + printable(given.resume) +
                        "\"");
     out = given.resume;
+    // Held before the journal is read: two resumes of one folder at once would check the rest
+    // twice. A folder glrefcheck did not mark gets no lock file: read_journal refuses it.
+    if (is_marked(out)) lock = lock_folder(out, "--resume " + printable(given.resume, 200));
     earlier = read_journal(out);
     o = earlier->options;
     o.out = given.resume;
@@ -77,7 +81,9 @@ int cmd_run(const Options& given) {
     for (const auto& [name, file] :
          {std::pair{"baseline", &o.baseline}, {"flakes", &o.flakes}, {"skips", &o.skips}})
       if (!file->empty()) inputs.files.emplace_back(name, read_file(*file));
-    out = output_folder(o.out);
+    OutputFolder folder = output_folder(o.out);
+    out = folder.path;
+    lock = std::move(folder.lock);
     // The run replaces its own outputs; case files among them would go with them. Each path
     // resolved once (a resolution is a system call per folder of the path).
     std::error_code ec;

@@ -150,8 +150,10 @@ class Progress {
 };
 
 // Creates (or checks and claims) the output folder before any case runs, so that a folder that
-// cannot be written, or that holds what glrefcheck did not write, is one line and exit 2 at once,
-// not a lost run or lost files. In cli/output_dir.cpp.
-std::filesystem::path output_folder(const std::string& out, const std::string& option = "--out");
+// cannot be written, that holds what glrefcheck did not write, or that another glrefcheck is
+// writing into, is one line and exit 2 at once, not a lost run or lost files; held (locked)
+// while the result lives. In cli/output_dir.cpp.
+struct OutputFolder;
+OutputFolder output_folder(const std::string& out, const std::string& option = "--out");
 
 }  // namespace glrc::cli

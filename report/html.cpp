@@ -17,6 +17,7 @@
 
 #include "report/base64.hpp"
 #include "report/format.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::report {
 namespace {
@@ -84,7 +85,9 @@ window.addEventListener('load', function () {
 )";
 
 void begin_page(std::ostream& out, const std::string& title) {
-  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>"
+  // The stamp (report/stamp.hpp): a later write replaces this page only while it is unchanged.
+  out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      << "<meta name=\"generator\" content=\"glrefcheck " << stamp_placeholder() << "\">\n<title>"
       << xml_escaped(title) << "</title>\n"
       << kStyle << "</head>\n<body>\n<h1>" << xml_escaped(title) << "</h1>\n";
 }
@@ -96,7 +99,7 @@ void end_page(std::ostream& out) {
 // Written in one piece at the end, so a failed write never leaves half a report behind a
 // successful return.
 void write_file(const fs::path& file, const std::string& text) {
-  write_file_atomically(file, text);
+  write_file_atomically(file, stamped(text));
 }
 
 std::string read_binary(const fs::path& file) {

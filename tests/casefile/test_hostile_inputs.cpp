@@ -126,7 +126,7 @@ TEST_F(CaseFileTest, ControlCharactersInKeysAndValuesAreEscaped) {
   EXPECT_EQ(msg, file +
                      R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
                      R"(viewport, depth_range, state, varyings, transform, vertices, triangles, )"
-                     R"(tolerance, work_arounds, got unknown key "a\u0000b\u001Fc")");
+                     R"(tolerance, work_arounds, written_by, got unknown key "a\u0000b\u001Fc")");
   EXPECT_EQ(error_of(R"({"description": "two\nlines\u0007"})"),
             file + R"(: description: expected a non-empty one-line string without control )"
                    R"(characters, got "two\nlines\u0007")");
@@ -207,7 +207,7 @@ TEST_F(CaseFileTest, LongKeysAndDeepPathsAreCutInMessages) {
   EXPECT_EQ(msg, file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
                      ": expected one of the keys description, framebuffer, viewport, "
                      "depth_range, state, varyings, transform, vertices, triangles, tolerance, "
-                     "work_arounds, got unknown key \"" +
+                     "work_arounds, written_by, got unknown key \"" +
                      std::string(60, 'k') + "...\"");
   // 1e400 inside 100,000 nested arrays: the path is vertices[0][0]...[0].
   const std::string deep =

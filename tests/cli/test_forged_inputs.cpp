@@ -197,14 +197,26 @@ TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
     const Outcome o =
         glrefcheck("compare " + run + " " + run + " " + option + " '" + mine.string() + "'");
     expect_one_line(o, option + ": expected a new file or one glrefcheck wrote, got \"" +
-                           mine.string() + "\", which holds something else");
+                           mine.string() +
+                           "\", which glrefcheck did not write (it holds no stamp)");
     EXPECT_EQ(read(mine), "notes of mine\n");
     const fs::path ours = dir_ / ("compare" + option.substr(1));
     for (int k = 0; k < 2; ++k)
       EXPECT_EQ(glrefcheck("compare " + run + " " + run + " " + option + " '" + ours.string() + "'")
                     .exit_code,
                 0);
+    // Once a person edits it, it is theirs: refused, and left as they made it.
+    std::ofstream(ours, std::ios::app) << "my note\n";
+    const std::string edited = read(ours);
+    expect_one_line(
+        glrefcheck("compare " + run + " " + run + " " + option + " '" + ours.string() + "'"),
+        "which was changed since glrefcheck wrote it (its stamp no longer matches)");
+    EXPECT_EQ(read(ours), edited);
   }
+  // One file for two outputs would keep only the last.
+  expect_one_line(glrefcheck("compare " + run + " " + run + " --json '" + (dir_ / "x").string() +
+                             "' --markdown '" + (dir_ / "x").string() + "'"),
+                  "--json and --markdown: expected two different files");
   std::ofstream(mine) << "notes of mine\n";
   expect_one_line(glrefcheck("report " + run + " --out '" + mine.string() + "'"),
                   "--out: expected a new file or one glrefcheck wrote");

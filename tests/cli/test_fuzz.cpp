@@ -14,6 +14,7 @@
 #include "campaign/generators.hpp"
 #include "casefile/casefile.hpp"
 #include "casefile/write.hpp"
+#include "report/stamp.hpp"
 #include "tests/support/glrefcheck_process.hpp"
 #include "tests/support/temp_dir_test.hpp"
 
@@ -177,10 +178,16 @@ TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto* clip = glrc::campaign::find_generator("clip");
   const glrc::Case drawn = glrc::campaign::generate({clip}, 1, 7);
-  EXPECT_EQ(read(file), glrc::casefile::to_case_file(drawn));
+  // The case file, with its stamp first (written_by, which the case format ignores).
+  const std::string text = read(file);
+  const size_t eol = text.find('\n', 2);
+  ASSERT_NE(eol, std::string::npos);
+  EXPECT_EQ(text.substr(0, 2) + text.substr(eol + 1), glrc::casefile::to_case_file(drawn));
+  EXPECT_EQ(text.find("  \"written_by\": \"glrefcheck fuzz glrefcheck-sha256:"), 2u) << text;
+  EXPECT_TRUE(glrc::report::stamp_intact(text));
   EXPECT_EQ(glrc::casefile::to_case_file(glrc::casefile::load(file)),
             glrc::casefile::to_case_file(drawn));
-  // Again over its own file; never over one it did not write.
+  // Again over its own file; never over one it did not write, nor over one a person edited.
   EXPECT_EQ(
       glrefcheck("fuzz --generator clip --replay 1:8 --emit '" + file.string() + "'").exit_code, 0);
   std::ofstream(dir_ / "mine.json") << "{}";
@@ -191,6 +198,30 @@ TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
             std::string::npos)
       << refused.err;
   EXPECT_EQ(read(dir_ / "mine.json"), "{}");
+  std::string edited = read(file);
+  edited.replace(edited.find("\"description\": \"") + 16, 0, "Curated: ");
+  std::ofstream(file) << edited;
+  const auto after_edit =
+      glrefcheck("fuzz --generator clip --replay 1:9 --emit '" + file.string() + "'");
+  EXPECT_EQ(after_edit.exit_code, 2);
+  EXPECT_NE(after_edit.err.find("which was changed since glrefcheck wrote it"), std::string::npos)
+      << after_edit.err;
+  EXPECT_EQ(read(file), edited);
+  // A suite case whose hand-written description gives the command that made it (issue 45: the
+  // words "glrefcheck fuzz" were taken for fuzz's own): kept.
+  namespace fs = std::filesystem;
+  const fs::path curated = dir_ / "steep_edge_interior.json";
+  fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases/steep_edge_interior.json", curated,
+                fs::copy_options::overwrite_existing);
+  const std::string before = read(curated);
+  ASSERT_NE(before.find("glrefcheck fuzz"), std::string::npos);
+  const auto suite =
+      glrefcheck("fuzz --driver softpipe --generator mesh --replay 2027:2802 --emit '" +
+                 curated.string() + "'");
+  EXPECT_EQ(suite.exit_code, 2) << suite.out << suite.err;
+  EXPECT_NE(suite.err.find("which glrefcheck did not write (it holds no stamp)"), std::string::npos)
+      << suite.err;
+  EXPECT_EQ(read(curated), before);
 }
 
 TEST_F(Fuzz, BadInputIsOneLineAndExit2) {

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -408,6 +409,142 @@ TEST_F(RunOptions, PathsThatAreNotUtf8AreRefusedUpFront) {
   EXPECT_NE(c.err.find("expected a path in UTF-8"), std::string::npos) << c.err;
   EXPECT_NE(c.err.find("0xFF"), std::string::npos) << c.err;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 45: two glrefchecks writing into one folder at once. The first holds it (a worker
+// stalled mid-run); a second run, fuzz, merge, diff or identify into it, and a resume of it, is
+// refused with one line naming the holder, and nothing of the first's is touched. Once the
+// first is killed (SIGKILL: no chance to let go), its lock is free, and a resume finishes the run.
+TEST_F(RunFolder, ASecondGlrefcheckIntoAHeldFolderIsRefused) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  Outcome first;
+  std::thread run([&] {
+    first =
+        glrefcheck("run " + kCases + " --jobs 1 --out '" + out.string() + "'" +
+                   proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
+  });
+  const pid_t worker = wait_for_pid(pidfile);
+  ASSERT_GT(worker, 0);
+  const pid_t runner = parent_of(worker);
+  ASSERT_GT(runner, 1);
+  const auto before = snapshot(out);
+  const std::string holder = "is in use by another glrefcheck (pid " + std::to_string(runner) +
+                             ": glrefcheck run --filter";
+  for (const std::string& second :
+       {"run " + kCases + " --jobs 1 --out '" + out.string() + "'",
+        "run --resume '" + out.string() + "'", "fuzz --count 1 --out '" + out.string() + "'",
+        "diff cases/face_on.json --out '" + out.string() + "'",
+        "identify --out '" + out.string() + "'"}) {
+    SCOPED_TRACE(second);
+    const Outcome o = glrefcheck(second);
+    EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+    EXPECT_EQ(lines(o.err), 1u) << o.err;
+    EXPECT_NE(o.err.find(holder), std::string::npos) << o.err;
+  }
+  EXPECT_EQ(snapshot(out), before);
+  ASSERT_EQ(kill(runner, SIGKILL), 0);
+  run.join();
+  EXPECT_TRUE(glrc::test::ended_within(worker, std::chrono::seconds(10)));
+  const Outcome resumed = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.out << resumed.err;
+  EXPECT_EQ(results_of(out)["summary"]["total"], 8);
+}
+
+// Two resumes of one interrupted run at once: the second is refused, the first checks the rest
+// once (one journal line per case).
+TEST_F(RunFolder, TwoResumesAtOnceCheckTheRestOnce) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid", pidfile2 = dir_ / "w2.pid";
+  std::thread run([&] {
+    glrefcheck("run " + kCases + " --jobs 1 --out '" + out.string() + "'" +
+               proxied_workers("--stall-case attr_offset_small_gradient --pidfile '" +
+                               pidfile.string() + "'"));
+  });
+  pid_t worker = wait_for_pid(pidfile);
+  ASSERT_GT(worker, 0);
+  ASSERT_EQ(kill(parent_of(worker), SIGINT), 0);
+  run.join();
+  Outcome resumed;
+  std::thread resume([&] {
+    resumed = glrefcheck(
+        "run --resume '" + out.string() + "'" +
+        proxied_workers("--stall-case viewport_offset --pidfile '" + pidfile2.string() + "'"));
+  });
+  worker = wait_for_pid(pidfile2);
+  ASSERT_GT(worker, 0);
+  const Outcome second = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(second.exit_code, 2) << second.out << second.err;
+  EXPECT_NE(second.err.find("--resume " + out.string() + ": \"" + out.string() +
+                            "\" is in use by another glrefcheck"),
+            std::string::npos)
+      << second.err;
+  ASSERT_EQ(kill(parent_of(worker), SIGINT), 0);
+  resume.join();
+  const Outcome last = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(last.exit_code, 0) << last.out << last.err;
+  // The options line, a GL line per start, and each case once.
+  std::map<std::string, int> seen;
+  std::istringstream journal(read(out / "journal.jsonl"));
+  size_t results = 0;
+  for (std::string line; std::getline(journal, line);) {
+    const auto j = nlohmann::json::parse(line);
+    if (j.contains("result")) ++results, ++seen[j["result"]["name"].get<std::string>()];
+  }
+  EXPECT_EQ(results, 8u);
+  EXPECT_EQ(seen.size(), 8u);
+}
+
+// `--out proj/o1` made proj/ on the way: not an output the user named, so not marked, and a later
+// run into proj/ leaves the cases/ a person put there alone (it is refused).
+TEST_F(RunFolder, AParentMadeOnTheWayIsNotMarked) {
+  const fs::path proj = dir_ / "proj";
+  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + (proj / "o1").string() + "'")
+                .exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(proj / "o1" / ".glrefcheck"));
+  EXPECT_FALSE(fs::exists(proj / ".glrefcheck"));
+  fs::create_directories(proj / "cases");
+  std::ofstream(proj / "cases" / "mine.json") << "{}";
+  const Outcome o = glrefcheck("run cases/face_on.json --jobs 1 --out '" + proj.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_EQ(read(proj / "cases" / "mine.json"), "{}");
+}
+
+// A second diff into one folder: the first case's images are gone, the second's are all there.
+TEST_F(RunFolder, DiffClearsItsEarlierImages) {
+  const fs::path out = dir_ / "d";
+  ASSERT_LE(
+      glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + out.string() + "'").exit_code,
+      1);
+  const auto first = snapshot(out);
+  ASSERT_GT(first.size(), 3u);
+  std::ofstream(out / "notes.txt") << "mine";  // not diff's: stays
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + out.string() + "'").exit_code, 1);
+  const auto second = snapshot(out);
+  std::ifstream manifest(out / ".glrefcheck-diff-images");
+  size_t listed = 0;
+  for (std::string name; std::getline(manifest, name); ++listed)
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  EXPECT_GT(listed, 0u);
+  // Every image there is the second diff's (attr_mixed_magnitudes has channels face_on has not).
+  const std::string listed_names = read(out / ".glrefcheck-diff-images");
+  size_t images = 0;
+  for (const auto& [name, text] : second)
+    if (name.ends_with(".png") || name.ends_with(".exr")) {
+      ++images;
+      EXPECT_NE(listed_names.find(name + "\n"), std::string::npos)
+          << name << " is the first diff's, left beside the second's";
+    }
+  EXPECT_EQ(images, listed);
+  // The first case's varying (m) is not the second's (color): its images were all deleted.
+  size_t gone = 0;
+  for (const auto& [name, text] : first)
+    gone += name.starts_with("m.") && !second.count(name);
+  EXPECT_GT(gone, 0u);
+  EXPECT_EQ(read(out / "notes.txt"), "mine");
 }
 
 }  // namespace

@@ -1,0 +1,53 @@
+#include "report/stamp.hpp"
+
+#include <openssl/evp.h>
+
+#include <memory>
+#include <stdexcept>
+
+namespace glrc::report {
+
+namespace {
+
+constexpr size_t kDigits = 64;
+
+std::string sha256_hex(std::string_view text) {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1 ||
+      EVP_DigestUpdate(ctx.get(), text.data(), text.size()) != 1 ||
+      EVP_DigestFinal_ex(ctx.get(), md, &length) != 1)
+    throw std::runtime_error("SHA-256 failed (OpenSSL)");
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string hex;
+  for (unsigned int k = 0; k < length; ++k)
+    hex += kHex[md[k] >> 4], hex += kHex[md[k] & 15];
+  return hex;
+}
+
+}  // namespace
+
+std::string stamp_placeholder() {
+  return std::string(kStampPrefix) + std::string(kDigits, '0');
+}
+
+std::string stamped(std::string text) {
+  const size_t at = text.find(stamp_placeholder());
+  if (at == std::string::npos) throw std::logic_error("stamped: the text holds no placeholder");
+  const std::string hex = sha256_hex(text);
+  text.replace(at + kStampPrefix.size(), kDigits, hex);
+  return text;
+}
+
+bool stamp_intact(std::string_view text) {
+  const size_t at = text.find(kStampPrefix);
+  if (at == std::string_view::npos || text.size() - at - kStampPrefix.size() < kDigits)
+    return false;
+  const std::string_view digits = text.substr(at + kStampPrefix.size(), kDigits);
+  std::string zeroed(text);
+  zeroed.replace(at + kStampPrefix.size(), kDigits, std::string(kDigits, '0'));
+  return sha256_hex(zeroed) == digits;
+}
+
+}  // namespace glrc::report

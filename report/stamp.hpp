@@ -1,0 +1,26 @@
+// Stamps: how glrefcheck knows a file a person named for it to write (fuzz --emit, compare
+// --json/--markdown/--html, report --out, export --out) is one it wrote and nobody changed since,
+// before it replaces it. A stamp is kStampPrefix and the SHA-256 (hex) of the whole file with
+// those 64 digits written as zeros; each format holds it where its syntax allows (a JSON field, a
+// comment). A file that holds no stamp, or one its text no longer matches (a person edited it,
+// or wrote the words by hand), is the person's: refused.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace glrc::report {
+
+inline constexpr std::string_view kStampPrefix = "glrefcheck-sha256:";
+
+// kStampPrefix followed by 64 zeros: what a writer puts in its text where the stamp goes.
+std::string stamp_placeholder();
+
+// `text` with its one placeholder replaced by its stamp. Throws std::logic_error when the text
+// holds no placeholder.
+std::string stamped(std::string text);
+
+// Whether `text` holds a stamp (the first kStampPrefix in it) that its text still matches.
+bool stamp_intact(std::string_view text);
+
+}  // namespace glrc::report
