@@ -245,7 +245,13 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
     seen[start] = true;
     const auto& run = shards[k].value("run", nlohmann::json::object());
     const auto& run0 = shards[0].value("run", nlohmann::json::object());
-    for (const char* key : {"gl_renderer", "gl_version", "model", "tolerance", "backend", "driver"})
+    // Stopped by a signal: fewer cases than its shard of the campaign.
+    if (shards[k].value("run", nlohmann::json::object()).value("interrupted", false) ||
+        shards[k].value("stats", nlohmann::json::object()).value("interrupted", false))
+      throw std::runtime_error(
+          source + ": an interrupted campaign shard (stopped by a signal): run it again");
+    for (const char* key :
+         {"gl_renderer", "gl_version", "model", "tolerance", "backend", "driver", "verdict_inputs"})
       if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
@@ -258,7 +264,6 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
       for (const char* key : {"seconds", "checking_seconds"})
         stats[key] = stats[key].get<double>() +
                      field(s, source, "stats", key, T::number_float).get<double>();
-      stats["interrupted"] = stats["interrupted"].get<bool>() || s.value("interrupted", false);
     }
     // The first skipped cases of every shard; the first of them all are the unsharded ones'.
     if (shards[k].contains("skipped")) {
@@ -328,6 +333,9 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   const double checking = stats["checking_seconds"].get<double>();
   stats["triangles_per_second"] =
       checking > 0 ? double(stats["triangles"].get<uint64_t>()) / checking : 0.0;
+  // The whole campaign's cases, as one unsharded run's record says them.
+  if (merged.contains("run") && merged["run"].is_object())
+    merged["run"]["total_cases"] = stats["cases"];
   return merged;
 }
 

@@ -54,6 +54,11 @@ std::vector<Failure> failures_of(const Case& c, const CaseResult& r) {
   if (r.coverage.gaps > 0) add(FailureClass::gap, "");
   if (r.coverage.double_hits > 0) add(FailureClass::double_hit, "");
   if (r.coverage.fill_rule > 0 && r.coverage.failures > 0) add(FailureClass::fill_rule, "");
+  // Under strict coverage the boundary's mismatches fail too: their own class, not value/other.
+  if (!r.tolerance.allow_boundary) {
+    if (r.coverage.within_snapping > 0) add(FailureClass::boundary, "within_snapping");
+    if (r.coverage.exact_tie > 0) add(FailureClass::boundary, "exact_tie");
+  }
   for (const ChannelStats& ch : r.channels)
     if (ch.over_tolerance > ch.non_finite) add(FailureClass::value, channel_kind(c, ch.name));
   if (found.empty()) add(FailureClass::value, "other");
@@ -94,6 +99,11 @@ std::string describe(const Failure& f, const CaseResult& r) {
       return line + mismatch(CoverageStats::Label::double_hit, r.coverage.double_hits);
     case FailureClass::fill_rule:
       return line + mismatch(CoverageStats::Label::fill_rule, r.coverage.fill_rule);
+    case FailureClass::boundary:
+      return f.detail == "exact_tie"
+                 ? line + mismatch(CoverageStats::Label::exact_tie, r.coverage.exact_tie)
+                 : line +
+                       mismatch(CoverageStats::Label::within_snapping, r.coverage.within_snapping);
     case FailureClass::value:
       return line + worst_of(false);
   }

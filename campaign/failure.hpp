@@ -20,14 +20,26 @@ namespace glrc::campaign {
 //   gap, double_hit: a pixel of a shared edge reached by no fragment, or by two;
 //   fill_rule:   a coverage difference the specification's freedom does not explain;
 //   value:       a value or depth beyond the allowance (or the fixed tolerance).
-enum class FailureClass { crash, timeout, error, non_finite, gap, double_hit, fill_rule, value };
+// boundary: a coverage mismatch within snapping or on an exact tie, a failure only under strict
+// coverage (Tolerance::allow_boundary false); its detail names the label.
+enum class FailureClass {
+  crash,
+  timeout,
+  error,
+  non_finite,
+  gap,
+  double_hit,
+  fill_rule,
+  boundary,
+  value
+};
 
 }  // namespace glrc::campaign
 
 namespace glrc {
 template <>
 struct Names<campaign::FailureClass> {
-  static constexpr std::array<std::pair<campaign::FailureClass, std::string_view>, 8> table{{
+  static constexpr std::array<std::pair<campaign::FailureClass, std::string_view>, 9> table{{
       {campaign::FailureClass::crash, "crash"},
       {campaign::FailureClass::timeout, "timeout"},
       {campaign::FailureClass::error, "error"},
@@ -35,6 +47,7 @@ struct Names<campaign::FailureClass> {
       {campaign::FailureClass::gap, "gap"},
       {campaign::FailureClass::double_hit, "double_hit"},
       {campaign::FailureClass::fill_rule, "fill_rule"},
+      {campaign::FailureClass::boundary, "boundary"},
       {campaign::FailureClass::value, "value"},
   }};
 };

@@ -82,6 +82,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
       ->type_name("FILE");
   cmd->add_option("--html", o.html, "also write an HTML page with both runs' heatmaps")
       ->type_name("FILE");
+  cmd->add_flag("--allow-incomplete", o.allow_incomplete,
+                "exit 0 though a run was interrupted or holds fewer cases than its suite (its "
+                "missing cases are listed as removed or added)");
   return cmd;
 }
 
@@ -116,6 +119,11 @@ int cmd_compare(const CompareOptions& o) {
   }
   for (const std::string* file : {&o.json, &o.markdown, &o.html})
     if (!file->empty()) fmt::print("wrote {}\n", *file);
+  // A gate on the exit code must not pass a run that checked a quarter of the suite.
+  if (!c.incomplete.empty() && !o.allow_incomplete) {
+    fmt::print("a run is incomplete: exit 1 (--allow-incomplete to compare it anyway)\n");
+    return 1;
+  }
   return c.has_regression() ? 1 : 0;
 }
 

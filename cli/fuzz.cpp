@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 #include <charconv>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
@@ -18,6 +19,7 @@
 #include "cli/validators.hpp"
 #include "cli/workers.hpp"
 #include "core/text.hpp"
+#include "report/format.hpp"
 #include "report/html.hpp"
 #include "report/json_types.hpp"
 #include "report/report.hpp"
@@ -59,8 +61,13 @@ std::pair<uint64_t, uint64_t> parse_replay(const std::string& text) {
       printable(text, 80) + "\"";
   const size_t colon = text.find(':');
   if (colon == std::string::npos) throw InputError(what);
-  return {whole(std::string_view(text).substr(0, colon), what),
-          whole(std::string_view(text).substr(colon + 1), what)};
+  const uint64_t seed = whole(std::string_view(text).substr(0, colon), what);
+  const uint64_t index = whole(std::string_view(text).substr(colon + 1), what);
+  // The campaign checks cases 0 .. index: index + 1 of them, which must not wrap to none.
+  if (index == std::numeric_limits<uint64_t>::max())
+    throw InputError("--replay: expected an INDEX below 18446744073709551615, got \"" +
+                     printable(text, 80) + "\"");
+  return {seed, index};
 }
 
 // A case file with its stamp in "written_by" (report/stamp.hpp; the case format ignores the
@@ -96,9 +103,10 @@ CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
       "fuzz",
       "random campaigns: generated cases checked on GL, each distinct failure shrunk to a "
       "minimal case in <out>/failures/");
-  cmd->add_option("--seed", f.seed, "the campaign's seed (default: a fresh one, printed)");
+  cmd->add_option("--seed", f.seed, "the campaign's seed (default: a fresh one, printed)")
+      ->check(whole_u64());
   cmd->add_option("--count", f.count, "check this many cases (default 200 without --time)")
-      ->check(whole_number(1));
+      ->check(whole_u64(1));
   cmd->add_option("--time", f.seconds, "check cases for this many seconds")
       ->check(finite_range(0.001, 1e7));
   std::string generators_help = "the generators to draw cases from (default: all):";
@@ -124,9 +132,9 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   Options o = given;
   campaign::CampaignOptions co;
   co.generators = chosen_generators(f);
-  if (!f.emit.empty() && f.replay.empty())
+  if (!f.emit.empty() && !f.replay)
     throw InputError("--emit: expected --replay SEED:INDEX with it (the case to write)");
-  if (!f.replay.empty() && (f.seed || f.count || f.seconds))
+  if (f.replay && (f.seed || f.count || f.seconds))
     throw InputError(
         "--replay: expected no --seed, --count or --time with it (SEED:INDEX names "
         "the case)");
@@ -134,8 +142,8 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     throw InputError(
         fmt::format("--fraction {} --fraction-start {}: expected 1 <= fraction-start <= fraction",
                     o.fraction, o.fraction_start));
-  if (!f.replay.empty()) {
-    const auto [seed, index] = parse_replay(f.replay);
+  if (f.replay) {
+    const auto [seed, index] = parse_replay(*f.replay);
     if (!f.emit.empty()) {
       const Case c = campaign::generate(co.generators, seed, index);
       check_replaceable(f.emit, "--emit");
@@ -157,6 +165,10 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   Options for_baseline;
   for_baseline.baseline = f.baseline;
   const Baseline baseline = load_baseline(for_baseline);
+  // What judges the campaign besides GL and the model (merge compares it between shards).
+  Options judged = o;
+  judged.baseline = f.baseline, judged.flakes.clear(), judged.skips.clear();
+  const std::map<std::string, std::string> judged_by = verdict_inputs(judged);
   const auto known = [&](const campaign::Failure& failure) {
     const std::string file = campaign::failure_file_name(failure);
     return baseline.expected.count(file.substr(0, file.size() - 5)) > 0;
@@ -183,6 +195,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   RunInfo info;
   info.backend = gl::to_string(o.backend), info.driver = o.driver, info.jobs = s.jobs;
   info.mesa_prefix = o.mesa;
+  info.verdict_inputs = judged_by;
   const auto on_start = [&](const gl::GlInfo& gl, const ModelChoice& model) {
     if (prefix && !from_prefix(*prefix, gl.library))
       throw InputError("--mesa " + o.mesa + ": GL came from " +
@@ -267,6 +280,10 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     new_failures += !nf.known;
   }
 
+  // A campaign stopped by a signal is a run stopped by one: merge refuses it.
+  info.interrupted = result.stats.interrupted;
+  info.total_cases = result.stats.cases;
+  info.seconds = result.stats.seconds;
   nlohmann::json run;
   glrc::to_json(run, info);
   nlohmann::json doc = campaign::campaign_json(result, run);
@@ -288,6 +305,10 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
       st.cases, st.triangles, st.pixels, st.seconds, st.triangles_per_second(), st.failing_cases,
       result.failures.size(), result.failures.size() == 1 ? "" : "s", new_failures,
       st.skipped ? fmt::format("; {} skipped (beyond GL's specified range)", st.skipped) : "");
+  if (st.interrupted)
+    fmt::print("interrupted by {} after {}: its results hold the cases checked\n",
+               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT",
+               report::count_text(st.cases, "case", "cases"));
   fmt::print("results in {}\n", shown_path(out.string()));
   if (st.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
   return new_failures == 0 ? 0 : 1;

@@ -21,7 +21,8 @@ struct FuzzOptions {
   std::optional<uint64_t> count;
   std::optional<double> seconds;
   std::vector<std::string> generators;  // default: every one
-  std::string replay, emit;
+  std::optional<std::string> replay;    // given, even empty: refused then, not a random campaign
+  std::string emit;
   // Known campaign failures, `<failure>,Fail` lines (Mesa CI's format; <failure> is the name of
   // the minimal case, "non_finite_noperspective"): reported as known, they do not fail it.
   std::string baseline;

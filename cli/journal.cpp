@@ -73,12 +73,15 @@ int open_journal(const fs::path& file, int flags) {
 
 }  // namespace
 
-Journal Journal::start(const fs::path& dir, const Options& o,
-                       const std::vector<std::string>& files) {
+Journal Journal::start(const fs::path& dir, const Options& o, const std::vector<std::string>& files,
+                       const std::vector<std::string>& file_digests) {
   const fs::path file = dir / kJournalFile;
   Journal j(open_journal(file, O_CREAT | O_TRUNC), file);
-  j.append(json{{"glrefcheck_journal", 1}, {"options", all_options_json(o)}, {"files", files}}.dump(
-      -1, ' ', false, json::error_handler_t::replace));
+  j.append(json{{"glrefcheck_journal", 1},
+                {"options", all_options_json(o)},
+                {"files", files},
+                {"file_digests", file_digests}}
+               .dump(-1, ' ', false, json::error_handler_t::replace));
   return j;
 }
 
@@ -164,6 +167,12 @@ JournalContents read_journal(const fs::path& dir) {
         if (!j.contains("options")) throw InputError(where + ": expected the run's options");
         c.options = all_options_from_json(j["options"], where);
         c.files = option_fields::texts(option_fields::reader(where), j, "", "files");
+        // Each case file's content as the run began (absent in journals before it).
+        if (j.contains("file_digests"))
+          c.file_digests =
+              option_fields::texts(option_fields::reader(where), j, "", "file_digests");
+        if (!c.file_digests.empty() && c.file_digests.size() != c.files.size())
+          throw InputError(where + ": expected one file digest per case file");
       } else if (j.contains("run")) {
         c.run = report::run_info_from_json(j["run"].dump(), where);
         const auto model = identify::model_from_json(j.at("model"));
@@ -171,7 +180,19 @@ JournalContents read_journal(const fs::path& dir) {
         c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
       } else {
         const size_t index = j.at("index");
-        c.results[index] = report::case_result_from_json(j.at("result").dump(), where);
+        CaseResult r = report::case_result_from_json(j.at("result").dump(), where);
+        // A later line for a case is its heatmaps lost (the same verdict, its message saying
+        // so); one with another name or verdict is another run's, or a hand's: refused.
+        if (const auto earlier = c.results.find(index);
+            earlier != c.results.end() &&
+            (earlier->second.name != r.name || earlier->second.status != r.status ||
+             earlier->second.outcome != r.outcome))
+          throw InputError(fmt::format(
+              "{}: expected case {} (\"{}\", {}) as an earlier line gives it, got \"{}\", {}: two "
+              "results for one case",
+              where, index, printable(earlier->second.name, 80), to_string(earlier->second.outcome),
+              printable(r.name, 80), to_string(r.outcome)));
+        c.results[index] = std::move(r);
         c.elapsed = std::max(c.elapsed, j.at("at").get<double>());
       }
     } catch (const InputError&) {

@@ -3,12 +3,13 @@
 // moment (kill -9 included) leaves every finished case on disk and `run --resume` can go on.
 //
 // Line 1: {"glrefcheck_journal": 1, "options": {every option of the run}, "files": [the case
-// files, after --filter, before sharding, in order]}. Once GL is known: {"run": results.json's
+// files, after --filter, before sharding, in order], "file_digests": [each one's content,
+// report::content_digest]}. Once GL is known: {"run": results.json's
 // "run", "model": {...}, "model_source": "..."}, so a resumed run is judged by the same model.
 // Per case: {"index": k (into the run's cases, after sharding), "at": seconds since the run
 // began, "result": the CaseResult as in results.json}; a case whose heatmaps are then lost is
-// recorded again, its message saying so, and the later line counts. A last line cut short by a
-// kill is ignored.
+// recorded again, its message saying so, and the later line counts (a later line of another
+// name or verdict is refused). A last line cut short by a kill is ignored.
 #pragma once
 
 #include <filesystem>
@@ -25,6 +26,9 @@ namespace glrc::cli {
 struct JournalContents {
   Options options;
   std::vector<std::string> files;
+  // Each file's content as the run began (report::content_digest), for --resume to notice an
+  // edit; empty in a journal written before it was recorded.
+  std::vector<std::string> file_digests;
   std::optional<RunInfo> run;
   std::optional<ModelChoice> model;
   std::map<size_t, CaseResult> results;
@@ -35,7 +39,8 @@ class Journal {
  public:
   // Starts a new journal (replacing any) with its first line.
   static Journal start(const std::filesystem::path& dir, const Options& o,
-                       const std::vector<std::string>& files);
+                       const std::vector<std::string>& files,
+                       const std::vector<std::string>& file_digests);
   // Appends to an existing one.
   static Journal reopen(const std::filesystem::path& dir);
   Journal(Journal&& other) noexcept : fd_(other.fd_), file_(std::move(other.file_)) {

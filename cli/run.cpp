@@ -19,6 +19,7 @@
 #include "report/format.hpp"
 #include "report/merge.hpp"
 #include "report/report.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 
@@ -55,6 +56,17 @@ int cmd_run(const Options& given) {
       }
     }
     check_case_names(all);
+    // The cases as the run began: a file edited since (a git pull between the interrupt and
+    // the resume) would mix two suites in one result.
+    std::vector<std::string> changed;
+    for (size_t k = 0; k < earlier->file_digests.size(); ++k)
+      if (report::content_digest(read_file(earlier->files[k])) != earlier->file_digests[k])
+        changed.push_back(earlier->files[k]);
+    if (!changed.empty())
+      throw InputError(fmt::format(
+          "--resume {}: {} changed since the run began ({}{}): start a new run", o.out,
+          report::count_text(changed.size(), "case file", "case files"), printable(changed[0], 200),
+          changed.size() > 1 ? fmt::format(" and {} more", changed.size() - 1) : ""));
     expectations = o;
     const auto copy = out / kInputsFolder;
     if (!o.baseline.empty()) expectations.baseline = (copy / "baseline").string();
@@ -73,6 +85,7 @@ int cmd_run(const Options& given) {
   const Baseline baseline = load_baseline(expectations);
   const Patterns flakes = load_patterns(expectations.flakes, "--flakes");
   const Patterns skips = load_patterns(expectations.skips, "--skips");
+  const std::map<std::string, std::string> judged_by = verdict_inputs(expectations);
   std::optional<MesaPrefix> prefix;
   if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
@@ -103,10 +116,12 @@ int cmd_run(const Options& given) {
     for (const auto& [name, text] : inputs.files)
       report::write_file_atomically(out / kInputsFolder / name, text);
     // Absolute, so that --resume finds them from any working folder.
-    std::vector<std::string> files;
-    for (const Case& c : all)
+    std::vector<std::string> files, digests;
+    for (const Case& c : all) {
       files.push_back(std::filesystem::absolute(c.source_path).lexically_normal().string());
-    journal.emplace(Journal::start(out, o, files));
+      digests.push_back(report::content_digest(read_file(c.source_path)));
+    }
+    journal.emplace(Journal::start(out, o, files, digests));
   } else {
     journal.emplace(Journal::reopen(out));
   }
@@ -130,6 +145,7 @@ int cmd_run(const Options& given) {
     i.fraction = o.fraction, i.fraction_start = o.fraction_start;
     i.total_cases = all.size();
     i.mesa_prefix = o.mesa;  // as typed: results name the tree the way its user does
+    i.verdict_inputs = judged_by;
   };
   RunInfo info;
   if (earlier && earlier->run) info = *earlier->run;

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 
+#include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "casefile/casefile.hpp"
 #include "cli/options_reader.hpp"
 #include "core/text.hpp"
 #include "driver_models/driver_models.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 
@@ -154,6 +157,29 @@ RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& mode
   info.gl_primitive_id_from_geometry_shader = gl.primitive_id_from_geometry_shader;
   info.mesa_prefix = o.mesa;
   return info;
+}
+
+std::map<std::string, std::string> verdict_inputs(const Options& o) {
+  const auto number = [](const std::optional<double>& v) {
+    return v ? fmt::format("{}", *v) : std::string();
+  };
+  std::map<std::string, std::string> inputs = {
+      {"strict_coverage", o.strict_coverage ? "true" : "false"},
+      {"varying_ulps", number(o.varying_ulps)},
+      {"depth_ulps", number(o.depth_ulps)}};
+  for (const auto& [name, file] :
+       {std::pair{"baseline", &o.baseline}, {"flakes", &o.flakes}, {"skips", &o.skips}})
+    if (!file->empty()) {
+      std::ifstream in(*file, std::ios::binary);
+      std::string text((std::istreambuf_iterator<char>(in)), {});
+      if (!in && !in.eof())
+        throw InputError(std::string("--") + name + ": cannot read \"" + printable(*file, 200) +
+                         "\"");
+      inputs[name] = report::content_digest(text);
+    } else {
+      inputs[name] = "";
+    }
+  return inputs;
 }
 
 Baseline load_baseline(const Options& o) {

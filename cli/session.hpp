@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
@@ -116,6 +117,11 @@ std::vector<std::string> model_choices();
 Model model_of(const Options& o);
 // Sets subpixel_bits, planes and tie_break to `m` (so that model_of(o) is m).
 void set_model(Options& o, const Model& m);
+
+// RunInfo::verdict_inputs of a run judged under `o`: strict coverage, the fixed ULPs, and the
+// --baseline, --flakes and --skips files as they read now (their SHA-256; on --resume, the
+// copies the run began with). InputError when one cannot be read.
+std::map<std::string, std::string> verdict_inputs(const Options& o);
 
 // The model when the command line decides it, nullopt when the implementation must be
 // identified (--model identified, the default, with no --subpixel-bits, --planes, --tie-break).

@@ -3,8 +3,10 @@
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +66,22 @@ inline CLI::Validator finite_range(double lower, double upper) {
         return "expected a finite number " + range + ", got " + s;
       },
       "NUMBER " + range);
+}
+
+// A whole number from `lower` to 2^64 - 1, in plain digits: CLI11 reads "-1" into a uint64_t as
+// 18446744073709551615 and clamps 18446744073709551616 to the largest, both silently.
+inline CLI::Validator whole_u64(uint64_t lower = 0) {
+  return CLI::Validator(
+      [=](std::string& s) -> std::string {
+        const std::string expected =
+            fmt::format("expected a whole number from {} to 18446744073709551615", lower);
+        uint64_t v = 0;
+        const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+        if (s.empty() || ec != std::errc() || end != s.data() + s.size() || v < lower)
+          return expected + ", got \"" + s + "\"";
+        return "";
+      },
+      fmt::format("INTEGER >= {}", lower));
 }
 
 // A whole number >= lower that fits an int: CLI11's PositiveNumber says "Value 0 not in range

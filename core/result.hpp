@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -168,6 +169,11 @@ struct RunInfo {
   // Stopped by SIGINT or SIGTERM before every case was checked: the results hold the cases that
   // finished, and `glrefcheck run --resume` completes the run.
   bool interrupted = false;
+  // Everything besides GL, the model and the tolerance that changes a verdict, by name (cli's
+  // verdict_inputs: "strict_coverage", "varying_ulps", "depth_ulps", and "baseline", "flakes",
+  // "skips" as the SHA-256 of the file read, "" where not given): shards that differ in one
+  // judged alike would merge into results no single run gives. Empty in results before it.
+  std::map<std::string, std::string> verdict_inputs;
 };
 
 }  // namespace glrc

@@ -57,7 +57,7 @@ std::string comparison_json(const RunComparison& c) {
       {"factor", json_number(c.factor)},    {"min_ulps", json_number(c.min_ulps)},
       {"summary", std::move(summary)},      {"regressions", c.has_regression()},
       {"bits_compared", c.bits_compared()}, {"bits_identical", c.bits_identical()},
-      {"cases", std::move(cases)}};
+      {"incomplete", c.incomplete},         {"cases", std::move(cases)}};
   // Case names and messages come from files and drivers; replace bad UTF-8 rather than throw.
   return doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

@@ -43,6 +43,8 @@ std::string comparison_markdown(const RunComparison& c) {
   if (!c.base.mesa_prefix.empty() || !c.current.mesa_prefix.empty())
     row("Mesa prefix", c.base.mesa_prefix, c.current.mesa_prefix);
   if (const auto note = setup_note(c); !note.empty()) md += "\n" + note + "\n";
+  for (const std::string& line : c.incomplete)
+    md += "\n**Incomplete " + md_cell(line) + "**\n";
   md += "\n**" + counts_line(c) + "**\n\n" + bits_summary(c) + "\n";
 
   const std::string both_skipped = skipped_in_both_note(c);

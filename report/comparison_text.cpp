@@ -30,6 +30,8 @@ std::string comparison_text(const RunComparison& c) {
     return line + "\n";
   };
   std::string text = run_line("base:", c.base) + run_line("current:", c.current);
+  for (const std::string& line : c.incomplete)
+    text += "incomplete " + line + "\n";
   if (const auto note = setup_note(c); !note.empty()) text += note + "\n";
   text += fmt::format("\n{}\n{}\n", counts_line(c), bits_summary(c));
 

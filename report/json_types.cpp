@@ -107,7 +107,8 @@ void to_json(json& j, const RunInfo& r) {
        {"fraction_start", r.fraction_start},
        {"total_cases", r.total_cases},
        {"seconds", json_number(r.seconds)},
-       {"interrupted", r.interrupted}};
+       {"interrupted", r.interrupted},
+       {"verdict_inputs", r.verdict_inputs}};
 }
 
 namespace {
@@ -312,6 +313,13 @@ void read(const Reader& r, const json& j, const std::string& path, RunInfo& run)
   run.interrupted = false;
   if (const json* v = Reader::find(j, "interrupted"))
     run.interrupted = r.boolean(*v, path_key(path, "interrupted"));
+  run.verdict_inputs.clear();
+  if (const json* v = Reader::find(j, "verdict_inputs")) {  // added later
+    const std::string at = path_key(path, "verdict_inputs");
+    if (!v->is_object()) r.fail(at, "an object of strings", Reader::describe(*v));
+    for (const auto& [key, value] : v->items())
+      run.verdict_inputs[key] = r.string(value, path_key(at, key));
+  }
 }
 
 }  // namespace glrc::report

@@ -41,6 +41,27 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
       throw std::runtime_error(fmt::format(
           "merge: {}: expected the same GL and options as {} ({}, {}), got {}, {}", names[k],
           names[0], first.gl_renderer, first.gl_version, r.gl_renderer, r.gl_version));
+    if (r.verdict_inputs != first.verdict_inputs) {
+      // The first input they differ in, by name.
+      std::string key;
+      for (const auto& m : {&r.verdict_inputs, &first.verdict_inputs})
+        for (const auto& [name, value] : *m) {
+          const auto a = r.verdict_inputs.find(name), b = first.verdict_inputs.find(name);
+          const bool same = a != r.verdict_inputs.end() && b != first.verdict_inputs.end() &&
+                            a->second == b->second;
+          if (!same && (key.empty() || name < key)) key = name;
+        }
+      const auto shown = [&](const std::map<std::string, std::string>& m) {
+        const auto it = m.find(key);
+        return it == m.end()        ? std::string("nothing recorded")
+               : it->second.empty() ? std::string("none")
+                                    : it->second;
+      };
+      throw std::runtime_error(fmt::format(
+          "merge: {}: expected shards judged alike, got {} {} where {} has {}: run the shards "
+          "with the same options and files",
+          names[k], key, shown(r.verdict_inputs), names[0], shown(first.verdict_inputs)));
+    }
     if (const auto [it, added] = seen.emplace(r.fraction_start, k); !added)
       throw std::runtime_error(fmt::format("merge: {} and {} are both shard {} of {}",
                                            names[it->second], names[k], r.fraction_start, n));

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
@@ -152,11 +153,26 @@ RunResults read_results_json(const std::filesystem::path& file) {
     throw std::runtime_error(file.string() + ": expected JSON, got " + parse_error_text(e));
   }
   const Reader r(file.string(), Wording::brief);
+  if (doc.is_object() && doc.contains("campaign") && !doc.contains("cases"))
+    throw std::runtime_error(file.string() +
+                             ": expected a run's results.json, got a fuzz campaign's (its "
+                             "failures/ and report.html are the campaign's report; merge joins "
+                             "campaign shards)");
   RunResults out;
   read(r, r.required(doc, "results.json", "run"), "run", out.run);
+  std::unordered_map<std::string, size_t> named;
   r.elements(
       r.required(doc, "results.json", "cases"), "cases", "an array",
-      [&](const json& c, const std::string& path) { read(r, c, path, out.cases.emplace_back()); });
+      [&](const json& c, const std::string& path) {
+        read(r, c, path, out.cases.emplace_back());
+        // One result per case: a name twice (a hand edit, two files pasted together)
+        // would be counted twice by whoever reads it.
+        const auto [it, added] = named.emplace(out.cases.back().name, out.cases.size() - 1);
+        if (!added)
+          r.fail(path + ".name",
+                 "a name no other case has (cases[" + std::to_string(it->second) + "] has it too)",
+                 Reader::describe(c.at("name")));
+      });
   return out;
 }
 

@@ -133,6 +133,20 @@ RunComparison compare_runs(const RunResults& base, const RunResults& current, do
   RunComparison out;
   out.base = base.run, out.current = current.run;
   out.factor = factor, out.min_ulps = min_ulps;
+  for (const auto& [label, side] : {std::pair{"base", &base}, {"current", &current}}) {
+    const RunInfo& r = side->run;
+    // Its shard's size: every `fraction`-th case from `fraction_start` of `total_cases` (0: a
+    // results.json from before the field, which says nothing of it).
+    const uint64_t total = r.total_cases, start = uint64_t(std::max(r.fraction_start, 1)),
+                   fraction = uint64_t(std::max(r.fraction, 1));
+    const uint64_t expected = total >= start ? (total - start) / fraction + 1 : 0;
+    if (r.interrupted)
+      out.incomplete.push_back(
+          fmt::format("{}: interrupted after {} of {} cases", label, side->cases.size(), expected));
+    else if (total > 0 && side->cases.size() != expected)
+      out.incomplete.push_back(
+          fmt::format("{}: {} of {} cases", label, side->cases.size(), expected));
+  }
 
   std::unordered_map<std::string, const CaseResult*> in_base, in_current;
   for (const auto& r : base.cases)

@@ -65,6 +65,10 @@ struct RunComparison {
   size_t bits_compared() const;
   size_t bits_identical() const;
   bool has_regression() const { return count(CaseChange::Kind::regression) > 0; }
+  // A side that did not check its whole suite (or shard of it), one line each ("current:
+  // interrupted after 79 of 320 cases"): its missing cases show as removed or added, which no
+  // driver change explains. Empty when both are complete, or say nothing of their size.
+  std::vector<std::string> incomplete;
 };
 
 RunComparison compare_runs(const RunResults& base, const RunResults& current, double factor = 2,

@@ -50,4 +50,8 @@ bool stamp_intact(std::string_view text) {
   return sha256_hex(zeroed) == digits;
 }
 
+std::string content_digest(std::string_view text) {
+  return "sha256:" + sha256_hex(text);
+}
+
 }  // namespace glrc::report

@@ -4,8 +4,9 @@
 # twice, the second time while resuming), then finished with `glrefcheck run --resume`; every
 # such run must end with the results.json of an uninterrupted run (timings and the model's
 # source, cached or not, aside), an interrupted results.json must say so, and no worker may
-# outlive its runner. Prints one line per interruption and a one-line summary; exit 1 on any
-# difference.
+# outlive its runner; two runs (and two resumes) into one folder at once, the second refused;
+# campaigns stopped with SIGINT and SIGTERM, recorded as interrupted and refused by merge. Prints
+# one line per interruption and a one-line summary; exit 1 on any difference.
 #
 #   scripts/interrupt-test.sh [N]     (GLRC_BIN: the glrefcheck to test, default build/glrefcheck;
 #                                      GLRC_JOBS: workers, default 2)
@@ -100,7 +101,72 @@ for scenario in "${scenarios[@]}"; do
   fi
 done
 
+# Two runs into one folder at once (two terminals, two CI jobs on the default out/): the second
+# is refused with one line naming the first, which ends as if alone; two resumes of one stopped
+# run at once: the second is refused, the first checks the rest once.
+out="$work/twice"
+"$bin" run "$work/cases" --jobs "$jobs" --out "$out" >"$out.log" 2>&1 &
+pid=$!
+for _ in $(seq 100); do [ -f "$out/journal.jsonl" ] && break; sleep 0.05; done
+rc=0
+"$bin" run "$work/cases" --jobs "$jobs" --out "$out" >"$out.second.log" 2>&1 || rc=$?
+rc_first=0
+wait "$pid" || rc_first=$?
+if [ "$rc" != 2 ] || ! grep -q "is in use by another glrefcheck (pid $pid" "$out.second.log" ||
+  [ "$rc_first" -ge 2 ] || ! diff -q <(comparable "$out") "$work/whole.json" >/dev/null; then
+  echo "  two runs into one folder: NOT refused or the first's results changed (exit $rc, $rc_first)"
+  failed=$((failed + 1))
+else
+  echo "  two runs into one folder: the second refused (exit 2, names pid $pid), the first's results whole"
+fi
+"$bin" run "$work/cases" --jobs "$jobs" --out "$out" >"$out.log" 2>&1 &
+pid=$!
+sleep "$(awk -v t="$whole_s" 'BEGIN { print 0.3 * t }')"
+kill -s INT "$pid" 2>/dev/null || true
+wait "$pid" 2>/dev/null || true
+"$bin" run --resume "$out" >>"$out.log" 2>&1 &
+pid=$!
+sleep 0.2
+rc=0
+"$bin" run --resume "$out" >"$out.second.log" 2>&1 || rc=$?
+rc_first=0
+wait "$pid" || rc_first=$?
+lines=$(grep -c '^{"index"' "$out/journal.jsonl" || true)
+if [ "$rc" != 2 ] || [ "$rc_first" -ge 2 ] || [ "$lines" != "$n" ] ||
+  ! diff -q <(comparable "$out") "$work/whole.json" >/dev/null; then
+  echo "  two resumes at once: NOT refused, or the rest checked twice ($lines journal lines for $n cases; exit $rc, $rc_first)"
+  failed=$((failed + 1))
+else
+  echo "  two resumes at once: the second refused, $lines journal lines for $n cases, results whole"
+fi
+
+# A campaign stopped by SIGINT and SIGTERM: exit 130/143, results.json says so, merge refuses it,
+# no worker outlives it.
+for sig in INT TERM; do
+  out="$work/campaign-$sig"
+  "$bin" fuzz --seed 7 --count 100000 --generator sizes --jobs "$jobs" --no-shrink --out "$out" \
+    >"$out.log" 2>&1 &
+  pid=$!
+  sleep 3
+  kill -s "$sig" "$pid" 2>/dev/null || true
+  rc=0
+  wait "$pid" 2>/dev/null || rc=$?
+  sleep 0.5
+  left=$(live_workers)
+  orphans=$((orphans + left))
+  expected=$((128 + $(kill -l "$sig")))
+  merged=0
+  "$bin" merge "$out" --out "$work/merged-$sig" >"$out.merge.log" 2>&1 || merged=$?
+  if [ "$rc" != "$expected" ] || [ "$(jq '.run.interrupted' "$out/results.json")" != true ] ||
+    ! grep -q "interrupted by SIG$sig after" "$out.log" || [ "$merged" != 2 ]; then
+    echo "  campaign SIG$sig: exit $rc (expected $expected), interrupted=$(jq '.run.interrupted' "$out/results.json" 2>/dev/null), merge exit $merged: WRONG"
+    failed=$((failed + 1))
+  else
+    echo "  campaign SIG$sig: exit $rc, $(jq '.stats.cases' "$out/results.json") cases recorded as interrupted, merge refused it, $left workers left"
+  fi
+done
+
 verdict="every resumed run equals the uninterrupted run"
 [ "$failed" = 0 ] || verdict="$failed FAILED"
-echo "interrupt-test: $n cases ($(printf %.1f "$whole_s") s uninterrupted, $jobs workers), ${#scenarios[@]} runs stopped $stops times (kill -9, SIGINT, SIGTERM at 2-90% of the run, some twice) then --resume: $verdict; $orphans workers outlived their runner"
+echo "interrupt-test: $n cases ($(printf %.1f "$whole_s") s uninterrupted, $jobs workers), ${#scenarios[@]} runs stopped $stops times (kill -9, SIGINT, SIGTERM at 2-90% of the run, some twice) then --resume, two runs and two resumes into one folder at once, two campaigns stopped: $verdict; $orphans workers outlived their runner"
 [ "$failed" = 0 ] && [ "$orphans" = 0 ]

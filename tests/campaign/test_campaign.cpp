@@ -318,6 +318,25 @@ TEST(Generators, DenseScenesHideDepthContestsUnderNearerTriangles) {
   EXPECT_EQ(shared_edge_sizes, (std::set<std::string>{"tiny", "small", "medium", "large"}));
 }
 
+// Issue 45: under --strict-coverage, 38 within-snapping pixels were filed as value/other.
+TEST(Failures, StrictCoverageBoundaryMismatchesAreTheirOwnClass) {
+  Case c;
+  CaseResult r;
+  r.outcome = Status::fail;
+  r.tolerance.allow_boundary = false;
+  r.coverage.within_snapping = 38, r.coverage.exact_tie = 2;
+  r.coverage.boundary = r.coverage.failures = 40;
+  const std::vector<Failure> f = failures_of(c, r);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f[0].signature(), "boundary/within_snapping");
+  EXPECT_EQ(f[1].signature(), "boundary/exact_tie");
+  EXPECT_EQ(failure_file_name(f[0]), "boundary_within_snapping.json");
+  // With the boundary allowed, those pixels fail nothing: no boundary class (the outcome is
+  // forced here; a real check would pass).
+  r.tolerance.allow_boundary = true;
+  EXPECT_EQ(failures_of(c, r).front().signature(), "value/other");
+}
+
 TEST(Failures, ClassesComeInPrecedenceOrderWithTheChannelsKind) {
   Case c;
   c.varyings = {{"a", 2, Interpolation::noperspective}, {"b", 1, Interpolation::flat}};

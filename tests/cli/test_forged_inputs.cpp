@@ -226,6 +226,64 @@ TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
     EXPECT_EQ(glrefcheck("report " + run + " --out '" + page.string() + "'").exit_code, 0);
 }
 
+// Issue 45: compare took a run stopped after a quarter of its cases for a run with cases
+// removed ("0 regressions", exit 0), and counted a case named twice; it read a campaign's
+// results.json as a run missing "cases".
+TEST_F(Forged, CompareRefusesOrFlagsWhatDoesNotBelongTogether) {
+  const std::string run = "'" + (dir_ / "run").string() + "'";
+  const fs::path stopped = forged_results("stopped", [](json& j) {
+    j["run"]["interrupted"] = true;
+    j["run"]["total_cases"] = 4;
+  });
+  Outcome o = glrefcheck("compare " + run + " '" + stopped.string() + "' --json '" +
+                         (dir_ / "stopped.json").string() + "'");
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_NE(o.out.find("incomplete current: interrupted after 1 of 4 cases"), std::string::npos)
+      << o.out;
+  EXPECT_NE(o.out.find("--allow-incomplete"), std::string::npos) << o.out;
+  EXPECT_EQ(json::parse(read(dir_ / "stopped.json"))["incomplete"],
+            json::array({"current: interrupted after 1 of 4 cases"}));
+  o = glrefcheck("compare " + run + " '" + stopped.string() + "' --allow-incomplete");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  // Not interrupted, but fewer cases than its suite: a partial results.json.
+  const fs::path partial = forged_results("partial", [](json& j) { j["run"]["total_cases"] = 3; });
+  o = glrefcheck("compare '" + partial.string() + "' " + run);
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_NE(o.out.find("incomplete base: 1 of 3 cases"), std::string::npos) << o.out;
+  // A case named twice is bad input, in compare, merge and report alike.
+  const fs::path twice = forged_results("twice", [](json& j) {
+    j["cases"].push_back(j["cases"][0]);
+    j["run"]["total_cases"] = 2;
+  });
+  expect_one_line(glrefcheck("compare " + run + " '" + twice.string() + "'"),
+                  "cases[1].name: expected a name no other case has (cases[0] has it too)");
+  expect_one_line(glrefcheck("report '" + twice.string() + "'"),
+                  "cases[1].name: expected a name no other case has");
+  // A campaign's results are not a run's.
+  const fs::path campaign = dir_ / "campaign";
+  fs::create_directories(campaign);
+  std::ofstream(campaign / "results.json")
+      << R"({"campaign": {"seed": 1}, "run": {}, "stats": {}, "failures": []})";
+  expect_one_line(glrefcheck("compare " + run + " '" + campaign.string() + "'"),
+                  "expected a run's results.json, got a fuzz campaign's");
+}
+
+// Issue 45: shards run with --strict-coverage and without merged into results no run gives.
+TEST_F(Forged, MergeRefusesShardsJudgedOtherwise) {
+  const std::string shard =
+      "run cases/face_on.json cases/viewport_tiny.json --jobs 1 --fraction 2 ";
+  const fs::path a = dir_ / "shard_a", b = dir_ / "shard_b";
+  ASSERT_EQ(glrefcheck(shard + "--fraction-start 1 --out '" + a.string() + "'").exit_code, 0);
+  ASSERT_LE(glrefcheck(shard + "--fraction-start 2 --strict-coverage --out '" + b.string() + "'")
+                .exit_code,
+            1);
+  expect_one_line(glrefcheck("merge '" + a.string() + "' '" + b.string() + "' --out '" +
+                             (dir_ / "merged").string() + "'"),
+                  "expected shards judged alike, got strict_coverage true where");
+  EXPECT_EQ(json::parse(read(a / "results.json"))["run"]["verdict_inputs"]["strict_coverage"],
+            "false");
+}
+
 // A misspelt command was "A subcommand is required", naming nothing.
 TEST(CommandLine, AnUnknownCommandIsNamed) {
   const Outcome o = glrefcheck("bogus");

@@ -100,6 +100,17 @@ TEST_F(Fuzz, AnInterruptedCampaignWritesWhatItChecked) {
   EXPECT_LT(checked, 64) << results.dump(2);
   EXPECT_TRUE(std::filesystem::exists(out / "results.csv"));
   EXPECT_TRUE(std::filesystem::exists(out / "report.html"));
+  // Issue 45: a campaign stopped by a signal is a run stopped by one: recorded as such, said
+  // so, and refused by merge.
+  EXPECT_EQ(results["run"]["interrupted"], true) << results.dump(2);
+  EXPECT_EQ(results["run"]["total_cases"], checked) << results.dump(2);
+  EXPECT_NE(o.out.find("interrupted by SIGINT after " + std::to_string(checked) + " cases"),
+            std::string::npos)
+      << o.out;
+  const auto merged =
+      glrefcheck("merge '" + out.string() + "' --out '" + (dir_ / "merged").string() + "'");
+  EXPECT_EQ(merged.exit_code, 2) << merged.out << merged.err;
+  EXPECT_NE(merged.err.find("an interrupted campaign shard"), std::string::npos) << merged.err;
 }
 
 TEST_F(Fuzz, AFailureTheBaselineListsIsKnownAndDoesNotFailTheCampaign) {
@@ -121,6 +132,7 @@ nlohmann::json untimed(const std::filesystem::path& file) {
   nlohmann::json j = nlohmann::json::parse(read(file));
   for (const char* key : {"seconds", "checking_seconds", "triangles_per_second"})
     j["stats"].erase(key);
+  j["run"].erase("seconds");
   j["campaign"].erase("merged_shards");
   for (auto& f : j["failures"]) {
     f.erase("found_after_seconds");
@@ -170,6 +182,15 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
   EXPECT_EQ(twice.exit_code, 2);
   EXPECT_NE(twice.err.find("campaign.fraction_start: expected one of 1..2"), std::string::npos)
       << twice.err;
+  // Shards judged otherwise (issue 45: --strict-coverage was recorded nowhere) are no campaign.
+  const auto strict = dir_ / "strict";
+  glrefcheck(campaign + " --strict-coverage --fraction 2 --fraction-start 2 --out '" +
+             strict.string() + "'");
+  const auto judged = glrefcheck("merge '" + a.string() + "' '" + strict.string() + "' --out '" +
+                                 (dir_ / "m4").string() + "'");
+  EXPECT_EQ(judged.exit_code, 2) << judged.out << judged.err;
+  EXPECT_NE(judged.err.find("run.verdict_inputs: expected"), std::string::npos) << judged.err;
+  EXPECT_NE(judged.err.find("\"strict_coverage\":\"true\""), std::string::npos) << judged.err;
 }
 
 TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
@@ -234,9 +255,17 @@ TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
       {"fuzz --replay 1:x" + out, "--replay: expected SEED:INDEX"},
       {"fuzz --replay 1:2 --seed 3" + out, "--replay: expected no --seed, --count or --time"},
       {"fuzz --emit x.json" + out, "--emit: expected --replay SEED:INDEX with it"},
-      {"fuzz --count 0" + out, "--count"},
       {"fuzz --time nan" + out, "--time"},
       {"fuzz --fraction 2 --fraction-start 3" + out, "expected 1 <= fraction-start <= fraction"},
+      // Issue 45: wrapped, clamped or empty, each once a silent campaign of another kind.
+      {"fuzz --replay 3:18446744073709551615" + out,
+       "--replay: expected an INDEX below 18446744073709551615"},
+      {"fuzz --replay ''" + out, "--replay: expected SEED:INDEX"},
+      {"fuzz --seed -1" + out,
+       "expected a whole number from 0 to 18446744073709551615, got \"-1\""},
+      {"fuzz --seed 18446744073709551616" + out,
+       "expected a whole number from 0 to 18446744073709551615, got \"18446744073709551616\""},
+      {"fuzz --count 0" + out, "expected a whole number from 1"},
   };
   for (const auto& [args, message] : cases) {
     const auto r = glrefcheck(args);

@@ -547,4 +547,49 @@ TEST_F(RunFolder, DiffClearsItsEarlierImages) {
   EXPECT_EQ(read(out / "notes.txt"), "mine");
 }
 
+// Issue 45: --resume mixed in case files edited after the interrupt (a git pull is enough), and
+// kept the later of two journal lines for one case with different verdicts, silently.
+TEST_F(RunFolder, ResumeRefusesEditedCasesAndConflictingJournalLines) {
+  const fs::path cases = dir_ / "cases", out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  fs::create_directories(cases);
+  for (const char* name : {"face_on", "viewport_tiny", "attr_tiny"})
+    fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases" / (std::string(name) + ".json"),
+                  cases / (std::string(name) + ".json"));
+  std::thread run([&] {
+    glrefcheck("run '" + cases.string() + "' --jobs 1 --out '" + out.string() + "'" +
+               proxied_workers("--stall-case viewport_tiny --pidfile '" + pidfile.string() + "'"));
+  });
+  const pid_t worker = wait_for_pid(pidfile);
+  ASSERT_GT(worker, 0);
+  ASSERT_EQ(kill(parent_of(worker), SIGINT), 0);
+  run.join();
+  const std::string journal = read(out / "journal.jsonl");
+  // attr_tiny was checked: edit it, as a pull would.
+  std::string text = read(cases / "attr_tiny.json");
+  text.insert(text.find("\"description\": \"") + 16, "Edited: ");
+  std::ofstream(cases / "attr_tiny.json") << text;
+  Outcome o = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_EQ(lines(o.err), 1u) << o.err;
+  EXPECT_NE(o.err.find("1 case file changed since the run began (" +
+                       (cases / "attr_tiny.json").string() + "): start a new run"),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(read(out / "journal.jsonl"), journal);
+  // Back as it was, but a second line for the first case with another verdict.
+  fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases/attr_tiny.json", cases / "attr_tiny.json",
+                fs::copy_options::overwrite_existing);
+  std::istringstream in(journal);
+  std::string line, first_result;
+  while (std::getline(in, line) && first_result.empty())
+    if (line.find("\"result\"") != std::string::npos) first_result = line;
+  ASSERT_FALSE(first_result.empty()) << journal;
+  auto conflicting = nlohmann::json::parse(first_result);
+  conflicting["result"]["status"] = "Fail", conflicting["result"]["outcome"] = "Fail";
+  std::ofstream(out / "journal.jsonl", std::ios::app) << conflicting.dump() << "\n";
+  o = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("two results for one case"), std::string::npos) << o.err;
+}
+
 }  // namespace
