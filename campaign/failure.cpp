@@ -1,5 +1,6 @@
 #include "campaign/failure.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace glrc::campaign {
@@ -63,6 +64,34 @@ std::vector<Failure> failures_of(const Case& c, const CaseResult& r) {
     if (ch.over_tolerance > ch.non_finite) add(FailureClass::value, channel_kind(c, ch.name));
   if (found.empty()) add(FailureClass::value, "other");
   return found;
+}
+
+std::optional<std::string> failure_name_problem(std::string_view name) {
+  if (name.find('/') != std::string_view::npos) {
+    std::string stem(name);
+    std::replace(stem.begin(), stem.end(), '/', '_');
+    return "a failure's file name (" + stem + "), not its signature";
+  }
+  // Each class, alone or with the details failures_of gives it.
+  static const std::vector<std::string_view> channel_kinds = {"depth", "smooth", "flat",
+                                                              "noperspective", "other"};
+  for (const auto& [kind, class_name] : Names<FailureClass>::table) {
+    if (name == class_name) return std::nullopt;
+    if (!name.starts_with(class_name) || name.size() <= class_name.size() ||
+        name[class_name.size()] != '_')
+      continue;
+    const std::string_view detail = name.substr(class_name.size() + 1);
+    const bool has_channel = kind == FailureClass::non_finite || kind == FailureClass::value;
+    if (has_channel &&
+        std::find(channel_kinds.begin(), channel_kinds.end(), detail) != channel_kinds.end())
+      return std::nullopt;
+    if (kind == FailureClass::boundary && (detail == "within_snapping" || detail == "exact_tie"))
+      return std::nullopt;
+  }
+  return std::string(
+      "a campaign failure's name: crash, timeout, error, gap, double_hit, fill_rule, "
+      "non_finite_<kind> or value_<kind> (kind: depth, smooth, flat, "
+      "noperspective, other), boundary_within_snapping or boundary_exact_tie");
 }
 
 std::string describe(const Failure& f, const CaseResult& r) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -69,6 +70,12 @@ struct Failure {
 // judged by its outcome). A Fail whose statistics name no class (it should not happen) is
 // `value` with detail "other".
 std::vector<Failure> failures_of(const Case& c, const CaseResult& r);
+
+// Why `name` (a --baseline entry) can name no campaign failure, or nothing when it can: a failure
+// is named by its minimal case's file stem, the class and its detail joined by '_'
+// ("non_finite_noperspective", "gap", "boundary_within_snapping"), not by the signature printed
+// with '/'.
+std::optional<std::string> failure_name_problem(std::string_view name);
 
 // One line: the failure's class, then the first worst pixel or mismatch the result names
 // ("non_finite: v1.y at (12, 7): GL NaN, reference 0.25").

@@ -1243,19 +1243,16 @@ size_t reproducer_values(const Case& c) {
 }
 
 std::string c_compile_command(const std::string& file) {
-  auto quoted = [](const std::string& s) {
-    const bool plain = !s.empty() && s.find_first_not_of(
-                                         "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                         "0123456789._/+-,=:@%") == std::string::npos;
-    if (plain) return s;
-    std::string q = "'";
-    for (char ch : s)
-      q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-  };
   std::string program = file;
   if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
-  return "cc -std=c99 -O2 -o " + quoted(program) + " " + quoted(file) + " -ldl -lm";
+  return "cc -std=c99 -O2 -o " + shell_word(program) + " " + shell_word(file) + " -ldl -lm";
+}
+
+std::string c_run_command(const std::string& file) {
+  std::string program = file;
+  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
+  if (program.find('/') == std::string::npos) program = "./" + program;
+  return shell_word(program);
 }
 
 std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
@@ -1268,10 +1265,7 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   std::string file_name = setup.file_name.empty() ? c.name + ".c" : setup.file_name;
   if (const size_t slash = file_name.rfind('/'); slash != std::string::npos)
     file_name = file_name.substr(slash + 1);
-  std::string program = file_name.ends_with(".c") && file_name.size() > 2
-                            ? file_name.substr(0, file_name.size() - 2)
-                            : file_name;
-  if (program.find('/') == std::string::npos) program = "./" + program;
+  const std::string program = c_run_command(file_name);
 
   std::string out;
   out.reserve(pixels * 64 + 65536);

@@ -66,6 +66,9 @@ struct CReproducerSetup {
 // `cc -std=c99 -O2 -o NAME NAME.c -ldl -lm` for a C file `file` ending in ".c" (quoted for a
 // POSIX shell where needed): how the header, and `export`, say to build it.
 std::string c_compile_command(const std::string& file);
+// The program c_compile_command builds, as a shell runs it ("./NAME" for a name without a
+// folder; quoted where needed).
+std::string c_run_command(const std::string& file);
 
 // The C99 text of a reproducer of case `c`.
 //   c:         a valid case (casefile::load's), at most kMaxReproducerValues pixel values;

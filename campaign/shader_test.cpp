@@ -176,22 +176,6 @@ std::string glsl_comment(std::string_view text) {
   return t;
 }
 
-std::string shell_quoted(const std::string& s) {
-  const bool plain = !s.empty() && s.find_first_not_of(
-                                       "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                       "0123456789._/+-,=:@%") == std::string::npos;
-  if (plain) return s;
-  std::string q = "'";
-  for (char ch : s) {
-    if (ch == '\'')
-      q += "'\\''";
-    else
-      q += ch;
-  }
-  q += "'";
-  return q;
-}
-
 // ---- The expectation, per pixel ----
 
 // What the probes require at one pixel, as compare::coverage_label judges it.
@@ -325,7 +309,7 @@ size_t shader_test_value_checks(int components) {
 
 std::string shader_runner_command(const std::string& file) {
   std::string command = "PIGLIT_PLATFORM=surfaceless_egl shader_runner ";
-  command += shell_quoted(file);
+  command += shell_word(file);
   command += " -auto -fbo";
   return command;
 }

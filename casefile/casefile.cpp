@@ -156,7 +156,13 @@ std::vector<fs::path> collect(const std::vector<std::string>& files_or_dirs,
           std::error_code sec;
           const fs::file_status est = entry.status(sec);  // follows symbolic links
           if (fs::is_directory(est)) {
-            pending.push_back(e);
+            // glrefcheck's own output (a run's results.json, a campaign's failures/) is no case:
+            // `run cases --out cases/out` and the next `run cases` would read it as one.
+            if (std::error_code mec; fs::is_regular_file(e / kOutputFolderMarker, mec))
+              say("glrefcheck: ignored " + printable(e.string()) +
+                  ": an output folder of glrefcheck's (it holds " + kOutputFolderMarker + ")");
+            else
+              pending.push_back(e);
           } else if (e.extension() == ".json") {
             if (fs::is_regular_file(est)) {
               out.push_back(e.lexically_normal());

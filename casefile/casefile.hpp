@@ -29,9 +29,14 @@ Case load(const std::filesystem::path& file);
 // with it, so that a minimal case is always one the loader takes.
 Case parse(std::string text, const std::string& source, const std::string& name);
 
+// The file that marks a folder as glrefcheck's output (cli/output_dir.hpp): collect() searches
+// no such folder below the ones named.
+inline constexpr const char* kOutputFolderMarker = ".glrefcheck";
+
 // Case files named by the arguments: files as given, directories searched recursively for
-// *.json (following symbolic links, each folder once, so that a link loop ends); sorted by path,
-// duplicates removed. A FIFO, socket, device or unfollowable link found as *.json in a folder is
+// *.json (following symbolic links, each folder once, so that a link loop ends; a folder below
+// them holding kOutputFolderMarker is passed over with a note); sorted by path, duplicates
+// removed. A FIFO, socket, device or unfollowable link found as *.json in a folder is
 // ignored with one line to `note` (default: stderr). Throws CaseError for a path that does not
 // exist or is neither a regular file nor a folder (never read), a path that is not UTF-8, an
 // unreadable folder, a case name (file stem) with a control character, or two cases of one name.

@@ -203,8 +203,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
       report::stamped(campaign::c_reproducer(c, expected, tolerance, setup) +
                       "/* written by glrefcheck export " + report::stamp_placeholder() + " */\n"));
   fmt::print("wrote {}: compile with {}, run with {} [egl|osmesa]\n", out,
-             campaign::c_compile_command(out),
-             (out.find('/') == std::string::npos ? "./" : "") + out.substr(0, out.size() - 2));
+             campaign::c_compile_command(out), campaign::c_run_command(out));
   return 0;
 }
 

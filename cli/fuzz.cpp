@@ -165,6 +165,19 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   Options for_baseline;
   for_baseline.baseline = f.baseline;
   const Baseline baseline = load_baseline(for_baseline);
+  // A campaign's known failure is `<failure>,Fail`: another status, or a name no failure has (the
+  // signature as printed, non_finite/noperspective), would be a line that silently matches
+  // nothing, or matches what it should not.
+  for (const auto& [name, status] : baseline.expected) {
+    if (status != "Fail")
+      throw InputError(fmt::format(
+          "--baseline {}: {}: expected the status Fail (a campaign failure is listed as "
+          "`<failure>,Fail`), got {}",
+          printable(f.baseline, 200), printable(name, 80), printable(status, 40)));
+    if (const auto problem = campaign::failure_name_problem(name))
+      throw InputError(fmt::format("--baseline {}: expected {}, got \"{}\"",
+                                   printable(f.baseline, 200), *problem, printable(name, 80)));
+  }
   // What judges the campaign besides GL and the model (merge compares it between shards).
   Options judged = o;
   judged.baseline = f.baseline, judged.flakes.clear(), judged.skips.clear();

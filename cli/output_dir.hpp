@@ -9,9 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "casefile/casefile.hpp"
+
 namespace glrc::cli {
 
-inline constexpr const char* kMarkerFile = ".glrefcheck";
+inline constexpr const char* kMarkerFile = casefile::kOutputFolderMarker;
 inline constexpr const char* kJournalFile = "journal.jsonl";
 // Copies of --baseline, --flakes and --skips as the run read them, for --resume (a baseline may
 // be the folder's own failures.csv, which the run replaces).

@@ -82,4 +82,16 @@ std::string wrap_words(std::string_view text, size_t width, std::string_view pre
   return out;
 }
 
+std::string shell_word(std::string_view s) {
+  std::string word = s.starts_with("-") ? "./" + std::string(s) : std::string(s);
+  const bool plain = !word.empty() && word.find_first_not_of(
+                                          "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                          "0123456789._/+-,=:@%") == std::string::npos;
+  if (plain) return word;
+  std::string q = "'";
+  for (char ch : word)
+    q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return q + "'";
+}
+
 }  // namespace glrc

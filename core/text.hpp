@@ -15,5 +15,9 @@ std::string printable(std::string_view s, size_t max = std::string_view::npos);
 // each line `prefix`, the words joined by single spaces, and "\n": comment blocks of generated
 // files. Spaces alone break words; runs of them count as one.
 std::string wrap_words(std::string_view text, size_t width, std::string_view prefix);
+// `s` as one word of a POSIX shell, for a command printed for a person to paste: as it is where
+// it is plain, else in single quotes; one that starts with '-' (a file "-dash.c") gets "./",
+// or the command would take it for an option.
+std::string shell_word(std::string_view s);
 
 }  // namespace glrc

@@ -85,6 +85,24 @@ TEST_F(CaseFileTest, CollectSearchesAFolderReachedByLinksOnce) {
 // A FIFO named as a case blocked forever; sockets and devices are no cases either. Found in a
 // folder, one is ignored with one line; named outright, it is an error of one line (it used to
 // be a note and then "no case matches", two lines that did not say why).
+// Issue 45: `run cases --out cases/out` made the next `run cases` read out/results.json as a
+// case. A folder below the ones named that glrefcheck marked as its output is passed over; named
+// outright, it is searched as any folder.
+TEST_F(CaseFileTest, CollectPassesOverGlrefchecksOutputFolders) {
+  write("suite/x.json", "{}");
+  write("suite/out/.glrefcheck", "glrefcheck output folder\n");
+  write("suite/out/results.json", "{}");
+  write("suite/out/failures/gap.json", "{}");
+  std::vector<std::string> notes;
+  const auto note = [&](const std::string& n) { notes.push_back(n); };
+  EXPECT_EQ(strings(collect({(dir_ / "suite").string()}, note)),
+            (std::vector<std::string>{(dir_ / "suite/x.json").string()}));
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0], "glrefcheck: ignored " + (dir_ / "suite/out").string() +
+                          ": an output folder of glrefcheck's (it holds .glrefcheck)");
+  EXPECT_EQ(collect({(dir_ / "suite/out").string()}, note).size(), 2u);
+}
+
 TEST_F(CaseFileTest, CollectIgnoresFifosInFoldersAndRefusesThemNamed) {
   write("d/x.json", "{}");
   ASSERT_EQ(mkfifo((dir_ / "d/pipe.json").c_str(), 0600), 0);

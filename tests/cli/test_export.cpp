@@ -195,6 +195,12 @@ TEST_F(Export, DefaultNameAndItsOwnFileReplaced) {
   EXPECT_EQ(text.rfind(glrc::campaign::kCReproducerSignature, 0), 0u);
   EXPECT_NE(text.find(" *   Build:  cc -std=c99 -O2 -o face_on face_on.c -ldl -lm\n"),
             std::string::npos);
+  // Issue 45: a name starting with '-' was taken for cc's option, one with a space split.
+  const auto dash = shell(cd + args + " --out='-my case.c'");
+  EXPECT_EQ(dash.exit_code, 0) << dash.out;
+  EXPECT_EQ(dash.out,
+            "wrote -my case.c: compile with cc -std=c99 -O2 -o './-my case' './-my case.c' -ldl "
+            "-lm, run with './-my case' [egl|osmesa]\n");
 }
 
 TEST_F(Export, BadInputIsOneLineAndExit2) {

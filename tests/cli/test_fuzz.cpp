@@ -247,6 +247,13 @@ TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
 
 TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
   const std::string out = " --out '" + (dir_ / "o").string() + "'";
+  // Baselines whose lines would match nothing, or what they should not (issue 45).
+  std::ofstream(dir_ / "crash.txt") << "gap,Crash\n";
+  std::ofstream(dir_ / "signature.txt") << "non_finite/noperspective,Fail\n";
+  std::ofstream(dir_ / "unknown.txt") << "value_bogus,Fail\n";
+  const auto baseline = [&](const char* file) {
+    return " --baseline '" + (dir_ / file).string() + "'";
+  };
   const std::pair<std::string, std::string> cases[] = {
       {"fuzz --generator bogus" + out,
        "--generator: expected one of sizes, clip, mesh, attributes, states, dense, got "
@@ -266,6 +273,14 @@ TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
       {"fuzz --seed 18446744073709551616" + out,
        "expected a whole number from 0 to 18446744073709551615, got \"18446744073709551616\""},
       {"fuzz --count 0" + out, "expected a whole number from 1"},
+      {"fuzz --count 1" + baseline("crash.txt") + out,
+       "gap: expected the status Fail (a campaign failure is listed as `<failure>,Fail`), got "
+       "Crash"},
+      {"fuzz --count 1" + baseline("signature.txt") + out,
+       "expected a failure's file name (non_finite_noperspective), not its signature, got "
+       "\"non_finite/noperspective\""},
+      {"fuzz --count 1" + baseline("unknown.txt") + out,
+       "expected a campaign failure's name: crash, timeout"},
   };
   for (const auto& [args, message] : cases) {
     const auto r = glrefcheck(args);
