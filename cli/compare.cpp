@@ -98,16 +98,19 @@ int cmd_compare(const CompareOptions& o) {
     for (size_t b = a + 1; b < outputs.size(); ++b) {
       if (outputs[a].second->empty() || outputs[b].second->empty()) continue;
       std::error_code ec;
-      if (std::filesystem::weakly_canonical(*outputs[a].second, ec) ==
-          std::filesystem::weakly_canonical(*outputs[b].second, ec))
+      // Absolute first: weakly_canonical leaves "x" relative but resolves "./x".
+      const auto resolved = [&](const std::string& f) {
+        return std::filesystem::weakly_canonical(std::filesystem::absolute(f, ec), ec);
+      };
+      if (resolved(*outputs[a].second) == resolved(*outputs[b].second))
         throw InputError(fmt::format("{} and {}: expected two different files, got \"{}\" for both",
                                      outputs[a].first, outputs[b].first,
                                      printable(*outputs[a].second, 200)));
     }
   // Each output replaces only a file glrefcheck wrote and nobody changed since (its stamp).
-  if (!o.json.empty()) check_replaceable(o.json, "--json");
-  if (!o.markdown.empty()) check_replaceable(o.markdown, "--markdown");
-  if (!o.html.empty()) check_replaceable(o.html, "--html");
+  if (!o.json.empty()) check_replaceable(o.json, "--json", "compare");
+  if (!o.markdown.empty()) check_replaceable(o.markdown, "--markdown", "compare");
+  if (!o.html.empty()) check_replaceable(o.html, "--html", "compare");
   const report::RunComparison c = report::compare_runs(base, current, o.factor, o.min_ulps);
   fmt::print("{}", report::comparison_text(c));
   if (!o.json.empty()) write_text(o.json, stamped_json(report::comparison_json(c)));

@@ -81,7 +81,7 @@ int export_shader_test(const ExportOptions& o, const CLI::App& command, const Ca
     message += *why;
     throw InputError(message);
   }
-  check_replaceable(out, "--out");
+  check_replaceable(out, "--out", "export");
   const Expectation expected = check::expectation_for(c, options, reported_bits);
   const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
   if (const auto why = campaign::shader_test_refusal(c, expected, tolerance)) {
@@ -133,7 +133,8 @@ CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
   add_enum_option(*cmd, "--tie-break", o.tie_break,
                   "without --driver: pixel centres exactly on an edge");
   cmd->add_option("--threads", o.threads, "threads drawing the reference (default: every core)")
-      ->check(whole_number(1));
+      ->check(whole_number(1))
+      ->check(CLI::Range(1, 4096));  // as run's: 100,000 threads hung on their start-up
   return cmd;
 }
 
@@ -180,7 +181,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   if (!out.ends_with(".c") || out.size() < 3 || out.ends_with("/.c"))
     throw InputError("--out: expected a file name ending in .c, got \"" + printable(out, 200) +
                      "\"");
-  check_replaceable(out, "--out");
+  check_replaceable(out, "--out", "export");
 
   const Expectation expected = check::expectation_for(c, options, reported_bits);
   const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);

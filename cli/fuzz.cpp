@@ -146,7 +146,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     const auto [seed, index] = parse_replay(*f.replay);
     if (!f.emit.empty()) {
       const Case c = campaign::generate(co.generators, seed, index);
-      check_replaceable(f.emit, "--emit");
+      check_replaceable(f.emit, "--emit", "fuzz");
       write_case_file(f.emit, c);
       fmt::print("wrote {}: {}, {} triangles, {} varyings\n", f.emit, c.name, c.triangles.size(),
                  c.varyings.size());

@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <fmt/core.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -122,6 +124,26 @@ void add_worker_wrapper_option(CLI::App& command, Options& o) {
                                                                    : std::string();
           },
           "COMMAND"));
+}
+
+// An option naming a file or folder given as "" (an unset shell variable: --resume "$DIR") was
+// taken for the option not given: `run --resume ''` ran a fresh run into out/, `fuzz --emit ''`
+// a campaign. Refused in every subcommand, before anything is done.
+void check_no_empty_paths(const CLI::App& app) {
+  static const std::vector<std::string> paths = {
+      "--resume", "--out",  "--mesa", "--baseline", "--flakes",
+      "--skips",  "--emit", "--json", "--markdown", "--worker-wrapper"};
+  for (const CLI::App* sub : app.get_subcommands())
+    for (const CLI::Option* opt : sub->get_options()) {
+      if (opt->count() == 0 || opt->get_expected_min() == 0) continue;  // not given, or a flag
+      const std::string name = opt->get_name();
+      const bool path = std::find(paths.begin(), paths.end(), name) != paths.end() ||
+                        (name == "--html" && sub->get_name() == "compare");
+      if (!path) continue;
+      for (const std::string& value : opt->results())
+        if (value.empty())
+          throw InputError(name + ": expected a path, got \"\" (an empty or unset variable?)");
+    }
 }
 
 // `run --resume DIR` runs what DIR's journal recorded: any other option would be silently
@@ -275,6 +297,7 @@ int main_impl(int argc, char** argv) {
   }
   o.model_given = model_options_given(app);
   try {
+    check_no_empty_paths(app);
     if (*run && !o.resume.empty()) check_resume_alone(*run);
     if (*worker) return cmd_worker();
     // GL from a Mesa prefix needs the loader's environment at process start: the commands that

@@ -171,7 +171,7 @@ int cmd_report(const std::string& dir, const std::string& file) {
   // A run folder's own page is glrefcheck's where the folder is (marked); any other file only
   // while its stamp holds.
   if (!file.empty() || !is_marked(run_dir))
-    check_replaceable(html, file.empty() ? "report" : "--out");
+    check_replaceable(html, file.empty() ? "report" : "--out", "report");
   report::write_run_html(html, results, run_dir);
   fmt::print("wrote {}\n", html.string());
   return 0;

@@ -85,7 +85,8 @@ FolderLock::~FolderLock() {
 FolderLock lock_folder(const fs::path& dir, const std::string& option) {
   const fs::path file = dir / kLockFile;
   const std::string shown = printable(dir.string(), 200);
-  const int fd = open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // Not through a symbolic link: the holder's line would be written into whatever it names.
+  const int fd = open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0)
     throw InputError(fmt::format("{}: cannot lock \"{}\" ({}: {})", option, shown, kLockFile,
                                  std::strerror(errno)));
@@ -188,7 +189,7 @@ OutputFolder output_folder(const std::string& out, const std::string& option) {
   return folder;
 }
 
-void check_replaceable(const fs::path& file, const std::string& option) {
+void check_replaceable(const fs::path& file, const std::string& option, const std::string& writer) {
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
   if (!fs::exists(st)) return;
@@ -206,6 +207,9 @@ void check_replaceable(const fs::path& file, const std::string& option) {
     refuse("which glrefcheck did not write (it holds no stamp)");
   if (!report::stamp_intact(text))
     refuse("which was changed since glrefcheck wrote it (its stamp no longer matches)");
+  if (const std::string by = report::stamp_writer(text); by != writer)
+    refuse("which glrefcheck " + (by.empty() ? std::string("wrote otherwise") : by) +
+           " wrote, not glrefcheck " + writer);
 }
 
 void clear_diff_images(const fs::path& dir) {

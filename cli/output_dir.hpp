@@ -62,9 +62,11 @@ OutputFolder output_folder(const std::string& out, const std::string& option);
 
 // A file an option names for glrefcheck to write (`fuzz --emit`, `compare --json`, `report
 // --out`, `export --out`): fine if it does not exist, or if it is a regular file whose stamp its
-// text still matches (report/stamp.hpp: glrefcheck wrote it and nobody changed it since).
-// Anything else is the user's: InputError naming `option`, before anything is written.
-void check_replaceable(const std::filesystem::path& file, const std::string& option);
+// text still matches (report/stamp.hpp: glrefcheck wrote it and nobody changed it since), written
+// by the same command, `writer` ("fuzz", "compare", "export", "report"). Anything else is the
+// user's, or another command's: InputError naming `option`, before anything is written.
+void check_replaceable(const std::filesystem::path& file, const std::string& option,
+                       const std::string& writer);
 
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);

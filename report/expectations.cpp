@@ -37,6 +37,8 @@ Baseline read_baseline(const std::filesystem::path& file) {
   Baseline b;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
+    // A UTF-8 byte-order mark (an editor's) would join the first case's name and match nothing.
+    if (n == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
     line = trim(line);
     if (line.empty() || line[0] == '#') continue;
     // `case,Status` or `case,Status,seconds`

@@ -84,11 +84,12 @@ window.addEventListener('load', function () {
 </script>
 )";
 
-void begin_page(std::ostream& out, const std::string& title) {
+// `writer`: the command the stamp names ("report" for a run's page, "compare").
+void begin_page(std::ostream& out, const std::string& title, const char* writer) {
   // The stamp (report/stamp.hpp): a later write replaces this page only while it is unchanged.
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      << "<meta name=\"generator\" content=\"glrefcheck " << stamp_placeholder() << "\">\n<title>"
-      << xml_escaped(title) << "</title>\n"
+      << "<meta name=\"generator\" content=\"glrefcheck " << writer << " " << stamp_placeholder()
+      << "\">\n<title>" << xml_escaped(title) << "</title>\n"
       << kStyle << "</head>\n<body>\n<h1>" << xml_escaped(title) << "</h1>\n";
 }
 
@@ -390,7 +391,8 @@ void side_by_side(std::ostream& out, const CaseChange& c, const ChangeImages& im
 void write_run_html(const std::filesystem::path& file, const RunResults& results,
                     const std::filesystem::path& run_dir) {
   std::ostringstream out;
-  begin_page(out, "glrefcheck — " + results.run.driver + " (" + results.run.backend + ")");
+  begin_page(out, "glrefcheck — " + results.run.driver + " (" + results.run.backend + ")",
+             "report");
   run_summary(out, results);
   case_table(out, results.cases);
   std::vector<const CaseResult*> failing;
@@ -411,8 +413,10 @@ void write_comparison_html(const std::filesystem::path& file, const RunCompariso
                            const std::filesystem::path& current_dir) {
   const RunComparison& c = comparison;
   std::ostringstream out;
-  begin_page(out, "glrefcheck compare — " + c.base.driver + " (" + c.base.backend + ") → " +
-                      c.current.driver + " (" + c.current.backend + ")");
+  begin_page(out,
+             "glrefcheck compare — " + c.base.driver + " (" + c.base.backend + ") → " +
+                 c.current.driver + " (" + c.current.backend + ")",
+             "compare");
   comparison_header(out, c);
   out << "<p class=\"counts\">";
   for (auto k : kKindOrder) {

@@ -110,10 +110,20 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
           fmt::format("merge: case {} of {} is in no shard", k + 1, merged.size()));
     list.push_back(std::move(*merged[k]));
   }
-  for (const auto& r : list)
+  std::map<std::string, size_t> named;
+  for (size_t k = 0; k < list.size(); ++k) {
+    const CaseResult& r = list[k];
     if (const char* what = csv_breaking(r.name))
       throw std::runtime_error("merge: expected case names fit for results.csv, got \"" +
                                printable(r.name) + "\", which holds " + what);
+    // Shards of one suite hold each case once: a name twice means shards of two suites (a case
+    // renamed or added between the checkouts that ran them).
+    if (const auto [it, added] = named.emplace(r.name, k); !added)
+      throw std::runtime_error(fmt::format(
+          "merge: expected shards of one suite, got case \"{}\" as case {} and case {} of {}: "
+          "shards of different suites (cases added, removed or renamed between them)",
+          printable(r.name, 80), it->second + 1, k + 1, list.size()));
+  }
   return {info, std::move(list)};
 }
 

@@ -50,6 +50,16 @@ bool stamp_intact(std::string_view text) {
   return sha256_hex(zeroed) == digits;
 }
 
+std::string stamp_writer(std::string_view text) {
+  const size_t at = text.find(kStampPrefix);
+  if (at == std::string_view::npos || at == 0 || text[at - 1] != ' ') return {};
+  const std::string_view before = text.substr(0, at - 1);
+  const size_t space = before.rfind(' ');
+  if (space == std::string_view::npos || !before.substr(0, space).ends_with("glrefcheck"))
+    return {};
+  return std::string(before.substr(space + 1));
+}
+
 std::string content_digest(std::string_view text) {
   return "sha256:" + sha256_hex(text);
 }

@@ -23,6 +23,11 @@ std::string stamped(std::string text);
 // Whether `text` holds a stamp (the first kStampPrefix in it) that its text still matches.
 bool stamp_intact(std::string_view text);
 
+// The command that wrote the stamp: every writer puts "glrefcheck <command> " right before it
+// ("fuzz", "compare", "export", "report"), so that one command's file is not replaced by
+// another's (a case fuzz emitted by compare's JSON). Empty when the text holds no such word.
+std::string stamp_writer(std::string_view text);
+
 // "sha256:" and the SHA-256 (hex) of `text`: a file's content named in results (RunInfo's
 // verdict_inputs) and in the run journal, to tell whether two runs read the same file.
 std::string content_digest(std::string_view text);

@@ -213,10 +213,23 @@ TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
         "which was changed since glrefcheck wrote it (its stamp no longer matches)");
     EXPECT_EQ(read(ours), edited);
   }
-  // One file for two outputs would keep only the last.
+  // One file for two outputs would keep only the last, however it is spelt.
   expect_one_line(glrefcheck("compare " + run + " " + run + " --json '" + (dir_ / "x").string() +
                              "' --markdown '" + (dir_ / "x").string() + "'"),
                   "--json and --markdown: expected two different files");
+  // (In the test folder: the second argument goes before the binary on the shell's line.)
+  expect_one_line(glrefcheck("compare " + run + " " + run + " --json c5.json --markdown ./c5.json",
+                             "cd '" + dir_.string() + "' &&"),
+                  "--json and --markdown: expected two different files");
+  // Another command's file is not compare's to replace (a case fuzz emitted).
+  const fs::path emitted = dir_ / "emitted.json";
+  ASSERT_EQ(
+      glrefcheck("fuzz --replay 1:0 --generator sizes --emit '" + emitted.string() + "'").exit_code,
+      0);
+  const std::string before = read(emitted);
+  expect_one_line(glrefcheck("compare " + run + " " + run + " --json '" + emitted.string() + "'"),
+                  "which glrefcheck fuzz wrote, not glrefcheck compare");
+  EXPECT_EQ(read(emitted), before);
   std::ofstream(mine) << "notes of mine\n";
   expect_one_line(glrefcheck("report " + run + " --out '" + mine.string() + "'"),
                   "--out: expected a new file or one glrefcheck wrote");
@@ -282,6 +295,32 @@ TEST_F(Forged, MergeRefusesShardsJudgedOtherwise) {
                   "expected shards judged alike, got strict_coverage true where");
   EXPECT_EQ(json::parse(read(a / "results.json"))["run"]["verdict_inputs"]["strict_coverage"],
             "false");
+  // Shards of two suites (a case renamed between two checkouts): face_on twice.
+  const fs::path c = dir_ / "shard_c";
+  ASSERT_EQ(glrefcheck("run cases/attr_tiny.json cases/face_on.json --jobs 1 --fraction 2 "
+                       "--fraction-start 2 --out '" +
+                       c.string() + "'")
+                .exit_code,
+            0);
+  expect_one_line(glrefcheck("merge '" + a.string() + "' '" + c.string() + "' --out '" +
+                             (dir_ / "merged2").string() + "'"),
+                  "expected shards of one suite, got case \"face_on\" as case 1 and case 2");
+}
+
+// Issue 45's hostile campaign: an option naming a path given as "" (an unset variable) was
+// taken for the option not given: `run --resume ''` ran a fresh run over the folder's journal,
+// `fuzz --emit ''` ran a campaign over fuzz-out/.
+TEST(CommandLine, EmptyPathsAreRefused) {
+  for (const std::string args :
+       {"run --resume ''", "fuzz --replay 1:0 --emit ''", "run cases/face_on.json --out ''",
+        "compare a b --json ''", "run cases/face_on.json --baseline ''"}) {
+    SCOPED_TRACE(args);
+    const Outcome o = glrefcheck(args);
+    EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+    EXPECT_NE(o.err.find(": expected a path, got \"\" (an empty or unset variable?)"),
+              std::string::npos)
+        << o.err;
+  }
 }
 
 // A misspelt command was "A subcommand is required", naming nothing.

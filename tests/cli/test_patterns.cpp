@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "cli/session.hpp"
@@ -145,6 +146,18 @@ TEST(Patterns, QuotedTextIsCutToEightyCharacters) {
 }
 
 // `--backend egl --driver bogus` said only that eglInitialize failed.
+// Issue 45's hostile campaign: an editor's byte-order mark joined the first case's name, and
+// that line matched nothing, silently.
+TEST(Patterns, ABaselinesByteOrderMarkIsNoPartOfTheFirstName) {
+  const fs::path d = temp_dir("bom");
+  std::ofstream(d / "known.txt") << "\xEF\xBB\xBF"
+                                 << "clip_noperspective_x_plane,Fail\nb,Crash\n";
+  const report::Baseline b = report::read_baseline(d / "known.txt");
+  EXPECT_EQ(b.expected, (std::map<std::string, std::string>{{"clip_noperspective_x_plane", "Fail"},
+                                                            {"b", "Crash"}}));
+  fs::remove_all(d);
+}
+
 TEST(EglDriver, AnUnknownDriverIsNamed) {
   const auto o =
       test::glrefcheck("run cases/face_on.json --backend egl --driver bogus --jobs 1 --out '" +
