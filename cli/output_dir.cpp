@@ -146,10 +146,13 @@ OutputFolder output_folder(const std::string& out, const std::string& option) {
     if (access(dir.c_str(), W_OK) != 0)
       throw InputError(option + ": expected a writable folder, got \"" + shown + "\"");
     std::vector<std::string> entries;
-    // A lock file alone is a claim another glrefcheck is making now: lock_folder names it.
+    // The lock file, or the marker's temporary file, alone is a claim another glrefcheck is
+    // making now: lock_folder names it.
     if (!is_marked(dir))
       for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-        if (it->path().filename() != kLockFile) entries.push_back(it->path().filename().string());
+        if (const std::string name = it->path().filename().string();
+            name != kLockFile && !name.starts_with("." + std::string(kMarkerFile) + ".tmp-"))
+          entries.push_back(name);
     if (ec)
       throw InputError(option + ": cannot read the folder \"" + shown + "\" (" + ec.message() +
                        ")");
