@@ -47,6 +47,22 @@ void check_apart(const std::vector<std::string>& dirs, const std::string& out_di
   }
 }
 
+// A shard's heatmap folder (where it has one) holds only what a merge can copy, checked before
+// the merge clears anything: a FIFO or a socket there failed the copy halfway, in words that
+// named no file.
+void check_copyable(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return;
+  for (std::filesystem::recursive_directory_iterator it(dir, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    const auto st = it->symlink_status(ec);
+    if (!std::filesystem::is_regular_file(st) && !std::filesystem::is_directory(st))
+      throw InputError("merge: " + it->path().string() +
+                       ": expected the shard's heatmaps (files and folders), got something else");
+  }
+  if (ec) throw InputError("merge: cannot read " + dir.string() + " (" + ec.message() + ")");
+}
+
 }  // namespace
 
 int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir) {
@@ -67,6 +83,18 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
     throw InputError(std::string("merge: ") + e.what());
   }
   check_apart(dirs, out_dir);
+  // Everything to copy is checked before the folder's earlier merge is cleared: a failure moved
+  // out of its shard must not cost the last good merge.
+  for (size_t i = 0; i < merged["failures"].size(); ++i) {
+    const std::filesystem::path shard = report::run_folder(dirs[from[i]]);
+    const std::filesystem::path file = merged["failures"][i].value("file", "");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(shard / file, ec))
+      throw InputError("merge: " + (shard / file).string() +
+                       ": expected the failure's minimal case, as the shard's results.json names "
+                       "it (moved or deleted?)");
+    check_copyable(shard / "cases" / file.stem());
+  }
   const OutputFolder folder = output_folder(out_dir);
   const std::filesystem::path& out = folder.path;
   clear_run_outputs(out);
@@ -135,6 +163,8 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
   const RunInfo& info = merged.run;
   const std::vector<CaseResult>& list = merged.cases;
   check_apart(dirs, out_dir);
+  for (const auto& d : dirs)
+    check_copyable(report::run_folder(d) / "cases");
   const OutputFolder folder = output_folder(out_dir);
   const std::filesystem::path& out = folder.path;
   // Heatmaps and files of an earlier run or merge here would be taken for this merge's.

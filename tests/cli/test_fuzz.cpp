@@ -191,6 +191,16 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
   EXPECT_EQ(judged.exit_code, 2) << judged.out << judged.err;
   EXPECT_NE(judged.err.find("run.verdict_inputs: expected"), std::string::npos) << judged.err;
   EXPECT_NE(judged.err.find("\"strict_coverage\":\"true\""), std::string::npos) << judged.err;
+  // A failure moved out of its shard ("ready for cases/"): refused before the last good merge
+  // is cleared (the hostile campaign's D4).
+  const auto kept = read(merged / "results.json");
+  std::filesystem::rename(b / "failures/non_finite_noperspective.json", dir_ / "moved.json");
+  const auto moved =
+      glrefcheck("merge '" + a.string() + "' '" + b.string() + "' --out '" + merged.string() + "'");
+  EXPECT_EQ(moved.exit_code, 2) << moved.out << moved.err;
+  EXPECT_NE(moved.err.find("expected the failure's minimal case"), std::string::npos) << moved.err;
+  EXPECT_EQ(read(merged / "results.json"), kept);
+  EXPECT_TRUE(std::filesystem::exists(merged / "report.html"));
 }
 
 TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
