@@ -119,8 +119,7 @@ class GlRenderer final : public Renderer {
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
       if (count_program_) gl_.DeleteProgram(count_program_);
-      for (GLuint program : trace_programs_)
-        if (program) gl_.DeleteProgram(program);
+      if (trace_program_) gl_.DeleteProgram(trace_program_);
       framebuffer_.release();
       count_framebuffer_.release();
       trace_framebuffer_.release();
@@ -256,21 +255,20 @@ class GlRenderer final : public Renderer {
     traced_ = traces;
   }
 
-  // Where the count pass does not trace (traces_in_count_pass): the count pass again, once a
-  // case and only where traces are asked (a case's coverage
-  // differs inside a band: seldom), each fragment adding its trace's terms (p + 1, the hash of
-  // p) instead of 1, into a framebuffer of its own: the case's state (culling, viewport) is
-  // still set, its vertices are given again. gl_PrimitiveID through the pass-through geometry
-  // shader where this driver needs it, whatever the case's work_arounds say: the pass is the
-  // harness's own instrument, not the case's draw.
+  // Where the count pass does not trace (traces_in_count_pass: the driver needs the geometry
+  // shader for gl_PrimitiveID): the count pass again, once a case and only where traces are
+  // asked (a case's coverage differs inside a band: seldom), each fragment adding its trace's
+  // terms (p + 1, the hash of p) instead of 1, into a framebuffer of its own: the case's state
+  // (culling, viewport) is still set, its vertices are given again. Through the pass-through
+  // geometry shader whatever the case's work_arounds say: the pass is the harness's own
+  // instrument, not the case's draw.
   void trace_fragments(const Case& c) {
-    GLuint& program = trace_programs_[info_.primitive_id_from_geometry_shader ? 1 : 0];
+    GLuint& program = trace_program_;
     if (!program) {
       std::vector<GLuint> shaders;
       try {
         shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c));
-        if (info_.primitive_id_from_geometry_shader)
-          shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
+        shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
         shaders.push_back(compile(GL_FRAGMENT_SHADER, trace_fragment_shader_source(), c));
       } catch (...) {
         for (GLuint shader : shaders)
@@ -528,8 +526,8 @@ class GlRenderer final : public Renderer {
   Framebuffer framebuffer_, count_framebuffer_, trace_framebuffer_;
   bool drawn_ = false;  // both hold the last draw()'s case
   GLuint count_program_ = 0;
-  // The fragment-trace pass's programs: without, and with the pass-through geometry shader.
-  std::array<GLuint, 2> trace_programs_{};
+  // The fragment-trace pass's program, through the pass-through geometry shader.
+  GLuint trace_program_ = 0;
   bool traced_ = false;  // the trace pass drawn for the case drawn last
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};

@@ -240,10 +240,6 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
   });
 }
 
-}  // namespace
-
-namespace {
-
 // fragment_choices() from `given`, render()'s set-up of the whole case, or where null from the
 // triangles that may reach a pixel asked, set up here.
 std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_bits,
@@ -261,14 +257,13 @@ std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_b
   // Only the triangles that may reach a pixel asked (most of a large case's are far from the
   // few pixels traced), judged in primitive order; set up here only without render()'s.
   const PixelBox viewport = viewport_box(c);
-  std::vector<std::optional<Reach>> reaches(c.triangles.size());
+  std::vector<std::optional<Reach>> reach(c.triangles.size());
   pool.parallel_for(int(c.triangles.size()), [&](int p) {
-    if (Reach r(c, p); may_reach(r, index, viewport)) reaches[size_t(p)] = r;
+    if (Reach r(c, p); may_reach(r, index, viewport)) reach[size_t(p)] = r;
   });
   std::vector<int> kept;
-  std::vector<Reach> reach;
   for (int p = 0; p < int(c.triangles.size()); ++p)
-    if (reaches[size_t(p)]) kept.push_back(p), reach.push_back(*reaches[size_t(p)]);
+    if (reach[size_t(p)]) kept.push_back(p);
   std::optional<CaseSetup> own;
   if (!given) {
     own.emplace();
@@ -286,7 +281,7 @@ std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_b
   std::vector<std::vector<Part>> parts(kept.size());
   pool.parallel_for(int(kept.size()), [&](int k) {
     parts_of(c, m, bits, setup_of(size_t(k)), kept[size_t(k)], shared_of(size_t(k)),
-             reach[size_t(k)], index, viewport, parts[size_t(k)]);
+             *reach[size_t(kept[size_t(k)])], index, viewport, parts[size_t(k)]);
   });
   // Per pixel, its shared edges numbered from 0 in the order they come.
   std::vector<std::map<int32_t, uint32_t>> edge_names(pixels.size());

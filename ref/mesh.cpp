@@ -146,15 +146,15 @@ SharedEdges shared_edges_of(size_t n, const Triangle& triangle, int threads) {
   return shared;
 }
 
-std::vector<std::array<bool, 3>> flags(const SharedEdges& edges) {
+}  // namespace
+
+std::vector<std::array<bool, 3>> shared_flags(const SharedEdges& edges) {
   std::vector<std::array<bool, 3>> out(edges.size());
   for (size_t t = 0; t < edges.size(); ++t)
     for (size_t i = 0; i < 3; ++i)
       out[t][i] = edges[t][i].shared();
   return out;
 }
-
-}  // namespace
 
 SharedEdges shared_edge_groups(const std::vector<std::optional<TriangleSetup>>& triangles,
                                int threads) {
@@ -164,13 +164,13 @@ SharedEdges shared_edge_groups(const std::vector<std::optional<TriangleSetup>>& 
 
 std::vector<std::array<bool, 3>> shared_edges(const std::vector<TriangleSetup>& triangles,
                                               int threads) {
-  return flags(shared_edges_of(
+  return shared_flags(shared_edges_of(
       triangles.size(), [&](size_t t) -> const TriangleSetup& { return triangles[t]; }, threads));
 }
 
 std::vector<std::array<bool, 3>> shared_edges(
     const std::vector<std::optional<TriangleSetup>>& triangles, int threads) {
-  return flags(shared_edge_groups(triangles, threads));
+  return shared_flags(shared_edge_groups(triangles, threads));
 }
 
 CaseSetup::~CaseSetup() {

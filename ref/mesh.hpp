@@ -37,6 +37,8 @@ using SharedEdges = std::vector<std::array<SharedEdge, 3>>;
 // shared_edges(), naming each shared edge and side (ref/fragment_choices.cpp).
 SharedEdges shared_edge_groups(const std::vector<std::optional<TriangleSetup>>& triangles,
                                int threads = 1);
+// shared_edges()'s flags of named edges: shared[t][i] = edges[t][i].shared().
+std::vector<std::array<bool, 3>> shared_flags(const SharedEdges& edges);
 
 // A case's triangles set up under one model (setup_triangles: every element holds one), each
 // edge's sharing named (shared_edge_groups): render()'s set-up, kept for fragment_choices()

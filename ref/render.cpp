@@ -659,10 +659,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   std::vector<std::optional<TriangleSetup>> setups = setup_triangles(c, m, pool);
   // Which edges are shared marks edge bits only.
   SharedEdges groups = edges ? shared_edge_groups(setups, threads) : SharedEdges(setups.size());
-  std::vector<std::array<bool, 3>> shared(groups.size());
-  for (size_t t = 0; t < groups.size(); ++t)
-    for (size_t i = 0; i < 3; ++i)
-      shared[t][i] = groups[t][i].shared();
+  const std::vector<std::array<bool, 3>> shared = shared_flags(groups);
 
   const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
   std::vector<CandidateMap> candidates(rows.size());
