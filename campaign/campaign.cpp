@@ -1,7 +1,11 @@
 #include "campaign/campaign.hpp"
 
+#include "core/verdict_inputs.hpp"
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -127,6 +131,22 @@ CampaignResult run_campaign(const CampaignOptions& o, const Judge& judge,
   return out;
 }
 
+namespace {
+
+nlohmann::json stats_json(const CampaignStats& s) {
+  return {{"cases", s.cases},
+          {"triangles", s.triangles},
+          {"pixels", s.pixels},
+          {"failing_cases", s.failing_cases},
+          {"skipped", s.skipped},
+          {"seconds", s.seconds},
+          {"checking_seconds", s.checking_seconds},
+          {"triangles_per_second", s.triangles_per_second()},
+          {"interrupted", s.interrupted}};
+}
+
+}  // namespace
+
 nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run) {
   nlohmann::json generators = nlohmann::json::array();
   for (const Generator* g : r.options.generators)
@@ -137,16 +157,7 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                              {"fraction_start", r.options.fraction_start}};
   campaign["count"] = r.options.count ? nlohmann::json(*r.options.count) : nlohmann::json();
   campaign["seconds"] = r.options.seconds ? nlohmann::json(*r.options.seconds) : nlohmann::json();
-  const CampaignStats& s = r.stats;
-  const nlohmann::json stats = {{"cases", s.cases},
-                                {"triangles", s.triangles},
-                                {"pixels", s.pixels},
-                                {"failing_cases", s.failing_cases},
-                                {"skipped", s.skipped},
-                                {"seconds", s.seconds},
-                                {"checking_seconds", s.checking_seconds},
-                                {"triangles_per_second", s.triangles_per_second()},
-                                {"interrupted", s.interrupted}};
+  const nlohmann::json stats = stats_json(r.stats);
   nlohmann::json failures = nlohmann::json::array();
   for (const FoundFailure& f : r.failures)
     failures.push_back({{"class", std::string(name_of(f.failure.kind))},
@@ -212,6 +223,75 @@ const nlohmann::json& field(const nlohmann::json& j, const std::string& source,
   return v;
 }
 
+// A shard's stats, each field checked, and checked against the others as a campaign counts them:
+// one line naming the shard and the field for a hand-edited or damaged one.
+CampaignStats checked_stats(const nlohmann::json& shard, const std::string& source) {
+  using T = nlohmann::json::value_t;
+  const auto& j = field(shard, source, "", "stats", T::object);
+  const auto whole = [&](const char* key) {
+    return field(j, source, "stats", key, T::number_unsigned).get<uint64_t>();
+  };
+  const auto seconds = [&](const char* key) {
+    const double v = field(j, source, "stats", key, T::number_float).get<double>();
+    if (!std::isfinite(v) || v < 0)
+      throw std::runtime_error(source + ": stats." + key +
+                               ": expected a finite number of seconds, 0 or more, got " +
+                               j.at(key).dump());
+    return v;
+  };
+  CampaignStats s;
+  s.cases = whole("cases"), s.triangles = whole("triangles"), s.pixels = whole("pixels");
+  s.failing_cases = whole("failing_cases"), s.skipped = whole("skipped");
+  s.seconds = seconds("seconds"), s.checking_seconds = seconds("checking_seconds");
+  // Failing and skipped cases are among the cases; the checking is part of the campaign's time.
+  for (const auto& [key, n] : {std::pair{"failing_cases", s.failing_cases}, {"skipped", s.skipped}})
+    if (n > s.cases)
+      throw std::runtime_error(source + ": stats." + key + ": expected at most stats.cases (" +
+                               std::to_string(s.cases) + "), got " + std::to_string(n));
+  if (s.checking_seconds > s.seconds)
+    throw std::runtime_error(source + ": stats.checking_seconds: expected at most stats.seconds (" +
+                             j.at("seconds").dump() + "), got " + j.at("checking_seconds").dump());
+  return s;
+}
+
+// Two shards' stats added, a count that would pass 2^64 refused (a forged shard, not a campaign).
+CampaignStats summed(const CampaignStats& a, const CampaignStats& b, const std::string& source) {
+  const auto add = [&](uint64_t x, uint64_t y, const char* key) {
+    if (y > std::numeric_limits<uint64_t>::max() - x)
+      throw std::runtime_error(source + ": stats." + key +
+                               ": expected a count the shards' sum can hold, got " +
+                               std::to_string(y));
+    return x + y;
+  };
+  CampaignStats s;
+  s.cases = add(a.cases, b.cases, "cases");
+  s.triangles = add(a.triangles, b.triangles, "triangles");
+  s.pixels = add(a.pixels, b.pixels, "pixels");
+  s.failing_cases = add(a.failing_cases, b.failing_cases, "failing_cases");
+  s.skipped = add(a.skipped, b.skipped, "skipped");
+  s.seconds = a.seconds + b.seconds;
+  s.checking_seconds = a.checking_seconds + b.checking_seconds;
+  return s;
+}
+
+// A shard's run.verdict_inputs (absent in results before they were recorded: none).
+std::map<std::string, std::string> verdict_inputs(const nlohmann::json& run,
+                                                  const std::string& source) {
+  std::map<std::string, std::string> inputs;
+  if (!run.is_object() || !run.contains("verdict_inputs")) return inputs;
+  const auto& j = run.at("verdict_inputs");
+  if (!j.is_object())
+    throw std::runtime_error(source + ": run.verdict_inputs: expected an object, got " +
+                             j.dump().substr(0, 80));
+  for (const auto& [name, value] : j.items()) {
+    if (!value.is_string())
+      throw std::runtime_error(source + ": run.verdict_inputs." + name + ": expected text, got " +
+                               value.dump().substr(0, 80));
+    inputs[name] = value.get<std::string>();
+  }
+  return inputs;
+}
+
 }  // namespace
 
 nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
@@ -222,7 +302,7 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   const uint64_t fraction = field(first, sources[0], "campaign", "fraction", T::number_unsigned);
   std::vector<bool> seen(fraction + 1, false);
   nlohmann::json merged = shards[0];
-  nlohmann::json& stats = merged["stats"];
+  CampaignStats total;
   nlohmann::json failures = nlohmann::json::array();
   std::vector<nlohmann::json> skipped;
   std::map<std::string, size_t> by_signature;
@@ -250,21 +330,18 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         shards[k].value("stats", nlohmann::json::object()).value("interrupted", false))
       throw std::runtime_error(
           source + ": an interrupted campaign shard (stopped by a signal): run it again");
-    for (const char* key :
-         {"gl_renderer", "gl_version", "model", "tolerance", "backend", "driver", "verdict_inputs"})
+    for (const char* key : {"gl_renderer", "gl_version", "model", "tolerance", "backend", "driver"})
       if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
             " as the first shard, got " + run.value(key, nlohmann::json()).dump().substr(0, 80));
-    const auto& s = field(shards[k], source, "", "stats", T::object);
-    if (k > 0) {
-      for (const char* key : {"cases", "triangles", "pixels", "failing_cases", "skipped"})
-        stats[key] = stats[key].get<uint64_t>() +
-                     field(s, source, "stats", key, T::number_unsigned).get<uint64_t>();
-      for (const char* key : {"seconds", "checking_seconds"})
-        stats[key] = stats[key].get<double>() +
-                     field(s, source, "stats", key, T::number_float).get<double>();
-    }
+    if (const auto d = verdict_input_difference(verdict_inputs(run, source),
+                                                verdict_inputs(run0, sources[0])))
+      throw std::runtime_error(source + ": expected shards judged alike, got " + d->name + " " +
+                               d->value + " where " + sources[0] + " has " + d->other +
+                               ": run the shards with the same options and files");
+    const CampaignStats shard_stats = checked_stats(shards[k], source);
+    total = k == 0 ? shard_stats : summed(total, shard_stats, source);
     // The first skipped cases of every shard; the first of them all are the unsharded ones'.
     if (shards[k].contains("skipped")) {
       const auto& list = field(shards[k], source, "", "skipped", T::array);
@@ -280,6 +357,11 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
       const std::string signature = field(f, source, path, "signature", T::string);
       const uint64_t index = field(f, source, path, "index", T::number_unsigned);
       const uint64_t cases = field(f, source, path, "cases", T::number_unsigned);
+      // Each failing case counts once per signature it shows.
+      if (cases < 1 || cases > shard_stats.failing_cases)
+        throw std::runtime_error(source + ": " + path + ".cases: expected 1 to stats.failing_cases (" +
+                                 std::to_string(shard_stats.failing_cases) + "), got " +
+                                 std::to_string(cases));
       const auto& examples = field(f, source, path, "examples", T::array);
       const auto at = by_signature.find(signature);
       if (at == by_signature.end()) {
@@ -294,12 +376,12 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         all.push_back(e.get<uint64_t>());
       std::sort(all.begin(), all.end());
       all.resize(std::min<size_t>(all.size(), 8));
-      const uint64_t total = m["cases"].get<uint64_t>() + cases;
+      const uint64_t showing = m["cases"].get<uint64_t>() + cases;
       if (index < m["index"].get<uint64_t>()) {
         m = f;
         from[at->second] = k;
       }
-      m["cases"] = total;
+      m["cases"] = showing;
       m["examples"] = all;
     }
   }
@@ -330,12 +412,10 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   merged["campaign"]["fraction"] = 1;
   merged["campaign"]["fraction_start"] = 1;
   merged["campaign"]["merged_shards"] = shards.size();
-  const double checking = stats["checking_seconds"].get<double>();
-  stats["triangles_per_second"] =
-      checking > 0 ? double(stats["triangles"].get<uint64_t>()) / checking : 0.0;
+  merged["stats"] = stats_json(total);
   // The whole campaign's cases, as one unsharded run's record says them.
   if (merged.contains("run") && merged["run"].is_object())
-    merged["run"]["total_cases"] = stats["cases"];
+    merged["run"]["total_cases"] = total.cases;
   return merged;
 }
 

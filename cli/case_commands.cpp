@@ -23,10 +23,11 @@ int cmd_diff(const Options& o) {
   const Case& c = cases[0];
   const OutputFolder folder = output_folder(o.out);
   const std::filesystem::path& out = folder.path;
-  // The last diff's images go first: none of another case stays beside this one's.
-  clear_diff_images(out);
   auto renderer = open_renderer(o);
   const ModelChoice model = choose_model(o, *renderer);
+  // The last diff's images go first, none of another case staying beside this one's; only once
+  // GL is up, so that a diff whose driver cannot start leaves them.
+  clear_diff_images(out);
   check::CheckOptions judged = check_options(o);
   judged.model = model.model;
   // diff is for looking at a case's heatmaps: its frames are kept whole, however large.
@@ -50,8 +51,15 @@ int cmd_diff(const Options& o) {
     fmt::print("{}\n", table);
   if (const std::string table = report::worst_pixels_table(r, 10); !table.empty())
     fmt::print("{}\n", table);
-  const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r);
-  record_diff_images(out, files);
+  // Each name is recorded before its file is written: a diff stopped halfway leaves none
+  // unlisted.
+  std::vector<std::filesystem::path> listed;
+  const auto files =
+      report::write_diff_images(out, c, checked.reference, checked.gl, r,
+                                [&](const std::filesystem::path& file) {
+                                  listed.push_back(file);
+                                  record_diff_images(out, listed);
+                                });
   fmt::print("wrote {} to {}/\n", report::count_text(files.size(), "image", "images"), o.out);
   return fails_run(r.status) ? 1 : 0;
 }

@@ -96,8 +96,6 @@ void write_campaign_files(const std::filesystem::path& out, const nlohmann::json
   report::write_file_atomically(out / "results.csv", csv);
 }
 
-namespace {}  // namespace
-
 CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
   auto* cmd = app.add_subcommand(
       "fuzz",
@@ -191,11 +189,10 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   const int interrupt_fd = catch_interrupts();
   const OutputFolder folder = output_folder(o.out);
   const std::filesystem::path& out = folder.path;
-  clear_run_outputs(out);
-  std::error_code ec;
-  std::filesystem::remove_all(out / "failures", ec);
-  if (ec)
-    throw InputError("--out: cannot remove the earlier campaign's failures/: " + ec.message());
+  // Its minimal cases are the campaign's while unedited: one a person changed is theirs.
+  check_replaceable_files(out / "failures", "--out " + o.out, "fuzz");
+  // The earlier campaign's outputs come back if this one never gets GL.
+  EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
 
   WorkerSettings s = worker_settings(o, out, interrupt_fd, prefix);
   // Heatmaps for the minimal cases only (checked once more when shrunk), for report.html.
@@ -220,6 +217,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     info.model = run.model, info.model_source = run.model_source;
     info.tolerance = run.tolerance, info.subpixel_bits = run.subpixel_bits;
     info.gl_warnings = run.gl_warnings;
+    earlier.keep_new();
     std::string generators;
     for (const campaign::Generator* g : co.generators)
       generators += (generators.empty() ? "" : ",") + std::string(g->name);
@@ -311,6 +309,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   page.total_cases = minimal_results.size();
   page.interrupted = result.stats.interrupted;
   report::write_run_html(out / "report.html", {page, minimal_results}, out);
+  earlier.keep_new();
   const campaign::CampaignStats& st = result.stats;
   fmt::print(
       "\n{} cases, {} triangles, {} pixels checked in {:.1f} s ({:.0f} triangles/s); {} "

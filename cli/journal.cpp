@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -110,9 +111,14 @@ void Journal::record_start(const RunInfo& info, const ModelChoice& model) {
          json(model.source).dump(-1, ' ', false, json::error_handler_t::replace) + "}");
 }
 
-void Journal::record_result(size_t index, const CaseResult& r, double at) {
-  append(fmt::format("{{\"index\":{},\"at\":{},\"result\":{}}}", index, json(at).dump(),
+void Journal::record_result(size_t index, const CaseResult& r, double at, Heatmaps heatmaps) {
+  append(fmt::format("{{\"index\":{},\"at\":{},{}\"result\":{}}}", index, json(at).dump(),
+                     heatmaps == Heatmaps::follow ? "\"heatmaps\":\"follow\"," : "",
                      report::case_result_json(r)));
+}
+
+void Journal::record_heatmaps_written(size_t index) {
+  append(fmt::format("{{\"index\":{},\"heatmaps\":\"written\"}}", index));
 }
 
 void Journal::append(std::string line) {
@@ -142,6 +148,7 @@ JournalContents read_journal(const fs::path& dir) {
   std::ifstream in(file, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   JournalContents c;
+  std::set<size_t> heatmaps_due;  // cases whose heatmaps followed their verdict, not yet written
   size_t at = 0;
   for (int n = 1; at < text.size(); ++n) {
     const size_t eol = text.find('\n', at);
@@ -178,15 +185,24 @@ JournalContents read_journal(const fs::path& dir) {
         const auto model = identify::model_from_json(j.at("model"));
         if (!model) throw InputError(where + ": expected a model");
         c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
+      } else if (!j.contains("result")) {
+        if (j.at("heatmaps") != "written")
+          throw InputError(where +
+                           ": expected \"heatmaps\": \"written\" in a line without a result");
+        heatmaps_due.erase(j.at("index").get<size_t>());
       } else {
         const size_t index = j.at("index");
         CaseResult r = report::case_result_from_json(j.at("result").dump(), where);
         // A later line for a case is its heatmaps lost (the same verdict, its message saying
-        // so); one with another name or verdict is another run's, or a hand's: refused.
+        // so), or the case checked again by a resume because its heatmaps never came; one with
+        // another name or verdict otherwise is another run's, or a hand's: refused.
+        const bool checked_again = heatmaps_due.erase(index) > 0;
+        if (j.value("heatmaps", "") == "follow") heatmaps_due.insert(index);
         if (const auto earlier = c.results.find(index);
             earlier != c.results.end() &&
-            (earlier->second.name != r.name || earlier->second.status != r.status ||
-             earlier->second.outcome != r.outcome))
+            (earlier->second.name != r.name ||
+             (!checked_again && (earlier->second.status != r.status ||
+                                 earlier->second.outcome != r.outcome))))
           throw InputError(fmt::format(
               "{}: expected case {} (\"{}\", {}) as an earlier line gives it, got \"{}\", {}: two "
               "results for one case",
@@ -209,6 +225,8 @@ JournalContents read_journal(const fs::path& dir) {
     }
   }
   if (c.files.empty()) throw InputError(name + ": expected the run's first line, got none");
+  for (const size_t index : heatmaps_due)
+    c.heatmaps_cut += c.results.erase(index);
   return c;
 }
 

@@ -7,9 +7,13 @@
 // report::content_digest]}. Once GL is known: {"run": results.json's
 // "run", "model": {...}, "model_source": "..."}, so a resumed run is judged by the same model.
 // Per case: {"index": k (into the run's cases, after sharding), "at": seconds since the run
-// began, "result": the CaseResult as in results.json}; a case whose heatmaps are then lost is
-// recorded again, its message saying so, and the later line counts (a later line of another
-// name or verdict is refused). A last line cut short by a kill is ignored.
+// began, "result": the CaseResult as in results.json}, with "heatmaps": "follow" when its
+// heatmaps are being written, then {"index": k, "heatmaps": "written"} once they are; a case
+// whose heatmaps are then lost is recorded again, its message saying so, and the later line
+// counts (a later line of another name or verdict is refused). A case whose heatmaps were
+// still to follow when the run stopped is not done: --resume checks it again, so that no case
+// of a finished run lacks its heatmaps without a word. A last line cut short by a kill is
+// ignored.
 #pragma once
 
 #include <filesystem>
@@ -32,6 +36,7 @@ struct JournalContents {
   std::optional<RunInfo> run;
   std::optional<ModelChoice> model;
   std::map<size_t, CaseResult> results;
+  size_t heatmaps_cut = 0;  // cases left out of `results`: stopped while writing their heatmaps
   double elapsed = 0;  // the latest "at": how long the run had been going when it stopped
 };
 
@@ -50,7 +55,11 @@ class Journal {
   ~Journal();
 
   void record_start(const RunInfo& info, const ModelChoice& model);
-  void record_result(size_t index, const CaseResult& r, double at);
+  // Whether a case's heatmaps are being written after its verdict.
+  enum class Heatmaps { none, follow };
+  void record_result(size_t index, const CaseResult& r, double at,
+                     Heatmaps heatmaps = Heatmaps::none);
+  void record_heatmaps_written(size_t index);
 
  private:
   Journal(int fd, std::filesystem::path file) : fd_(fd), file_(std::move(file)) {}

@@ -97,8 +97,9 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   }
   const OutputFolder folder = output_folder(out_dir);
   const std::filesystem::path& out = folder.path;
-  clear_run_outputs(out);
-  std::filesystem::remove_all(out / "failures");
+  check_replaceable_files(out / "failures", "merge --out " + out_dir, "fuzz");
+  // The folder's earlier merge comes back if this one fails halfway.
+  EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
   std::filesystem::create_directories(out / "failures");
   // Each failure's minimal case and heatmaps, from the shard it was taken from.
   std::vector<CaseResult> minimal;
@@ -134,6 +135,7 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   }
   page.total_cases = minimal.size();
   report::write_run_html(out / "report.html", {page, minimal}, out);
+  earlier.keep_new();
   const nlohmann::json& st = merged["stats"];
   fmt::print("merged {} campaign shards: {} cases, {} triangles, {} distinct failure{} ({} new)\n",
              shards.size(), st.value("cases", uint64_t(0)), st.value("triangles", uint64_t(0)),
@@ -167,8 +169,9 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
     check_copyable(report::run_folder(d) / "cases");
   const OutputFolder folder = output_folder(out_dir);
   const std::filesystem::path& out = folder.path;
-  // Heatmaps and files of an earlier run or merge here would be taken for this merge's.
-  clear_run_outputs(out);
+  // Heatmaps and files of an earlier run or merge here would be taken for this merge's; they come
+  // back if this merge fails halfway.
+  EarlierOutputs earlier = set_aside_outputs(out);
   for (size_t k = 0; k < shards.size(); ++k) {
     const auto images = report::run_folder(dirs[k]) / "cases";
     std::error_code ec;
@@ -179,11 +182,21 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
   }
   fmt::print("merged {} shards: {}\n", shards.size(), report::run_summary(list, info.seconds));
   write_outputs(out, info, list, html);
+  earlier.keep_new();
   return report::any_fails_run(list) ? 1 : 0;
 }
 
 int cmd_report(const std::string& dir, const std::string& file) {
   report::RunResults results;
+  const std::filesystem::path run_dir = report::run_folder(dir);
+  // A folder of glrefcheck's is held while the page is written: a run still writing into it is
+  // named (it is not a killed run), and no run starts there meanwhile.
+  FolderLock lock;
+  if (is_marked(run_dir)) {
+    lock = lock_folder(run_dir, "report");
+    // A run killed before it had GL left the folder's results aside: they are the folder's.
+    restore_earlier_outputs(run_dir);
+  }
   std::error_code ec;
   if (std::filesystem::is_directory(dir, ec) &&
       !std::filesystem::exists(std::filesystem::path(dir) / "results.json", ec) &&
@@ -195,7 +208,6 @@ int cmd_report(const std::string& dir, const std::string& file) {
   } catch (const std::runtime_error& e) {
     throw InputError(std::string("report: ") + e.what());
   }
-  const std::filesystem::path run_dir = report::run_folder(dir);
   const std::filesystem::path html =
       file.empty() ? run_dir / "report.html" : std::filesystem::path(file);
   // A run folder's own page is glrefcheck's where the folder is (marked); any other file only

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -192,27 +193,166 @@ OutputFolder output_folder(const std::string& out, const std::string& option) {
   return folder;
 }
 
+namespace {
+
+// Why `file` (which exists) is not glrefcheck `writer`'s to replace, or nullopt when it is.
+std::optional<std::string> not_replaceable(const fs::path& file, const fs::file_status& st,
+                                           const std::string& writer) {
+  if (!fs::is_regular_file(st)) return "which is not a regular file";
+  std::ifstream in(file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  if (!in.good() && !in.eof()) return "which cannot be read";
+  if (text.find(report::kStampPrefix) == std::string::npos)
+    return "which glrefcheck did not write (it holds no stamp)";
+  if (!report::stamp_intact(text))
+    return "which was changed since glrefcheck wrote it (its stamp no longer matches)";
+  if (const std::string by = report::stamp_writer(text); by != writer)
+    return "which glrefcheck " + (by.empty() ? std::string("wrote otherwise") : by) +
+           " wrote, not glrefcheck " + writer;
+  return std::nullopt;
+}
+
+}  // namespace
+
 void check_replaceable(const fs::path& file, const std::string& option, const std::string& writer) {
   std::error_code ec;
   const fs::file_status st = fs::status(file, ec);
   if (!fs::exists(st)) return;
-  const std::string shown = printable(file.string(), 200);
-  const auto refuse = [&](const std::string& what) {
-    throw InputError(option + ": expected a new file or one glrefcheck wrote, got \"" + shown +
-                     "\", " + what +
+  if (const auto why = not_replaceable(file, st, writer))
+    throw InputError(option + ": expected a new file or one glrefcheck wrote, got \"" +
+                     printable(file.string(), 200) + "\", " + *why +
                      ": glrefcheck replaces nothing it did not write; name another file");
-  };
-  if (!fs::is_regular_file(st)) refuse("which is not a regular file");
-  std::ifstream in(file, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), {});
-  if (!in.good() && !in.eof()) refuse("which cannot be read");
-  if (text.find(report::kStampPrefix) == std::string::npos)
-    refuse("which glrefcheck did not write (it holds no stamp)");
-  if (!report::stamp_intact(text))
-    refuse("which was changed since glrefcheck wrote it (its stamp no longer matches)");
-  if (const std::string by = report::stamp_writer(text); by != writer)
-    refuse("which glrefcheck " + (by.empty() ? std::string("wrote otherwise") : by) +
-           " wrote, not glrefcheck " + writer);
+}
+
+void check_replaceable_files(const fs::path& dir, const std::string& option,
+                             const std::string& writer) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir, ec))) return;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (const auto why = not_replaceable(it->path(), it->symlink_status(ec), writer))
+      throw InputError(option + ": expected only glrefcheck " + writer + "'s files in " +
+                       printable(dir.string(), 200) + ", which it replaces, got \"" +
+                       printable(it->path().filename().string(), 100) + "\", " + *why +
+                       ": move it out of the folder first");
+  if (ec) throw InputError(option + ": cannot read " + printable(dir.string(), 200));
+}
+
+namespace {
+
+// Removes `names` from `dir` (what a run replaces). InputError naming the first that cannot go.
+void remove_outputs(const fs::path& dir, const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    std::error_code ec;
+    fs::remove_all(dir / name, ec);
+    if (ec)
+      throw InputError("--out: cannot remove the earlier run's " + (dir / name).string() + " (" +
+                       ec.message() + ")");
+  }
+}
+
+// Moves each of `names` present in `from` into `to` (both in one folder: a rename each).
+void move_outputs(const fs::path& from, const fs::path& to, const std::vector<std::string>& names) {
+  for (const std::string& name : names) {
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(from / name, ec))) continue;
+    fs::rename(from / name, to / name, ec);
+    if (ec)
+      throw InputError("--out: cannot move " + (from / name).string() + " to " +
+                       (to / name).string() + " (" + ec.message() + ")");
+  }
+}
+
+std::vector<std::string> with_run_outputs(const std::vector<std::string>& also) {
+  std::vector<std::string> names = run_output_names();
+  names.insert(names.end(), also.begin(), also.end());
+  return names;
+}
+
+// Everything a run or campaign may leave in its folder: what a restore replaces.
+const std::vector<std::string>& every_output_name() {
+  static const std::vector<std::string> names = with_run_outputs({"failures"});
+  return names;
+}
+
+}  // namespace
+
+namespace {
+
+// In kEarlierFolder once every output is in it: before, an output not in it was not moved yet
+// (it is still the earlier run's); after, one not in it is the new attempt's.
+constexpr const char* kSetAsideComplete = ".complete";
+// Where keep_new moves kEarlierFolder before deleting it: a delete that fails halfway must not
+// leave a kEarlierFolder that a later claim would take for the folder's results.
+constexpr const char* kDiscardedFolder = ".glrefcheck-discarded";
+
+}  // namespace
+
+EarlierOutputs::EarlierOutputs(EarlierOutputs&& other) noexcept : dir_(std::move(other.dir_)) {
+  other.dir_.clear();
+}
+
+void EarlierOutputs::keep_new() {
+  if (dir_.empty()) return;
+  std::error_code ec;
+  fs::remove_all(dir_ / kDiscardedFolder, ec);
+  fs::rename(dir_ / kEarlierFolder, dir_ / kDiscardedFolder, ec);
+  fs::remove_all(dir_ / (ec ? kEarlierFolder : kDiscardedFolder), ec);
+  dir_.clear();
+}
+
+EarlierOutputs::~EarlierOutputs() {
+  if (dir_.empty()) return;
+  try {
+    restore_earlier_outputs(dir_);
+  } catch (const std::exception& e) {
+    // A destructor may run while an error unwinds: say it, and leave the outputs where the next
+    // claim of the folder restores them.
+    fmt::print(stderr, "glrefcheck: the earlier outputs stay in {}: {}\n",
+               (dir_ / kEarlierFolder).string(), e.what());
+  }
+}
+
+EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::string>& also) {
+  if (!is_marked(dir))
+    throw std::logic_error("set_aside_outputs: " + dir.string() + " is not a marked folder");
+  restore_earlier_outputs(dir);
+  std::error_code ec;
+  fs::remove_all(dir / kDiscardedFolder, ec);
+  const std::vector<std::string> names = with_run_outputs(also);
+  for (const std::string& name : names) {
+    if (!fs::is_directory(fs::symlink_status(dir / name, ec))) continue;
+    for (fs::recursive_directory_iterator it(dir / name, ec), end; !ec && it != end;
+         it.increment(ec))
+      if (it->path().filename() == kMarkerFile)
+        throw InputError("--out: " + printable((dir / name).string(), 200) +
+                         " holds another glrefcheck output folder (" +
+                         printable(it->path().parent_path().string(), 200) +
+                         "), which this run would replace: move it out, or name another --out");
+  }
+  const fs::path aside = dir / kEarlierFolder;
+  fs::create_directory(aside, ec);
+  if (ec) throw InputError("--out: cannot make " + aside.string() + " (" + ec.message() + ")");
+  EarlierOutputs earlier;
+  earlier.dir_ = dir;
+  move_outputs(dir, aside, names);
+  report::write_file_atomically(aside / kSetAsideComplete, "");
+  return earlier;
+}
+
+void restore_earlier_outputs(const fs::path& dir) {
+  const fs::path aside = dir / kEarlierFolder;
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(aside, ec))) return;
+  // What is in the folder now under an output's name is the attempt's that never had GL, or,
+  // where the attempt was killed while setting them aside, the earlier run's not moved yet.
+  const bool complete = fs::exists(aside / kSetAsideComplete, ec);
+  for (const std::string& name : every_output_name()) {
+    const bool moved = fs::exists(fs::symlink_status(aside / name, ec));
+    if (moved || complete) remove_outputs(dir, {name});
+    if (moved) move_outputs(aside, dir, {name});
+  }
+  fs::remove_all(aside, ec);
+  if (ec) throw InputError("--out: cannot remove " + aside.string() + " (" + ec.message() + ")");
 }
 
 void clear_diff_images(const fs::path& dir) {
@@ -237,19 +377,6 @@ void record_diff_images(const fs::path& dir, const std::vector<fs::path>& files)
   for (const fs::path& f : files)
     if (f.parent_path() == dir) text += f.filename().string() + "\n";
   report::write_file_atomically(dir / kDiffImagesFile, text);
-}
-
-void clear_run_outputs(const fs::path& dir) {
-  // Only ever inside a folder glrefcheck owns: anything else is the user's.
-  if (!is_marked(dir))
-    throw std::logic_error("clear_run_outputs: " + dir.string() + " is not a marked folder");
-  for (const std::string& name : run_output_names()) {
-    std::error_code ec;
-    fs::remove_all(dir / name, ec);
-    if (ec)
-      throw InputError("--out: cannot remove the earlier run's " + (dir / name).string() + " (" +
-                       ec.message() + ")");
-  }
 }
 
 }  // namespace glrc::cli

@@ -68,13 +68,52 @@ OutputFolder output_folder(const std::string& out, const std::string& option);
 void check_replaceable(const std::filesystem::path& file, const std::string& option,
                        const std::string& writer);
 
+// check_replaceable for every entry of the folder `dir` (fuzz's failures/ before a campaign
+// replaces it): a minimal case a person edited or added there is theirs. Nothing when `dir` does
+// not exist.
+void check_replaceable_files(const std::filesystem::path& dir, const std::string& option,
+                             const std::string& writer);
+
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);
 
-// Deletes what an earlier run or merge wrote into a marked folder (results.json, results.csv,
-// failures.csv, junit.xml, report.html, the journal, cases/, logs/, the inputs' copies), so that
-// nothing of it is taken for this run's. Nothing else: identify.json and diff's images stay.
-void clear_run_outputs(const std::filesystem::path& dir);
+
+// An earlier run's (or campaign's) outputs in a marked folder, set aside while a new one starts:
+// renamed into kEarlierFolder, not deleted, until the new run has GL (keep_new) or has written
+// its own results. A run that ends before, because its driver, prefix or wrapper cannot make a
+// GL context or it was refused, gives them back when the value dies (its own partial outputs,
+// a journal without a result, go). A glrefcheck killed while they were aside leaves them there;
+// the next claim of the folder (set_aside_outputs, or `run --resume` through
+// restore_earlier_outputs) puts them back first, since the killed one never checked a case.
+inline constexpr const char* kEarlierFolder = ".glrefcheck-earlier";
+class EarlierOutputs {
+ public:
+  EarlierOutputs() = default;
+  EarlierOutputs(EarlierOutputs&& other) noexcept;
+  EarlierOutputs& operator=(EarlierOutputs&&) = delete;
+  EarlierOutputs(const EarlierOutputs&) = delete;
+  ~EarlierOutputs();
+  // The new run is under way (it has GL, or has written its results): the earlier outputs go.
+  void keep_new();
+
+ private:
+  friend EarlierOutputs set_aside_outputs(const std::filesystem::path& dir,
+                                          const std::vector<std::string>& also);
+  std::filesystem::path dir_;  // empty once kept (or moved from)
+};
+
+// Sets aside what an earlier run or merge wrote into the marked folder `dir`, whose lock the
+// caller holds (run_output_names(): results.json, results.csv, failures.csv, junit.xml,
+// report.html, the journal, cases/, logs/, the inputs' copies; and `also`, fuzz's failures/), so
+// that nothing of it is taken for this run's. Nothing else: identify.json and diff's images
+// stay. InputError naming the file when one cannot be moved, and before anything is moved when
+// one of them holds another output folder (`diff --out RUN/logs/d`): that is no run's file.
+EarlierOutputs set_aside_outputs(const std::filesystem::path& dir,
+                                 const std::vector<std::string>& also = {});
+
+// Puts back outputs a killed glrefcheck left aside in `dir` (see EarlierOutputs); nothing when
+// there are none.
+void restore_earlier_outputs(const std::filesystem::path& dir);
 
 // `diff`'s images in a marked folder: the names its last diff wrote (record_diff_images, in
 // kDiffImagesFile) are deleted before the next one writes its own, so that no image of another

@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include <optional>
+#include <set>
 
 #include "casefile/casefile.hpp"
 #include "cli/interrupts.hpp"
@@ -28,6 +29,8 @@ int cmd_run(const Options& given) {
   Options o = given;
   std::filesystem::path out;
   FolderLock lock;  // the output folder held while the run writes into it
+  // The folder's earlier run, given back if this one never gets GL.
+  std::optional<EarlierOutputs> earlier_outputs;
   std::optional<JournalContents> earlier;
   std::vector<Case> all;
   std::optional<Journal> journal;
@@ -40,7 +43,11 @@ int cmd_run(const Options& given) {
     out = given.resume;
     // Held before the journal is read: two resumes of one folder at once would check the rest
     // twice. A folder glrefcheck did not mark gets no lock file: read_journal refuses it.
-    if (is_marked(out)) lock = lock_folder(out, "--resume " + printable(given.resume, 200));
+    if (is_marked(out)) {
+      lock = lock_folder(out, "--resume " + printable(given.resume, 200));
+      // An attempt killed before it had GL left the run's outputs aside: the run is those.
+      restore_earlier_outputs(out);
+    }
     earlier = read_journal(out);
     o = earlier->options;
     o.out = given.resume;
@@ -111,7 +118,7 @@ int cmd_run(const Options& given) {
                            " holds this run's case files (" + c.source_path +
                            "), and a run replaces it: name another --out");
     }
-    clear_run_outputs(out);
+    earlier_outputs.emplace(set_aside_outputs(out));
     if (!inputs.files.empty()) std::filesystem::create_directories(out / kInputsFolder);
     for (const auto& [name, text] : inputs.files)
       report::write_file_atomically(out / kInputsFolder / name, text);
@@ -161,8 +168,13 @@ int cmd_run(const Options& given) {
             o.out, kJournalFile, index, printable(r.name)));
       results[index] = std::move(r);
     }
-    fmt::print("glrefcheck run --resume {}: {} of {} done before\n", o.out, earlier->results.size(),
-               report::count_text(cases.size(), "case", "cases"));
+    fmt::print("glrefcheck run --resume {}: {} of {} done before{}\n", o.out,
+               earlier->results.size(), report::count_text(cases.size(), "case", "cases"),
+               earlier->heatmaps_cut
+                   ? fmt::format(" ({} stopped while writing {} heatmaps: checked again)",
+                                 report::count_text(earlier->heatmaps_cut, "case", "cases"),
+                                 earlier->heatmaps_cut == 1 ? "its" : "their")
+                   : "");
   }
   std::vector<const Case*> to_check;
   std::vector<size_t> checked_index;  // to_check[i] is cases[checked_index[i]]
@@ -198,6 +210,7 @@ int cmd_run(const Options& given) {
     info = run_info(o, gl, model);
     run_fields(info);
     journal->record_start(info, model);
+    if (earlier_outputs) earlier_outputs->keep_new();
     std::string shard;
     if (o.fraction > 1)
       shard = fmt::format(" (shard {} of {}, {} in all)", o.fraction_start, o.fraction,
@@ -214,11 +227,18 @@ int cmd_run(const Options& given) {
       fmt::print("warning: {}\n", w);
     std::fflush(stdout);
   };
+  std::set<size_t> heatmaps_follow;  // indices into to_check whose heatmaps are on their way
+  s.images_follow = [&](size_t i) { heatmaps_follow.insert(i); };
+  s.images_written = [&](size_t i) {
+    if (heatmaps_follow.erase(i)) journal->record_heatmaps_written(checked_index[i]);
+  };
   const auto on_result = [&](size_t i, CaseResult r) {
     report::apply(baseline, r);
     report::apply_flakes(flakes, o.flakes, r);
     // On disk before anything else: a kill after this line loses nothing of this case.
-    journal->record_result(checked_index[i], r, elapsed());
+    journal->record_result(checked_index[i], r, elapsed(),
+                           heatmaps_follow.count(i) ? Journal::Heatmaps::follow
+                                                    : Journal::Heatmaps::none);
     progress.clear();
     fmt::print("{}\n", report::case_line(r));
     std::fflush(stdout);
@@ -230,6 +250,7 @@ int cmd_run(const Options& given) {
     auto& r = results[checked_index[i]];
     if (!r) return;
     r->message += (r->message.empty() ? "" : "; ") + why;
+    heatmaps_follow.erase(i);
     journal->record_result(checked_index[i], *r, elapsed());
     progress.clear();
     fmt::print("{}: {}\n", r->name, why);
@@ -249,6 +270,7 @@ int cmd_run(const Options& given) {
                caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT", list.size(),
                report::count_text(cases.size(), "case", "cases"), o.out);
   write_outputs(out, info, list, o.html);
+  if (earlier_outputs) earlier_outputs->keep_new();
   // 128 + the signal, as a shell reports a process the signal ended.
   if (info.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
   return report::any_fails_run(list) ? 1 : 0;

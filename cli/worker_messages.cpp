@@ -49,6 +49,8 @@ void Pool::handle(Worker& w, const std::string& line) {
       w.imaging.reset();
       if (msg.contains("images_error"))
         images_lost(k, "heatmaps not written: " + msg["images_error"].get<std::string>());
+      else if (s_.images_written)
+        s_.images_written(k);
       return assign(w);
     }
     if (msg.contains("identified") || msg.contains("identify_error")) {
@@ -74,6 +76,7 @@ void Pool::result_in(Worker& w, size_t k, CaseResult r, bool images) {
   w.job.reset();
   // The verdict is in and recorded; the heatmaps follow, under a deadline of their own, and
   // the worker gets no case until they are written.
+  if (images && s_.images_follow) s_.images_follow(k);
   finish(k, std::move(r));
   if (!images) return assign(w);
   w.imaging = k;

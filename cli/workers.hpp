@@ -54,6 +54,11 @@ struct WorkerSettings {
   // Called when a case's verdict came but its heatmaps did not (the worker failed to write them,
   // died, or took longer than `timeout` for them), with its index and one line saying why.
   std::function<void(size_t, const std::string&)> images_lost;
+  // Called with a case's index just before its verdict (on_result) when its heatmaps follow,
+  // and once they are written: a run's journal records both, so that a run killed between them
+  // checks that case again on --resume rather than keep it without its heatmaps.
+  std::function<void(size_t)> images_follow;
+  std::function<void(size_t)> images_written;
   // The model that judges every case when it is already known (a resumed run keeps the model it
   // started with); otherwise the runner chooses it as above.
   std::optional<ModelChoice> model;

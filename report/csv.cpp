@@ -22,6 +22,19 @@ void write_csv(const std::filesystem::path& file, const std::vector<CaseResult>&
 
 }  // namespace
 
+const char* csv_breaking(const std::string& name) {
+  if (name.empty()) return "no character at all";
+  for (const char ch : name) {
+    if (ch == ',') return "a comma";
+    if (ch == '"') return "a double quote";
+    if (ch == '\n' || ch == '\r') return "a line break";
+    if ((unsigned char)ch < 0x20 || ch == 0x7f) return "a control character";
+  }
+  if (name.front() == ' ' || name.back() == ' ')
+    return "a space at an end (baselines trim it)";
+  return nullptr;
+}
+
 void write_results_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results) {
   write_csv(file, results, false);
 }

@@ -129,7 +129,8 @@ void write_tile(const std::string& name, const TileValues& v, const Tile& t, lon
 
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
                                                      const Case& c, const Expectation& expected,
-                                                     const Frame& gl, const CaseResult& r) {
+                                                     const Frame& gl, const CaseResult& r,
+                                                     const BeforeWrite& before_write) {
   const Frame& reference = expected.frame;
   check_frame(c, reference, reference, "reference");
   check_frame(c, gl, reference, "GL");
@@ -146,6 +147,7 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
     const std::string stem = file_stem(e.name);
     const auto out = [&](const std::string& suffix) {
       written.push_back(dir / (stem + suffix));
+      if (before_write) before_write(written.back());
       return written.back();
     };
     write_maps(downsampled(e, factor), factor, shown.tolerance, font, out);
@@ -167,6 +169,7 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
                t, worst, e.width, out);
   }
   written.push_back(dir / "coverage.png");
+  if (before_write) before_write(written.back());
   write_png(render_coverage(expected, gl, r.coverage, font, explained_mismatches_fail(r.tolerance)),
             written.back());
   return written;

@@ -6,8 +6,10 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/text.hpp"
+#include "core/verdict_inputs.hpp"
 #include "report/format.hpp"
 
 namespace glrc::report {
@@ -36,32 +38,25 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
       throw std::runtime_error(
           fmt::format("merge: {}: expected a shard of a {}-case suite, got {} cases", names[k],
                       first.total_cases, r.total_cases));
-    if (r.gl_version != first.gl_version || r.gl_renderer != first.gl_renderer ||
-        r.backend != first.backend || r.model != first.model || r.tolerance != first.tolerance)
-      throw std::runtime_error(fmt::format(
-          "merge: {}: expected the same GL and options as {} ({}, {}), got {}, {}", names[k],
-          names[0], first.gl_renderer, first.gl_version, r.gl_renderer, r.gl_version));
-    if (r.verdict_inputs != first.verdict_inputs) {
-      // The first input they differ in, by name.
-      std::string key;
-      for (const auto& m : {&r.verdict_inputs, &first.verdict_inputs})
-        for (const auto& [name, value] : *m) {
-          const auto a = r.verdict_inputs.find(name), b = first.verdict_inputs.find(name);
-          const bool same = a != r.verdict_inputs.end() && b != first.verdict_inputs.end() &&
-                            a->second == b->second;
-          if (!same && (key.empty() || name < key)) key = name;
-        }
-      const auto shown = [&](const std::map<std::string, std::string>& m) {
-        const auto it = m.find(key);
-        return it == m.end()        ? std::string("nothing recorded")
-               : it->second.empty() ? std::string("none")
-                                    : it->second;
-      };
+    // What judged the shard, each named as results.json names it and by the option that sets it.
+    for (const auto& [field, option, value, value0] :
+         {std::tuple{"gl_renderer", "the driver: --backend, --driver, --mesa", &r.gl_renderer,
+                     &first.gl_renderer},
+          {"gl_version", "the driver: --mesa", &r.gl_version, &first.gl_version},
+          {"backend", "--backend", &r.backend, &first.backend},
+          {"model", "--model, --subpixel-bits, --planes, --tie-break", &r.model, &first.model},
+          {"tolerance", "--tolerance, --spec-subpixel-bits",
+           &r.tolerance, &first.tolerance}})
+      if (*value != *value0)
+        throw std::runtime_error(fmt::format(
+            "merge: {}: expected shards judged alike, got run.{} \"{}\" where {} has \"{}\" (set by "
+            "{}): run the shards with the same options",
+            names[k], field, printable(*value, 100), names[0], printable(*value0, 100), option));
+    if (const auto d = verdict_input_difference(r.verdict_inputs, first.verdict_inputs))
       throw std::runtime_error(fmt::format(
           "merge: {}: expected shards judged alike, got {} {} where {} has {}: run the shards "
           "with the same options and files",
-          names[k], key, shown(r.verdict_inputs), names[0], shown(first.verdict_inputs)));
-    }
+          names[k], d->name, d->value, names[0], d->other));
     if (const auto [it, added] = seen.emplace(r.fraction_start, k); !added)
       throw std::runtime_error(fmt::format("merge: {} and {} are both shard {} of {}",
                                            names[it->second], names[k], r.fraction_start, n));
@@ -113,9 +108,6 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
   std::map<std::string, size_t> named;
   for (size_t k = 0; k < list.size(); ++k) {
     const CaseResult& r = list[k];
-    if (const char* what = csv_breaking(r.name))
-      throw std::runtime_error("merge: expected case names fit for results.csv, got \"" +
-                               printable(r.name) + "\", which holds " + what);
     // Shards of one suite hold each case once: a name twice means shards of two suites (a case
     // renamed or added between the checkouts that ran them).
     if (const auto [it, added] = named.emplace(r.name, k); !added)
@@ -125,18 +117,6 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
           printable(r.name, 80), it->second + 1, k + 1, list.size()));
   }
   return {info, std::move(list)};
-}
-
-const char* csv_breaking(const std::string& name) {
-  for (const char ch : name) {
-    if (ch == ',') return "a comma";
-    if (ch == '"') return "a double quote";
-    if (ch == '\n' || ch == '\r') return "a line break";
-    if ((unsigned char)ch < 0x20 || ch == 0x7f) return "a control character";
-  }
-  if (!name.empty() && (name.front() == ' ' || name.back() == ' '))
-    return "a space at an end (baselines trim it)";
-  return nullptr;
 }
 
 std::string run_summary(const std::vector<CaseResult>& results, double seconds) {

@@ -20,11 +20,6 @@ namespace glrc::report {
 RunResults merge_shards(const std::vector<RunResults>& shards,
                         const std::vector<std::string>& names);
 
-// What in a case name would break a line of results.csv or failures.csv (`case,Status,seconds`,
-// no quoting: Mesa CI's tools split on commas), or nullptr. Such names are refused, not quoted:
-// a quoted name would not match the same case in a --baseline read by those tools.
-const char* csv_breaking(const std::string& name);
-
 // The summary line: "45 cases: 42 pass, 0 fail, ..., 0 error, 0 skip in 1.23 s", every status
 // that occurred, in a fixed order.
 std::string run_summary(const std::vector<CaseResult>& results, double seconds);

@@ -41,6 +41,12 @@ CaseResult case_result_from_json(const std::string& text, const std::string& sou
 // failures.csv, the same for the cases whose status fails the run.
 void write_results_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results);
 void write_failures_csv(const std::filesystem::path& file, const std::vector<CaseResult>& results);
+// What in a case name would break a line of results.csv or failures.csv (`case,Status,seconds`,
+// no quoting: Mesa CI's tools split on commas), or nullptr: an empty name, a comma, a quote, a
+// line break or another control character, a space at an end. Such names are refused (by run,
+// and by whatever reads a results.json), not quoted: a quoted name would not match the same
+// case in a --baseline read by those tools.
+const char* csv_breaking(const std::string& name);
 // All four files of a run folder: results.json, results.csv, failures.csv, junit.xml.
 void write_run_files(const std::filesystem::path& dir, const RunInfo& run,
                      const std::vector<CaseResult>& results);
@@ -69,10 +75,13 @@ std::string coverage_failures_table(const CaseResult& r, const Frame& reference,
 // files. A frame over 2^20 pixels gets maps only of its failing channels, shrunk by
 // map_factor (channel_error.hpp; each pixel the worst of its block), and EXRs of a 256 x 256 tile
 // around each one's worst pixel (_error_tile.exr, ...), so that pictures of any frame stay small
-// and quick.
+// and quick. `before_write`, when given, is told each file before it is created (`diff` records
+// its images' names first, so that a diff stopped halfway leaves none unlisted).
+using BeforeWrite = std::function<void(const std::filesystem::path&)>;
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
                                                      const Case& c, const Expectation& expected,
-                                                     const Frame& gl, const CaseResult& r);
+                                                     const Frame& gl, const CaseResult& r,
+                                                     const BeforeWrite& before_write = {});
 // Rows [y0, y0 + rows) of a case's expectation and GL frame (check's streamed bands).
 using BandSource = std::function<std::pair<Expectation, Frame>(int y0, int rows)>;
 // The same files from a case checked band by band (check::Checked::streamed), which holds no

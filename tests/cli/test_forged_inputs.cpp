@@ -307,6 +307,38 @@ TEST_F(Forged, MergeRefusesShardsJudgedOtherwise) {
                   "expected shards of one suite, got case \"face_on\" as case 1 and case 2");
 }
 
+// Issue 45's second hostile campaign: compare took case names that run refuses (W6), and merge
+// said "expected the same GL and options" for shards of another --tolerance, naming neither
+// the field nor the option (U1).
+TEST_F(Forged, CaseNamesRunRefusesAndShardsJudgedByAnotherToleranceAreNamed) {
+  const std::string run = "'" + (dir_ / "run").string() + "'";
+  for (const auto& [name, bad, holds] :
+       {std::tuple{"empty", "", "no character at all"},
+        {"comma", "face,on", "a comma"},
+        {"line_break", "face\non", "a line break"}}) {
+    SCOPED_TRACE(name);
+    const fs::path forged = forged_results(name, [&](json& j) { j["cases"][0]["name"] = bad; });
+    expect_one_line(glrefcheck("compare " + run + " '" + forged.string() + "'"),
+                    std::string("cases[0].name: expected a case name fit for results.csv (it "
+                                "holds ") +
+                        holds + ")");
+  }
+  const auto shard = [&](const std::string& name, int start, const std::string& tolerance) {
+    return forged_results(name, [&](json& j) {
+      j["run"]["fraction"] = 2, j["run"]["fraction_start"] = start, j["run"]["total_cases"] = 2;
+      j["cases"][0]["name"] = "case_" + std::to_string(start);
+      if (!tolerance.empty()) j["run"]["tolerance"] = tolerance;
+    });
+  };
+  const fs::path first = shard("shard_1", 1, ""), second = shard("shard_2", 2, "ulps");
+  const std::string spec = json::parse(read(first / "results.json"))["run"]["tolerance"];
+  expect_one_line(glrefcheck("merge '" + first.string() + "' '" + second.string() + "' --out '" +
+                             (dir_ / "merged_tolerance").string() + "'"),
+                  "expected shards judged alike, got run.tolerance \"ulps\" where " +
+                      first.string() + " has \"" + spec +
+                      "\" (set by --tolerance, --spec-subpixel-bits)");
+}
+
 // Issue 45's hostile campaign: an option naming a path given as "" (an unset variable) was
 // taken for the option not given: `run --resume ''` ran a fresh run over the folder's journal,
 // `fuzz --emit ''` ran a campaign over fuzz-out/.

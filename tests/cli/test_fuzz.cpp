@@ -8,8 +8,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "campaign/generators.hpp"
 #include "casefile/casefile.hpp"
@@ -189,8 +192,45 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
   const auto judged = glrefcheck("merge '" + a.string() + "' '" + strict.string() + "' --out '" +
                                  (dir_ / "m4").string() + "'");
   EXPECT_EQ(judged.exit_code, 2) << judged.out << judged.err;
-  EXPECT_NE(judged.err.find("run.verdict_inputs: expected"), std::string::npos) << judged.err;
-  EXPECT_NE(judged.err.find("\"strict_coverage\":\"true\""), std::string::npos) << judged.err;
+  // By the input's name and both values (it printed the inputs' JSON, cut at 80 characters).
+  EXPECT_NE(judged.err.find(strict.string() + ": expected shards judged alike, got "
+                            "strict_coverage true where " + a.string() + " has false"),
+            std::string::npos)
+      << judged.err;
+  // Hand-edited stats (the hostile campaign's W4: a negative count, a sum that wraps, more
+  // failing cases than cases were merged as given): one line each, and the last good merge stays.
+  const std::string good = read(merged / "results.json");
+  using Edit = std::function<void(nlohmann::json&)>;
+  const std::vector<std::pair<Edit, std::string>> forgeries = {
+      {[](nlohmann::json& j) { j["stats"]["cases"] = -5; },
+       "stats.cases: expected a whole number, got -5"},
+      {[](nlohmann::json& j) {
+         j["stats"]["failing_cases"] = j["stats"]["cases"].get<uint64_t>() + 1;
+       },
+       "stats.failing_cases: expected at most stats.cases (20), got 21"},
+      {[](nlohmann::json& j) { j["stats"]["triangles"] = UINT64_MAX; },
+       "stats.triangles: expected a count the shards' sum can hold"},
+      {[](nlohmann::json& j) { j["stats"]["seconds"] = -1.5; },
+       "stats.seconds: expected a finite number of seconds, 0 or more, got -1.5"},
+      {[](nlohmann::json& j) {
+         j["stats"]["checking_seconds"] = j["stats"]["seconds"].get<double>() + 1;
+       },
+       "stats.checking_seconds: expected at most stats.seconds"},
+      {[](nlohmann::json& j) { j["failures"][0]["cases"] = 0; },
+       "failures[0].cases: expected 1 to stats.failing_cases"},
+  };
+  for (size_t k = 0; k < forgeries.size(); ++k) {
+    const auto forged = dir_ / ("forged" + std::to_string(k));
+    std::filesystem::copy(b, forged, std::filesystem::copy_options::recursive);
+    auto j = nlohmann::json::parse(read(b / "results.json"));
+    forgeries[k].first(j);
+    std::ofstream(forged / "results.json") << j.dump(2);
+    const auto o = glrefcheck("merge '" + a.string() + "' '" + forged.string() + "' --out '" +
+                              merged.string() + "'");
+    EXPECT_EQ(o.exit_code, 2) << k << o.out << o.err;
+    EXPECT_NE(o.err.find(forgeries[k].second), std::string::npos) << k << ": " << o.err;
+    EXPECT_EQ(read(merged / "results.json"), good) << k;
+  }
   // A failure moved out of its shard ("ready for cases/"): refused before the last good merge
   // is cleared (the hostile campaign's D4).
   const auto kept = read(merged / "results.json");

@@ -3,12 +3,15 @@
 real worker (its arguments), passes the protocol's lines both ways, and plays a hung driver where
 it is told to, so that no test hook lives in glrefcheck itself.
 
-  worker_proxy.py [--stall-case RE] [--stall-images RE] [--crash-on-identify] [--pidfile F] CMD...
+  worker_proxy.py [--stall-case RE] [--stall-images RE] [--stall-hello] [--crash-on-identify]
+                  [--pidfile F] CMD...
 
 --stall-case RE    a job for a case whose name fully matches RE is held back: the worker never
                    gets it, as if its driver hung before the verdict.
 --stall-images RE  the verdict of such a case reaches the runner, then nothing more: as if the
                    driver hung writing its heatmaps.
+--stall-hello      the worker's hello (its GL context made) never reaches the runner: as if the
+                   driver hung making its context.
 --pidfile F        on stalling, this proxy's pid (the runner's child) is written to F, so that a
                    test can kill it (a Crash) or signal the runner.
 --crash-on-identify  abort on the runner's request to identify the implementation.
@@ -25,6 +28,7 @@ import time
 parser = argparse.ArgumentParser()
 parser.add_argument("--stall-case")
 parser.add_argument("--stall-images")
+parser.add_argument("--stall-hello", action="store_true")
 parser.add_argument("--crash-on-identify", action="store_true")
 parser.add_argument("--pidfile")
 parser.add_argument("command", nargs=argparse.REMAINDER)
@@ -75,9 +79,11 @@ def to_runner():
     for line in worker.stdout:
         if stalled.is_set():
             stall()
+        m = message(line)
+        if args.stall_hello and "hello" in m:
+            stall()
         sys.stdout.buffer.write(line)
         sys.stdout.buffer.flush()
-        m = message(line)
         result = m.get("result") if isinstance(m.get("result"), dict) else {}
         if m.get("images") and matches(args.stall_images, result.get("name")):
             stall()

@@ -1,0 +1,233 @@
+// Nothing lost, second round (issue 45's hostile campaign): a run, campaign or diff whose GL never
+// starts gives the folder's earlier results back; a run killed while a case's heatmaps were being
+// written checks that case again on --resume; a diff stopped halfway leaves no image unlisted;
+// `report` on a folder a live run holds names the run; a minimal case the user edited, or an
+// output folder inside a run's, is not replaced. Real processes and real signals.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "tests/support/glrefcheck_process.hpp"
+#include "tests/support/temp_dir_test.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using glrc::test::glrefcheck;
+using glrc::test::Outcome;
+using glrc::test::parent_of;
+using glrc::test::proxied_workers;
+using glrc::test::wait_for_pid;
+
+std::string read(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Every file under `dir` with its contents, but the lock (its holder line changes by design).
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> m;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.path().filename() != ".glrefcheck.lock")
+      m[fs::relative(e.path(), dir).string()] = e.is_regular_file() ? read(e.path()) : "<folder>";
+  return m;
+}
+
+// Which files differ between two snapshots, for a failure's message.
+std::string differences(const std::map<std::string, std::string>& a,
+                        const std::map<std::string, std::string>& b) {
+  std::string text;
+  for (const auto& [name, content] : a)
+    if (!b.count(name) || b.at(name) != content) text += " " + name;
+  for (const auto& [name, content] : b)
+    if (!a.count(name)) text += " +" + name;
+  return text;
+}
+
+class EarlierOutputs : public glrc::test::TempDirTest {};
+
+// The hostile campaign's D1: `--driver zink` on OSMesa, or a wrapper that fails, deleted the
+// folder's earlier results before the first worker said GL would not start.
+TEST_F(EarlierOutputs, ARunWhoseGlNeverStartsLeavesTheEarlierResults) {
+  const fs::path out = dir_ / "out";
+  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --html --out '" + out.string() + "'")
+                .exit_code,
+            0);
+  const auto before = snapshot(out);
+  ASSERT_TRUE(before.count("results.json"));
+  for (const std::string& broken :
+       {std::string("--backend osmesa --driver zink"), std::string("--worker-wrapper false")}) {
+    const Outcome o = glrefcheck("run cases/face_on.json cases/attr_tiny.json --jobs 1 " +
+                                 broken + " --out '" + out.string() + "'");
+    EXPECT_EQ(o.exit_code, 2) << broken << o.out << o.err;
+    EXPECT_EQ(snapshot(out), before) << broken << ":" << differences(before, snapshot(out));
+  }
+  // A campaign into it, whose GL never starts either.
+  const Outcome o = glrefcheck("fuzz --count 4 --worker-wrapper false --out '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
+  // A run that has GL replaces them as before.
+  ASSERT_EQ(glrefcheck("run cases/attr_tiny.json --jobs 1 --out '" + out.string() + "'").exit_code,
+            0);
+  EXPECT_NE(read(out / "results.csv").find("attr_tiny,Pass"), std::string::npos);
+  EXPECT_EQ(read(out / "results.csv").find("face_on"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out / "report.html"));
+  EXPECT_FALSE(fs::exists(out / ".glrefcheck-earlier"));
+}
+
+// A run killed (kill -9) while its worker was still starting: the earlier results were set aside,
+// and the next glrefcheck to claim the folder (here `run --resume`) puts them back first.
+TEST_F(EarlierOutputs, ARunKilledBeforeItHadGlLeavesTheEarlierResultsToTheNext) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + out.string() + "'").exit_code,
+            0);
+  const auto before = snapshot(out);
+  std::thread run([&] {
+    glrefcheck("run cases/attr_tiny.json --jobs 1 --out '" + out.string() + "'" +
+               proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
+  });
+  const pid_t proxy = wait_for_pid(pidfile);
+  ASSERT_GT(proxy, 0);
+  ASSERT_EQ(kill(parent_of(proxy), SIGKILL), 0);
+  run.join();
+  ASSERT_TRUE(fs::exists(out / ".glrefcheck-earlier"));
+  // report puts them back too; here the resume does, and finds the first run complete.
+  const Outcome o = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  EXPECT_NE(o.out.find("1 of 1 case done before"), std::string::npos) << o.out;
+  EXPECT_NE(read(out / "results.csv").find("face_on,Pass"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out / ".glrefcheck-earlier"));
+  EXPECT_EQ(read(out / "journal.jsonl"), before.at("journal.jsonl"));
+  // Killed halfway through setting them aside (results.json moved, the rest not yet): what is
+  // not aside is still the earlier run's, and stays.
+  const auto whole = snapshot(out);
+  fs::create_directory(out / ".glrefcheck-earlier");
+  fs::rename(out / "results.json", out / ".glrefcheck-earlier/results.json");
+  const Outcome report = glrefcheck("report '" + out.string() + "'");
+  EXPECT_EQ(report.exit_code, 0) << report.out << report.err;
+  fs::remove(out / "report.html");
+  EXPECT_EQ(snapshot(out), whole) << differences(whole, snapshot(out));
+}
+
+// The hostile campaign's W3: a runner killed after a failing case's verdict but before its
+// heatmaps were written kept the verdict, and the resumed --html run had no heatmaps for it.
+TEST_F(EarlierOutputs, AResumeChecksAgainACaseStoppedWritingItsHeatmaps) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  const std::string cases = "cases/viewport_tiny.json cases/clip_noperspective_x_plane.json";
+  std::thread run([&] {
+    glrefcheck("run " + cases + " --jobs 1 --html --out '" + out.string() + "'" +
+               proxied_workers("--stall-images clip_noperspective_x_plane --pidfile '" +
+                               pidfile.string() + "'"));
+  });
+  const pid_t proxy = wait_for_pid(pidfile);
+  ASSERT_GT(proxy, 0);
+  ASSERT_EQ(kill(parent_of(proxy), SIGKILL), 0);
+  run.join();
+  const std::string journal = read(out / "journal.jsonl");
+  ASSERT_NE(journal.find("\"heatmaps\":\"follow\""), std::string::npos) << journal;
+  const Outcome o = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+  EXPECT_NE(o.out.find("0 of 2 cases done before (1 case stopped while writing its heatmaps: "
+                       "checked again)"),
+            std::string::npos)
+      << o.out;
+  EXPECT_NE(o.out.find("clip_noperspective_x_plane"), std::string::npos) << o.out;
+  EXPECT_TRUE(fs::exists(out / "cases/clip_noperspective_x_plane/coverage.png"));
+  EXPECT_NE(read(out / "journal.jsonl").find("\"heatmaps\":\"written\""), std::string::npos);
+  // The journal reads whole again: nothing is left to check.
+  const Outcome again = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_NE(again.out.find("2 of 2 cases done before\n"), std::string::npos) << again.out;
+}
+
+// The hostile campaign's W2: a diff stopped while writing its images left those written so far
+// unlisted, and the next diff kept them beside its own. A write that fails halfway (a folder
+// where an image goes) stops it at the same point a kill would.
+TEST_F(EarlierOutputs, ADiffStoppedHalfwayLeavesNoImageUnlisted) {
+  const fs::path out = dir_ / "d";
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + out.string() + "'").exit_code, 1);
+  ASSERT_TRUE(fs::exists(out / "color.x_error.png"));
+  // attr_mixed_magnitudes has the varying m: its third file cannot be written.
+  fs::create_directories(out / "m.x_ratio.png");
+  const Outcome stopped =
+      glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + out.string() + "'");
+  EXPECT_NE(stopped.exit_code, 0) << stopped.out << stopped.err;
+  EXPECT_NE(stopped.err.find("m.x_ratio.png"), std::string::npos) << stopped.err;
+  ASSERT_TRUE(fs::exists(out / "m.x_error.png"));  // written before the stop
+  fs::remove(out / "m.x_ratio.png");
+  ASSERT_LE(glrefcheck("diff cases/viewport_tiny.json --out '" + out.string() + "'").exit_code, 1);
+  const std::string listed = read(out / ".glrefcheck-diff-images");
+  for (const auto& e : fs::directory_iterator(out)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_FALSE(name.starts_with("m.")) << name << " is the stopped diff's, left beside "
+                                         << "viewport_tiny's";
+    if (name.ends_with(".png") || name.ends_with(".exr")) {
+      EXPECT_NE(listed.find(name + "\n"), std::string::npos) << name << " is not listed";
+    }
+  }
+}
+
+// The hostile campaign's U4: `report` on the folder of a run still going said "the run was
+// killed". Now it names the run that holds the folder, and writes nothing there.
+TEST_F(EarlierOutputs, ReportOnAFolderALiveRunHoldsNamesTheRun) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  std::thread run([&] {
+    glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" +
+               out.string() + "'" +
+               proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
+  });
+  const pid_t proxy = wait_for_pid(pidfile);
+  ASSERT_GT(proxy, 0);
+  const Outcome o = glrefcheck("report '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("is in use by another glrefcheck (pid " +
+                       std::to_string(parent_of(proxy)) + ": glrefcheck run"),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(o.err.find("killed"), std::string::npos) << o.err;
+  EXPECT_FALSE(fs::exists(out / "report.html"));
+  ASSERT_EQ(kill(parent_of(proxy), SIGINT), 0);
+  run.join();
+  EXPECT_EQ(glrefcheck("report '" + out.string() + "'").exit_code, 0);
+}
+
+}  // namespace
+
+// The hostile campaign's two debatable losses, now refused: a fuzz run into its own folder
+// deleted a minimal case the user had edited in failures/, and a run deleted a diff's folder the
+// user had put in the run's logs/.
+TEST_F(EarlierOutputs, AnEditedMinimalCaseOrAnOutputFolderInsideIsNotReplaced) {
+  const fs::path f = dir_ / "f";
+  ASSERT_EQ(glrefcheck("fuzz --seed 1 --count 20 --generator clip --jobs 1 --out '" +
+                       f.string() + "'")
+                .exit_code,
+            1);
+  const fs::path failure = f / "failures/non_finite_noperspective.json";
+  std::string text = read(failure);
+  ASSERT_NE(text.find("\"description\": \""), std::string::npos);
+  text.insert(text.find("\"description\": \"") + 16, "Mine: ");
+  std::ofstream(failure) << text;
+  const auto before = snapshot(f);
+  Outcome o = glrefcheck("fuzz --seed 2 --count 4 --jobs 1 --out '" + f.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("\"non_finite_noperspective.json\", which was changed since glrefcheck "
+                       "wrote it (its stamp no longer matches): move it out of the folder first"),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(snapshot(f), before) << differences(before, snapshot(f));
+
+  const fs::path r = dir_ / "r";
+  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + r.string() + "'").exit_code, 0);
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + (r / "logs/d").string() + "'")
+                .exit_code,
+            1);
+  const auto run_before = snapshot(r);
+  o = glrefcheck("run cases/face_on.json --jobs 1 --out '" + r.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("logs holds another glrefcheck output folder"), std::string::npos) << o.err;
+  EXPECT_EQ(snapshot(r), run_before) << differences(run_before, snapshot(r));
+}
