@@ -126,15 +126,16 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 namespace {
 
 // Bands of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
-// are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about 8192 runs of
-// 64 pixels in all (twice the fewest a guess is made from), none where that is more than an
+// are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about twice the
+// fewest runs of compare::RunGrid::kRun pixels a guess is made from, none where that is more than an
 // eighth of the frame. Sixty-four places, not thirty-two: the 4096x4096 scene's guess from 32
 // bands of four rows did not hold (its stream compared twice), from 64 of two it did.
 std::vector<std::pair<int, int>> floor_sample_bands(const Case& c) {
-  constexpr int kSampleBands = 64, kRun = 64, kRuns = 8192;
-  const int runs_per_row = c.fb_width / kRun;
+  constexpr int kSampleBands = 64;
+  constexpr size_t kRuns = 2 * compare::kFewestFloorSamples;
+  const int runs_per_row = compare::RunGrid{c.fb_width, c.fb_height}.whole_runs_per_row();
   if (runs_per_row <= 0 || c.fb_height <= 0) return {};
-  const int rows = (kRuns + runs_per_row - 1) / runs_per_row;
+  const int rows = int((kRuns + size_t(runs_per_row) - 1) / size_t(runs_per_row));
   if (int64_t(rows) * 8 > c.fb_height) return {};
   const int bands = std::min(kSampleBands, rows);
   const int height = (rows + bands - 1) / bands;

@@ -1,0 +1,310 @@
+// The comparator. Coverage first (which primitive covers each pixel), then, where both frames
+// agree on the primitive, every varying component and depth, in ULPs of the attribute's scale:
+// the coverage pass here, each channel's values in channel_pass.cpp.
+#include "compare/compare.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "compare/comparator_state.hpp"
+#include "compare/floor_guess.hpp"
+#include "compare/messages.hpp"
+#include "compare/run_bounds.hpp"
+#include "core/parallel.hpp"
+
+namespace glrc::compare {
+
+Comparator::Comparator(const Case& c, const Tolerance& tolerance, int width, int height,
+                       int threads)
+    : state_(std::make_unique<State>(c, tolerance, width, height, thread_count(threads))) {}
+
+Comparator::~Comparator() = default;
+
+void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) {
+  State& st = *state_;
+  const Case& c = st.c;
+  const Tolerance& tolerance = st.r.tolerance;
+  const Frame& reference = expected.frame;
+  const bool spec = tolerance.mode == ToleranceMode::spec;
+  const bool exact = tolerance.mode == ToleranceMode::exact;
+  if (reference.width != st.width || reference.width != gl.width || reference.height != gl.height ||
+      y0 != st.next_row || reference.height < 0 || y0 + reference.height > st.height ||
+      reference.components.size() != size_t(c.component_count()) ||
+      reference.components.size() != gl.components.size() ||
+      expected.edges.size() != reference.pixel_count() ||
+      (spec && ((expected.allowed.components.size() != reference.components.size() &&
+                 !(expected.deferred && expected.allowed.components.empty())) ||
+                (expected.allowed.depth.size() != reference.pixel_count() &&
+                 !(expected.deferred && expected.deferred->depth())))))
+    throw std::invalid_argument("compare: frames of different shape for case " + c.name);
+  // A deferred allowance knows the first row of the frame it drew: it must be this band's.
+  if (expected.deferred && expected.deferred->first_row() != y0)
+    throw std::invalid_argument("compare: a deferred allowance drawn for rows from " +
+                                std::to_string(expected.deferred->first_row()) +
+                                " compared as rows from " + std::to_string(y0) + ", for case " +
+                                c.name);
+  st.next_row += reference.height;
+
+  // Coverage first, then the values where both frames name the same triangle (or GL a
+  // candidate of the depth test), channel by channel. Which pixels those are is kept as one
+  // byte per pixel of the band (Judgement), kept between bands; a candidate is looked up again
+  // in each channel's pass (rare: only where the depth test's order is free).
+  std::vector<uint8_t>& judgement = st.judgement;
+  judgement.resize(reference.pixel_count());
+  auto& cov = st.r.coverage;
+  cov.fragments_checked = cov.fragments_checked &&
+                          reference.fragments.size() == reference.pixel_count() &&
+                          gl.fragments.size() == gl.pixel_count();
+  using Label = CoverageStats::Label;
+  // Blocks of rows on every thread, each counted apart and added in order: the counts are
+  // sums, and the first mismatches kept are the first of the blocks' own first ones, in order.
+  const int blocks = std::clamp(4 * st.threads, 1, std::max(reference.height, 1));
+  std::vector<CoverageStats> part(static_cast<size_t>(blocks));
+  std::vector<std::vector<State::Excused>> excused(static_cast<size_t>(blocks));
+  constexpr int kRun = RunGrid::kRun;
+  const RunGrid grid{reference.width, reference.height};
+  st.plain_runs.assign(grid.count(), -1);
+  st.own_runs.assign(st.plain_runs.size(), 0);
+  const PlainlyOwn plainly_own(c, expected, gl);
+  parallel_for(blocks, st.threads, [&](int b) {
+    CoverageStats& cv = part[size_t(b)];
+    const int first = int(int64_t(reference.height) * b / blocks);
+    const int end = int(int64_t(reference.height) * (b + 1) / blocks);
+    for (int y = first; y < end; ++y) {
+      for (int x = 0; x < reference.width; ++x) {
+        const size_t i = reference.index(x, y);
+        const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
+        if (plainly_own(i)) {
+          judgement[i] = kOwn;
+          ++cv.both;
+          continue;
+        }
+        const Judged judged = judged_against(c, expected, gl, i, tolerance);
+        judgement[i] = !judged.compared ? kNotCompared : judged.candidate ? kCandidate : kOwn;
+        if (pr == pg && pr == Frame::kNoPrimitive) {
+          ++cv.neither;
+        } else if (judged.compared) {
+          ++cv.both;
+        } else if (pg == Frame::kNoPrimitive) {
+          ++cv.reference_only;
+        } else if (pr == Frame::kNoPrimitive) {
+          ++cv.gl_only;
+        } else {
+          ++cv.other_primitive;
+        }
+        const std::optional<Label> label = coverage_label(expected, gl, i);
+        if (count_excused(expected, gl, i, label))
+          excused[size_t(b)].push_back({size_t(y0 + y) * size_t(st.width) + size_t(x),
+                                        {x, y0 + y, pr, pg, label && explained(*label),
+                                         label.value_or(Label::within_snapping)},
+                                        label,
+                                        untraceable_label(expected, gl, i),
+                                        gl.fragments[i]});
+        if (!label) continue;
+        ++(*label == Label::exact_tie         ? cv.exact_tie
+           : *label == Label::within_snapping ? cv.within_snapping
+           : *label == Label::gap             ? cv.gaps
+           : *label == Label::double_hit      ? cv.double_hits
+                                              : cv.fill_rule);
+        const bool free = explained(*label);
+        if (free) ++cv.boundary;
+        if (!free || !tolerance.allow_boundary || exact) ++cv.failures;
+        if (cv.mismatches.size() < kMismatchesKept)
+          cv.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
+      }
+      // The row's plain runs, now that its judgement is known (whole runs only: add_run's).
+      for (int r = 0; r < grid.whole_runs_per_row(); ++r) {
+        const size_t first_pixel = reference.index(r * kRun, y);
+        const int32_t p = reference.primitive[first_pixel];
+        bool own = true, plain = true;
+        for (int j = 0; j < kRun; ++j) {
+          own = own && judgement[first_pixel + size_t(j)] == kOwn;
+          plain = plain && reference.primitive[first_pixel + size_t(j)] == p;
+        }
+        const size_t run = grid.index(y, r);
+        st.own_runs[run] = uint8_t(own);
+        if (own && plain) st.plain_runs[run] = p;
+      }
+    }
+  });
+  for (const CoverageStats& cv : part) {
+    cov.neither += cv.neither, cov.both += cv.both, cov.reference_only += cv.reference_only;
+    cov.gl_only += cv.gl_only, cov.other_primitive += cv.other_primitive;
+    cov.exact_tie += cv.exact_tie, cov.within_snapping += cv.within_snapping;
+    cov.gaps += cv.gaps, cov.double_hits += cv.double_hits, cov.fill_rule += cv.fill_rule;
+    cov.boundary += cv.boundary, cov.failures += cv.failures;
+    for (const CoverageStats::Pixel& m : cv.mismatches)
+      if (cov.mismatches.size() < kMismatchesKept) cov.mismatches.push_back(m);
+  }
+  for (const std::vector<State::Excused>& list : excused)
+    for (const State::Excused& e : list)
+      if (st.excused.size() < kMostTracedPixels)
+        st.excused.push_back(e);
+      else
+        ++st.excused_beyond;
+
+  // Then the values, channel by channel (depth, then each component), each in pixel order. The
+  // channels share nothing but what they read, so several threads take one each: every
+  // channel's figures are the same bits for any number of threads.
+  // A frame compared whole guesses its floors from itself, unless they were guessed from
+  // sample bands already (a stream of one band).
+  const bool whole = y0 == 0 && reference.height == st.height && !st.floors_guessed;
+  parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
+    if (whole)
+      add_whole_channel(expected, gl, slot - 1);
+    else
+      add_band_channel(expected, gl, y0, slot - 1);
+  });
+}
+
+void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl, int k) {
+  State& st = *state_;
+  ChannelAccumulator& acc = st.channels[size_t(k + 1)];
+  const ChannelAccumulator before = acc;
+  const Frame& reference = expected.frame;
+  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+  std::optional<ChannelBounds> bounds;
+  if (const DeferredAllowance* deferred = allowance.deferred())
+    bounds = run_bounds(*deferred, st.plain_runs, st.ulps, reference, k);
+  ChannelBounds* known = bounds ? &*bounds : nullptr;
+  assume_floors(acc, st.plain_runs, st.ulps, allowance, reference, channel_values(gl, k),
+                channel_values(reference, k), k, known);
+  add_channel(expected, gl, 0, k, known);
+  if (acc.ulps.complete() && acc.ratios.complete()) return;
+  acc = before;
+  add_channel(expected, gl, 0, k, known);
+}
+
+void Comparator::add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
+  State& st = *state_;
+  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+  const DeferredAllowance* deferred = allowance.deferred();
+  if (!deferred) return add_channel(expected, gl, y0, k);
+  // The band's bounds as a whole frame's (run_bounds); the largest allowance the channel
+  // certainly has is also the largest of the bands before (the tally's: it only grows). Its
+  // floors are not guessed from the band: a band cannot be compared again should they not hold
+  // (the caller may guess them from sample bands first: guess_floors).
+  ChannelBounds bounds = run_bounds(*deferred, st.plain_runs, st.ulps, expected.frame, k);
+  bounds.largest_lo =
+      std::max(bounds.largest_lo, st.channels[size_t(k + 1)].tally.largest_allowance_ulps);
+  add_channel(expected, gl, y0, k, &bounds);
+}
+
+namespace {
+
+// Whether a mismatch labelled l counts against the verdict under tolerance t (add_rows' rule).
+bool counts_against(CoverageStats::Label l, const Tolerance& t) {
+  return !explained(l) || !t.allow_boundary || t.mode == ToleranceMode::exact;
+}
+
+// The counter of label l.
+uint64_t& label_counter(CoverageStats& cov, CoverageStats::Label l) {
+  using Label = CoverageStats::Label;
+  return l == Label::exact_tie         ? cov.exact_tie
+         : l == Label::within_snapping ? cov.within_snapping
+         : l == Label::gap             ? cov.gaps
+         : l == Label::double_hit      ? cov.double_hits
+                                       : cov.fill_rule;
+}
+
+}  // namespace
+
+void Comparator::trace_excused(CoverageStats& cov, const TraceSource* traces) {
+  State& st = *state_;
+  cov.counts_untraced += st.excused_beyond;
+  if (st.excused.empty()) return;
+  if (!traces || !traces->gl || !traces->choices) {
+    cov.counts_untraced += st.excused.size();
+    return;
+  }
+  std::vector<size_t> pixels;
+  pixels.reserve(st.excused.size());
+  for (const State::Excused& e : st.excused)
+    pixels.push_back(e.pixel);
+  const std::vector<std::optional<FragmentTrace>> gl = traces->gl(pixels);
+  const std::vector<FragmentChoices> choices = traces->choices(pixels);
+  if (gl.size() != pixels.size() || choices.size() != pixels.size())
+    throw std::logic_error("compare: a trace source gave " + std::to_string(gl.size()) +
+                           " traces and " + std::to_string(choices.size()) + " choices for " +
+                           std::to_string(pixels.size()) + " pixels");
+  const Tolerance& t = st.r.tolerance;
+  for (size_t k = 0; k < pixels.size(); ++k) {
+    const State::Excused& e = st.excused[k];
+    // A trace of another count than the frame's is not this frame's (a fault planted in the
+    // frame alone, or a pass that went wrong): not judged.
+    const std::optional<std::vector<FragmentTrace>> allowed =
+        gl[k] && gl[k]->count == e.gl_fragments ? admitted(choices[k]) : std::nullopt;
+    if (!allowed) {
+      ++cov.counts_untraced;
+      continue;
+    }
+    ++cov.counts_traced;
+    const auto key = [](const FragmentTrace& i) { return std::tie(i.count, i.id_sum, i.hash_sum); };
+    if (std::binary_search(allowed->begin(), allowed->end(), *gl[k],
+                           [&](const auto& a, const auto& b) { return key(a) < key(b); }))
+      continue;
+    // No conforming implementation rasterizes these fragments here: the count's own label.
+    if (e.label) {
+      --label_counter(cov, *e.label);
+      if (explained(*e.label)) --cov.boundary;
+      if (counts_against(*e.label, t)) --cov.failures;
+    }
+    ++label_counter(cov, e.untraceable);
+    ++cov.failures;
+    CoverageStats::Pixel at = e.at;
+    at.label = e.untraceable, at.boundary = false;
+    cov.traced_failures.push_back(at);
+    const auto kept = std::find_if(cov.mismatches.begin(), cov.mismatches.end(),
+                                   [&](const auto& m) { return m.x == at.x && m.y == at.y; });
+    if (kept != cov.mismatches.end())
+      *kept = at;
+    else if (cov.mismatches.size() < kMismatchesKept)
+      cov.mismatches.push_back(at);
+  }
+}
+
+CaseResult Comparator::finish(const TraceSource* traces) {
+  State& st = *state_;
+  trace_excused(st.r.coverage, traces);
+  CaseResult r = std::move(st.r);
+  for (size_t slot = 0; slot < st.channels.size(); ++slot) {
+    ChannelAccumulator& acc = st.channels[slot];
+    acc.stats.tolerance_ulps =
+        st.fixed_ulps[slot] ? *st.fixed_ulps[slot] : acc.tally.largest_allowance_ulps;
+    r.channels.push_back(acc.finish());
+  }
+  const Case& c = st.c;
+  const auto& cov = r.coverage;
+  bool pass = cov.failures == 0;
+  for (const auto& ch : r.channels)
+    pass = pass && ch.pass();
+  r.status = pass ? Status::pass : Status::fail;
+  if (!pass) r.message = failure_message(r);
+  // A NaN or Inf where the specification determines no value (value_determined) is no failure,
+  // and no pass either.
+  if (pass)
+    for (size_t slot = 0; slot < st.channels.size(); ++slot)
+      if (const auto& p = st.channels[slot].undetermined_non_finite) {
+        r.status = Status::skip;
+        r.message = undetermined_message(r.channels[slot].name, *p);
+        break;
+      }
+  // Beyond the magnitudes GL guarantees, a difference is no failure of the implementation.
+  if (const auto why = pass ? std::nullopt : outside_specified_range(c)) {
+    r.status = Status::skip;
+    r.message = "outside GL's specified range: " + *why + "; GL drew: " + r.message;
+  }
+  r.outcome = r.status;
+  return r;
+}
+
+CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
+                   const Tolerance& tolerance, int threads, const TraceSource* traces) {
+  Comparator comparator(c, tolerance, expected.frame.width, expected.frame.height, threads);
+  comparator.add_rows(expected, gl, 0);
+  return comparator.finish(traces);
+}
+
+}  // namespace glrc::compare

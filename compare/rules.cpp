@@ -1,0 +1,123 @@
+#include "compare/rules.hpp"
+
+#include <algorithm>
+
+namespace glrc::compare {
+
+double attribute_scale(const Case& c, int primitive, int component) {
+  if (component < 0) return 1.0;
+  double scale = 0;
+  for (uint32_t v : c.triangles.at(size_t(primitive)))
+    scale = std::max(scale, std::fabs(double(c.vertices.at(v).values.at(size_t(component)))));
+  return scale;
+}
+
+double ulp_of_scale(double scale) {
+  // The spacing of float32 values at the scale's binade; below the normal range the spacing is
+  // that of subnormals, 2^-149.
+  if (!(scale > 0) || !std::isfinite(scale)) return std::ldexp(1.0, -149);
+  return std::ldexp(1.0, std::max(std::ilogb(scale) - 23, -149));
+}
+
+UlpTable::UlpTable(const Case& c)
+    : components_(c.component_count()),
+      depth_ulp_(ulp_of_scale(1.0)),
+      depth_inverse_(1 / depth_ulp_) {
+  ulps_.reserve(c.triangles.size() * size_t(components_));
+  for (size_t t = 0; t < c.triangles.size(); ++t)
+    for (int k = 0; k < components_; ++k)
+      ulps_.push_back(ulp_of_scale(attribute_scale(c, int(t), k)));
+  inverses_.reserve(ulps_.size());
+  for (double ulp : ulps_)
+    inverses_.push_back(1 / ulp);
+}
+
+ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
+                                   const Tolerance& tolerance, int channel) {
+  const bool depth = channel == kDepth;
+  if (tolerance.mode == ToleranceMode::exact) return;
+  // In spec mode the allowance covers every pixel (add_rows checks its shape): every channel,
+  // depth included, is judged by it, also in a case without varyings, whose allowance has no
+  // components (the fixed depth ULPs judged those until a campaign found it).
+  // A deferred allowance gives the components' allowances, and the depth's where it says so.
+  const bool deferred_depth = expected.deferred && expected.deferred->depth();
+  if (tolerance.mode == ToleranceMode::spec &&
+      (deferred_depth || expected.allowed.depth.size() == expected.frame.pixel_count())) {
+    static_assert(kDepth == DeferredAllowance::kDepth);
+    if (depth ? deferred_depth : expected.deferred && expected.allowed.components.empty()) {
+      deferred_ = expected.deferred;
+      frame_ = &expected.frame, channel_ = channel;
+      return;
+    }
+    per_pixel_ = depth ? &expected.allowed.depth : &expected.allowed.components.at(size_t(channel));
+    return;
+  }
+  const bool flat =
+      !depth && c.varyings.at(size_t(component_varying(c).at(size_t(channel)))).interpolation ==
+                    Interpolation::flat;
+  fixed_ulps_ = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
+}
+
+PixelError pixel_error(float reference, float gl, double ulp) {
+  return pixel_error(reference, gl, ulp, 0);
+}
+
+Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
+                      const Tolerance& tolerance) {
+  const int32_t pr = e.frame.primitive[i], pg = gl.primitive[i];
+  if (same_primitive(c, pr, pg)) return {true, nullptr};
+  if (tolerance.mode == ToleranceMode::exact || pg < 0) return {};
+  const Candidate* other = e.candidate(i, pg);
+  return {other != nullptr, other};
+}
+
+std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
+                                                   size_t i) {
+  using Label = CoverageStats::Label;
+  const Frame& reference = expected.frame;
+  const uint8_t edges = expected.edges[i];
+  // Watertightness: away from outer edges, GL must rasterize as many fragments as the
+  // reference; near a shared edge that is one, never zero or two. Both count every fragment,
+  // passing the depth test or not (core/frame.hpp), so the count is decided even where the
+  // depth test's order is free.
+  const bool counts = reference.fragments.size() == reference.pixel_count() &&
+                      gl.fragments.size() == gl.pixel_count();
+  // Where either fragment may win the depth test, GL may keep any of them.
+  const bool kept = reference.primitive[i] == gl.primitive[i] ||
+                    ((edges & edge::depth_order) && expected.candidate(i, gl.primitive[i]));
+  // Near a triangle the freedom may turn over, make vanish or make appear, any primitive and
+  // any count is what some conforming implementation draws.
+  if (edges & edge::unstable) {
+    const bool differs = !kept || (counts && gl.fragments[i] != reference.fragments[i]);
+    return differs ? std::optional(Label::within_snapping) : std::nullopt;
+  }
+  if (counts && !(edges & edge::snapping) && gl.fragments[i] != reference.fragments[i]) {
+    if (!(edges & edge::shared)) return Label::fill_rule;
+    return gl.fragments[i] < reference.fragments[i] ? Label::gap : Label::double_hit;
+  }
+  if (kept) return std::nullopt;
+  if (edges & edge::tie) return Label::exact_tie;
+  if (edges & (edge::snapping | edge::shared)) return Label::within_snapping;
+  return Label::fill_rule;
+}
+
+bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
+                   const std::optional<CoverageStats::Label>& label) {
+  const Frame& reference = expected.frame;
+  if (reference.fragments.size() != reference.pixel_count() ||
+      gl.fragments.size() != gl.pixel_count() ||
+      !(expected.edges[i] & (edge::snapping | edge::unstable | edge::shared)))
+    return false;
+  // A mismatch the bands explain, or a count they leave free.
+  if (label) return explained(*label);
+  return gl.fragments[i] != reference.fragments[i];
+}
+
+CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i) {
+  using Label = CoverageStats::Label;
+  const uint16_t g = gl.fragments[i], r = expected.frame.fragments[i];
+  if (!(expected.edges[i] & edge::shared) || g == r) return Label::fill_rule;
+  return g < r ? Label::gap : Label::double_hit;
+}
+
+}  // namespace glrc::compare

@@ -1,0 +1,176 @@
+// The per-pixel verdict rules: what is compared where (judged_against), how a coverage
+// difference is labelled (coverage_label), what a channel allows (ChannelAllowance) and how an
+// error is measured (ULPs of the attribute's scale). The comparator applies them to every
+// pixel; report/ (heatmaps, coverage pictures), identify/ and the reproducers' data use the
+// same ones, so that a pixel is judged one way everywhere.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/case.hpp"
+#include "core/frame.hpp"
+#include "core/result.hpp"
+
+namespace glrc::compare {
+
+// The scale of component k at a pixel covered by triangle `primitive`: the largest |v_i| of
+// that triangle's three vertices. Depth is component kDepth, of scale 1.0. Errors are counted in
+// ULPs of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
+inline constexpr int kDepth = -1;
+double attribute_scale(const Case& c, int primitive, int component);
+// ulp of a positive scale: 2^(floor(log2 scale) - 23); 2^-149 (the subnormal spacing) for 0.
+double ulp_of_scale(double scale);
+
+// ulp_of_scale(attribute_scale(...)) for every triangle and component of a case, computed once
+// instead of per pixel.
+class UlpTable {
+ public:
+  explicit UlpTable(const Case& c);
+  double ulp(int primitive, int component) const {  // component kDepth: 2^-23
+    return component == kDepth ? depth_ulp_
+                               : ulps_[size_t(primitive) * size_t(components_) + size_t(component)];
+  }
+  // 1 / ulp(primitive, component), exact: every ulp is a power of two.
+  double inverse_ulp(int primitive, int component) const {
+    return component == kDepth
+               ? depth_inverse_
+               : inverses_[size_t(primitive) * size_t(components_) + size_t(component)];
+  }
+
+ private:
+  int components_;
+  double depth_ulp_, depth_inverse_;
+  std::vector<double> ulps_, inverses_;
+};
+
+// What the verdict accepts in one channel (compare::kDepth or a component): per pixel, the
+// largest |gl - reference| in value units. The specification's allowance where the expectation
+// carries one and the tolerance is spec; a fixed number of ULPs of the attribute's scale in
+// ulps mode (0 for flat values: they are copied, never computed); 0 in exact mode.
+class ChannelAllowance {
+ public:
+  ChannelAllowance(const Case& c, const Expectation& expected, const Tolerance& tolerance,
+                   int channel);
+  double at(size_t pixel, double ulp) const {
+    if (deferred_) return double(deferred_->at(*frame_, channel_, pixel));
+    return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
+  }
+  // Whether the allowance is the specification's, per pixel (held, or deferred).
+  bool per_pixel() const { return per_pixel_ != nullptr || deferred_ != nullptr; }
+  // The per-pixel allowances held (at() of pixel i is element i), or nullptr when fixed or
+  // deferred.
+  const float* per_pixel_values() const { return per_pixel_ ? per_pixel_->data() : nullptr; }
+  // A component's allowance computed where asked for (Expectation::deferred), or nullptr.
+  const DeferredAllowance* deferred() const { return deferred_.get(); }
+  double fixed_ulps() const { return fixed_ulps_; }
+
+ private:
+  const std::vector<float>* per_pixel_ = nullptr;
+  std::shared_ptr<const DeferredAllowance> deferred_;
+  const Frame* frame_ = nullptr;  // the expectation's, with deferred_
+  int channel_ = 0;
+  double fixed_ulps_ = 0;
+};
+
+// Whether the specification determines a value where the expectation is `expected`: always in
+// exact mode (bits are bits, NaN included), else only where it is a finite number. The exact
+// reference gives NaN where the interpolation formula is 0/0 and Inf where its value is beyond
+// float32: at a pixel covered by the snapped triangle but outside the triangle whose plane it
+// is evaluated on, beyond that plane's vanishing line (the denominator sum of lambda_i / w_i
+// changes sign there). The allowance there is unbounded, and an implementation anchoring its
+// planes at snapped vertices gets a finite value where one using unsnapped planes gets any: no
+// value is wrong there, and none is judged. A NaN or Inf from GL there is still never a pass:
+// the case is then outside what GL specifies (Comparator::finish).
+inline bool value_determined(float expected, const Tolerance& tolerance) {
+  return tolerance.mode == ToleranceMode::exact || std::isfinite(expected);
+}
+
+// Whether values are compared at a pixel: both frames name the same drawn triangle.
+inline bool same_primitive(const Case& c, int32_t reference, int32_t gl) {
+  return reference == gl && reference >= 0 && size_t(reference) < c.triangles.size();
+}
+
+// What GL's values at pixel i are judged against: the reference's own fragment where both name
+// the same triangle, or, where GL kept another fragment that may win the depth test, that
+// candidate (not in exact mode, which asks for the reference's bits); nothing to compare
+// elsewhere.
+struct Judged {
+  bool compared = false;
+  const Candidate* candidate = nullptr;  // nullptr: the reference's fragment
+  int32_t primitive(const Expectation& e, size_t i) const {
+    return candidate ? candidate->primitive : e.frame.primitive[i];
+  }
+  // The expected value of channel (kDepth or a component) and the allowance there. Inline:
+  // once per compared pixel and channel.
+  float value(const Expectation& e, size_t i, int channel) const {
+    if (candidate) return channel == kDepth ? candidate->depth : candidate->values[size_t(channel)];
+    return channel == kDepth ? e.frame.depth[i] : e.frame.components[size_t(channel)][i];
+  }
+  double allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const {
+    if (!candidate || !a.per_pixel()) return a.at(i, ulp);
+    return channel == kDepth ? candidate->allowed_depth : candidate->allowed[size_t(channel)];
+  }
+};
+Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
+                      const Tolerance& tolerance);
+
+// How pixel i's coverage disagrees with what is expected, or nothing where it does not: a
+// different primitive is an exact tie, within snapping or a fill-rule error by the expected
+// edge bits (GL may keep a candidate of the depth test where the depth order is free); a
+// different fragment count (when both frames have counts: every fragment rasterized, through the
+// depth test or not) away from outer edges is a gap or double hit near a shared edge, else a
+// fill-rule error, where the depth order is free too.
+std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
+                                                   size_t i);
+// The label of pixel i whose coverage its edge bits excuse (count_excused), once its trace shows
+// the fragments came from no set of triangles a conforming implementation may rasterize there:
+// a gap or double hit near a shared edge (fewer or more fragments than the reference's), else
+// (as many, from other triangles; or away from shared edges) a fill-rule error.
+CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i);
+// Whether pixel i's coverage differs from the reference's where its edge bits (a band, a
+// shared edge, a triangle that may turn over) excuse it, both frames having counts: a
+// mismatch coverage_label explains, or a count it leaves free (no label). The pixels a trace
+// judges; a pixel where GL agrees (the same primitive and count) is not traced.
+bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
+                   const std::optional<CoverageStats::Label>& label);
+
+// Labels that the specification's freedom explains (exact tie, within snapping).
+inline bool explained(CoverageStats::Label l) {
+  return l == CoverageStats::Label::exact_tie || l == CoverageStats::Label::within_snapping;
+}
+
+// The error at one compared pixel of one channel, as every report counts it.
+struct PixelError {
+  double abs_error = 0;     // |gl - reference| (exact: both are floats); +inf when not finite
+  double ulps = 0;          // abs_error / ulp
+  bool non_finite = false;  // GL gave NaN or Inf where the reference is finite
+};
+PixelError pixel_error(float reference, float gl, double ulp);
+// The same for an ulp that is a power of two (as ulp_of_scale's are), given with its inverse:
+// abs_error·(1/ulp) is then abs_error/ulp bit for bit, without a division per pixel and channel.
+// inverse_ulp 0: not given, abs_error/ulp. Inline: once per compared pixel and channel.
+inline PixelError pixel_error(float reference, float gl, double ulp, double inverse_ulp) {
+  PixelError e;
+  if (!std::isfinite(gl) && std::isfinite(reference)) {
+    // Never a pass, however large the tolerance: the value is not a number at all.
+    e.non_finite = true;
+    e.abs_error = e.ulps = std::numeric_limits<double>::infinity();
+  } else if (!std::isfinite(reference)) {
+    // The reference is finite for every valid case; if it were not, only identical bits
+    // could be called equal.
+    const bool same = std::bit_cast<uint32_t>(gl) == std::bit_cast<uint32_t>(reference);
+    e.abs_error = e.ulps = same ? 0 : std::numeric_limits<double>::infinity();
+  } else {
+    e.abs_error = std::fabs(double(gl) - double(reference));  // exact: both are floats
+    e.ulps = inverse_ulp > 0 ? e.abs_error * inverse_ulp : e.abs_error / ulp;
+  }
+  return e;
+}
+
+}  // namespace glrc::compare
