@@ -157,6 +157,9 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                              {"fraction_start", r.options.fraction_start}};
   campaign["count"] = r.options.count ? nlohmann::json(*r.options.count) : nlohmann::json();
   campaign["seconds"] = r.options.seconds ? nlohmann::json(*r.options.seconds) : nlohmann::json();
+  // How the failures were shrunk: a shard shrunk otherwise has other minimal cases.
+  campaign["shrink"] = r.options.shrink;
+  campaign["shrink_seconds"] = r.options.shrinking.seconds;
   const nlohmann::json stats = stats_json(r.stats);
   nlohmann::json failures = nlohmann::json::array();
   for (const FoundFailure& f : r.failures)
@@ -310,7 +313,8 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   for (size_t k = 0; k < shards.size(); ++k) {
     const std::string& source = sources[k];
     const auto& campaign = field(shards[k], source, "", "campaign", T::object);
-    for (const char* key : {"seed", "generators", "count", "seconds", "fraction"})
+    for (const char* key :
+         {"seed", "generators", "count", "seconds", "fraction", "shrink", "shrink_seconds"})
       if (campaign.value(key, nlohmann::json()) != first.value(key, nlohmann::json()))
         throw std::runtime_error(source + ": campaign." + key + ": expected " +
                                  first.value(key, nlohmann::json()).dump() +

@@ -1,6 +1,7 @@
 #include "campaign/failure.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace glrc::campaign {
@@ -96,15 +97,22 @@ std::optional<std::string> failure_name_problem(std::string_view name) {
 
 std::string describe(const Failure& f, const CaseResult& r) {
   std::string line = f.signature();
+  // A non_finite failure's pixels are GL's NaN and Inf; a value failure's the finite values over
+  // the allowance (the NaN and Inf among them are the non_finite failure's), shown by the worst
+  // such pixel kept.
   auto worst_of = [&](bool non_finite) -> std::string {
-    for (const ChannelStats& ch : r.channels)
-      if ((non_finite ? ch.non_finite : ch.over_tolerance) > 0 && !ch.worst.empty()) {
-        const WorstPixel& p = ch.worst.front();
-        return ": " + ch.name + " at (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
-               "): GL " + number(p.gl) + ", reference " + number(p.reference) +
-               (non_finite ? "" : ", " + number(float(p.ratio)) + "x the allowance") + ", " +
-               std::to_string(non_finite ? ch.non_finite : ch.over_tolerance) + " pixels";
-      }
+    for (const ChannelStats& ch : r.channels) {
+      const uint64_t pixels = non_finite ? ch.non_finite : ch.over_tolerance - ch.non_finite;
+      if (pixels == 0 || (!non_finite && ch.over_tolerance < ch.non_finite)) continue;
+      const auto p = std::find_if(ch.worst.begin(), ch.worst.end(), [&](const WorstPixel& w) {
+        return std::isfinite(w.gl) != non_finite;
+      });
+      if (p == ch.worst.end()) return ": " + ch.name + ", " + std::to_string(pixels) + " pixels";
+      return ": " + ch.name + " at (" + std::to_string(p->x) + ", " + std::to_string(p->y) +
+             "): GL " + number(p->gl) + ", reference " + number(p->reference) +
+             (non_finite ? "" : ", " + number(float(p->ratio)) + "x the allowance") + ", " +
+             std::to_string(pixels) + " pixels";
+    }
     return "";
   };
   auto mismatch = [&](CoverageStats::Label label, uint64_t count) -> std::string {

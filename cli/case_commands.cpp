@@ -8,10 +8,12 @@
 #include "check/check.hpp"
 #include "cli/identify.hpp"
 #include "cli/output_dir.hpp"
+#include "cli/run_support.hpp"
 #include "driver_models/driver_models.hpp"
 #include "ref/reference.hpp"
 #include "report/format.hpp"
 #include "report/report.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 
@@ -53,13 +55,19 @@ int cmd_diff(const Options& o) {
     fmt::print("{}\n", table);
   // Each name is recorded before its file is written: a diff stopped halfway leaves none
   // unlisted.
-  std::vector<std::filesystem::path> listed;
+  // A file already there by an image's name is not the last diff's: refused, not replaced.
+  std::vector<std::pair<std::filesystem::path, std::string>> listed;
   const auto files =
       report::write_diff_images(out, c, checked.reference, checked.gl, r,
                                 [&](const std::filesystem::path& file) {
-                                  listed.push_back(file);
+                                  check_diff_image_free(out, file);
+                                  listed.emplace_back(file, "");
                                   record_diff_images(out, listed);
                                 });
+  // Each image's content as written: the next diff deletes it only while it is unchanged.
+  for (auto& [file, digest] : listed)
+    digest = report::content_digest(read_file(file));
+  record_diff_images(out, listed);
   fmt::print("wrote {} to {}/\n", report::count_text(files.size(), "image", "images"), o.out);
   return fails_run(r.status) ? 1 : 0;
 }

@@ -122,7 +122,14 @@ CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
                   "the file to write (default: <case name>.c, or <case name>.shader_test, here)");
   cmd->add_option("--driver", o.driver,
                   "judge as for this Mesa driver: llvmpipe, softpipe or zink (the model `identify` "
-                  "finds for it and the GL_SUBPIXEL_BITS it reports)");
+                  "finds for it and the GL_SUBPIXEL_BITS it reports)")
+      // Given as "" (an unset variable) it would judge as no driver, silently.
+      ->check(CLI::Validator(
+          [](std::string& name) {
+            return name.empty() ? std::string("expected llvmpipe, softpipe or zink, got \"\"")
+                                : std::string();
+          },
+          ""));
   cmd->add_option("--subpixel-bits", o.subpixel_bits,
                   "without --driver: the reference's snapping, 0 to 16 (default 8), and the "
                   "GL_SUBPIXEL_BITS the allowance is for (at least 4); must match the driver's "

@@ -139,7 +139,8 @@ JournalContents read_journal(const fs::path& dir) {
   if (!fs::is_regular_file(file, ec))
     throw InputError("--resume " + printable(dir.string()) + ": expected a run folder with a " +
                      kJournalFile + ", got " +
-                     (fs::is_directory(dir, ec)                 ? "none in it"
+                     (fs::exists(fs::symlink_status(file, ec))  ? "one that is not a regular file"
+                      : fs::is_directory(dir, ec)               ? "none in it"
                       : fs::exists(fs::symlink_status(dir, ec)) ? "a file, not a folder"
                                                                 : "no such folder"));
   if (!is_marked(dir))

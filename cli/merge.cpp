@@ -26,6 +26,9 @@ namespace {
 // read as JSON (read_results_json then says why in its words).
 std::optional<nlohmann::json> raw_results(const std::string& dir) {
   const std::filesystem::path file = report::run_folder(dir) / "results.json";
+  // Opened only when a regular file: a FIFO there would block the merge for good.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
   std::ifstream in(file, std::ios::binary);
   if (!in) return std::nullopt;
   try {
@@ -35,15 +38,18 @@ std::optional<nlohmann::json> raw_results(const std::string& dir) {
   }
 }
 
-// The merge replaces its folder's run files: never a shard's own.
+// The merge replaces its folder's run files: never a shard's own, and nothing inside a shard's
+// folder either (its failures/ or cases/: a later run or campaign there would find a folder of
+// files it did not write).
 void check_apart(const std::vector<std::string>& dirs, const std::string& out_dir) {
   for (const auto& d : dirs) {
-    bool clash = inside(out_dir, report::run_folder(d)) && inside(report::run_folder(d), out_dir);
+    bool clash = inside(out_dir, report::run_folder(d));
     for (const std::string& name : run_output_names())
       clash = clash || inside(report::run_folder(d), std::filesystem::path(out_dir) / name);
     if (clash)
       throw InputError("merge --out " + out_dir + ": expected a folder apart from the shards, " +
-                       "got the shard " + d + " or a folder whose run files hold it");
+                       "got the shard " + d + ", a folder inside it, or a folder whose run "
+                       "files hold it");
   }
 }
 
@@ -210,10 +216,9 @@ int cmd_report(const std::string& dir, const std::string& file) {
   }
   const std::filesystem::path html =
       file.empty() ? run_dir / "report.html" : std::filesystem::path(file);
-  // A run folder's own page is glrefcheck's where the folder is (marked); any other file only
-  // while its stamp holds.
-  if (!file.empty() || !is_marked(run_dir))
-    check_replaceable(html, file.empty() ? "report" : "--out", "report");
+  // Only a page glrefcheck wrote (a run's, a merge's, a campaign's, report's: each stamps it
+  // "glrefcheck report") and nobody edited since, in the run's folder or anywhere.
+  check_replaceable(html, file.empty() ? "report" : "--out", "report");
   report::write_run_html(html, results, run_dir);
   fmt::print("wrote {}\n", html.string());
   return 0;

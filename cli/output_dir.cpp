@@ -10,6 +10,8 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
+#include <sstream>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -117,9 +119,10 @@ FolderLock lock_folder(const fs::path& dir, const std::string& option) {
 }
 
 const std::vector<std::string>& run_output_names() {
-  static const std::vector<std::string> names = {"results.json", "results.csv", "failures.csv",
-                                                 "junit.xml",    "report.html", kJournalFile,
-                                                 "cases",        "logs",        kInputsFolder};
+  // mesa_egl_vendor.json: --mesa's EGL vendor file for the workers (mesa_prefix.hpp).
+  static const std::vector<std::string> names = {
+      "results.json", "results.csv", "failures.csv", "junit.xml",     "report.html",
+      kJournalFile,   "cases",       "logs",         kInputsFolder,   "mesa_egl_vendor.json"};
   return names;
 }
 
@@ -198,6 +201,8 @@ namespace {
 // Why `file` (which exists) is not glrefcheck `writer`'s to replace, or nullopt when it is.
 std::optional<std::string> not_replaceable(const fs::path& file, const fs::file_status& st,
                                            const std::string& writer) {
+  // A write replaces the link, not the file it names: the user means the file.
+  if (fs::is_symlink(st)) return "which is a symbolic link (name the file it points to)";
   if (!fs::is_regular_file(st)) return "which is not a regular file";
   std::ifstream in(file, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), {});
@@ -216,7 +221,7 @@ std::optional<std::string> not_replaceable(const fs::path& file, const fs::file_
 
 void check_replaceable(const fs::path& file, const std::string& option, const std::string& writer) {
   std::error_code ec;
-  const fs::file_status st = fs::status(file, ec);
+  const fs::file_status st = fs::symlink_status(file, ec);
   if (!fs::exists(st)) return;
   if (const auto why = not_replaceable(file, st, writer))
     throw InputError(option + ": expected a new file or one glrefcheck wrote, got \"" +
@@ -355,28 +360,70 @@ void restore_earlier_outputs(const fs::path& dir) {
   if (ec) throw InputError("--out: cannot remove " + aside.string() + " (" + ec.message() + ")");
 }
 
+namespace {
+
+constexpr std::string_view kDiffListHeader = "# glrefcheck diff ";
+
+// The list's entries, digest and name, when its stamp holds; none otherwise.
+std::vector<std::pair<std::string, std::string>> diff_image_list(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(dir / kDiffImagesFile, ec))) return {};
+  std::ifstream in(dir / kDiffImagesFile, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  if (!text.starts_with(kDiffListHeader) || !report::stamp_intact(text)) return {};
+  std::vector<std::pair<std::string, std::string>> entries;
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);  // the header and its stamp
+  while (std::getline(lines, line)) {
+    const size_t space = line.find(' ');
+    if (space == std::string::npos) continue;
+    entries.emplace_back(line.substr(0, space), line.substr(space + 1));
+  }
+  return entries;
+}
+
+}  // namespace
+
 void clear_diff_images(const fs::path& dir) {
   if (!is_marked(dir))
     throw std::logic_error("clear_diff_images: " + dir.string() + " is not a marked folder");
-  std::ifstream in(dir / kDiffImagesFile);
-  for (std::string name; std::getline(in, name);) {
+  for (const auto& [digest, name] : diff_image_list(dir)) {
     const fs::path file(name);
     // One plain name in the folder, as record_diff_images writes them: nothing else is ours.
     if (name.empty() || file.has_parent_path() || name == "." || name == ".." ||
-        name == kMarkerFile || name == kLockFile)
+        name == kMarkerFile || name == kLockFile || name == kDiffImagesFile)
       continue;
     std::error_code ec;
-    if (fs::is_regular_file(fs::symlink_status(dir / file, ec))) fs::remove(dir / file, ec);
+    if (!fs::is_regular_file(fs::symlink_status(dir / file, ec))) continue;
+    // Written halfway ("-"), or whole and unchanged since: the last diff's. Changed: the user's.
+    if (digest != "-") {
+      std::ifstream in(dir / file, std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(in)), {});
+      if (report::content_digest(text) != digest) continue;
+    }
+    fs::remove(dir / file, ec);
   }
   std::error_code ec;
   fs::remove(dir / kDiffImagesFile, ec);
 }
 
-void record_diff_images(const fs::path& dir, const std::vector<fs::path>& files) {
-  std::string text;
-  for (const fs::path& f : files)
-    if (f.parent_path() == dir) text += f.filename().string() + "\n";
-  report::write_file_atomically(dir / kDiffImagesFile, text);
+void record_diff_images(const fs::path& dir,
+                        const std::vector<std::pair<fs::path, std::string>>& images) {
+  std::string text = std::string(kDiffListHeader) + report::stamp_placeholder() + "\n";
+  for (const auto& [file, digest] : images)
+    if (file.parent_path() == dir)
+      text += (digest.empty() ? "-" : digest) + " " + file.filename().string() + "\n";
+  report::write_file_atomically(dir / kDiffImagesFile, report::stamped(text));
+}
+
+void check_diff_image_free(const fs::path& dir, const fs::path& file) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(file, ec))) return;
+  throw InputError("diff --out " + printable(dir.string(), 200) + ": expected no \"" +
+                   printable(file.filename().string(), 100) +
+                   "\" there but an image the last diff wrote, got one of yours (or one changed "
+                   "since): move it, or name another --out");
 }
 
 }  // namespace glrc::cli

@@ -115,13 +115,21 @@ EarlierOutputs set_aside_outputs(const std::filesystem::path& dir,
 // there are none.
 void restore_earlier_outputs(const std::filesystem::path& dir);
 
-// `diff`'s images in a marked folder: the names its last diff wrote (record_diff_images, in
-// kDiffImagesFile) are deleted before the next one writes its own, so that no image of another
-// case is taken for this one's. Names not plain file names in the folder are left alone.
+// `diff`'s images in a marked folder, listed in kDiffImagesFile (stamped "glrefcheck diff"):
+// each image's name and the content digest it was written with (report::content_digest; "-"
+// while it was being written). clear_diff_images deletes the images the last diff wrote and
+// nobody changed since (and any it was still writing), before the next diff writes its own, so
+// that no image of another case stays beside this one's; an image someone changed stays, and
+// so does everything when the list itself was changed (or is an older glrefcheck's, without a
+// stamp). A name that is not a plain file name in the folder is never followed.
 inline constexpr const char* kDiffImagesFile = ".glrefcheck-diff-images";
 void clear_diff_images(const std::filesystem::path& dir);
+// Writes the list: `images`, each a file in `dir` and its digest ("" while being written).
 void record_diff_images(const std::filesystem::path& dir,
-                        const std::vector<std::filesystem::path>& files);
+                        const std::vector<std::pair<std::filesystem::path, std::string>>& images);
+// InputError when `file`, an image diff is about to write into `dir` after clear_diff_images,
+// is there already: a file of the user's (a screenshot, notes), or an image someone changed.
+void check_diff_image_free(const std::filesystem::path& dir, const std::filesystem::path& file);
 
 // The run's own files and folders in a run folder, relative to it.
 const std::vector<std::string>& run_output_names();

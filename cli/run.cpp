@@ -92,7 +92,18 @@ int cmd_run(const Options& given) {
   const Baseline baseline = load_baseline(expectations);
   const Patterns flakes = load_patterns(expectations.flakes, "--flakes");
   const Patterns skips = load_patterns(expectations.skips, "--skips");
-  const std::map<std::string, std::string> judged_by = verdict_inputs(expectations);
+  std::map<std::string, std::string> judged_by = verdict_inputs(expectations);
+  // The suite's case files by name and content, before sharding: shards of one name but two
+  // checkouts (a case edited between them) are two suites, which merge refuses.
+  std::vector<std::string> case_digests;
+  {
+    std::string suite;
+    for (const Case& c : all) {
+      case_digests.push_back(report::content_digest(read_file(c.source_path)));
+      suite += c.name + " " + case_digests.back() + "\n";
+    }
+    judged_by["case_files"] = report::content_digest(suite);
+  }
   std::optional<MesaPrefix> prefix;
   if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
@@ -123,12 +134,10 @@ int cmd_run(const Options& given) {
     for (const auto& [name, text] : inputs.files)
       report::write_file_atomically(out / kInputsFolder / name, text);
     // Absolute, so that --resume finds them from any working folder.
-    std::vector<std::string> files, digests;
-    for (const Case& c : all) {
+    std::vector<std::string> files;
+    for (const Case& c : all)
       files.push_back(std::filesystem::absolute(c.source_path).lexically_normal().string());
-      digests.push_back(report::content_digest(read_file(c.source_path)));
-    }
-    journal.emplace(Journal::start(out, o, files, digests));
+    journal.emplace(Journal::start(out, o, files, case_digests));
   } else {
     journal.emplace(Journal::reopen(out));
   }

@@ -162,6 +162,13 @@ uint64_t count(const Reader& r, const json& j, const std::string& path, const ch
 bool boolean(const Reader& r, const json& j, const std::string& path, const char* key) {
   return r.boolean(r.required(j, path, key), path_key(path, key));
 }
+// A size, a count of ULPs or a share of the allowance: never below 0 (NaN and +inf pass: a
+// statistic of non-finite values).
+double magnitude(const Reader& r, const json& j, const std::string& path, const char* key) {
+  const double v = num(r, j, path, key);
+  if (v < 0) r.fail(path_key(path, key), "a number >= 0", Reader::describe(j.at(key)));
+  return v;
+}
 // `optional`: "" when absent (a field added later than the first results.json).
 std::string str(const Reader& r, const json& j, const std::string& path, const char* key,
                 bool optional = false) {
@@ -190,10 +197,10 @@ void read(const Reader& r, const json& j, const std::string& path, WorstPixel& w
   w.y = integer(r, j, path, "y", 0);
   w.reference = float(num(r, j, path, "reference"));
   w.gl = float(num(r, j, path, "gl"));
-  w.abs_error = num(r, j, path, "abs_error");
-  w.ulps = num(r, j, path, "ulps");
-  w.allowed = num(r, j, path, "allowed");
-  w.ratio = num(r, j, path, "ratio");
+  w.abs_error = magnitude(r, j, path, "abs_error");
+  w.ulps = magnitude(r, j, path, "ulps");
+  w.allowed = magnitude(r, j, path, "allowed");
+  w.ratio = magnitude(r, j, path, "ratio");
 }
 
 void read(const Reader& r, const json& j, const std::string& path, ChannelStats& c) {
@@ -204,14 +211,22 @@ void read(const Reader& r, const json& j, const std::string& path, ChannelStats&
   // Absent in files written before it was counted (there it was 0).
   c.undetermined = j.contains("undetermined") ? count(r, j, path, "undetermined") : 0;
   c.differing = count(r, j, path, "differing");
-  c.max_abs = num(r, j, path, "max_abs");
-  c.max_ulps = num(r, j, path, "max_ulps");
-  c.mean_ulps = num(r, j, path, "mean_ulps");
-  c.rms_ulps = num(r, j, path, "rms_ulps");
-  c.p99_ulps = num(r, j, path, "p99_ulps");
-  c.tolerance_ulps = num(r, j, path, "tolerance_ulps");
-  c.max_ratio = num(r, j, path, "max_ratio");
-  c.p99_ratio = num(r, j, path, "p99_ratio");
+  // The counts among the compared pixels: no more than those.
+  for (const auto& [key, n] : {std::pair{"over_tolerance", c.over_tolerance},
+                               {"non_finite", c.non_finite},
+                               {"differing", c.differing}})
+    if (n > c.compared)
+      r.fail(path_key(path, key),
+             "at most the pixels compared (" + std::to_string(c.compared) + ")",
+             Reader::describe(j.at(key)));
+  c.max_abs = magnitude(r, j, path, "max_abs");
+  c.max_ulps = magnitude(r, j, path, "max_ulps");
+  c.mean_ulps = magnitude(r, j, path, "mean_ulps");
+  c.rms_ulps = magnitude(r, j, path, "rms_ulps");
+  c.p99_ulps = magnitude(r, j, path, "p99_ulps");
+  c.tolerance_ulps = magnitude(r, j, path, "tolerance_ulps");
+  c.max_ratio = magnitude(r, j, path, "max_ratio");
+  c.p99_ratio = magnitude(r, j, path, "p99_ratio");
   c.worst.clear();
   r.elements(r.required(j, path, "worst"), path_key(path, "worst"), "an array",
              [&](const json& e, const std::string& at) { read(r, e, at, c.worst.emplace_back()); });
@@ -274,7 +289,13 @@ void read(const Reader& r, const json& j, const std::string& path, CaseResult& c
   }
   c.message = str(r, j, path, "message");
   c.gl_digest = str(r, j, path, "gl_digest", true);
-  c.seconds = num(r, j, path, "seconds");
+  // SHA-256 in hex (ref::digest), or none where GL drew nothing to digest.
+  if (!c.gl_digest.empty() &&
+      (c.gl_digest.size() != 64 ||
+       c.gl_digest.find_first_not_of("0123456789abcdef") != std::string::npos))
+    r.fail(path_key(path, "gl_digest"), "a SHA-256 in 64 lowercase hex digits, or \"\"",
+           Reader::describe(j.at("gl_digest")));
+  c.seconds = magnitude(r, j, path, "seconds");
   read(r, r.required(j, path, "tolerance"), path_key(path, "tolerance"), c.tolerance);
   read(r, r.required(j, path, "coverage"), path_key(path, "coverage"), c.coverage);
   c.channels.clear();
@@ -309,7 +330,7 @@ void read(const Reader& r, const json& j, const std::string& path, RunInfo& run)
   run.fraction = integer(r, j, path, "fraction", 1, 1);
   run.fraction_start = integer(r, j, path, "fraction_start", 1, 1, run.fraction);
   run.total_cases = Reader::find(j, "total_cases") ? count(r, j, path, "total_cases") : 0;
-  run.seconds = num(r, j, path, "seconds");
+  run.seconds = magnitude(r, j, path, "seconds");
   run.interrupted = false;
   if (const json* v = Reader::find(j, "interrupted"))
     run.interrupted = r.boolean(*v, path_key(path, "interrupted"));

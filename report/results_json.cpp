@@ -178,6 +178,11 @@ RunResults read_results_json(const std::filesystem::path& file) {
                  "a name no other case has (cases[" + std::to_string(it->second) + "] has it too)",
                  Reader::describe(c.at("name")));
       });
+  // A run's cases are at most its suite's (a shard's fewer).
+  if (out.run.total_cases > 0 && out.cases.size() > out.run.total_cases)
+    r.fail("run.total_cases",
+           "at least the cases results.json holds (" + std::to_string(out.cases.size()) + ")",
+           std::to_string(out.run.total_cases));
   return out;
 }
 

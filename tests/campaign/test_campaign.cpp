@@ -365,6 +365,31 @@ TEST(Failures, ClassesComeInPrecedenceOrderWithTheChannelsKind) {
   EXPECT_EQ(failure_file_name(f[0]), "non_finite_noperspective.json");
 }
 
+// The third hostile campaign (issue 45): a value failure's description gave a NaN pixel, and
+// counted the NaN pixels (the non_finite failure's) among its own.
+TEST(Failures, AValueFailureIsDescribedByItsFinitePixels) {
+  Case c;
+  c.varyings = {{"v0", 2, Interpolation::noperspective}};
+  CaseResult r;
+  r.outcome = Status::fail;
+  r.channels.resize(1);
+  ChannelStats& ch = r.channels[0];
+  ch.name = "v0.x";
+  ch.compared = 100, ch.non_finite = 3, ch.over_tolerance = 5;
+  ch.worst = {{4, 5, 0.5f, NAN, INFINITY, INFINITY, 0.1, INFINITY},
+              {6, 7, 0.5f, 0.75f, 0.25, 10, 0.125, 2}};
+  const std::vector<Failure> f = failures_of(c, r);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(describe(f[0], r),
+            "non_finite/noperspective: v0.x at (4, 5): GL nan, reference 0.5, 3 pixels");
+  EXPECT_EQ(describe(f[1], r),
+            "value/noperspective: v0.x at (6, 7): GL 0.75, reference 0.5, 2x the allowance, 2 "
+            "pixels");
+  // Its worst pixels kept all NaN: the count alone.
+  ch.worst.pop_back();
+  EXPECT_EQ(describe(f[1], r), "value/noperspective: v0.x, 2 pixels");
+}
+
 TEST(Shrink, SimplerNumbersComeFirst) {
   EXPECT_EQ(complexity(0.0f), 0);
   EXPECT_LT(complexity(0.0f), complexity(-0.0f));

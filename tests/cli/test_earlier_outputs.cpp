@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -126,9 +127,14 @@ TEST_F(EarlierOutputs, AResumeChecksAgainACaseStoppedWritingItsHeatmaps) {
   });
   const pid_t proxy = wait_for_pid(pidfile);
   ASSERT_GT(proxy, 0);
+  // The proxy stalls once it has passed the verdict on; the runner records it a moment later.
+  std::string journal;
+  for (int k = 0; k < 600 && journal.find("\"heatmaps\":\"follow\"") == std::string::npos; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    journal = read(out / "journal.jsonl");
+  }
   ASSERT_EQ(kill(parent_of(proxy), SIGKILL), 0);
   run.join();
-  const std::string journal = read(out / "journal.jsonl");
   ASSERT_NE(journal.find("\"heatmaps\":\"follow\""), std::string::npos) << journal;
   const Outcome o = glrefcheck("run --resume '" + out.string() + "'");
   EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
@@ -230,4 +236,45 @@ TEST_F(EarlierOutputs, AnEditedMinimalCaseOrAnOutputFolderInsideIsNotReplaced) {
   EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
   EXPECT_NE(o.err.find("logs holds another glrefcheck output folder"), std::string::npos) << o.err;
   EXPECT_EQ(snapshot(r), run_before) << differences(run_before, snapshot(r));
+}
+
+// The third hostile campaign (issue 45): `report DIR` replaced a DIR/report.html of the user's,
+// `diff` replaced the user's coverage.png in its folder and deleted an image of the last diff the
+// user had annotated. Each is now the user's: refused, or kept.
+TEST_F(EarlierOutputs, ReportAndDiffReplaceOnlyWhatTheyWroteUnchanged) {
+  const fs::path r = dir_ / "r";
+  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + r.string() + "'").exit_code, 0);
+  ASSERT_EQ(glrefcheck("report '" + r.string() + "'").exit_code, 0);
+  ASSERT_EQ(glrefcheck("report '" + r.string() + "'").exit_code, 0);  // its own page: replaced
+  std::ofstream(r / "report.html", std::ios::app) << "<!-- my notes -->\n";
+  const std::string page = read(r / "report.html");
+  Outcome o = glrefcheck("report '" + r.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("which was changed since glrefcheck wrote it"), std::string::npos) << o.err;
+  EXPECT_EQ(read(r / "report.html"), page);
+
+  // diff into the run's folder, which holds a screenshot of the user's named as an image.
+  std::ofstream(r / "coverage.png") << "my screenshot";
+  o = glrefcheck("diff cases/face_on.json --out '" + r.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("expected no \"coverage.png\" there but an image the last diff wrote"),
+            std::string::npos)
+      << o.err;
+  EXPECT_EQ(read(r / "coverage.png"), "my screenshot");
+
+  // An image of the last diff the user annotated stays; the others go.
+  const fs::path d = dir_ / "d";
+  ASSERT_LE(glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + d.string() + "'").exit_code,
+            1);
+  std::ofstream(d / "m.x_error.png", std::ios::app) << "annotated";
+  const std::string annotated = read(d / "m.x_error.png");
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + d.string() + "'").exit_code, 1);
+  EXPECT_EQ(read(d / "m.x_error.png"), annotated);
+  EXPECT_FALSE(fs::exists(d / "m.y_error.png"));
+  EXPECT_TRUE(fs::exists(d / "color.x_error.png"));
+  // A list edited by hand (a name added) deletes nothing.
+  std::ofstream(d / "notes.txt") << "mine";
+  std::ofstream(d / ".glrefcheck-diff-images", std::ios::app) << "- notes.txt\n";
+  ASSERT_LE(glrefcheck("diff cases/viewport_tiny.json --out '" + d.string() + "'").exit_code, 2);
+  EXPECT_EQ(read(d / "notes.txt"), "mine");
 }

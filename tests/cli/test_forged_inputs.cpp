@@ -304,6 +304,15 @@ TEST_F(Forged, MergeRefusesShardsJudgedOtherwise) {
             0);
   expect_one_line(glrefcheck("merge '" + a.string() + "' '" + c.string() + "' --out '" +
                              (dir_ / "merged2").string() + "'"),
+                  "expected shards judged alike, got case_files sha256:");
+  // Without the suite's digest (results before it was recorded), by the name met twice.
+  for (const fs::path& folder : {a, c}) {
+    json j = json::parse(read(folder / "results.json"));
+    j["run"]["verdict_inputs"].erase("case_files");
+    std::ofstream(folder / "results.json") << j.dump(2);
+  }
+  expect_one_line(glrefcheck("merge '" + a.string() + "' '" + c.string() + "' --out '" +
+                             (dir_ / "merged3").string() + "'"),
                   "expected shards of one suite, got case \"face_on\" as case 1 and case 2");
 }
 
@@ -337,6 +346,106 @@ TEST_F(Forged, CaseNamesRunRefusesAndShardsJudgedByAnotherToleranceAreNamed) {
                   "expected shards judged alike, got run.tolerance \"ulps\" where " +
                       first.string() + " has \"" + spec +
                       "\" (set by --tolerance, --spec-subpixel-bits)");
+}
+
+// Issue 45's third hostile campaign: merge waited for good on a shard whose results.json was a
+// FIFO; merged shards of two checkouts whose case files differ under the same names; compare
+// took a results.json with fewer cases in its suite than it holds, a negative maximum and a
+// digest that is none; --emit replaced a symbolic link with a file; a merge into a shard's
+// folder was accepted; a journal that is a FIFO was "none"; export took --driver "" for none.
+TEST_F(Forged, WhatDoesNotBelongIsOneLineAndNothingWaits) {
+  const std::string run = "'" + (dir_ / "run").string() + "'";
+  const fs::path fifo = dir_ / "fifo_shard";
+  fs::create_directories(fifo);
+  ASSERT_EQ(mkfifo((fifo / "results.json").c_str(), 0600), 0);
+  Outcome o = glrefcheck("merge '" + fifo.string() + "' --out '" + (dir_ / "m_fifo").string() + "'",
+                         "timeout 30");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;  // 124: timeout's, a hang
+  EXPECT_NE(o.err.find("other than a regular file"), std::string::npos) << o.err;
+  o = glrefcheck("merge " + run + " '" + fifo.string() + "' --out '" +
+                     (dir_ / "m_fifo2").string() + "'",
+                 "timeout 30");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+
+  // Two checkouts: the same names, one case's content edited between them.
+  const fs::path one = dir_ / "suite_one", two = dir_ / "suite_two";
+  for (const fs::path& s : {one, two}) {
+    fs::create_directories(s);
+    for (const char* name : {"face_on", "viewport_tiny"})
+      fs::copy_file(fs::path(GLRC_SOURCE_DIR) / "cases" / (std::string(name) + ".json"),
+                    s / (std::string(name) + ".json"));
+  }
+  std::string text = read(two / "viewport_tiny.json");
+  text.insert(text.find("\"description\": \"") + 16, "Edited: ");
+  std::ofstream(two / "viewport_tiny.json") << text;
+  const fs::path s1 = dir_ / "checkout_1", s2 = dir_ / "checkout_2";
+  ASSERT_EQ(glrefcheck("run '" + one.string() + "' --jobs 1 --fraction 2 --fraction-start 1 --out '" +
+                       s1.string() + "'")
+                .exit_code,
+            0);
+  ASSERT_EQ(glrefcheck("run '" + two.string() + "' --jobs 1 --fraction 2 --fraction-start 2 --out '" +
+                       s2.string() + "'")
+                .exit_code,
+            0);
+  expect_one_line(glrefcheck("merge '" + s1.string() + "' '" + s2.string() + "' --out '" +
+                             (dir_ / "m_checkouts").string() + "'"),
+                  "expected shards judged alike, got case_files sha256:");
+  // Into a shard's own folder: refused before anything is written there.
+  const fs::path s1b = dir_ / "checkout_1b";
+  ASSERT_EQ(glrefcheck("run '" + one.string() + "' --jobs 1 --fraction 2 --fraction-start 2 --out '" +
+                       s1b.string() + "'")
+                .exit_code,
+            0);
+  expect_one_line(glrefcheck("merge '" + s1.string() + "' '" + s1b.string() + "' --out '" +
+                             (s1 / "failures").string() + "'"),
+                  "expected a folder apart from the shards");
+  EXPECT_FALSE(fs::exists(s1 / "failures"));
+
+  for (const auto& [name, edit, says] :
+       std::vector<std::tuple<std::string, std::function<void(json&)>, std::string>>{
+           {"negative_ulps", [](json& j) { j["cases"][0]["channels"][0]["max_ulps"] = -100; },
+            "cases[0].channels[0].max_ulps: expected a number >= 0, got -100"},
+           {"bad_digest", [](json& j) { j["cases"][0]["gl_digest"] = "zz"; },
+            "cases[0].gl_digest: expected a SHA-256 in 64 lowercase hex digits"},
+           {"over_compared",
+            [](json& j) {
+              auto& ch = j["cases"][0]["channels"][0];
+              ch["over_tolerance"] = ch["compared"].get<uint64_t>() + 1;
+            },
+            "cases[0].channels[0].over_tolerance: expected at most the pixels compared"}}) {
+    SCOPED_TRACE(name);
+    expect_one_line(glrefcheck("compare " + run + " '" + forged_results(name, edit).string() + "'"),
+                    says);
+  }
+  const fs::path more = forged_results("more_than_total", [](json& j) {
+    j["cases"].push_back(j["cases"][0]);
+    j["cases"][1]["name"] = "face_on_again";
+    j["run"]["total_cases"] = 1;
+  });
+  expect_one_line(glrefcheck("compare " + run + " '" + more.string() + "'"),
+                  "run.total_cases: expected at least the cases results.json holds (2), got 1");
+
+  // --emit through a symbolic link: the link is named, nothing written.
+  const fs::path target = dir_ / "emitted.json", link = dir_ / "link.json";
+  ASSERT_EQ(glrefcheck("fuzz --generator clip --replay 1:9 --emit '" + target.string() + "'")
+                .exit_code,
+            0);
+  fs::create_symlink(target, link);
+  const std::string emitted = read(target);
+  expect_one_line(
+      glrefcheck("fuzz --generator clip --replay 1:10 --emit '" + link.string() + "'"),
+      "which is a symbolic link (name the file it points to)");
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read(target), emitted);
+
+  const fs::path piped = dir_ / "piped_journal";
+  fs::copy(dir_ / "run", piped, fs::copy_options::recursive);
+  fs::remove(piped / "journal.jsonl");
+  ASSERT_EQ(mkfifo((piped / "journal.jsonl").c_str(), 0600), 0);
+  expect_one_line(glrefcheck("run --resume '" + piped.string() + "'", "timeout 30"),
+                  "expected a run folder with a journal.jsonl, got one that is not a regular file");
+  expect_one_line(glrefcheck("export cases/face_on.json --driver ''"),
+                  "--driver: expected llvmpipe, softpipe or zink, got """);
 }
 
 // Issue 45's hostile campaign: an option naming a path given as "" (an unset variable) was

@@ -197,6 +197,16 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
                             "strict_coverage true where " + a.string() + " has false"),
             std::string::npos)
       << judged.err;
+  // A shard shrunk otherwise (--no-shrink) has other minimal cases: refused too.
+  const auto unshrunk = dir_ / "unshrunk";
+  glrefcheck(campaign + " --no-shrink --fraction 2 --fraction-start 2 --out '" +
+             unshrunk.string() + "'");
+  const auto shrink = glrefcheck("merge '" + a.string() + "' '" + unshrunk.string() +
+                                 "' --out '" + (dir_ / "m5").string() + "'");
+  EXPECT_EQ(shrink.exit_code, 2) << shrink.out << shrink.err;
+  EXPECT_NE(shrink.err.find("campaign.shrink: expected true as the first shard, got false"),
+            std::string::npos)
+      << shrink.err;
   // Hand-edited stats (the hostile campaign's W4: a negative count, a sum that wraps, more
   // failing cases than cases were merged as given): one line each, and the last good merge stays.
   const std::string good = read(merged / "results.json");

@@ -524,10 +524,16 @@ TEST_F(RunFolder, DiffClearsItsEarlierImages) {
   std::ofstream(out / "notes.txt") << "mine";  // not diff's: stays
   ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + out.string() + "'").exit_code, 1);
   const auto second = snapshot(out);
+  // The list: a stamped header, then "<digest> <name>" per image.
   std::ifstream manifest(out / ".glrefcheck-diff-images");
+  std::string line;
+  ASSERT_TRUE(std::getline(manifest, line));
+  EXPECT_TRUE(line.starts_with("# glrefcheck diff glrefcheck-sha256:")) << line;
   size_t listed = 0;
-  for (std::string name; std::getline(manifest, name); ++listed)
-    EXPECT_TRUE(fs::exists(out / name)) << name;
+  for (; std::getline(manifest, line); ++listed) {
+    EXPECT_TRUE(line.starts_with("sha256:")) << line;
+    EXPECT_TRUE(fs::exists(out / line.substr(line.find(' ') + 1))) << line;
+  }
   EXPECT_GT(listed, 0u);
   // Every image there is the second diff's (attr_mixed_magnitudes has channels face_on has not).
   const std::string listed_names = read(out / ".glrefcheck-diff-images");

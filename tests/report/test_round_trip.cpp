@@ -37,9 +37,10 @@ CaseResult every_field_set() {
   ch.compared = 100, ch.over_tolerance = 3, ch.non_finite = 1, ch.differing = 40;
   ch.max_abs = std::numeric_limits<double>::infinity();
   ch.max_ulps = std::nan(""), ch.mean_ulps = 1.0 / 3, ch.rms_ulps = 0.1;
-  ch.p99_ulps = 7.5, ch.max_ratio = -std::numeric_limits<double>::infinity();
+  // -inf where a value may be negative (a reference value): a statistic may not be.
+  ch.p99_ulps = 7.5, ch.max_ratio = std::numeric_limits<double>::infinity();
   ch.p99_ratio = 0.9, ch.tolerance_ulps = 64;
-  ch.worst = {{3, 4, 0.1f, std::nanf(""), HUGE_VAL, HUGE_VAL, 1e-7, HUGE_VAL},
+  ch.worst = {{3, 4, -HUGE_VALF, std::nanf(""), HUGE_VAL, HUGE_VAL, 1e-7, HUGE_VAL},
               {5, 6, 1.0f / 3, 0.33333334f, 1e-8, 0.5, 2e-8, 0.5}};
   r.channels = {ch, ch};
   r.channels[1].name = "depth";
@@ -85,7 +86,8 @@ TEST(RoundTrip, CaseResult) {
   const ChannelStats& c = back.channels[0];
   EXPECT_TRUE(std::isinf(c.max_abs) && c.max_abs > 0);
   EXPECT_TRUE(std::isnan(c.max_ulps));
-  EXPECT_TRUE(std::isinf(c.max_ratio) && c.max_ratio < 0);
+  EXPECT_TRUE(std::isinf(c.max_ratio) && c.max_ratio > 0);
+  EXPECT_TRUE(std::isinf(c.worst[0].reference) && c.worst[0].reference < 0);
   EXPECT_TRUE(same_bits(c.mean_ulps, 1.0 / 3));
   ASSERT_EQ(c.worst.size(), 2u);
   EXPECT_TRUE(std::isnan(c.worst[0].gl));
@@ -146,14 +148,16 @@ TEST(RoundTrip, EveryTypeThroughToJsonAndFromJson) {
   const CaseResult back = nlohmann::json(r).get<CaseResult>();
   EXPECT_TRUE(std::isnan(back.channels[0].max_ulps));
   EXPECT_TRUE(std::isinf(back.channels[0].max_abs) && back.channels[0].max_abs > 0);
-  EXPECT_TRUE(std::isinf(back.channels[0].max_ratio) && back.channels[0].max_ratio < 0);
+  EXPECT_TRUE(std::isinf(back.channels[0].max_ratio) && back.channels[0].max_ratio > 0);
+  EXPECT_TRUE(std::isinf(back.channels[0].worst[0].reference) &&
+              back.channels[0].worst[0].reference < 0);
   EXPECT_TRUE(std::isnan(back.channels[0].worst[0].gl));
   EXPECT_EQ(back.channels[0].worst[1].gl, 0.33333334f);
   EXPECT_EQ(back.coverage.both, 4000000000ull);
   const nlohmann::json written = r;
   EXPECT_EQ(written["channels"][0]["max_ulps"], "nan");
   EXPECT_EQ(written["channels"][0]["max_abs"], "inf");
-  EXPECT_EQ(written["channels"][0]["max_ratio"], "-inf");
+  EXPECT_EQ(written["channels"][0]["worst"][0]["reference"], "-inf");
 }
 
 // What results.json gained over time reads back as an old run meant it.
