@@ -339,8 +339,8 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
             " as the first shard, got " + run.value(key, nlohmann::json()).dump().substr(0, 80));
-    if (const auto d = verdict_input_difference(verdict_inputs(run, source),
-                                                verdict_inputs(run0, sources[0])))
+    if (const auto d =
+            verdict_input_difference(verdict_inputs(run, source), verdict_inputs(run0, sources[0])))
       throw std::runtime_error(source + ": expected shards judged alike, got " + d->name + " " +
                                d->value + " where " + sources[0] + " has " + d->other +
                                ": run the shards with the same options and files");
@@ -363,9 +363,9 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
       const uint64_t cases = field(f, source, path, "cases", T::number_unsigned);
       // Each failing case counts once per signature it shows.
       if (cases < 1 || cases > shard_stats.failing_cases)
-        throw std::runtime_error(source + ": " + path + ".cases: expected 1 to stats.failing_cases (" +
-                                 std::to_string(shard_stats.failing_cases) + "), got " +
-                                 std::to_string(cases));
+        throw std::runtime_error(
+            source + ": " + path + ".cases: expected 1 to stats.failing_cases (" +
+            std::to_string(shard_stats.failing_cases) + "), got " + std::to_string(cases));
       const auto& examples = field(f, source, path, "examples", T::array);
       const auto at = by_signature.find(signature);
       if (at == by_signature.end()) {

@@ -127,8 +127,8 @@ namespace {
 
 // Bands of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
 // are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about twice the
-// fewest runs of compare::RunGrid::kRun pixels a guess is made from, none where that is more than an
-// eighth of the frame. Sixty-four places, not thirty-two: the 4096x4096 scene's guess from 32
+// fewest runs of compare::RunGrid::kRun pixels a guess is made from, none where that is more than
+// an eighth of the frame. Sixty-four places, not thirty-two: the 4096x4096 scene's guess from 32
 // bands of four rows did not hold (its stream compared twice), from 64 of two it did.
 std::vector<std::pair<int, int>> floor_sample_bands(const Case& c) {
   constexpr int kSampleBands = 64;

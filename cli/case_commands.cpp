@@ -57,13 +57,12 @@ int cmd_diff(const Options& o) {
   // unlisted.
   // A file already there by an image's name is not the last diff's: refused, not replaced.
   std::vector<std::pair<std::filesystem::path, std::string>> listed;
-  const auto files =
-      report::write_diff_images(out, c, checked.reference, checked.gl, r,
-                                [&](const std::filesystem::path& file) {
-                                  check_diff_image_free(out, file);
-                                  listed.emplace_back(file, "");
-                                  record_diff_images(out, listed);
-                                });
+  const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r,
+                                               [&](const std::filesystem::path& file) {
+                                                 check_diff_image_free(out, file);
+                                                 listed.emplace_back(file, "");
+                                                 record_diff_images(out, listed);
+                                               });
   // Each image's content as written: the next diff deletes it only while it is unchanged.
   for (auto& [file, digest] : listed)
     digest = report::content_digest(read_file(file));

@@ -20,7 +20,7 @@ namespace glrc::cli {
 namespace {
 
 // What `glrefcheck identify` finds for Mesa's drivers (22.3.6, OSMesa and EGL alike; the top
-// README's "What the suite finds"), and the GL_SUBPIXEL_BITS each reports, which sets the
+// docs/findings.md), and the GL_SUBPIXEL_BITS each reports, which sets the
 // specification's allowance: what `run` judges them by.
 struct DriverModel {
   const char* name;

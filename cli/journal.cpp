@@ -202,8 +202,8 @@ JournalContents read_journal(const fs::path& dir) {
         if (const auto earlier = c.results.find(index);
             earlier != c.results.end() &&
             (earlier->second.name != r.name ||
-             (!checked_again && (earlier->second.status != r.status ||
-                                 earlier->second.outcome != r.outcome))))
+             (!checked_again &&
+              (earlier->second.status != r.status || earlier->second.outcome != r.outcome))))
           throw InputError(fmt::format(
               "{}: expected case {} (\"{}\", {}) as an earlier line gives it, got \"{}\", {}: two "
               "results for one case",

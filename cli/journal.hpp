@@ -37,7 +37,7 @@ struct JournalContents {
   std::optional<ModelChoice> model;
   std::map<size_t, CaseResult> results;
   size_t heatmaps_cut = 0;  // cases left out of `results`: stopped while writing their heatmaps
-  double elapsed = 0;  // the latest "at": how long the run had been going when it stopped
+  double elapsed = 0;       // the latest "at": how long the run had been going when it stopped
 };
 
 class Journal {

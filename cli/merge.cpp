@@ -48,7 +48,8 @@ void check_apart(const std::vector<std::string>& dirs, const std::string& out_di
       clash = clash || inside(report::run_folder(d), std::filesystem::path(out_dir) / name);
     if (clash)
       throw InputError("merge --out " + out_dir + ": expected a folder apart from the shards, " +
-                       "got the shard " + d + ", a folder inside it, or a folder whose run "
+                       "got the shard " + d +
+                       ", a folder inside it, or a folder whose run "
                        "files hold it");
   }
 }

@@ -121,8 +121,8 @@ FolderLock lock_folder(const fs::path& dir, const std::string& option) {
 const std::vector<std::string>& run_output_names() {
   // mesa_egl_vendor.json: --mesa's EGL vendor file for the workers (mesa_prefix.hpp).
   static const std::vector<std::string> names = {
-      "results.json", "results.csv", "failures.csv", "junit.xml",     "report.html",
-      kJournalFile,   "cases",       "logs",         kInputsFolder,   "mesa_egl_vendor.json"};
+      "results.json", "results.csv", "failures.csv", "junit.xml",   "report.html",
+      kJournalFile,   "cases",       "logs",         kInputsFolder, "mesa_egl_vendor.json"};
   return names;
 }
 

@@ -77,7 +77,6 @@ void check_replaceable_files(const std::filesystem::path& dir, const std::string
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);
 
-
 // An earlier run's (or campaign's) outputs in a marked folder, set aside while a new one starts:
 // renamed into kEarlierFolder, not deleted, until the new run has GL (keep_new) or has written
 // its own results. A run that ends before, because its driver, prefix or wrapper cannot make a

@@ -245,9 +245,9 @@ int cmd_run(const Options& given) {
     report::apply(baseline, r);
     report::apply_flakes(flakes, o.flakes, r);
     // On disk before anything else: a kill after this line loses nothing of this case.
-    journal->record_result(checked_index[i], r, elapsed(),
-                           heatmaps_follow.count(i) ? Journal::Heatmaps::follow
-                                                    : Journal::Heatmaps::none);
+    journal->record_result(
+        checked_index[i], r, elapsed(),
+        heatmaps_follow.count(i) ? Journal::Heatmaps::follow : Journal::Heatmaps::none);
     progress.clear();
     fmt::print("{}\n", report::case_line(r));
     std::fflush(stdout);

@@ -3,8 +3,7 @@
 namespace glrc::compare {
 
 inline bool ChannelAccumulator::run_errors(const float* reference, const float* gl, double ulp,
-                                              double inverse_ulp, double* abs_error,
-                                              double* ulps_of) {
+                                           double inverse_ulp, double* abs_error, double* ulps_of) {
   constexpr int n = kRun;
   constexpr uint32_t kExponent = 0x7f800000u;
   uint32_t non_finite = 0;
@@ -24,7 +23,8 @@ inline bool ChannelAccumulator::run_errors(const float* reference, const float* 
 }
 
 inline void ChannelAccumulator::tally_errors(Tally& t, uint64_t differing, const double* abs_error,
-                                         const double* ulps_of, double ulp, double inverse_ulp) {
+                                             const double* ulps_of, double ulp,
+                                             double inverse_ulp) {
   constexpr int n = kRun;
   int64_t max_abs = 0;
   for (int j = 0; j < n; ++j) {
@@ -60,9 +60,10 @@ inline void ChannelAccumulator::tally_errors(Tally& t, uint64_t differing, const
       if (may_keep_ulps[j]) ulps.offer(keys[j]);
 }
 
-GLRC_VECTOR_CLONES bool ChannelAccumulator::add_run(Tally& t, int x, int y, const float* reference, const float* gl,
-                                const float* allowed, double fixed_allowed, double ulp,
-                                double inverse_ulp) {
+GLRC_VECTOR_CLONES bool ChannelAccumulator::add_run(Tally& t, int x, int y, const float* reference,
+                                                    const float* gl, const float* allowed,
+                                                    double fixed_allowed, double ulp,
+                                                    double inverse_ulp) {
   constexpr int n = kRun;
   double abs_error[kRun], ulps_of[kRun], allowed_of[kRun];
   if (!run_errors(reference, gl, ulp, inverse_ulp, abs_error, ulps_of)) return false;
@@ -124,9 +125,10 @@ GLRC_VECTOR_CLONES bool ChannelAccumulator::add_run(Tally& t, int x, int y, cons
   return true;
 }
 
-GLRC_VECTOR_CLONES uint64_t ChannelAccumulator::add_run_within(Tally& t, const float* reference, const float* gl,
-                                           double lo, bool largest_known, double ulp,
-                                           double inverse_ulp) {
+GLRC_VECTOR_CLONES uint64_t ChannelAccumulator::add_run_within(Tally& t, const float* reference,
+                                                               const float* gl, double lo,
+                                                               bool largest_known, double ulp,
+                                                               double inverse_ulp) {
   constexpr int n = kRun;
   static_assert(n == 64);
   if (exact || !largest_known || !ratios.may_drop()) return kEveryLane;

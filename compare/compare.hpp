@@ -11,13 +11,13 @@
 #include <optional>
 #include <vector>
 
+#include "compare/largest_values.hpp"
+#include "compare/rules.hpp"
+#include "compare/run_grid.hpp"
 #include "core/case.hpp"
 #include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 #include "core/result.hpp"
-#include "compare/largest_values.hpp"
-#include "compare/rules.hpp"
-#include "compare/run_grid.hpp"
 
 namespace glrc::compare {
 

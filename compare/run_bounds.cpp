@@ -49,7 +49,8 @@ Comparator::ChannelBounds run_bounds(const DeferredAllowance& deferred,
     const int32_t p = plain_runs[run];
     Comparator::RunBounds& b = out.runs[run];
     find_run_bounds(deferred, reference, k, p, x, row, b);
-    if (b.hi < std::numeric_limits<double>::infinity()) out.largest_lo = std::max(out.largest_lo, b.lo * table.inverse_ulp(p, k));
+    if (b.hi < std::numeric_limits<double>::infinity())
+      out.largest_lo = std::max(out.largest_lo, b.lo * table.inverse_ulp(p, k));
   }
   return out;
 }

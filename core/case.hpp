@@ -108,7 +108,7 @@ struct Viewport {
 
 // How the verdict judges values and coverage.
 //   spec:  the default. Per pixel, the error the GL specification allows an implementation that
-//          reports GL_SUBPIXEL_BITS = subpixel_bits (see ref/allowance.hpp and the README).
+//          reports GL_SUBPIXEL_BITS = subpixel_bits (see ref/allowance.hpp and docs/allowance.md).
 //   ulps:  fixed thresholds: varying errors in ULPs of the attribute's scale (the ulp of the
 //          largest |v_i| among the covering triangle's vertices for that component), depth in
 //          ULPs of 1.0 (2^-23). Chosen when a case file or the command line names a number.

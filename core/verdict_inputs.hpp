@@ -16,6 +16,7 @@ struct VerdictInputDifference {
 
 // The first input, by name, in which `mine` and `other` differ; nullopt when they are the same.
 std::optional<VerdictInputDifference> verdict_input_difference(
-    const std::map<std::string, std::string>& mine, const std::map<std::string, std::string>& other);
+    const std::map<std::string, std::string>& mine,
+    const std::map<std::string, std::string>& other);
 
 }  // namespace glrc

@@ -30,8 +30,7 @@ const char* csv_breaking(const std::string& name) {
     if (ch == '\n' || ch == '\r') return "a line break";
     if ((unsigned char)ch < 0x20 || ch == 0x7f) return "a control character";
   }
-  if (name.front() == ' ' || name.back() == ' ')
-    return "a space at an end (baselines trim it)";
+  if (name.front() == ' ' || name.back() == ' ') return "a space at an end (baselines trim it)";
   return nullptr;
 }
 

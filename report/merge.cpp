@@ -45,11 +45,11 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
           {"gl_version", "the driver: --mesa", &r.gl_version, &first.gl_version},
           {"backend", "--backend", &r.backend, &first.backend},
           {"model", "--model, --subpixel-bits, --planes, --tie-break", &r.model, &first.model},
-          {"tolerance", "--tolerance, --spec-subpixel-bits",
-           &r.tolerance, &first.tolerance}})
+          {"tolerance", "--tolerance, --spec-subpixel-bits", &r.tolerance, &first.tolerance}})
       if (*value != *value0)
         throw std::runtime_error(fmt::format(
-            "merge: {}: expected shards judged alike, got run.{} \"{}\" where {} has \"{}\" (set by "
+            "merge: {}: expected shards judged alike, got run.{} \"{}\" where {} has \"{}\" (set "
+            "by "
             "{}): run the shards with the same options",
             names[k], field, printable(*value, 100), names[0], printable(*value0, 100), option));
     if (const auto d = verdict_input_difference(r.verdict_inputs, first.verdict_inputs))

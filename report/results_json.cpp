@@ -167,8 +167,8 @@ RunResults read_results_json(const std::filesystem::path& file) {
         read(r, c, path, out.cases.emplace_back());
         // A name run refuses (report::csv_breaking) is no case of a run: a hand's edit.
         if (const char* what = csv_breaking(out.cases.back().name))
-          r.fail(path + ".name", std::string("a case name fit for results.csv (it holds ") + what +
-                                     ")",
+          r.fail(path + ".name",
+                 std::string("a case name fit for results.csv (it holds ") + what + ")",
                  Reader::describe(c.at("name")));
         // One result per case: a name twice (a hand edit, two files pasted together)
         // would be counted twice by whoever reads it.

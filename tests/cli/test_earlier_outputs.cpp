@@ -56,20 +56,21 @@ class EarlierOutputs : public glrc::test::TempDirTest {};
 // folder's earlier results before the first worker said GL would not start.
 TEST_F(EarlierOutputs, ARunWhoseGlNeverStartsLeavesTheEarlierResults) {
   const fs::path out = dir_ / "out";
-  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --html --out '" + out.string() + "'")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      glrefcheck("run cases/face_on.json --jobs 1 --html --out '" + out.string() + "'").exit_code,
+      0);
   const auto before = snapshot(out);
   ASSERT_TRUE(before.count("results.json"));
   for (const std::string& broken :
        {std::string("--backend osmesa --driver zink"), std::string("--worker-wrapper false")}) {
-    const Outcome o = glrefcheck("run cases/face_on.json cases/attr_tiny.json --jobs 1 " +
-                                 broken + " --out '" + out.string() + "'");
+    const Outcome o = glrefcheck("run cases/face_on.json cases/attr_tiny.json --jobs 1 " + broken +
+                                 " --out '" + out.string() + "'");
     EXPECT_EQ(o.exit_code, 2) << broken << o.out << o.err;
     EXPECT_EQ(snapshot(out), before) << broken << ":" << differences(before, snapshot(out));
   }
   // A campaign into it, whose GL never starts either.
-  const Outcome o = glrefcheck("fuzz --count 4 --worker-wrapper false --out '" + out.string() + "'");
+  const Outcome o =
+      glrefcheck("fuzz --count 4 --worker-wrapper false --out '" + out.string() + "'");
   EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
   EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
   // A run that has GL replaces them as before.
@@ -182,16 +183,16 @@ TEST_F(EarlierOutputs, ADiffStoppedHalfwayLeavesNoImageUnlisted) {
 TEST_F(EarlierOutputs, ReportOnAFolderALiveRunHoldsNamesTheRun) {
   const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
   std::thread run([&] {
-    glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" +
-               out.string() + "'" +
+    glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" + out.string() +
+               "'" +
                proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
   });
   const pid_t proxy = wait_for_pid(pidfile);
   ASSERT_GT(proxy, 0);
   const Outcome o = glrefcheck("report '" + out.string() + "'");
   EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
-  EXPECT_NE(o.err.find("is in use by another glrefcheck (pid " +
-                       std::to_string(parent_of(proxy)) + ": glrefcheck run"),
+  EXPECT_NE(o.err.find("is in use by another glrefcheck (pid " + std::to_string(parent_of(proxy)) +
+                       ": glrefcheck run"),
             std::string::npos)
       << o.err;
   EXPECT_EQ(o.err.find("killed"), std::string::npos) << o.err;
@@ -208,10 +209,10 @@ TEST_F(EarlierOutputs, ReportOnAFolderALiveRunHoldsNamesTheRun) {
 // user had put in the run's logs/.
 TEST_F(EarlierOutputs, AnEditedMinimalCaseOrAnOutputFolderInsideIsNotReplaced) {
   const fs::path f = dir_ / "f";
-  ASSERT_EQ(glrefcheck("fuzz --seed 1 --count 20 --generator clip --jobs 1 --out '" +
-                       f.string() + "'")
-                .exit_code,
-            1);
+  ASSERT_EQ(
+      glrefcheck("fuzz --seed 1 --count 20 --generator clip --jobs 1 --out '" + f.string() + "'")
+          .exit_code,
+      1);
   const fs::path failure = f / "failures/non_finite_noperspective.json";
   std::string text = read(failure);
   ASSERT_NE(text.find("\"description\": \""), std::string::npos);
@@ -228,8 +229,7 @@ TEST_F(EarlierOutputs, AnEditedMinimalCaseOrAnOutputFolderInsideIsNotReplaced) {
 
   const fs::path r = dir_ / "r";
   ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + r.string() + "'").exit_code, 0);
-  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + (r / "logs/d").string() + "'")
-                .exit_code,
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + (r / "logs/d").string() + "'").exit_code,
             1);
   const auto run_before = snapshot(r);
   o = glrefcheck("run cases/face_on.json --jobs 1 --out '" + r.string() + "'");
@@ -264,8 +264,8 @@ TEST_F(EarlierOutputs, ReportAndDiffReplaceOnlyWhatTheyWroteUnchanged) {
 
   // An image of the last diff the user annotated stays; the others go.
   const fs::path d = dir_ / "d";
-  ASSERT_LE(glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + d.string() + "'").exit_code,
-            1);
+  ASSERT_LE(
+      glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + d.string() + "'").exit_code, 1);
   std::ofstream(d / "m.x_error.png", std::ios::app) << "annotated";
   const std::string annotated = read(d / "m.x_error.png");
   ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + d.string() + "'").exit_code, 1);

@@ -321,10 +321,9 @@ TEST_F(Forged, MergeRefusesShardsJudgedOtherwise) {
 // the field nor the option (U1).
 TEST_F(Forged, CaseNamesRunRefusesAndShardsJudgedByAnotherToleranceAreNamed) {
   const std::string run = "'" + (dir_ / "run").string() + "'";
-  for (const auto& [name, bad, holds] :
-       {std::tuple{"empty", "", "no character at all"},
-        {"comma", "face,on", "a comma"},
-        {"line_break", "face\non", "a line break"}}) {
+  for (const auto& [name, bad, holds] : {std::tuple{"empty", "", "no character at all"},
+                                         {"comma", "face,on", "a comma"},
+                                         {"line_break", "face\non", "a line break"}}) {
     SCOPED_TRACE(name);
     const fs::path forged = forged_results(name, [&](json& j) { j["cases"][0]["name"] = bad; });
     expect_one_line(glrefcheck("compare " + run + " '" + forged.string() + "'"),
@@ -362,9 +361,9 @@ TEST_F(Forged, WhatDoesNotBelongIsOneLineAndNothingWaits) {
                          "timeout 30");
   EXPECT_EQ(o.exit_code, 2) << o.out << o.err;  // 124: timeout's, a hang
   EXPECT_NE(o.err.find("other than a regular file"), std::string::npos) << o.err;
-  o = glrefcheck("merge " + run + " '" + fifo.string() + "' --out '" +
-                     (dir_ / "m_fifo2").string() + "'",
-                 "timeout 30");
+  o = glrefcheck(
+      "merge " + run + " '" + fifo.string() + "' --out '" + (dir_ / "m_fifo2").string() + "'",
+      "timeout 30");
   EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
 
   // Two checkouts: the same names, one case's content edited between them.
@@ -379,12 +378,12 @@ TEST_F(Forged, WhatDoesNotBelongIsOneLineAndNothingWaits) {
   text.insert(text.find("\"description\": \"") + 16, "Edited: ");
   std::ofstream(two / "viewport_tiny.json") << text;
   const fs::path s1 = dir_ / "checkout_1", s2 = dir_ / "checkout_2";
-  ASSERT_EQ(glrefcheck("run '" + one.string() + "' --jobs 1 --fraction 2 --fraction-start 1 --out '" +
-                       s1.string() + "'")
+  ASSERT_EQ(glrefcheck("run '" + one.string() +
+                       "' --jobs 1 --fraction 2 --fraction-start 1 --out '" + s1.string() + "'")
                 .exit_code,
             0);
-  ASSERT_EQ(glrefcheck("run '" + two.string() + "' --jobs 1 --fraction 2 --fraction-start 2 --out '" +
-                       s2.string() + "'")
+  ASSERT_EQ(glrefcheck("run '" + two.string() +
+                       "' --jobs 1 --fraction 2 --fraction-start 2 --out '" + s2.string() + "'")
                 .exit_code,
             0);
   expect_one_line(glrefcheck("merge '" + s1.string() + "' '" + s2.string() + "' --out '" +
@@ -392,8 +391,8 @@ TEST_F(Forged, WhatDoesNotBelongIsOneLineAndNothingWaits) {
                   "expected shards judged alike, got case_files sha256:");
   // Into a shard's own folder: refused before anything is written there.
   const fs::path s1b = dir_ / "checkout_1b";
-  ASSERT_EQ(glrefcheck("run '" + one.string() + "' --jobs 1 --fraction 2 --fraction-start 2 --out '" +
-                       s1b.string() + "'")
+  ASSERT_EQ(glrefcheck("run '" + one.string() +
+                       "' --jobs 1 --fraction 2 --fraction-start 2 --out '" + s1b.string() + "'")
                 .exit_code,
             0);
   expect_one_line(glrefcheck("merge '" + s1.string() + "' '" + s1b.string() + "' --out '" +
@@ -427,14 +426,13 @@ TEST_F(Forged, WhatDoesNotBelongIsOneLineAndNothingWaits) {
 
   // --emit through a symbolic link: the link is named, nothing written.
   const fs::path target = dir_ / "emitted.json", link = dir_ / "link.json";
-  ASSERT_EQ(glrefcheck("fuzz --generator clip --replay 1:9 --emit '" + target.string() + "'")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      glrefcheck("fuzz --generator clip --replay 1:9 --emit '" + target.string() + "'").exit_code,
+      0);
   fs::create_symlink(target, link);
   const std::string emitted = read(target);
-  expect_one_line(
-      glrefcheck("fuzz --generator clip --replay 1:10 --emit '" + link.string() + "'"),
-      "which is a symbolic link (name the file it points to)");
+  expect_one_line(glrefcheck("fuzz --generator clip --replay 1:10 --emit '" + link.string() + "'"),
+                  "which is a symbolic link (name the file it points to)");
   EXPECT_TRUE(fs::is_symlink(link));
   EXPECT_EQ(read(target), emitted);
 
@@ -445,7 +443,8 @@ TEST_F(Forged, WhatDoesNotBelongIsOneLineAndNothingWaits) {
   expect_one_line(glrefcheck("run --resume '" + piped.string() + "'", "timeout 30"),
                   "expected a run folder with a journal.jsonl, got one that is not a regular file");
   expect_one_line(glrefcheck("export cases/face_on.json --driver ''"),
-                  "--driver: expected llvmpipe, softpipe or zink, got """);
+                  "--driver: expected llvmpipe, softpipe or zink, got "
+                  "");
 }
 
 // Issue 45's hostile campaign: an option naming a path given as "" (an unset variable) was

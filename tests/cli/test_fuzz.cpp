@@ -193,16 +193,18 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
                                  (dir_ / "m4").string() + "'");
   EXPECT_EQ(judged.exit_code, 2) << judged.out << judged.err;
   // By the input's name and both values (it printed the inputs' JSON, cut at 80 characters).
-  EXPECT_NE(judged.err.find(strict.string() + ": expected shards judged alike, got "
-                            "strict_coverage true where " + a.string() + " has false"),
+  EXPECT_NE(judged.err.find(strict.string() +
+                            ": expected shards judged alike, got "
+                            "strict_coverage true where " +
+                            a.string() + " has false"),
             std::string::npos)
       << judged.err;
   // A shard shrunk otherwise (--no-shrink) has other minimal cases: refused too.
   const auto unshrunk = dir_ / "unshrunk";
-  glrefcheck(campaign + " --no-shrink --fraction 2 --fraction-start 2 --out '" +
-             unshrunk.string() + "'");
-  const auto shrink = glrefcheck("merge '" + a.string() + "' '" + unshrunk.string() +
-                                 "' --out '" + (dir_ / "m5").string() + "'");
+  glrefcheck(campaign + " --no-shrink --fraction 2 --fraction-start 2 --out '" + unshrunk.string() +
+             "'");
+  const auto shrink = glrefcheck("merge '" + a.string() + "' '" + unshrunk.string() + "' --out '" +
+                                 (dir_ / "m5").string() + "'");
   EXPECT_EQ(shrink.exit_code, 2) << shrink.out << shrink.err;
   EXPECT_NE(shrink.err.find("campaign.shrink: expected true as the first shard, got false"),
             std::string::npos)
