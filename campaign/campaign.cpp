@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 
 namespace glrc::campaign {
@@ -334,7 +335,8 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         shards[k].value("stats", nlohmann::json::object()).value("interrupted", false))
       throw std::runtime_error(
           source + ": an interrupted campaign shard (stopped by a signal): run it again");
-    for (const char* key : {"gl_renderer", "gl_version", "model", "tolerance", "backend", "driver"})
+    for (const char* key :
+         {"gl_renderer", "gl_version", "gl_library", "model", "tolerance", "backend", "driver"})
       if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
@@ -355,12 +357,23 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
       }
     }
     const auto& list = field(shards[k], source, "", "failures", T::array);
+    std::set<std::string> shard_signatures;  // each distinct failure once per shard
     for (size_t i = 0; i < list.size(); ++i) {
       const std::string path = "failures[" + std::to_string(i) + "]";
       const auto& f = list[i];
       const std::string signature = field(f, source, path, "signature", T::string);
       const uint64_t index = field(f, source, path, "index", T::number_unsigned);
       const uint64_t cases = field(f, source, path, "cases", T::number_unsigned);
+      if (!shard_signatures.insert(signature).second)
+        throw std::runtime_error(source + ": " + path +
+                                 ".signature: expected a failure no other "
+                                 "of the shard's has, got \"" +
+                                 signature.substr(0, 80) + "\" again");
+      // Shard K of N draws the indices K - 1 + j·N only.
+      if (index % fraction != start - 1)
+        throw std::runtime_error(source + ": " + path + ".index: expected an index of shard " +
+                                 std::to_string(start) + " of " + std::to_string(fraction) +
+                                 ", got " + std::to_string(index));
       // Each failing case counts once per signature it shows.
       if (cases < 1 || cases > shard_stats.failing_cases)
         throw std::runtime_error(

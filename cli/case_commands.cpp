@@ -27,8 +27,10 @@ int cmd_diff(const Options& o) {
   const std::filesystem::path& out = folder.path;
   auto renderer = open_renderer(o);
   const ModelChoice model = choose_model(o, *renderer);
-  // The last diff's images go first, none of another case staying beside this one's; only once
-  // GL is up, so that a diff whose driver cannot start leaves them.
+  // A file of the user's by an image's name is refused before anything changes. The last diff's
+  // images go first, none of another case staying beside this one's; only once GL is up, so
+  // that a diff whose driver cannot start leaves them.
+  check_diff_images_free(out, report::diff_image_names(c));
   clear_diff_images(out);
   check::CheckOptions judged = check_options(o);
   judged.model = model.model;
@@ -55,11 +57,9 @@ int cmd_diff(const Options& o) {
     fmt::print("{}\n", table);
   // Each name is recorded before its file is written: a diff stopped halfway leaves none
   // unlisted.
-  // A file already there by an image's name is not the last diff's: refused, not replaced.
   std::vector<std::pair<std::filesystem::path, std::string>> listed;
   const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r,
                                                [&](const std::filesystem::path& file) {
-                                                 check_diff_image_free(out, file);
                                                  listed.emplace_back(file, "");
                                                  record_diff_images(out, listed);
                                                });

@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 #include <charconv>
+#include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -81,6 +82,22 @@ void write_case_file(const std::filesystem::path& file, const Case& c) {
 }
 
 }  // namespace
+
+std::set<std::string> listed_failure_files(const std::filesystem::path& out) {
+  std::set<std::string> names;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(out / "results.json", ec)) return names;
+  try {
+    std::ifstream in(out / "results.json", std::ios::binary);
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    if (!campaign::is_campaign_json(doc)) return names;
+    for (const nlohmann::json& f : doc.at("failures"))
+      names.insert(std::filesystem::path(f.at("file").get<std::string>()).filename().string());
+  } catch (const std::exception&) {
+    // Unreadable: it lists nothing, and whatever is in failures/ is refused.
+  }
+  return names;
+}
 
 void write_campaign_files(const std::filesystem::path& out, const nlohmann::json& doc) {
   report::write_file_atomically(out / "results.json", doc.dump(2) + "\n");
@@ -190,7 +207,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   const OutputFolder folder = output_folder(o.out);
   const std::filesystem::path& out = folder.path;
   // Its minimal cases are the campaign's while unedited: one a person changed is theirs.
-  check_replaceable_files(out / "failures", "--out " + o.out, "fuzz");
+  check_replaceable_files(out / "failures", "--out " + o.out, "fuzz", listed_failure_files(out));
   // The earlier campaign's outputs come back if this one never gets GL.
   EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
 
@@ -203,6 +220,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   co.shrinking.batch = size_t(std::max(s.jobs, 1));
 
   RunInfo info;
+  bool gl_started = false;
   info.backend = gl::to_string(o.backend), info.driver = o.driver, info.jobs = s.jobs;
   info.mesa_prefix = o.mesa;
   info.verdict_inputs = judged_by;
@@ -217,6 +235,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     info.model = run.model, info.model_source = run.model_source;
     info.tolerance = run.tolerance, info.subpixel_bits = run.subpixel_bits;
     info.gl_warnings = run.gl_warnings;
+    gl_started = true;
     earlier.keep_new();
     std::string generators;
     for (const campaign::Generator* g : co.generators)
@@ -285,6 +304,13 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   };
   campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
   clear_line();
+  // Stopped before GL started: nothing was checked, and the folder's earlier campaign comes back
+  // as it was (`earlier`, as it goes) rather than a campaign of no cases over it.
+  if (!gl_started && result.stats.interrupted && caught_signal()) {
+    fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
+               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT", o.out);
+    return 128 + caught_signal();
+  }
   size_t new_failures = 0;
   for (campaign::FoundFailure& nf : result.failures) {
     nf.known = known(nf.failure);

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ int cmd_fuzz(const Options& o, const FuzzOptions& f);
 // A campaign's results.json (campaign::campaign_json, each failure with its minimal case's
 // "result") and results.csv (`<failure>,Fail|ExpectedFail,seconds`) in `out`.
 void write_campaign_files(const std::filesystem::path& out, const nlohmann::json& doc);
+// The minimal cases (file names in failures/) the campaign results in `out` list; none when
+// there are none, or they are not a campaign's.
+std::set<std::string> listed_failure_files(const std::filesystem::path& out);
 
 // `merge` of campaign shards (`fuzz --fraction`): campaign::merge_campaigns, each failure's
 // minimal case and heatmaps copied from the shard it came from, report.html. Exit 0 when no

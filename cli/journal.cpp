@@ -186,6 +186,10 @@ JournalContents read_journal(const fs::path& dir) {
         const auto model = identify::model_from_json(j.at("model"));
         if (!model) throw InputError(where + ": expected a model");
         c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
+      } else if (!j.contains("index") || !j["index"].is_number_unsigned()) {
+        // A hand's 0.5 or 1e300 would be read as another case's index.
+        throw InputError(where + ": expected \"index\": a whole number, got " +
+                         (j.contains("index") ? printable(j["index"].dump(), 40) : "none"));
       } else if (!j.contains("result")) {
         if (j.at("heatmaps") != "written")
           throw InputError(where +

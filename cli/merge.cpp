@@ -104,7 +104,8 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   }
   const OutputFolder folder = output_folder(out_dir);
   const std::filesystem::path& out = folder.path;
-  check_replaceable_files(out / "failures", "merge --out " + out_dir, "fuzz");
+  check_replaceable_files(out / "failures", "merge --out " + out_dir, "fuzz",
+                          listed_failure_files(out));
   // The folder's earlier merge comes back if this one fails halfway.
   EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
   std::filesystem::create_directories(out / "failures");
@@ -194,6 +195,10 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
 }
 
 int cmd_report(const std::string& dir, const std::string& file) {
+  if (dir.empty())
+    throw InputError(
+        "report: expected a run folder or its results.json, got \"\" (an empty or "
+        "unset variable?)");
   report::RunResults results;
   const std::filesystem::path run_dir = report::run_folder(dir);
   // A folder of glrefcheck's is held while the page is written: a run still writing into it is

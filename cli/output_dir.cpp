@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -230,11 +231,15 @@ void check_replaceable(const fs::path& file, const std::string& option, const st
 }
 
 void check_replaceable_files(const fs::path& dir, const std::string& option,
-                             const std::string& writer) {
+                             const std::string& writer, const std::set<std::string>& listed) {
   std::error_code ec;
   if (!fs::is_directory(fs::symlink_status(dir, ec))) return;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-    if (const auto why = not_replaceable(it->path(), it->symlink_status(ec), writer))
+    if (const auto why = !listed.count(it->path().filename().string())
+                             ? std::optional<std::string>(
+                                   "which the folder's results.json does not list (added, or "
+                                   "left by a campaign that was killed)")
+                             : not_replaceable(it->path(), it->symlink_status(ec), writer))
       throw InputError(option + ": expected only glrefcheck " + writer + "'s files in " +
                        printable(dir.string(), 200) + ", which it replaces, got \"" +
                        printable(it->path().filename().string(), 100) + "\", " + *why +
@@ -296,12 +301,22 @@ EarlierOutputs::EarlierOutputs(EarlierOutputs&& other) noexcept : dir_(std::move
   other.dir_.clear();
 }
 
+namespace {
+
+// The earlier outputs of `dir` deleted: first renamed away, so that a delete that fails halfway
+// leaves no kEarlierFolder for a later claim to restore.
+void discard_earlier_outputs(const fs::path& dir) {
+  std::error_code ec;
+  fs::remove_all(dir / kDiscardedFolder, ec);
+  fs::rename(dir / kEarlierFolder, dir / kDiscardedFolder, ec);
+  fs::remove_all(dir / (ec ? kEarlierFolder : kDiscardedFolder), ec);
+}
+
+}  // namespace
+
 void EarlierOutputs::keep_new() {
   if (dir_.empty()) return;
-  std::error_code ec;
-  fs::remove_all(dir_ / kDiscardedFolder, ec);
-  fs::rename(dir_ / kEarlierFolder, dir_ / kDiscardedFolder, ec);
-  fs::remove_all(dir_ / (ec ? kEarlierFolder : kDiscardedFolder), ec);
+  discard_earlier_outputs(dir_);
   dir_.clear();
 }
 
@@ -344,13 +359,31 @@ EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::str
   return earlier;
 }
 
+void settle_earlier_outputs(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(fs::symlink_status(dir / kEarlierFolder, ec))) return;
+  if (fs::exists(fs::symlink_status(dir / kJournalFile, ec)))
+    discard_earlier_outputs(dir);
+  else
+    restore_earlier_outputs(dir);
+}
+
 void restore_earlier_outputs(const fs::path& dir) {
   const fs::path aside = dir / kEarlierFolder;
   std::error_code ec;
   if (!fs::is_directory(fs::symlink_status(aside, ec))) return;
   // What is in the folder now under an output's name is the attempt's that never had GL, or,
   // where the attempt was killed while setting them aside, the earlier run's not moved yet.
+  // Nothing aside (a new folder's first run): nothing to give back, and the attempt's journal
+  // stays for `run --resume`.
   const bool complete = fs::exists(aside / kSetAsideComplete, ec);
+  bool any = false;
+  for (const std::string& name : every_output_name())
+    any = any || fs::exists(fs::symlink_status(aside / name, ec));
+  if (complete && !any) {
+    fs::remove_all(aside, ec);
+    return;
+  }
   for (const std::string& name : every_output_name()) {
     const bool moved = fs::exists(fs::symlink_status(aside / name, ec));
     if (moved || complete) remove_outputs(dir, {name});
@@ -417,13 +450,25 @@ void record_diff_images(const fs::path& dir,
   report::write_file_atomically(dir / kDiffImagesFile, report::stamped(text));
 }
 
-void check_diff_image_free(const fs::path& dir, const fs::path& file) {
-  std::error_code ec;
-  if (!fs::exists(fs::symlink_status(file, ec))) return;
-  throw InputError("diff --out " + printable(dir.string(), 200) + ": expected no \"" +
-                   printable(file.filename().string(), 100) +
-                   "\" there but an image the last diff wrote, got one of yours (or one changed "
-                   "since): move it, or name another --out");
+void check_diff_images_free(const fs::path& dir, const std::vector<std::string>& names) {
+  std::set<std::string> ours;  // the last diff's images, unchanged: clear_diff_images deletes them
+  for (const auto& [digest, name] : diff_image_list(dir)) {
+    if (digest == "-" || name.find('/') != std::string::npos) {
+      if (digest == "-") ours.insert(name);
+      continue;
+    }
+    std::ifstream in(dir / name, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (report::content_digest(text) == digest) ours.insert(name);
+  }
+  for (const std::string& name : names) {
+    std::error_code ec;
+    if (ours.count(name) || !fs::exists(fs::symlink_status(dir / name, ec))) continue;
+    throw InputError("diff --out " + printable(dir.string(), 200) + ": expected no \"" +
+                     printable(name, 100) +
+                     "\" there but an image the last diff wrote, got one of yours (or one changed "
+                     "since): move it, or name another --out");
+  }
 }
 
 }  // namespace glrc::cli

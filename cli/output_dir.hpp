@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -69,10 +70,11 @@ void check_replaceable(const std::filesystem::path& file, const std::string& opt
                        const std::string& writer);
 
 // check_replaceable for every entry of the folder `dir` (fuzz's failures/ before a campaign
-// replaces it): a minimal case a person edited or added there is theirs. Nothing when `dir` does
-// not exist.
+// replaces it), each also one of `listed` (the names the folder's own record gives: a stamped
+// file copied in from elsewhere is no file of this folder's): a minimal case a person edited or
+// added there is theirs. Nothing when `dir` does not exist.
 void check_replaceable_files(const std::filesystem::path& dir, const std::string& option,
-                             const std::string& writer);
+                             const std::string& writer, const std::set<std::string>& listed);
 
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);
@@ -113,6 +115,10 @@ EarlierOutputs set_aside_outputs(const std::filesystem::path& dir,
 // Puts back outputs a killed glrefcheck left aside in `dir` (see EarlierOutputs); nothing when
 // there are none.
 void restore_earlier_outputs(const std::filesystem::path& dir);
+// For `run --resume` of `dir`: outputs left aside go for good when the run killed before it had
+// GL wrote its journal (that run is the one to resume), else come back
+// (restore_earlier_outputs).
+void settle_earlier_outputs(const std::filesystem::path& dir);
 
 // `diff`'s images in a marked folder, listed in kDiffImagesFile (stamped "glrefcheck diff"):
 // each image's name and the content digest it was written with (report::content_digest; "-"
@@ -126,9 +132,11 @@ void clear_diff_images(const std::filesystem::path& dir);
 // Writes the list: `images`, each a file in `dir` and its digest ("" while being written).
 void record_diff_images(const std::filesystem::path& dir,
                         const std::vector<std::pair<std::filesystem::path, std::string>>& images);
-// InputError when `file`, an image diff is about to write into `dir` after clear_diff_images,
-// is there already: a file of the user's (a screenshot, notes), or an image someone changed.
-void check_diff_image_free(const std::filesystem::path& dir, const std::filesystem::path& file);
+// InputError, before anything is deleted or written, when one of `names` (the images the next
+// diff may write, report::diff_image_names) is in `dir` and is not an image the last diff wrote,
+// unchanged: a file of the user's (a screenshot, notes), or an image someone changed.
+void check_diff_images_free(const std::filesystem::path& dir,
+                            const std::vector<std::string>& names);
 
 // The run's own files and folders in a run folder, relative to it.
 const std::vector<std::string>& run_output_names();

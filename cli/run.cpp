@@ -45,8 +45,10 @@ int cmd_run(const Options& given) {
     // twice. A folder glrefcheck did not mark gets no lock file: read_journal refuses it.
     if (is_marked(out)) {
       lock = lock_folder(out, "--resume " + printable(given.resume, 200));
-      // An attempt killed before it had GL left the run's outputs aside: the run is those.
-      restore_earlier_outputs(out);
+      // A run killed before it had GL left the folder's earlier outputs aside: the run to go on
+      // with is that one, whose journal is there (the earlier ones go, as once it had GL); one
+      // killed before it wrote a journal started nothing, and the earlier run comes back.
+      settle_earlier_outputs(out);
     }
     earlier = read_journal(out);
     o = earlier->options;
@@ -203,6 +205,7 @@ int cmd_run(const Options& given) {
 
   const Progress progress;
   size_t done = results.size() - to_check.size();
+  bool gl_started = false;
   const auto on_start = [&](const gl::GlInfo& gl, const ModelChoice& model) {
     if (prefix && !from_prefix(*prefix, gl.library))
       throw InputError("--mesa " + o.mesa + ": GL came from " +
@@ -219,6 +222,7 @@ int cmd_run(const Options& given) {
     info = run_info(o, gl, model);
     run_fields(info);
     journal->record_start(info, model);
+    gl_started = true;
     if (earlier_outputs) earlier_outputs->keep_new();
     std::string shard;
     if (o.fraction > 1)
@@ -267,6 +271,13 @@ int cmd_run(const Options& given) {
   };
   run_in_workers(to_check, o, s, on_start, on_result);
   progress.clear();
+  // Stopped before GL started: this run checked nothing, and the folder's earlier results come
+  // back as they were (earlier_outputs, as it goes) rather than a run of no cases over them.
+  if (earlier_outputs && !gl_started && !to_check.empty() && caught_signal()) {
+    fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
+               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT", o.out);
+    return 128 + caught_signal();
+  }
 
   std::vector<CaseResult> list;
   for (auto& r : results)

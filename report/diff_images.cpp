@@ -127,6 +127,20 @@ void write_tile(const std::string& name, const TileValues& v, const Tile& t, lon
 
 }  // namespace
 
+std::vector<std::string> diff_image_names(const Case& c) {
+  std::vector<std::string> names;
+  for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
+    const std::string stem =
+        file_stem(channel == compare::kDepth ? "depth" : component_names(c).at(size_t(channel)));
+    for (const char* suffix :
+         {"_error.png", "_allowed.png", "_ratio.png", "_error.exr", "_allowed.exr", "_gl.exr",
+          "_ref.exr", "_error_tile.exr", "_allowed_tile.exr", "_gl_tile.exr", "_ref_tile.exr"})
+      names.push_back(stem + suffix);
+  }
+  names.push_back("coverage.png");
+  return names;
+}
+
 std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path& dir,
                                                      const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r,

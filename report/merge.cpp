@@ -43,6 +43,7 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
          {std::tuple{"gl_renderer", "the driver: --backend, --driver, --mesa", &r.gl_renderer,
                      &first.gl_renderer},
           {"gl_version", "the driver: --mesa", &r.gl_version, &first.gl_version},
+          {"gl_library", "the driver: --mesa", &r.gl_library, &first.gl_library},
           {"backend", "--backend", &r.backend, &first.backend},
           {"model", "--model, --subpixel-bits, --planes, --tie-break", &r.model, &first.model},
           {"tolerance", "--tolerance, --spec-subpixel-bits", &r.tolerance, &first.tolerance}})

@@ -82,6 +82,10 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
                                                      const Case& c, const Expectation& expected,
                                                      const Frame& gl, const CaseResult& r,
                                                      const BeforeWrite& before_write = {});
+// Every file name write_diff_images (and write_streamed_diff_images) may write for case `c`: each
+// channel's maps, EXRs and tiles, and coverage.png. A superset, known before anything is
+// written (`diff` refuses a folder holding a file of the user's by one of these names).
+std::vector<std::string> diff_image_names(const Case& c);
 // Rows [y0, y0 + rows) of a case's expectation and GL frame (check's streamed bands).
 using BandSource = std::function<std::pair<Expectation, Frame>(int y0, int rows)>;
 // The same files from a case checked band by band (check::Checked::streamed), which holds no

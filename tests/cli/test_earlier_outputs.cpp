@@ -82,29 +82,42 @@ TEST_F(EarlierOutputs, ARunWhoseGlNeverStartsLeavesTheEarlierResults) {
   EXPECT_FALSE(fs::exists(out / ".glrefcheck-earlier"));
 }
 
-// A run killed (kill -9) while its worker was still starting: the earlier results were set aside,
-// and the next glrefcheck to claim the folder (here `run --resume`) puts them back first.
+// A run killed (kill -9) while its worker was still starting: the earlier results were set aside.
+// The next glrefcheck to claim the folder for them (`report`, another run) puts them back;
+// `run --resume` goes on with the run that was killed (its journal), as the user asks.
 TEST_F(EarlierOutputs, ARunKilledBeforeItHadGlLeavesTheEarlierResultsToTheNext) {
   const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
   ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + out.string() + "'").exit_code,
             0);
   const auto before = snapshot(out);
-  std::thread run([&] {
-    glrefcheck("run cases/attr_tiny.json --jobs 1 --out '" + out.string() + "'" +
-               proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
-  });
-  const pid_t proxy = wait_for_pid(pidfile);
-  ASSERT_GT(proxy, 0);
-  ASSERT_EQ(kill(parent_of(proxy), SIGKILL), 0);
-  run.join();
-  ASSERT_TRUE(fs::exists(out / ".glrefcheck-earlier"));
-  // report puts them back too; here the resume does, and finds the first run complete.
-  const Outcome o = glrefcheck("run --resume '" + out.string() + "'");
+  const auto killed_before_gl = [&] {
+    fs::remove(pidfile);
+    std::thread run([&] {
+      glrefcheck("run cases/attr_tiny.json --jobs 1 --out '" + out.string() + "'" +
+                 proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
+    });
+    const pid_t proxy = wait_for_pid(pidfile);
+    EXPECT_GT(proxy, 0);
+    if (proxy > 0) {
+      EXPECT_EQ(kill(parent_of(proxy), SIGKILL), 0);
+    }
+    run.join();
+    EXPECT_TRUE(fs::exists(out / ".glrefcheck-earlier"));
+  };
+  killed_before_gl();
+  Outcome o = glrefcheck("report '" + out.string() + "'");
   EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
-  EXPECT_NE(o.out.find("1 of 1 case done before"), std::string::npos) << o.out;
-  EXPECT_NE(read(out / "results.csv").find("face_on,Pass"), std::string::npos);
+  fs::remove(out / "report.html");
+  EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
+
+  killed_before_gl();
+  o = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  EXPECT_NE(o.out.find("0 of 1 case done before"), std::string::npos) << o.out;
+  EXPECT_NE(read(out / "results.csv").find("attr_tiny,Pass"), std::string::npos);
+  EXPECT_EQ(read(out / "results.csv").find("face_on"), std::string::npos);
   EXPECT_FALSE(fs::exists(out / ".glrefcheck-earlier"));
-  EXPECT_EQ(read(out / "journal.jsonl"), before.at("journal.jsonl"));
+
   // Killed halfway through setting them aside (results.json moved, the rest not yet): what is
   // not aside is still the earlier run's, and stays.
   const auto whole = snapshot(out);
@@ -152,30 +165,32 @@ TEST_F(EarlierOutputs, AResumeChecksAgainACaseStoppedWritingItsHeatmaps) {
 }
 
 // The hostile campaign's W2: a diff stopped while writing its images left those written so far
-// unlisted, and the next diff kept them beside its own. A write that fails halfway (a folder
-// where an image goes) stops it at the same point a kill would.
+// unlisted, and the next diff kept them beside its own. Each name is now listed before its file
+// is written: a diff whose image writer fails at its first image (no image plugin) has listed
+// that image already, with no digest yet, and the next diff clears whatever it finds by it.
 TEST_F(EarlierOutputs, ADiffStoppedHalfwayLeavesNoImageUnlisted) {
   const fs::path out = dir_ / "d";
   ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + out.string() + "'").exit_code, 1);
   ASSERT_TRUE(fs::exists(out / "color.x_error.png"));
-  // attr_mixed_magnitudes has the varying m: its third file cannot be written.
-  fs::create_directories(out / "m.x_ratio.png");
   const Outcome stopped =
-      glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + out.string() + "'");
+      glrefcheck("diff cases/attr_mixed_magnitudes.json --out '" + out.string() + "'",
+                 "GLRC_IMAGES_PLUGIN=/nonexistent/glrefcheck_images.so");
   EXPECT_NE(stopped.exit_code, 0) << stopped.out << stopped.err;
-  EXPECT_NE(stopped.err.find("m.x_ratio.png"), std::string::npos) << stopped.err;
-  ASSERT_TRUE(fs::exists(out / "m.x_error.png"));  // written before the stop
-  fs::remove(out / "m.x_ratio.png");
-  ASSERT_LE(glrefcheck("diff cases/viewport_tiny.json --out '" + out.string() + "'").exit_code, 1);
   const std::string listed = read(out / ".glrefcheck-diff-images");
+  EXPECT_NE(listed.find("\n- depth_error.png\n"), std::string::npos) << listed;
+  EXPECT_FALSE(fs::exists(out / "color.x_error.png"));  // the last diff's, cleared first
+  // As a kill would leave it: the first image written, still without its digest.
+  std::ofstream(out / "depth_error.png") << "half an image";
+  ASSERT_LE(glrefcheck("diff cases/viewport_tiny.json --out '" + out.string() + "'").exit_code, 1);
+  const std::string now = read(out / ".glrefcheck-diff-images");
   for (const auto& e : fs::directory_iterator(out)) {
     const std::string name = e.path().filename().string();
-    EXPECT_FALSE(name.starts_with("m.")) << name << " is the stopped diff's, left beside "
-                                         << "viewport_tiny's";
+    EXPECT_FALSE(name.starts_with("m.")) << name << " is the stopped diff's";
     if (name.ends_with(".png") || name.ends_with(".exr")) {
-      EXPECT_NE(listed.find(name + "\n"), std::string::npos) << name << " is not listed";
+      EXPECT_NE(now.find(" " + name + "\n"), std::string::npos) << name << " is not listed";
     }
   }
+  EXPECT_NE(read(out / "depth_error.png"), "half an image");
 }
 
 // The hostile campaign's U4: `report` on the folder of a run still going said "the run was
@@ -277,4 +292,64 @@ TEST_F(EarlierOutputs, ReportAndDiffReplaceOnlyWhatTheyWroteUnchanged) {
   std::ofstream(d / ".glrefcheck-diff-images", std::ios::app) << "- notes.txt\n";
   ASSERT_LE(glrefcheck("diff cases/viewport_tiny.json --out '" + d.string() + "'").exit_code, 2);
   EXPECT_EQ(read(d / "notes.txt"), "mine");
+}
+
+// The fourth hostile campaign (issue 45): a Ctrl-C (or SIGTERM) before GL was up wrote a run of
+// no cases over the folder's earlier results, and a campaign's over its failures/; a refused
+// diff had deleted the last diff's images first; a stamped minimal case copied into failures/
+// from elsewhere was deleted by the next campaign.
+TEST_F(EarlierOutputs, ASignalBeforeGlOrARefusalLeavesTheFolderAsItWas) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  ASSERT_EQ(
+      glrefcheck("run cases/face_on.json --jobs 1 --html --out '" + out.string() + "'").exit_code,
+      0);
+  const auto before = snapshot(out);
+  for (const auto& [command, signal] :
+       {std::pair{std::string("run cases/attr_tiny.json --jobs 1"), SIGINT},
+        {std::string("fuzz --count 4 --jobs 1"), SIGTERM}}) {
+    SCOPED_TRACE(command);
+    fs::remove(pidfile);
+    Outcome o;
+    std::thread run([&] {
+      o = glrefcheck(command + " --out '" + out.string() + "'" +
+                     proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
+    });
+    const pid_t proxy = wait_for_pid(pidfile);
+    ASSERT_GT(proxy, 0);
+    ASSERT_EQ(kill(parent_of(proxy), signal), 0);
+    run.join();
+    EXPECT_EQ(o.exit_code, 128 + signal) << o.out << o.err;
+    EXPECT_NE(o.out.find("before GL started: " + out.string() + " holds its earlier results"),
+              std::string::npos)
+        << o.out;
+    EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
+  }
+
+  // A refused diff changes nothing: the check comes before the last diff's images are cleared.
+  const fs::path d = dir_ / "d";
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + d.string() + "'").exit_code, 1);
+  std::ofstream(d / "depth_error.png") << "my annotated copy";
+  const auto images = snapshot(d);
+  const Outcome refused = glrefcheck("diff cases/face_on.json --out '" + d.string() + "'");
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_EQ(snapshot(d), images) << differences(images, snapshot(d));
+
+  // A stamped case copied into a campaign's failures/ is the user's: refused.
+  const fs::path f = dir_ / "f";
+  ASSERT_EQ(
+      glrefcheck("fuzz --seed 1 --count 20 --generator clip --jobs 1 --out '" + f.string() + "'")
+          .exit_code,
+      1);
+  ASSERT_EQ(glrefcheck("fuzz --generator clip --replay 1:7 --emit '" +
+                       (f / "failures/keep_me.json").string() + "'")
+                .exit_code,
+            0);
+  const auto campaign = snapshot(f);
+  const Outcome added =
+      glrefcheck("fuzz --seed 1 --count 20 --generator clip --jobs 1 --out '" + f.string() + "'");
+  EXPECT_EQ(added.exit_code, 2) << added.out << added.err;
+  EXPECT_NE(added.err.find("\"keep_me.json\", which the folder's results.json does not list"),
+            std::string::npos)
+      << added.err;
+  EXPECT_EQ(snapshot(f), campaign) << differences(campaign, snapshot(f));
 }

@@ -339,6 +339,14 @@ TEST_F(Forged, CaseNamesRunRefusesAndShardsJudgedByAnotherToleranceAreNamed) {
     });
   };
   const fs::path first = shard("shard_1", 1, ""), second = shard("shard_2", 2, "ulps");
+  // Another GL library (another --mesa) under the same renderer and version: named too.
+  const fs::path other_library = forged_results("shard_2_library", [&](json& j) {
+    j = json::parse(read(shard("shard_2b", 2, "") / "results.json"));
+    j["run"]["gl_library"] = "/elsewhere/libOSMesa.so.8";
+  });
+  expect_one_line(glrefcheck("merge '" + first.string() + "' '" + other_library.string() +
+                             "' --out '" + (dir_ / "merged_library").string() + "'"),
+                  "got run.gl_library \"/elsewhere/libOSMesa.so.8\"");
   const std::string spec = json::parse(read(first / "results.json"))["run"]["tolerance"];
   expect_one_line(glrefcheck("merge '" + first.string() + "' '" + second.string() + "' --out '" +
                              (dir_ / "merged_tolerance").string() + "'"),

@@ -230,6 +230,10 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
        "stats.checking_seconds: expected at most stats.seconds"},
       {[](nlohmann::json& j) { j["failures"][0]["cases"] = 0; },
        "failures[0].cases: expected 1 to stats.failing_cases"},
+      {[](nlohmann::json& j) { j["failures"].push_back(j["failures"][0]); },
+       ".signature: expected a failure no other of the shard's has"},
+      {[](nlohmann::json& j) { j["failures"][0]["index"] = 8; },
+       "failures[0].index: expected an index of shard 2 of 2, got 8"},
   };
   for (size_t k = 0; k < forgeries.size(); ++k) {
     const auto forged = dir_ / ("forged" + std::to_string(k));
