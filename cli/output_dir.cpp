@@ -332,14 +332,9 @@ EarlierOutputs::~EarlierOutputs() {
   }
 }
 
-EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::string>& also) {
-  if (!is_marked(dir))
-    throw std::logic_error("set_aside_outputs: " + dir.string() + " is not a marked folder");
-  restore_earlier_outputs(dir);
-  std::error_code ec;
-  fs::remove_all(dir / kDiscardedFolder, ec);
-  const std::vector<std::string> names = with_run_outputs(also);
+void check_no_output_folder_inside(const fs::path& dir, const std::vector<std::string>& names) {
   for (const std::string& name : names) {
+    std::error_code ec;
     if (!fs::is_directory(fs::symlink_status(dir / name, ec))) continue;
     for (fs::recursive_directory_iterator it(dir / name, ec), end; !ec && it != end;
          it.increment(ec))
@@ -347,8 +342,18 @@ EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::str
         throw InputError("--out: " + printable((dir / name).string(), 200) +
                          " holds another glrefcheck output folder (" +
                          printable(it->path().parent_path().string(), 200) +
-                         "), which this run would replace: move it out, or name another --out");
+                         "), which this run would write into: move it out, or name another --out");
   }
+}
+
+EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::string>& also) {
+  if (!is_marked(dir))
+    throw std::logic_error("set_aside_outputs: " + dir.string() + " is not a marked folder");
+  restore_earlier_outputs(dir);
+  std::error_code ec;
+  fs::remove_all(dir / kDiscardedFolder, ec);
+  const std::vector<std::string> names = with_run_outputs(also);
+  check_no_output_folder_inside(dir, names);
   const fs::path aside = dir / kEarlierFolder;
   fs::create_directory(aside, ec);
   if (ec) throw InputError("--out: cannot make " + aside.string() + " (" + ec.message() + ")");
@@ -457,6 +462,9 @@ void check_diff_images_free(const fs::path& dir, const std::vector<std::string>&
       if (digest == "-") ours.insert(name);
       continue;
     }
+    // Read only a regular file: a FIFO put there would block the diff for good.
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::symlink_status(dir / name, ec))) continue;
     std::ifstream in(dir / name, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), {});
     if (report::content_digest(text) == digest) ours.insert(name);

@@ -112,6 +112,11 @@ class EarlierOutputs {
 EarlierOutputs set_aside_outputs(const std::filesystem::path& dir,
                                  const std::vector<std::string>& also = {});
 
+// InputError when one of `names` (a run's cases/ or logs/) in `dir` holds another output folder
+// (`diff --out RUN/cases/x`): a run would write into it, or replace it.
+void check_no_output_folder_inside(const std::filesystem::path& dir,
+                                   const std::vector<std::string>& names);
+
 // Puts back outputs a killed glrefcheck left aside in `dir` (see EarlierOutputs); nothing when
 // there are none.
 void restore_earlier_outputs(const std::filesystem::path& dir);

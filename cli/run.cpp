@@ -49,6 +49,8 @@ int cmd_run(const Options& given) {
       // with is that one, whose journal is there (the earlier ones go, as once it had GL); one
       // killed before it wrote a journal started nothing, and the earlier run comes back.
       settle_earlier_outputs(out);
+      // The rest of the run writes heatmaps into cases/ and logs into logs/, as a fresh run does.
+      check_no_output_folder_inside(out, run_output_names());
     }
     earlier = read_journal(out);
     o = earlier->options;

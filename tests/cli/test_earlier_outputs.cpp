@@ -5,6 +5,7 @@
 // output folder inside a run's, is not replaced. Real processes and real signals.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <filesystem>
@@ -352,4 +353,35 @@ TEST_F(EarlierOutputs, ASignalBeforeGlOrARefusalLeavesTheFolderAsItWas) {
             std::string::npos)
       << added.err;
   EXPECT_EQ(snapshot(f), campaign) << differences(campaign, snapshot(f));
+}
+
+// The fifth hostile campaign (issue 45): `run --resume` wrote a case's heatmaps into a diff's
+// folder the user had put in the run's cases/ (a fresh run refuses it), and a diff waited for
+// good on a FIFO put where one of the last diff's images was.
+TEST_F(EarlierOutputs, AResumeRefusesAnOutputFolderInsideAndADiffDoesNotWaitOnAFifo) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  std::thread run([&] {
+    glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" + out.string() +
+               "'" +
+               proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
+  });
+  const pid_t proxy = wait_for_pid(pidfile);
+  ASSERT_GT(proxy, 0);
+  ASSERT_EQ(kill(parent_of(proxy), SIGINT), 0);
+  run.join();
+  const fs::path inside = out / "cases/attr_tiny";
+  ASSERT_LE(glrefcheck("diff cases/face_on.json --out '" + inside.string() + "'").exit_code, 1);
+  const auto before = snapshot(inside);
+  Outcome o = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("holds another glrefcheck output folder"), std::string::npos) << o.err;
+  EXPECT_EQ(snapshot(inside), before) << differences(before, snapshot(inside));
+
+  fs::remove(inside / "depth_ratio.png");
+  ASSERT_EQ(mkfifo((inside / "depth_ratio.png").c_str(), 0600), 0);
+  o = glrefcheck("diff cases/face_on.json --out '" + inside.string() + "'", "timeout 60");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;  // 124: timeout's, a hang
+  EXPECT_NE(o.err.find("\"depth_ratio.png\" there but an image the last diff wrote"),
+            std::string::npos)
+      << o.err;
 }
