@@ -30,8 +30,7 @@ int cmd_diff(const Options& o) {
   // A file of the user's by an image's name is refused before anything changes. The last diff's
   // images go first, none of another case staying beside this one's; only once GL is up, so
   // that a diff whose driver cannot start leaves them.
-  check_diff_images_free(out, report::diff_image_names(c));
-  clear_diff_images(out);
+  clear_diff_images(out, report::diff_image_names(c));
   check::CheckOptions judged = check_options(o);
   judged.model = model.model;
   // diff is for looking at a case's heatmaps: its frames are kept whole, however large.

@@ -423,29 +423,6 @@ std::vector<std::pair<std::string, std::string>> diff_image_list(const fs::path&
 
 }  // namespace
 
-void clear_diff_images(const fs::path& dir) {
-  if (!is_marked(dir))
-    throw std::logic_error("clear_diff_images: " + dir.string() + " is not a marked folder");
-  for (const auto& [digest, name] : diff_image_list(dir)) {
-    const fs::path file(name);
-    // One plain name in the folder, as record_diff_images writes them: nothing else is ours.
-    if (name.empty() || file.has_parent_path() || name == "." || name == ".." ||
-        name == kMarkerFile || name == kLockFile || name == kDiffImagesFile)
-      continue;
-    std::error_code ec;
-    if (!fs::is_regular_file(fs::symlink_status(dir / file, ec))) continue;
-    // Written halfway ("-"), or whole and unchanged since: the last diff's. Changed: the user's.
-    if (digest != "-") {
-      std::ifstream in(dir / file, std::ios::binary);
-      const std::string text((std::istreambuf_iterator<char>(in)), {});
-      if (report::content_digest(text) != digest) continue;
-    }
-    fs::remove(dir / file, ec);
-  }
-  std::error_code ec;
-  fs::remove(dir / kDiffImagesFile, ec);
-}
-
 void record_diff_images(const fs::path& dir,
                         const std::vector<std::pair<fs::path, std::string>>& images) {
   std::string text = std::string(kDiffListHeader) + report::stamp_placeholder() + "\n";
@@ -455,21 +432,30 @@ void record_diff_images(const fs::path& dir,
   report::write_file_atomically(dir / kDiffImagesFile, report::stamped(text));
 }
 
-void check_diff_images_free(const fs::path& dir, const std::vector<std::string>& names) {
-  std::set<std::string> ours;  // the last diff's images, unchanged: clear_diff_images deletes them
+void clear_diff_images(const fs::path& dir, const std::vector<std::string>& next_images) {
+  if (!is_marked(dir))
+    throw std::logic_error("clear_diff_images: " + dir.string() + " is not a marked folder");
+  // The last diff's images: written halfway ("-"), or whole and unchanged since. A changed one,
+  // or anything else in the folder, is the user's.
+  std::set<std::string> ours;
   for (const auto& [digest, name] : diff_image_list(dir)) {
-    if (digest == "-" || name.find('/') != std::string::npos) {
-      if (digest == "-") ours.insert(name);
+    const fs::path file(name);
+    // One plain name in the folder, as record_diff_images writes them: nothing else is ours.
+    if (name.empty() || file.has_parent_path() || name == "." || name == ".." ||
+        name == kMarkerFile || name == kLockFile || name == kDiffImagesFile)
       continue;
-    }
     // Read only a regular file: a FIFO put there would block the diff for good.
     std::error_code ec;
-    if (!fs::is_regular_file(fs::symlink_status(dir / name, ec))) continue;
-    std::ifstream in(dir / name, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), {});
-    if (report::content_digest(text) == digest) ours.insert(name);
+    if (!fs::is_regular_file(fs::symlink_status(dir / file, ec))) continue;
+    if (digest != "-") {
+      std::ifstream in(dir / file, std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(in)), {});
+      if (report::content_digest(text) != digest) continue;
+    }
+    ours.insert(name);
   }
-  for (const std::string& name : names) {
+  // Refused before anything is deleted.
+  for (const std::string& name : next_images) {
     std::error_code ec;
     if (ours.count(name) || !fs::exists(fs::symlink_status(dir / name, ec))) continue;
     throw InputError("diff --out " + printable(dir.string(), 200) + ": expected no \"" +
@@ -477,6 +463,10 @@ void check_diff_images_free(const fs::path& dir, const std::vector<std::string>&
                      "\" there but an image the last diff wrote, got one of yours (or one changed "
                      "since): move it, or name another --out");
   }
+  std::error_code ec;
+  for (const std::string& name : ours)
+    fs::remove(dir / name, ec);
+  fs::remove(dir / kDiffImagesFile, ec);
 }
 
 }  // namespace glrc::cli

@@ -127,21 +127,20 @@ void settle_earlier_outputs(const std::filesystem::path& dir);
 
 // `diff`'s images in a marked folder, listed in kDiffImagesFile (stamped "glrefcheck diff"):
 // each image's name and the content digest it was written with (report::content_digest; "-"
-// while it was being written). clear_diff_images deletes the images the last diff wrote and
-// nobody changed since (and any it was still writing), before the next diff writes its own, so
-// that no image of another case stays beside this one's; an image someone changed stays, and
-// so does everything when the list itself was changed (or is an older glrefcheck's, without a
-// stamp). A name that is not a plain file name in the folder is never followed.
+// while it was being written). Before the next diff writes its own, clear_diff_images deletes
+// the images the last diff wrote and nobody changed since (and any it was still writing), so that
+// no image of another case stays beside this one's; an image someone changed stays, and so does
+// everything when the list itself was changed (or is an older glrefcheck's, without a stamp). A
+// name that is not a plain file name in the folder is never followed. InputError, before anything
+// is deleted, when one of `next_images` (the names the next diff may write,
+// report::diff_image_names) is in the folder and is not the last diff's: a file of the user's (a
+// screenshot, notes), or an image someone changed.
 inline constexpr const char* kDiffImagesFile = ".glrefcheck-diff-images";
-void clear_diff_images(const std::filesystem::path& dir);
+void clear_diff_images(const std::filesystem::path& dir,
+                       const std::vector<std::string>& next_images);
 // Writes the list: `images`, each a file in `dir` and its digest ("" while being written).
 void record_diff_images(const std::filesystem::path& dir,
                         const std::vector<std::pair<std::filesystem::path, std::string>>& images);
-// InputError, before anything is deleted or written, when one of `names` (the images the next
-// diff may write, report::diff_image_names) is in `dir` and is not an image the last diff wrote,
-// unchanged: a file of the user's (a screenshot, notes), or an image someone changed.
-void check_diff_images_free(const std::filesystem::path& dir,
-                            const std::vector<std::string>& names);
 
 // The run's own files and folders in a run folder, relative to it.
 const std::vector<std::string>& run_output_names();

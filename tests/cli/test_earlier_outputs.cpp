@@ -51,7 +51,18 @@ std::string differences(const std::map<std::string, std::string>& a,
   return text;
 }
 
-class EarlierOutputs : public glrc::test::TempDirTest {};
+class EarlierOutputs : public glrc::test::TempDirTest {
+ protected:
+  // A run of viewport_tiny and attr_tiny into `out`, its worker held before attr_tiny (its
+  // proxy's pid in `pidfile`): a live run holding its folder, until the test signals it.
+  static std::thread run_held_at_attr_tiny(const fs::path& out, const fs::path& pidfile) {
+    return std::thread([out, pidfile] {
+      glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" +
+                 out.string() + "'" +
+                 proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
+    });
+  }
+};
 
 // The hostile campaign's D1: `--driver zink` on OSMesa, or a wrapper that fails, deleted the
 // folder's earlier results before the first worker said GL would not start.
@@ -198,11 +209,7 @@ TEST_F(EarlierOutputs, ADiffStoppedHalfwayLeavesNoImageUnlisted) {
 // killed". Now it names the run that holds the folder, and writes nothing there.
 TEST_F(EarlierOutputs, ReportOnAFolderALiveRunHoldsNamesTheRun) {
   const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
-  std::thread run([&] {
-    glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" + out.string() +
-               "'" +
-               proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
-  });
+  std::thread run = run_held_at_attr_tiny(out, pidfile);
   const pid_t proxy = wait_for_pid(pidfile);
   ASSERT_GT(proxy, 0);
   const Outcome o = glrefcheck("report '" + out.string() + "'");
@@ -360,11 +367,7 @@ TEST_F(EarlierOutputs, ASignalBeforeGlOrARefusalLeavesTheFolderAsItWas) {
 // good on a FIFO put where one of the last diff's images was.
 TEST_F(EarlierOutputs, AResumeRefusesAnOutputFolderInsideAndADiffDoesNotWaitOnAFifo) {
   const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
-  std::thread run([&] {
-    glrefcheck("run cases/viewport_tiny.json cases/attr_tiny.json --jobs 1 --out '" + out.string() +
-               "'" +
-               proxied_workers("--stall-case attr_tiny --pidfile '" + pidfile.string() + "'"));
-  });
+  std::thread run = run_held_at_attr_tiny(out, pidfile);
   const pid_t proxy = wait_for_pid(pidfile);
   ASSERT_GT(proxy, 0);
   ASSERT_EQ(kill(parent_of(proxy), SIGINT), 0);
