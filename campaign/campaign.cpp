@@ -12,6 +12,20 @@
 #include <stdexcept>
 
 namespace glrc::campaign {
+
+const char* to_text(ShrinkEnd end) {
+  switch (end) {
+    case ShrinkEnd::not_asked:
+      return "not shrunk (--no-shrink)";
+    case ShrinkEnd::complete:
+      return "shrunk";
+    case ShrinkEnd::out_of_time:
+      return "shrunk until its time ran out";
+    case ShrinkEnd::interrupted:
+      return "shrinking stopped by a signal";
+  }
+  return "shrunk";
+}
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -106,6 +120,7 @@ CampaignResult run_campaign(const CampaignOptions& o, const Judge& judge,
         nf.minimal = c;
         nf.minimal_result = r;
         if (progress.found) progress.found(nf);
+        nf.shrink_end = o.shrink ? ShrinkEnd::interrupted : ShrinkEnd::not_asked;
         if (o.shrink && !stop()) {
           ShrinkOptions so = o.shrinking;
           so.stop = progress.stop;
@@ -114,10 +129,13 @@ CampaignResult run_campaign(const CampaignOptions& o, const Judge& judge,
           nf.minimal_result = s.result;
           nf.shrink_steps = s.steps, nf.shrink_checks = s.checks;
           nf.shrink_seconds = s.seconds, nf.shrink_complete = s.complete;
+          nf.shrink_end = s.complete ? ShrinkEnd::complete
+                          : stop()   ? ShrinkEnd::interrupted
+                                     : ShrinkEnd::out_of_time;
         }
         nf.minimal.name = failure_file_name(f).substr(0, failure_file_name(f).size() - 5);
-        nf.minimal.description = "Found by glrefcheck fuzz (" + replay_command(nf) +
-                                 ") and shrunk: " + describe(f, nf.minimal_result);
+        nf.minimal.description = "Found by glrefcheck fuzz (" + replay_command(nf) + "), " +
+                                 to_text(nf.shrink_end) + ": " + describe(f, nf.minimal_result);
         for (char& ch : nf.minimal.description)
           if (ch == '\n' || ch == '\r') ch = ' ';
         out.failures.push_back(std::move(nf));
@@ -306,6 +324,7 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   const uint64_t fraction = field(first, sources[0], "campaign", "fraction", T::number_unsigned);
   std::vector<bool> seen(fraction + 1, false);
   nlohmann::json merged = shards[0];
+  merged.erase("written_by");  // the shard's stamp: the merge's own comes when it is written
   CampaignStats total;
   nlohmann::json failures = nlohmann::json::array();
   std::vector<nlohmann::json> skipped;
@@ -335,8 +354,8 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         shards[k].value("stats", nlohmann::json::object()).value("interrupted", false))
       throw std::runtime_error(
           source + ": an interrupted campaign shard (stopped by a signal): run it again");
-    for (const char* key :
-         {"gl_renderer", "gl_version", "gl_library", "model", "tolerance", "backend", "driver"})
+    for (const char* key : {"gl_renderer", "gl_version", "gl_library", "mesa_prefix", "model",
+                            "tolerance", "subpixel_bits", "backend", "driver"})
       if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +

@@ -36,6 +36,14 @@ struct CampaignOptions {
   ShrinkOptions shrinking;
 };
 
+// How a failure's shrinking ended: not asked for (--no-shrink), complete (no smaller case fails
+// alike), out of time (CampaignOptions::shrinking's budget), or stopped by SIGINT or SIGTERM (or
+// never begun, the signal having come first).
+enum class ShrinkEnd { not_asked, complete, out_of_time, interrupted };
+// "not shrunk (--no-shrink)", "shrunk", "shrunk until its time ran out", "shrinking stopped by a
+// signal": how the minimal case's description and fuzz's line say it.
+const char* to_text(ShrinkEnd end);
+
 // One distinct failure: the first case that showed it, shrunk.
 struct FoundFailure {
   Failure failure;
@@ -47,6 +55,7 @@ struct FoundFailure {
   int shrink_steps = 0, shrink_checks = 0;
   double shrink_seconds = 0;
   bool shrink_complete = false;
+  ShrinkEnd shrink_end = ShrinkEnd::not_asked;
   double found_after = 0;          // seconds into the campaign when its first case was checked
   bool known = false;              // listed in the campaign's baseline (set by whoever has one)
   uint64_t cases = 0;              // cases of the campaign showing it

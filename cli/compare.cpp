@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/output_dir.hpp"
+#include "cli/run_support.hpp"
 #include "cli/session.hpp"
 #include "core/text.hpp"
 #include "report/html.hpp"
@@ -18,20 +19,6 @@
 
 namespace glrc::cli {
 namespace {
-
-// A finite number above `lower` (or at it, when `inclusive`): NaN would compare false
-// everywhere and flag nothing, an infinity would flag nothing or everything.
-report::RunResults read_run(const std::string& path) {
-  try {
-    return report::read_results_json(path);
-  } catch (const std::runtime_error& e) {
-    // One line on stderr, whatever the JSON parser's message holds.
-    std::string message = e.what();
-    for (char& ch : message)
-      if (ch == '\n' || ch == '\r') ch = ' ';
-    throw InputError(message);
-  }
-}
 
 // Output files may name folders that do not exist yet (CI artifact folders, say).
 void make_parent(const std::string& file) {
@@ -44,13 +31,6 @@ void make_parent(const std::string& file) {
 void write_text(const std::string& file, const std::string& text) {
   make_parent(file);
   report::write_file_atomically(file, text);
-}
-
-// The comparison's JSON with its stamp as a first field (report/stamp.hpp).
-std::string stamped_json(const std::string& json) {
-  if (json.rfind("{\n", 0) != 0) throw std::logic_error("comparison_json: expected an object");
-  return report::stamped("{\n  \"written_by\": \"glrefcheck compare " +
-                         report::stamp_placeholder() + "\",\n" + json.substr(2));
 }
 
 // The comparison's Markdown under a comment holding its stamp (no Markdown renderer shows it).
@@ -89,8 +69,8 @@ CLI::App* add_compare_command(CLI::App& app, CompareOptions& o) {
 }
 
 int cmd_compare(const CompareOptions& o) {
-  const report::RunResults base = read_run(o.base);
-  const report::RunResults current = read_run(o.current);
+  const report::RunResults base = read_run_results(o.base, "compare");
+  const report::RunResults current = read_run_results(o.current, "compare");
   // Two outputs into one file would leave only the last.
   const std::vector<std::pair<const char*, const std::string*>> outputs = {
       {"--json", &o.json}, {"--markdown", &o.markdown}, {"--html", &o.html}};
@@ -113,7 +93,8 @@ int cmd_compare(const CompareOptions& o) {
   if (!o.html.empty()) check_replaceable(o.html, "--html", "compare");
   const report::RunComparison c = report::compare_runs(base, current, o.factor, o.min_ulps);
   fmt::print("{}", report::comparison_text(c));
-  if (!o.json.empty()) write_text(o.json, stamped_json(report::comparison_json(c)));
+  if (!o.json.empty())
+    write_text(o.json, report::stamped_json("compare", report::comparison_json(c)));
   if (!o.markdown.empty()) write_text(o.markdown, stamped_markdown(report::comparison_markdown(c)));
   if (!o.html.empty()) {
     make_parent(o.html);

@@ -74,11 +74,7 @@ std::pair<uint64_t, uint64_t> parse_replay(const std::string& text) {
 // A case file with its stamp in "written_by" (report/stamp.hpp; the case format ignores the
 // field): --emit replaces only a file fuzz wrote that nobody edited since.
 void write_case_file(const std::filesystem::path& file, const Case& c) {
-  const std::string text = casefile::to_case_file(c);
-  if (text.rfind("{\n", 0) != 0) throw std::logic_error("to_case_file: expected an object");
-  report::write_file_atomically(
-      file, report::stamped("{\n  \"written_by\": \"glrefcheck fuzz " +
-                            report::stamp_placeholder() + "\",\n" + text.substr(2)));
+  report::write_file_atomically(file, report::stamped_json("fuzz", casefile::to_case_file(c)));
 }
 
 }  // namespace
@@ -100,7 +96,9 @@ std::set<std::string> listed_failure_files(const std::filesystem::path& out) {
 }
 
 void write_campaign_files(const std::filesystem::path& out, const nlohmann::json& doc) {
-  report::write_file_atomically(out / "results.json", doc.dump(2) + "\n");
+  // Stamped, so that merge notices a shard's results edited by hand (a failure taken out).
+  report::write_file_atomically(out / "results.json",
+                                report::stamped_json("fuzz", doc.dump(2) + "\n"));
   // deqp-runner's format, one line per distinct failure (its minimal case's name).
   std::string csv;
   for (const nlohmann::json& f : doc["failures"]) {
@@ -293,13 +291,12 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
     minimal_results.push_back(std::move(again));
     clear_line();
     fmt::print(
-        "  {} to {} triangle{}, {} varying{} in {:.1f} s ({} steps, {} checks{}), {:.1f} s "
-        "into the campaign: {}\n",
-        co.shrink ? "shrunk" : "kept", nf.minimal.triangles.size(),
+        "  {}: {} triangle{}, {} varying{} ({:.1f} s, {} steps, {} checks), {:.1f} s into the "
+        "campaign: {}\n",
+        campaign::to_text(nf.shrink_end), nf.minimal.triangles.size(),
         nf.minimal.triangles.size() == 1 ? "" : "s", nf.minimal.varyings.size(),
         nf.minimal.varyings.size() == 1 ? "" : "s", nf.shrink_seconds, nf.shrink_steps,
-        nf.shrink_checks, nf.shrink_complete || !co.shrink ? "" : ", out of time",
-        nf.found_after + nf.shrink_seconds, shown_path(file.string()));
+        nf.shrink_checks, nf.found_after + nf.shrink_seconds, shown_path(file.string()));
     std::fflush(stdout);
   };
   campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
@@ -308,7 +305,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   // as it was (`earlier`, as it goes) rather than a campaign of no cases over it.
   if (!gl_started && result.stats.interrupted && caught_signal()) {
     fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
-               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT", o.out);
+               signal_name(caught_signal()), o.out);
     return 128 + caught_signal();
   }
   size_t new_failures = 0;
@@ -345,8 +342,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
       st.skipped ? fmt::format("; {} skipped (beyond GL's specified range)", st.skipped) : "");
   if (st.interrupted)
     fmt::print("interrupted by {} after {}: its results hold the cases checked\n",
-               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT",
-               report::count_text(st.cases, "case", "cases"));
+               signal_name(caught_signal()), report::count_text(st.cases, "case", "cases"));
   fmt::print("results in {}\n", shown_path(out.string()));
   if (st.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
   return new_failures == 0 ? 0 : 1;

@@ -41,4 +41,12 @@ int caught_signal() {
   return int(g_signal);
 }
 
+const char* signal_name(int sig) {
+  return sig == SIGTERM ? "SIGTERM" : "SIGINT";
+}
+
+void stop_if_interrupted() {
+  if (g_signal) throw Interrupted{int(g_signal)};
+}
+
 }  // namespace glrc::cli

@@ -1,5 +1,6 @@
-// SIGINT and SIGTERM during `run`: the handler only records the signal and writes a byte to a
-// pipe the worker pool polls, so the run stops between two results and writes what finished.
+// SIGINT and SIGTERM during `run`, `fuzz` and `merge`: the handler only records the signal and
+// writes a byte to a pipe the worker pool polls, so the run stops between two results and writes
+// what finished; a merge stops between two steps and gives the folder's earlier results back.
 #pragma once
 
 namespace glrc::cli {
@@ -9,5 +10,14 @@ namespace glrc::cli {
 int catch_interrupts();
 // The first signal caught (SIGINT or SIGTERM), or 0.
 int caught_signal();
+// "SIGINT" or "SIGTERM".
+const char* signal_name(int sig);
+
+// Thrown by stop_if_interrupted once a signal was caught: the destructors on its way out give
+// back whatever was set aside (EarlierOutputs), and main exits 128 + `signal`.
+struct Interrupted {
+  int signal;
+};
+void stop_if_interrupted();
 
 }  // namespace glrc::cli

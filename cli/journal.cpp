@@ -65,6 +65,26 @@ Options all_options_from_json(const json& j, const std::string& where) {
   return o;
 }
 
+// Each line ends in its own digest, `,"digest":"sha256:<hex>"}`: the SHA-256 of the line as it
+// would be without that field. A line a person edited (a verdict flipped, an option changed,
+// a model's rule) no longer matches it, and --resume refuses the journal instead of mixing the
+// edit into the run's results.
+constexpr std::string_view kDigestField = ",\"digest\":\"";
+
+std::string with_digest(std::string line) {
+  const std::string digest = report::content_digest(line);
+  line.pop_back();  // the object's closing brace, which follows the digest instead
+  return line + std::string(kDigestField) + digest + "\"}";
+}
+
+bool digest_holds(std::string_view line) {
+  const size_t at = line.rfind(kDigestField);
+  if (at == std::string_view::npos || !line.ends_with("\"}")) return false;
+  const size_t from = at + kDigestField.size();
+  return report::content_digest(std::string(line.substr(0, at)) + "}") ==
+         line.substr(from, line.size() - 2 - from);
+}
+
 int open_journal(const fs::path& file, int flags) {
   const int fd = open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC | flags, 0644);
   if (fd < 0)
@@ -78,7 +98,7 @@ Journal Journal::start(const fs::path& dir, const Options& o, const std::vector<
                        const std::vector<std::string>& file_digests) {
   const fs::path file = dir / kJournalFile;
   Journal j(open_journal(file, O_CREAT | O_TRUNC), file);
-  j.append(json{{"glrefcheck_journal", 1},
+  j.append(json{{"glrefcheck_journal", kJournalVersion},
                 {"options", all_options_json(o)},
                 {"files", files},
                 {"file_digests", file_digests}}
@@ -122,7 +142,7 @@ void Journal::record_heatmaps_written(size_t index) {
 }
 
 void Journal::append(std::string line) {
-  line += '\n';
+  line = with_digest(std::move(line)) + '\n';
   // One write per line (O_APPEND): a kill leaves whole lines, and at worst the last one cut.
   for (size_t done = 0; done < line.size();) {
     const ssize_t n = write(fd_, line.data() + done, line.size() - done);
@@ -170,8 +190,15 @@ JournalContents read_journal(const fs::path& dir) {
       }
       if (!j.is_object()) throw InputError(where + ": expected a journal line of glrefcheck's");
       if (n == 1) {
-        if (j.value("glrefcheck_journal", 0) != 1)
-          throw InputError(where + ": expected a glrefcheck run journal (version 1)");
+        if (const json version = j.value("glrefcheck_journal", json()); version != kJournalVersion)
+          throw InputError(
+              where +
+              fmt::format(": expected a run journal of this glrefcheck (version {}), got ",
+                          kJournalVersion) +
+              (version.is_number() ? "version " + version.dump() +
+                                         ": the run began under another glrefcheck; start it "
+                                         "again without --resume"
+                                   : "no glrefcheck_journal version"));
         if (!j.contains("options")) throw InputError(where + ": expected the run's options");
         c.options = all_options_from_json(j["options"], where);
         c.files = option_fields::texts(option_fields::reader(where), j, "", "files");
@@ -201,6 +228,11 @@ JournalContents read_journal(const fs::path& dir) {
         // A later line for a case is its heatmaps lost (the same verdict, its message saying
         // so), or the case checked again by a resume because its heatmaps never came; one with
         // another name or verdict otherwise is another run's, or a hand's: refused.
+        if (j.contains("heatmaps") && j["heatmaps"] != "follow")
+          throw InputError(where +
+                           ": expected \"heatmaps\": \"follow\" or none in a line with a "
+                           "result, got " +
+                           printable(j["heatmaps"].dump(), 40));
         const bool checked_again = heatmaps_due.erase(index) > 0;
         if (j.value("heatmaps", "") == "follow") heatmaps_due.insert(index);
         if (const auto earlier = c.results.find(index);
@@ -216,6 +248,11 @@ JournalContents read_journal(const fs::path& dir) {
         c.results[index] = std::move(r);
         c.elapsed = std::max(c.elapsed, j.at("at").get<double>());
       }
+      // Last, so that a malformed field is named first.
+      if (!digest_holds(line))
+        throw InputError(where +
+                         ": expected the line as glrefcheck wrote it, got one its digest no "
+                         "longer matches (edited since): start a new run");
     } catch (const InputError&) {
       throw;
     } catch (const json::exception& e) {

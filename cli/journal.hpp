@@ -2,7 +2,10 @@
 // each line handed to the kernel with one write(2) as it happens, so that a run killed at any
 // moment (kill -9 included) leaves every finished case on disk and `run --resume` can go on.
 //
-// Line 1: {"glrefcheck_journal": 1, "options": {every option of the run}, "files": [the case
+// Every line ends in "digest": the SHA-256 of the line without it, so that --resume refuses a
+// journal edited by hand (version 2; version 1 had none and is refused).
+//
+// Line 1: {"glrefcheck_journal": 2, "options": {every option of the run}, "files": [the case
 // files, after --filter, before sharding, in order], "file_digests": [each one's content,
 // report::content_digest]}. Once GL is known: {"run": results.json's
 // "run", "model": {...}, "model_source": "..."}, so a resumed run is judged by the same model.
@@ -26,6 +29,8 @@
 #include "core/result.hpp"
 
 namespace glrc::cli {
+
+inline constexpr int kJournalVersion = 2;
 
 struct JournalContents {
   Options options;

@@ -21,6 +21,7 @@
 #include "cli/export.hpp"
 #include "cli/fuzz.hpp"
 #include "cli/identify.hpp"
+#include "cli/interrupts.hpp"
 #include "cli/mesa_prefix.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run.hpp"
@@ -319,6 +320,11 @@ int main_impl(int argc, char** argv) {
     if (*selftest) return cmd_selftest(o);
     if (*identify) return cmd_identify(o);
     return cmd_list(o);
+  } catch (const Interrupted& e) {
+    fmt::print(stderr,
+               "glrefcheck: interrupted by {}: the output folder holds what it held before\n",
+               signal_name(e.signal));
+    return 128 + e.signal;
   } catch (const InputError& e) {
     fmt::print(stderr, "glrefcheck: {}\n", e.what());
     return 2;

@@ -10,6 +10,7 @@
 
 #include "campaign/campaign.hpp"
 #include "cli/fuzz.hpp"
+#include "cli/interrupts.hpp"
 #include "cli/journal.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/run.hpp"
@@ -17,22 +18,30 @@
 #include "report/html.hpp"
 #include "report/merge.hpp"
 #include "report/report.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 
 namespace {
 
-// The results.json of a shard folder (or the file itself), parsed; nullopt when it cannot be
-// read as JSON (read_results_json then says why in its words).
-std::optional<nlohmann::json> raw_results(const std::string& dir) {
+// The results.json of a shard folder (or the file itself), parsed, with its stamp; nullopt when
+// it cannot be read as JSON (read_results_json then says why in its words).
+struct RawResults {
+  nlohmann::json doc;
+  report::JsonStamp stamp;
+};
+std::optional<RawResults> raw_results(const std::string& dir) {
   const std::filesystem::path file = report::run_folder(dir) / "results.json";
   // Opened only when a regular file: a FIFO there would block the merge for good.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return std::nullopt;
   std::ifstream in(file, std::ios::binary);
   if (!in) return std::nullopt;
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
   try {
-    return nlohmann::json::parse(in);
+    nlohmann::json doc = nlohmann::json::parse(text);
+    const report::JsonStamp stamp = report::json_stamp(doc.contains("written_by"), text);
+    return RawResults{std::move(doc), stamp};
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
   }
@@ -74,13 +83,15 @@ void check_copyable(const std::filesystem::path& dir) {
 
 int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir) {
   std::vector<nlohmann::json> shards;
+  std::vector<report::JsonStamp> stamps;
   for (const auto& d : dirs) {
     auto j = raw_results(d);
-    if (!j || !campaign::is_campaign_json(*j))
+    if (!j || !campaign::is_campaign_json(j->doc))
       throw InputError("merge: " + d + ": expected the results of a fuzz campaign shard, as the " +
                        "first shard holds, got " +
                        (j ? "a run's results" : "no readable results.json"));
-    shards.push_back(std::move(*j));
+    shards.push_back(std::move(j->doc));
+    stamps.push_back(j->stamp);
   }
   std::vector<size_t> from;
   nlohmann::json merged;
@@ -89,6 +100,12 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   } catch (const std::runtime_error& e) {
     throw InputError(std::string("merge: ") + e.what());
   }
+  // After each field's own check, as read_results_json does: a shard stamped and edited since
+  // (a failure taken out) is no campaign's results.
+  for (size_t k = 0; k < dirs.size(); ++k)
+    if (stamps[k] == report::JsonStamp::edited)
+      throw InputError("merge: " + report::edited_stamp_message(
+                                       (report::run_folder(dirs[k]) / "results.json").string()));
   check_apart(dirs, out_dir);
   // Everything to copy is checked before the folder's earlier merge is cleared: a failure moved
   // out of its shard must not cost the last good merge.
@@ -133,6 +150,7 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
       minimal.push_back(
           report::case_result_from_json(f["result"].dump(), (shard / "results.json").string()));
     new_failures += !f.value("known", false);
+    stop_if_interrupted();
   }
   write_campaign_files(out, merged);
   RunInfo page;
@@ -153,16 +171,15 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
 }
 
 int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, bool html) {
+  // SIGINT or SIGTERM stops the merge between two steps (stop_if_interrupted), and the folder's
+  // earlier merge comes back, rather than staying aside until the next command there.
+  catch_interrupts();
   if (!dirs.empty())
-    if (const auto first = raw_results(dirs[0]); first && campaign::is_campaign_json(*first))
+    if (const auto first = raw_results(dirs[0]); first && campaign::is_campaign_json(first->doc))
       return cmd_merge_campaign(dirs, out_dir);
   std::vector<report::RunResults> shards;
   for (const auto& d : dirs) {
-    try {
-      shards.push_back(report::read_results_json(d));
-    } catch (const std::runtime_error& e) {
-      throw InputError(std::string("merge: ") + e.what());
-    }
+    shards.push_back(read_run_results(d, "merge"));
   }
   report::RunResults merged;
   try {
@@ -187,6 +204,7 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
       std::filesystem::copy(images, out / "cases",
                             std::filesystem::copy_options::recursive |
                                 std::filesystem::copy_options::overwrite_existing);
+    stop_if_interrupted();
   }
   fmt::print("merged {} shards: {}\n", shards.size(), report::run_summary(list, info.seconds));
   write_outputs(out, info, list, html);
@@ -209,17 +227,7 @@ int cmd_report(const std::string& dir, const std::string& file) {
     // A run killed before it had GL left the folder's results aside: they are the folder's.
     restore_earlier_outputs(run_dir);
   }
-  std::error_code ec;
-  if (std::filesystem::is_directory(dir, ec) &&
-      !std::filesystem::exists(std::filesystem::path(dir) / "results.json", ec) &&
-      std::filesystem::exists(std::filesystem::path(dir) / kJournalFile, ec))
-    throw InputError("report: " + dir + " holds no results.json but a " + kJournalFile +
-                     ": the run was killed; `glrefcheck run --resume " + dir + "` finishes it");
-  try {
-    results = report::read_results_json(dir);
-  } catch (const std::runtime_error& e) {
-    throw InputError(std::string("report: ") + e.what());
-  }
+  results = read_run_results(dir, "report");
   const std::filesystem::path html =
       file.empty() ? run_dir / "report.html" : std::filesystem::path(file);
   // Only a page glrefcheck wrote (a run's, a merge's, a campaign's, report's: each stamps it

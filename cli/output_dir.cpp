@@ -167,6 +167,11 @@ OutputFolder output_folder(const std::string& out, const std::string& option) {
           "{}: expected a new or empty folder, or one glrefcheck made (it holds a {} file), got "
           "\"{}\"",
           option, kMarkerFile, shown);
+      if (fs::exists(fs::symlink_status(dir / kMarkerFile, ec)))
+        throw InputError(fmt::format(
+            "{}, whose {} is not glrefcheck's marker (its first line edited, or made by hand): "
+            "glrefcheck replaces nothing it did not mark; delete the folder or name another",
+            expected, kMarkerFile));
       if (looks_like_glrefcheck_output(dir))
         throw InputError(expected +
                          ", which holds glrefcheck's results but no marker (an older glrefcheck's, "

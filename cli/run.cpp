@@ -108,6 +108,9 @@ int cmd_run(const Options& given) {
     }
     judged_by["case_files"] = report::content_digest(suite);
   }
+  // A case past --timeout is a Timeout: shards of two timeouts would merge into a run no single
+  // --timeout gives.
+  judged_by["timeout"] = fmt::format("{}", o.timeout);
   std::optional<MesaPrefix> prefix;
   if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
@@ -277,7 +280,7 @@ int cmd_run(const Options& given) {
   // back as they were (earlier_outputs, as it goes) rather than a run of no cases over them.
   if (earlier_outputs && !gl_started && !to_check.empty() && caught_signal()) {
     fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
-               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT", o.out);
+               signal_name(caught_signal()), o.out);
     return 128 + caught_signal();
   }
 
@@ -289,7 +292,7 @@ int cmd_run(const Options& given) {
   fmt::print("\n{}\n", report::run_summary(list, info.seconds));
   if (info.interrupted)
     fmt::print("interrupted by {} after {} of {}: `glrefcheck run --resume {}` checks the rest\n",
-               caught_signal() == SIGTERM ? "SIGTERM" : "SIGINT", list.size(),
+               signal_name(caught_signal()), list.size(),
                report::count_text(cases.size(), "case", "cases"), o.out);
   write_outputs(out, info, list, o.html);
   if (earlier_outputs) earlier_outputs->keep_new();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 
+#include "cli/output_dir.hpp"
 #include "cli/process.hpp"
 #include "core/text.hpp"
 #include "ref/tiles.hpp"
@@ -114,6 +115,38 @@ WorkerSettings worker_settings(Options& o, const std::filesystem::path& out, int
   s.environment.push_back(huge_page_malloc_tunable());
   s.environment.push_back(huge_page_jemalloc_conf());
   return s;
+}
+
+report::RunResults read_run_results(const std::string& path, const std::string& command) {
+  // A run folder without its results.json: what left it so says what to do.
+  std::error_code ec;
+  const std::filesystem::path dir(path);
+  if (std::filesystem::is_directory(dir, ec) &&
+      !std::filesystem::exists(std::filesystem::symlink_status(dir / "results.json", ec))) {
+    if (std::filesystem::exists(dir / kEarlierFolder, ec))
+      throw InputError(command + ": " + printable(path, 200) +
+                       " holds no results.json: a glrefcheck stopped before GL started set "
+                       "them aside (" +
+                       kEarlierFolder + "/); `glrefcheck report " + printable(path, 200) +
+                       "` puts them back");
+    if (std::filesystem::exists(dir / kJournalFile, ec))
+      throw InputError(command + ": " + printable(path, 200) + " holds no results.json but a " +
+                       kJournalFile + ": the run was killed; `glrefcheck run --resume " +
+                       printable(path, 200) + "` finishes it");
+  }
+  report::RunResults results;
+  try {
+    results = report::read_results_json(path);
+  } catch (const std::runtime_error& e) {
+    // One line on stderr, whatever the JSON parser's message holds.
+    throw InputError(command + ": " + printable(e.what(), 2000));
+  }
+  if (results.stamp == report::JsonStamp::none)
+    fmt::print(stderr,
+               "note: {}: its results.json holds no written_by stamp (an older glrefcheck's, or "
+               "made by hand): read as it stands\n",
+               printable(path, 200));
+  return results;
 }
 
 }  // namespace glrc::cli

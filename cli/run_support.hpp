@@ -13,6 +13,7 @@
 #include "cli/session.hpp"
 #include "cli/workers.hpp"
 #include "core/result.hpp"
+#include "report/report.hpp"
 
 namespace glrc::cli {
 
@@ -57,6 +58,12 @@ WorkerSettings worker_settings(Options& o, const std::filesystem::path& out, int
 // and the line saying so.
 void write_outputs(const std::filesystem::path& out, const RunInfo& info,
                    const std::vector<CaseResult>& results, bool html);
+
+// A run's results.json (or its folder) read back for `command` (compare, merge, report): its
+// problems one line (InputError, "<command>: ..."), and a note on stderr when it holds no stamp
+// (an older glrefcheck's, or made by hand: read as it stands, which a stamped one that a
+// person edited is not).
+report::RunResults read_run_results(const std::string& path, const std::string& command);
 
 // A path under the working folder as a relative one, so logs and READMEs stay short.
 std::string shown_path(const std::string& path);

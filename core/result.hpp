@@ -171,9 +171,9 @@ struct RunInfo {
   bool interrupted = false;
   // Everything besides GL, the model and the tolerance that changes a verdict, by name (cli's
   // verdict_inputs: "strict_coverage", "varying_ulps", "depth_ulps", "case_files" (run: the
-  // SHA-256 of the suite's case names and contents), and "baseline", "flakes",
-  // "skips" as the SHA-256 of the file read, "" where not given): shards that differ in one
-  // judged alike would merge into results no single run gives. Empty in results before it.
+  // SHA-256 of the suite's case names and contents), "timeout" (--timeout), and "baseline",
+  // "flakes", "skips" as the SHA-256 of the file read, "" where not given): shards that differ in
+  // one judged alike would merge into results no single run gives. Empty in results before it.
   std::map<std::string, std::string> verdict_inputs;
 };
 

@@ -45,6 +45,8 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
           {"gl_version", "the driver: --mesa", &r.gl_version, &first.gl_version},
           {"gl_library", "the driver: --mesa", &r.gl_library, &first.gl_library},
           {"backend", "--backend", &r.backend, &first.backend},
+          {"driver", "--driver", &r.driver, &first.driver},
+          {"mesa_prefix", "--mesa", &r.mesa_prefix, &first.mesa_prefix},
           {"model", "--model, --subpixel-bits, --planes, --tie-break", &r.model, &first.model},
           {"tolerance", "--tolerance, --spec-subpixel-bits", &r.tolerance, &first.tolerance}})
       if (*value != *value0)
@@ -53,6 +55,12 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
             "by "
             "{}): run the shards with the same options",
             names[k], field, printable(*value, 100), names[0], printable(*value0, 100), option));
+    // GL_SUBPIXEL_BITS as the driver reported it: the spec tolerance derives from it.
+    if (r.subpixel_bits != first.subpixel_bits)
+      throw std::runtime_error(fmt::format(
+          "merge: {}: expected shards judged alike, got run.subpixel_bits {} where {} has {} "
+          "(reported by the driver): run the shards on the same GL",
+          names[k], r.subpixel_bits, names[0], first.subpixel_bits));
     if (const auto d = verdict_input_difference(r.verdict_inputs, first.verdict_inputs))
       throw std::runtime_error(fmt::format(
           "merge: {}: expected shards judged alike, got {} {} where {} has {}: run the shards "

@@ -10,6 +10,7 @@
 #include "core/case.hpp"
 #include "core/frame.hpp"
 #include "core/result.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::report {
 
@@ -17,9 +18,12 @@ void write_results_json(const std::filesystem::path& file, const RunInfo& run,
                         const std::vector<CaseResult>& results);
 // A results.json read back (or a folder holding one). Throws std::runtime_error naming the file
 // and the field on anything malformed.
+// A file stamped and edited since is refused (its "written_by", report/stamp.hpp); `stamp`
+// says whether it held one (none: an older glrefcheck's results, or made by hand).
 struct RunResults {
   RunInfo run;
   std::vector<CaseResult> cases;
+  JsonStamp stamp = JsonStamp::none;
 };
 RunResults read_results_json(const std::filesystem::path& file_or_dir);
 // The run folder of such an argument (where its cases/<name>/ heatmaps are): the folder itself,

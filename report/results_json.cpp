@@ -1,6 +1,8 @@
 // results.json: everything a CaseResult holds, for scripts and later comparison between runs.
 // The types' own JSON is report/json_types.cpp; this is the files and lines made of them.
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -84,7 +86,32 @@ RunInfo run_info_from_json(const std::string& text, const std::string& source) {
   return run;
 }
 
+namespace {
+
+// SIGINT and SIGTERM held back on this thread while a temporary file exists: delivered once it
+// is renamed or removed, so that Ctrl-C in the middle of a large write (export's reproducer of
+// megabytes) leaves the old file or the new one, and no temporary beside them.
+class InterruptsHeld {
+ public:
+  InterruptsHeld() {
+    sigset_t held;
+    sigemptyset(&held);
+    sigaddset(&held, SIGINT);
+    sigaddset(&held, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &held, &before_);
+  }
+  ~InterruptsHeld() { pthread_sigmask(SIG_SETMASK, &before_, nullptr); }
+  InterruptsHeld(const InterruptsHeld&) = delete;
+  InterruptsHeld& operator=(const InterruptsHeld&) = delete;
+
+ private:
+  sigset_t before_;
+};
+
+}  // namespace
+
 void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
+  const InterruptsHeld held;
   const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
   // Dot-named, so nobody takes a leftover for a result; the pid keeps two writers apart.
   // Appended piece by piece: GCC 12's Release inlining of `"." + string` reports a false
@@ -141,14 +168,15 @@ RunResults read_results_json(const std::filesystem::path& file) {
     throw std::runtime_error(file.string() +
                              ": expected a results.json (or a folder holding one), got something "
                              "other than a regular file (not read)");
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   if (!in)
     throw std::runtime_error(
         file.string() + ": expected a results.json (or a folder holding one)" +
         (std::filesystem::exists(file, ec) ? ", cannot read it" : ", no such file"));
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
   json doc;
   try {
-    doc = json::parse(in);
+    doc = json::parse(text);
   } catch (const json::parse_error& e) {
     throw std::runtime_error(file.string() + ": expected JSON, got " + parse_error_text(e));
   }
@@ -183,6 +211,10 @@ RunResults read_results_json(const std::filesystem::path& file) {
     r.fail("run.total_cases",
            "at least the cases results.json holds (" + std::to_string(out.cases.size()) + ")",
            std::to_string(out.run.total_cases));
+  // Last, so that a malformed field is named first: a results.json that glrefcheck stamped and
+  // a person then edited (a verdict flipped, a case renamed) is no run's results.
+  out.stamp = json_stamp(doc.contains("written_by"), text);
+  if (out.stamp == JsonStamp::edited) throw std::runtime_error(edited_stamp_message(file.string()));
   return out;
 }
 
@@ -192,7 +224,9 @@ void write_results_json(const std::filesystem::path& file, const RunInfo& run,
 
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   // Case names and messages come from files and drivers; replace bad UTF-8 rather than throw.
-  write_file_atomically(file, doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
+  // Stamped (report/stamp.hpp): whoever reads it back notices a hand's edit.
+  write_file_atomically(
+      file, stamped_json("run", doc.dump(2, ' ', false, json::error_handler_t::replace) + "\n"));
 }
 
 }  // namespace glrc::report

@@ -60,6 +60,24 @@ std::string stamp_writer(std::string_view text) {
   return std::string(before.substr(space + 1));
 }
 
+std::string stamped_json(std::string_view writer, const std::string& json_text) {
+  if (!json_text.starts_with("{\n"))
+    throw std::logic_error("stamped_json: expected an object as dump(2) writes it");
+  return stamped("{\n  \"written_by\": \"glrefcheck " + std::string(writer) + " " +
+                 stamp_placeholder() + "\",\n" + json_text.substr(2));
+}
+
+JsonStamp json_stamp(bool has_written_by, std::string_view text) {
+  if (!has_written_by) return JsonStamp::none;
+  return stamp_intact(text) ? JsonStamp::intact : JsonStamp::edited;
+}
+
+std::string edited_stamp_message(std::string_view source) {
+  return std::string(source) +
+         ": written_by: expected the stamp glrefcheck wrote to match the file's text (remove the "
+         "field to read the file as it stands), got a file edited since glrefcheck wrote it";
+}
+
 std::string content_digest(std::string_view text) {
   return "sha256:" + sha256_hex(text);
 }

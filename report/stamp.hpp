@@ -28,6 +28,20 @@ bool stamp_intact(std::string_view text);
 // another's (a case fuzz emitted by compare's JSON). Empty when the text holds no such word.
 std::string stamp_writer(std::string_view text);
 
+// `json_text` (an object as nlohmann's dump(2) writes it: "{\n  ...") with "written_by":
+// "glrefcheck <writer> <stamp>" as its first field, stamped: results.json, a campaign's
+// results.json, an emitted case, compare's JSON. Throws std::logic_error on other text.
+std::string stamped_json(std::string_view writer, const std::string& json_text);
+
+// What a JSON file glrefcheck reads back says of its own stamp: none (it holds no "written_by",
+// as files of a glrefcheck before stamps, or made by hand), intact, or edited (its text no
+// longer matches it: a person changed a verdict, a name, a field). `has_written_by`: whether
+// the parsed document holds the field; `text`: the file's text as read.
+enum class JsonStamp { none, intact, edited };
+JsonStamp json_stamp(bool has_written_by, std::string_view text);
+// The one line for an edited one: "<source>: written_by: expected ..., got ...".
+std::string edited_stamp_message(std::string_view source);
+
 // "sha256:" and the SHA-256 (hex) of `text`: a file's content named in results (RunInfo's
 // verdict_inputs) and in the run journal, to tell whether two runs read the same file.
 std::string content_digest(std::string_view text);

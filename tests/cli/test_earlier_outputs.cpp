@@ -388,3 +388,44 @@ TEST_F(EarlierOutputs, AResumeRefusesAnOutputFolderInsideAndADiffDoesNotWaitOnAF
             std::string::npos)
       << o.err;
 }
+
+// The sixth hostile campaign (issue 45): SIGINT in the middle of a merge killed it with the
+// folder's earlier merge set aside, there until the next command claimed the folder. A merge
+// now stops between two steps and gives it back. Real signals at several moments: each ends in
+// the new merge (exit 0) or in the earlier one whole (exit 130, said so), never in between.
+TEST_F(EarlierOutputs, AMergeStoppedBySigintGivesTheEarlierMergeBack) {
+  const fs::path a = dir_ / "a", b = dir_ / "b", out = dir_ / "merged";
+  const std::string shard =
+      "run cases/face_on.json cases/viewport_tiny.json --jobs 1 --fraction 2 ";
+  ASSERT_EQ(glrefcheck(shard + "--fraction-start 1 --out '" + a.string() + "'").exit_code, 0);
+  ASSERT_EQ(glrefcheck(shard + "--fraction-start 2 --out '" + b.string() + "'").exit_code, 0);
+  const std::string merge =
+      "merge '" + a.string() + "' '" + b.string() + "' --out '" + out.string() + "'";
+  ASSERT_EQ(glrefcheck(merge).exit_code, 0);
+  const auto earlier = snapshot(out);
+  // Heatmaps enough that copying them takes a while: a signal lands in the middle.
+  fs::create_directories(a / "cases/face_on/many");
+  for (int k = 0; k < 20000; ++k)
+    std::ofstream(a / "cases/face_on/many" / (std::to_string(k) + ".png")) << k;
+  int stopped = 0;
+  for (const char* delay : {"0.2", "0.4", "0.7", "1.0"}) {
+    SCOPED_TRACE(delay);
+    // Its stderr by hand: glrefcheck()'s own redirection would apply to `wait`.
+    Outcome o = glrefcheck(merge + " 2>'" + (dir_ / "err.txt").string() + "' & pid=$!; sleep " +
+                           delay + "; kill -INT $pid; wait $pid");
+    o.err = read(dir_ / "err.txt");
+    if (o.exit_code == 0) {
+      EXPECT_TRUE(fs::exists(out / "cases/face_on/many/19999.png"));
+      fs::remove_all(out / "cases/face_on/many");  // back as the earlier merge left it
+    } else {
+      EXPECT_EQ(o.exit_code, 130) << o.out << o.err;
+      EXPECT_NE(o.err.find("interrupted by SIGINT: the output folder holds what it held before"),
+                std::string::npos)
+          << o.err;
+      stopped += o.err.find("interrupted by SIGINT") != std::string::npos;
+    }
+    EXPECT_FALSE(fs::exists(out / ".glrefcheck-earlier"));
+    EXPECT_EQ(snapshot(out), earlier) << differences(earlier, snapshot(out));
+  }
+  EXPECT_GE(stopped, 1) << "no signal landed in the middle of the merge";
+}

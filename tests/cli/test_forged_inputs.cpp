@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "report/stamp.hpp"
 #include "tests/support/glrefcheck_process.hpp"
 
 namespace glrc::cli {
@@ -47,15 +48,22 @@ class Forged : public ::testing::Test {
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
-  // A copy of the run folder with `edit` applied to its results.json.
+  // A copy of the run folder with `edit` applied to its results.json, stamped again as
+  // glrefcheck stamps it: each field's own check is what these tests try (an edit under the
+  // stamp is refused before any, tests/report/test_results_json.cpp).
   static fs::path forged_results(const std::string& name, const std::function<void(json&)>& edit) {
     const fs::path d = dir_ / name;
     fs::remove_all(d);
     fs::create_directories(d);
     json j = json::parse(read(dir_ / "run/results.json"));
     edit(j);
-    std::ofstream(d / "results.json") << j.dump(2);
+    write_restamped(d / "results.json", j);
     return d;
+  }
+
+  static void write_restamped(const fs::path& file, json j) {
+    j.erase("written_by");
+    std::ofstream(file, std::ios::binary) << report::stamped_json("run", j.dump(2) + "\n");
   }
 
   // A copy of the run folder with `edit` applied to the options on its journal's first line.
@@ -186,6 +194,135 @@ TEST_F(Forged, AResumedJournalsOptionsAreCheckedAsTheCommandLineChecksThem) {
                       ":1: expected a journal line of glrefcheck's, got invalid JSON at byte 2");
 }
 
+// The sixth hostile campaign (issue 45): a results.json with a verdict flipped or a case
+// renamed by hand was merged and compared as a run's; a journal with a line edited (the
+// tolerance of the options, a verdict, a model) resumed into results no run gives. Each is
+// stamped now: an edit under the stamp is one line; a results.json without one (an older
+// glrefcheck's) reads as it stands, with a note saying so.
+TEST_F(Forged, EditsUnderAStampAreRefused) {
+  const std::string run = "'" + (dir_ / "run").string() + "'";
+  const fs::path edited = dir_ / "edited";
+  fs::remove_all(edited);
+  fs::copy(dir_ / "run", edited, fs::copy_options::recursive);
+  std::string text = read(edited / "results.json");
+  const size_t at = text.find("\"status\": \"Pass\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 16, "\"status\": \"Fail\"");
+  std::ofstream(edited / "results.json", std::ios::binary) << text;
+  const std::string says = "results.json: written_by: expected the stamp glrefcheck wrote";
+  expect_one_line(glrefcheck("compare " + run + " '" + edited.string() + "'"), says);
+  expect_one_line(glrefcheck("report '" + edited.string() + "'"), says);
+  expect_one_line(glrefcheck("merge '" + edited.string() + "' --out '" +
+                             (dir_ / "merged_edited").string() + "'"),
+                  says);
+  EXPECT_FALSE(fs::exists(dir_ / "merged_edited/results.json"));
+  // Without its stamp: read as it stands, and said so.
+  json j = json::parse(text);
+  j.erase("written_by");
+  std::ofstream(edited / "results.json", std::ios::binary) << j.dump(2);
+  const Outcome o = glrefcheck("compare " + run + " '" + edited.string() + "'");
+  EXPECT_NE(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("holds no written_by stamp (an older glrefcheck's, or made by hand): read "
+                       "as it stands"),
+            std::string::npos)
+      << o.err;
+
+  // The journal: each line's digest.
+  const auto resumed_journal = [&](const std::string& name,
+                                   const std::function<void(std::string&)>& edit) {
+    const fs::path d = dir_ / name;
+    fs::remove_all(d);
+    fs::copy(dir_ / "run", d, fs::copy_options::recursive);
+    std::string journal = read(d / "journal.jsonl");
+    edit(journal);
+    std::ofstream(d / "journal.jsonl", std::ios::binary) << journal;
+    fs::remove(d / "results.json");
+    return d;
+  };
+  const auto replaced = [](std::string& s, const std::string& from, const std::string& to) {
+    const size_t k = s.find(from);
+    ASSERT_NE(k, std::string::npos) << from;
+    s.replace(k, from.size(), to);
+  };
+  for (const auto& [name, from, to] :
+       {std::tuple{"verdict", "\"status\":\"Pass\"", "\"status\":\"Fail\""},
+        {"tolerance", "\"tolerance\":\"spec\"", "\"tolerance\":\"exact\""},
+        {"model", "\"planes\":\"unsnapped\"", "\"planes\":\"snapped\""}}) {
+    SCOPED_TRACE(name);
+    const fs::path d = resumed_journal(name, [&](std::string& s) { replaced(s, from, to); });
+    const Outcome resumed = glrefcheck("run --resume '" + d.string() + "'");
+    expect_one_line(resumed,
+                    "expected the line as glrefcheck wrote it, got one its digest no "
+                    "longer matches (edited since): start a new run");
+    EXPECT_FALSE(fs::exists(d / "results.json"));
+  }
+  const fs::path bogus = resumed_journal("heatmaps", [&](std::string& s) {
+    replaced(s, "\"result\":", "\"heatmaps\":\"bogus\",\"result\":");
+  });
+  expect_one_line(glrefcheck("run --resume '" + bogus.string() + "'"),
+                  "expected \"heatmaps\": \"follow\" or none in a line with a result, got "
+                  "\"bogus\"");
+  const fs::path older = resumed_journal("version1", [&](std::string& s) {
+    replaced(s, "\"glrefcheck_journal\":2", "\"glrefcheck_journal\":1");
+  });
+  expect_one_line(glrefcheck("run --resume '" + older.string() + "'"),
+                  ":1: expected a run journal of this glrefcheck (version 2), got version 1");
+}
+
+// The sixth hostile campaign: merge compared neither the driver asked for, nor the Mesa tree,
+// nor GL_SUBPIXEL_BITS (from which the spec tolerance derives), nor --timeout.
+TEST_F(Forged, MergeRefusesShardsOfAnotherDriverPrefixSubpixelBitsOrTimeout) {
+  const auto shard = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    return forged_results(name, [&](json& j) {
+      j["run"]["fraction"] = 2;
+      j["run"]["fraction_start"] = name == "first" ? 1 : 2;
+      j["run"]["total_cases"] = 2;
+      if (name == "second") j["cases"][0]["name"] = "face_on_2";
+      edit(j);
+    });
+  };
+  const fs::path first = shard("first", [](json&) {});
+  for (const auto& [field, edit, says] :
+       {std::tuple<std::string, std::function<void(json&)>, std::string>{
+            "driver", [](json& j) { j["run"]["driver"] = "softpipe"; },
+            "got run.driver \"softpipe\" where"},
+        {"mesa_prefix", [](json& j) { j["run"]["mesa_prefix"] = "/opt/mesa"; },
+         "got run.mesa_prefix \"/opt/mesa\" where"},
+        {"subpixel_bits", [](json& j) { j["run"]["gl_subpixel_bits"] = 4; },
+         "got run.subpixel_bits 4 where"},
+        {"timeout", [](json& j) { j["run"]["verdict_inputs"]["timeout"] = "5"; },
+         "got timeout 5 where"}}) {
+    SCOPED_TRACE(field);
+    const fs::path second = shard("second", edit);
+    expect_one_line(glrefcheck("merge '" + first.string() + "' '" + second.string() + "' --out '" +
+                               (dir_ / ("merged_" + field)).string() + "'"),
+                    says);
+  }
+}
+
+// The sixth hostile campaign's unclear messages: a marker a person garbled was called no marker;
+// compare on a folder whose results a stopped glrefcheck set aside said "no such file".
+TEST_F(Forged, AGarbledMarkerAndResultsSetAsideAreNamed) {
+  const fs::path garbled = dir_ / "garbled";
+  fs::remove_all(garbled);
+  fs::copy(dir_ / "run", garbled, fs::copy_options::recursive);
+  std::ofstream(garbled / ".glrefcheck") << "my notes\n";
+  expect_one_line(glrefcheck("run cases/face_on.json --out '" + garbled.string() + "'"),
+                  "whose .glrefcheck is not glrefcheck's marker (its first line edited, or made by "
+                  "hand)");
+  const fs::path aside = dir_ / "aside";
+  fs::remove_all(aside);
+  fs::copy(dir_ / "run", aside, fs::copy_options::recursive);
+  fs::create_directories(aside / ".glrefcheck-earlier");
+  fs::rename(aside / "results.json", aside / ".glrefcheck-earlier/results.json");
+  expect_one_line(glrefcheck("compare '" + (dir_ / "run").string() + "' '" + aside.string() + "'"),
+                  "holds no results.json: a glrefcheck stopped before GL started set them aside "
+                  "(.glrefcheck-earlier/); `glrefcheck report ");
+  // As it says: report puts them back.
+  EXPECT_EQ(glrefcheck("report '" + aside.string() + "'").exit_code, 0);
+  EXPECT_TRUE(fs::exists(aside / "results.json"));
+}
+
 // `compare --json FILE` and `report --out FILE` replaced whatever FILE held. A file glrefcheck
 // wrote is still replaced, so the same command can run again.
 TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
@@ -309,7 +446,7 @@ TEST_F(Forged, MergeRefusesShardsJudgedOtherwise) {
   for (const fs::path& folder : {a, c}) {
     json j = json::parse(read(folder / "results.json"));
     j["run"]["verdict_inputs"].erase("case_files");
-    std::ofstream(folder / "results.json") << j.dump(2);
+    write_restamped(folder / "results.json", j);
   }
   expect_one_line(glrefcheck("merge '" + a.string() + "' '" + c.string() + "' --out '" +
                              (dir_ / "merged3").string() + "'"),

@@ -54,6 +54,7 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
 // whether the model was identified now or found in the cache (the first run of a fresh cache
 // identifies, the next finds it).
 nlohmann::json comparable(nlohmann::json results) {
+  results.erase("written_by");  // its stamp: of the file's text, timings included
   results["run"].erase("seconds");
   results["run"].erase("model_source");
   for (auto& c : results["cases"])

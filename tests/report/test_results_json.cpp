@@ -83,6 +83,7 @@ TEST_F(ReportTest, ResultsJsonKeepsGlWarnings) {
 
   // Optional (earlier runs have none), but when present a list of strings.
   json doc = written(dir_ / "warned" / "results.json");
+  doc.erase("written_by");  // results before stamps: read as they stand
   doc["run"]["gl_warnings"] = "one string";
   std::ofstream(dir_ / "warned" / "results.json") << doc.dump();
   try {
@@ -121,6 +122,40 @@ TEST_F(ReportTest, ResultsJsonOfNoCasesIsAnEmptyList) {
   EXPECT_EQ(doc["summary"]["total"], 0);
   EXPECT_TRUE(doc["cases"].is_array());
   EXPECT_TRUE(doc["cases"].empty());
+}
+
+// Issue 45: a results.json whose verdict a person flipped, or whose case they renamed, was
+// merged and compared as a run's. Stamped when written, it is refused once edited; one without
+// a stamp (an older glrefcheck's) reads as it stands, and says so.
+TEST_F(ReportTest, ResultsJsonEditedSinceWrittenIsRefused) {
+  const auto file = dir_ / "stamped" / "results.json";
+  write_results_json(file, run_info(), {passing_case()});
+  const std::string text = read_text(file);
+  ASSERT_TRUE(text.starts_with("{\n  \"written_by\": \"glrefcheck run glrefcheck-sha256:"))
+      << text.substr(0, 120);
+  EXPECT_EQ(read_results_json(file).stamp, JsonStamp::intact);
+  for (const auto& [from, to] : {std::pair{"\"status\": \"Pass\"", "\"status\": \"Fail\""},
+                                 {"\"name\": \"", "\"name\": \"x"},
+                                 {"\"total_cases\": 0", "\"total_cases\": 1"}}) {
+    SCOPED_TRACE(from);
+    std::string edited = text;
+    const size_t at = edited.find(from);
+    ASSERT_NE(at, std::string::npos);
+    edited.replace(at, std::string(from).size(), to);
+    std::ofstream(file, std::ios::binary) << edited;
+    try {
+      read_results_json(file);
+      FAIL() << "an edited results.json was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("written_by: expected the stamp glrefcheck wrote"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  json doc = json::parse(text);
+  doc.erase("written_by");
+  std::ofstream(file, std::ios::binary) << doc.dump(2);
+  EXPECT_EQ(read_results_json(file).stamp, JsonStamp::none);
 }
 
 }  // namespace
