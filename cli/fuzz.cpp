@@ -141,8 +141,11 @@ CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
   return cmd;
 }
 
-int cmd_fuzz(const Options& given, const FuzzOptions& f) {
-  Options o = given;
+namespace {
+
+// The campaign asked for: generators, seed and count or time (or the one case of --replay),
+// shard, shrinking. InputError on options that do not go together.
+campaign::CampaignOptions plan_campaign(const Options& o, const FuzzOptions& f) {
   campaign::CampaignOptions co;
   co.generators = chosen_generators(f);
   if (!f.emit.empty() && !f.replay)
@@ -157,14 +160,6 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
                     o.fraction, o.fraction_start));
   if (f.replay) {
     const auto [seed, index] = parse_replay(*f.replay);
-    if (!f.emit.empty()) {
-      const Case c = campaign::generate(co.generators, seed, index);
-      check_replaceable(f.emit, "--emit", "fuzz");
-      write_case_file(f.emit, c);
-      fmt::print("wrote {}: {}, {} triangles, {} varyings\n", f.emit, c.name, c.triangles.size(),
-                 c.varyings.size());
-      return 0;
-    }
     co.seed = seed, co.only_index = index, co.count = index + 1;
   } else {
     co.seed = f.seed ? *f.seed : std::random_device{}() * 0x100000000ull + std::random_device{}();
@@ -174,14 +169,38 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   co.fraction = o.fraction, co.fraction_start = o.fraction_start;
   co.shrink = !f.no_shrink;
   co.shrinking.seconds = f.shrink_seconds;
+  return co;
+}
 
+// --replay SEED:INDEX --emit FILE: the case written as a case file, not checked.
+int emit_replayed(const std::string& file, const campaign::CampaignOptions& co) {
+  const Case c = campaign::generate(co.generators, co.seed, *co.only_index);
+  check_replaceable(file, "--emit", "fuzz");
+  write_case_file(file, c);
+  fmt::print("wrote {}: {}, {} triangles, {} varyings\n", file, c.name, c.triangles.size(),
+             c.varyings.size());
+  return 0;
+}
+
+// What judges the campaign besides GL and the model: its known failures (--baseline) and the
+// verdict inputs merge compares between shards.
+struct CampaignJudging {
+  Baseline baseline;
+  std::map<std::string, std::string> judged_by;
+  bool known(const campaign::Failure& failure) const {
+    const std::string file = campaign::failure_file_name(failure);
+    return baseline.expected.count(file.substr(0, file.size() - 5)) > 0;
+  }
+};
+
+CampaignJudging read_campaign_judging(const Options& o, const FuzzOptions& f) {
   Options for_baseline;
   for_baseline.baseline = f.baseline;
-  const Baseline baseline = load_baseline(for_baseline);
+  CampaignJudging j{load_baseline(for_baseline), {}};
   // A campaign's known failure is `<failure>,Fail`: another status, or a name no failure has (the
   // signature as printed, non_finite/noperspective), would be a line that silently matches
   // nothing, or matches what it should not.
-  for (const auto& [name, status] : baseline.expected) {
+  for (const auto& [name, status] : j.baseline.expected) {
     if (status != "Fail")
       throw InputError(fmt::format(
           "--baseline {}: {}: expected the status Fail (a campaign failure is listed as "
@@ -191,104 +210,118 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
       throw InputError(fmt::format("--baseline {}: expected {}, got \"{}\"",
                                    printable(f.baseline, 200), *problem, printable(name, 80)));
   }
-  // What judges the campaign besides GL and the model (merge compares it between shards).
   Options judged = o;
   judged.baseline = f.baseline, judged.flakes.clear(), judged.skips.clear();
-  const std::map<std::string, std::string> judged_by = verdict_inputs(judged);
-  const auto known = [&](const campaign::Failure& failure) {
-    const std::string file = campaign::failure_file_name(failure);
-    return baseline.expected.count(file.substr(0, file.size() - 5)) > 0;
-  };
-  std::optional<MesaPrefix> prefix;
-  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
-  const int interrupt_fd = catch_interrupts();
-  const OutputFolder folder = output_folder(o.out);
-  const std::filesystem::path& out = folder.path;
-  // Its minimal cases are the campaign's while unedited: one a person changed is theirs.
-  check_replaceable_files(out / "failures", "--out " + o.out, "fuzz", listed_failure_files(out));
-  // The earlier campaign's outputs come back if this one never gets GL.
-  EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
+  j.judged_by = verdict_inputs(judged);
+  return j;
+}
 
-  WorkerSettings s = worker_settings(o, out, interrupt_fd, prefix);
-  // Heatmaps for the minimal cases only (checked once more when shrunk), for report.html.
-  std::set<std::string> with_images;
-  std::vector<CaseResult> minimal_results;
-  s.images = [&with_images](const Case& c) { return with_images.count(c.name) > 0; };
-  co.batch = size_t(std::max(4 * s.jobs, 8));
-  co.shrinking.batch = size_t(std::max(s.jobs, 1));
+// The campaign itself, on worker processes: each failure found printed, its minimal case
+// written into failures/ and checked once more for its heatmaps, and the campaign's files
+// written at the end.
+class FuzzCampaign {
+ public:
+  FuzzCampaign(Options& o, campaign::CampaignOptions& co, const CampaignJudging& judging,
+               const std::optional<MesaPrefix>& prefix, const std::filesystem::path& out,
+               EarlierOutputs& earlier, int interrupt_fd)
+      : o_(o), co_(co), judging_(judging), prefix_(prefix), out_(out), earlier_(earlier) {
+    s_ = worker_settings(o_, out_, interrupt_fd, prefix_);
+    // Heatmaps for the minimal cases only (checked once more when shrunk), for report.html.
+    s_.images = [this](const Case& c) { return with_images_.count(c.name) > 0; };
+    co_.batch = size_t(std::max(4 * s_.jobs, 8));
+    co_.shrinking.batch = size_t(std::max(s_.jobs, 1));
+    info_.backend = gl::to_string(o_.backend), info_.driver = o_.driver, info_.jobs = s_.jobs;
+    info_.mesa_prefix = o_.mesa;
+    info_.verdict_inputs = judging_.judged_by;
+  }
 
-  RunInfo info;
-  bool gl_started = false;
-  info.backend = gl::to_string(o.backend), info.driver = o.driver, info.jobs = s.jobs;
-  info.mesa_prefix = o.mesa;
-  info.verdict_inputs = judged_by;
-  const auto on_start = [&](const gl::GlInfo& gl, const ModelChoice& model) {
-    if (prefix && !from_prefix(*prefix, gl.library))
-      throw InputError("--mesa " + o.mesa + ": GL came from " +
+  int execute() {
+    WorkerSession session(
+        o_, s_, [this](const gl::GlInfo& gl, const ModelChoice& model) { on_start(gl, model); });
+    session_ = &session;
+    const campaign::Judge judge = [&](const std::vector<Case>& cases) {
+      std::vector<const Case*> pointers;
+      for (const Case& c : cases)
+        pointers.push_back(&c);
+      return session.check(pointers);
+    };
+    std::filesystem::create_directories(out_ / "failures");
+    campaign::CampaignResult result = campaign::run_campaign(co_, judge, progress());
+    clear_line();
+    return write(result);
+  }
+
+ private:
+  void clear_line() const {
+    if (terminal_) fmt::print(stderr, "\r\033[K"), std::fflush(stderr);
+  }
+
+  void on_start(const gl::GlInfo& gl, const ModelChoice& model) {
+    if (prefix_ && !from_prefix(*prefix_, gl.library))
+      throw InputError("--mesa " + o_.mesa + ": GL came from " +
                        (gl.library.empty() ? "an unknown library" : gl.library) +
                        ", not from the prefix (GL_VERSION " + gl.version + ")");
-    const RunInfo run = run_info(o, gl, model);
-    info.gl_vendor = run.gl_vendor, info.gl_renderer = run.gl_renderer;
-    info.gl_version = run.gl_version, info.gl_library = run.gl_library;
-    info.model = run.model, info.model_source = run.model_source;
-    info.tolerance = run.tolerance, info.subpixel_bits = run.subpixel_bits;
-    info.gl_warnings = run.gl_warnings;
-    gl_started = true;
-    earlier.keep_new();
+    const RunInfo run = run_info(o_, gl, model);
+    info_.gl_vendor = run.gl_vendor, info_.gl_renderer = run.gl_renderer;
+    info_.gl_version = run.gl_version, info_.gl_library = run.gl_library;
+    info_.model = run.model, info_.model_source = run.model_source;
+    info_.tolerance = run.tolerance, info_.subpixel_bits = run.subpixel_bits;
+    info_.gl_warnings = run.gl_warnings;
+    gl_started_ = true;
+    earlier_.keep_new();
+    print_start();
+  }
+
+  void print_start() const {
     std::string generators;
-    for (const campaign::Generator* g : co.generators)
+    for (const campaign::Generator* g : co_.generators)
       generators += (generators.empty() ? "" : ",") + std::string(g->name);
     fmt::print(
         "glrefcheck fuzz: seed {}, generators {}, {} on {} ({}), GL {} | model {} from {} "
         "| tolerance {} | {} worker{}\n",
-        co.seed, generators,
-        co.only_index            ? fmt::format("case {}", *co.only_index)
-        : co.count && co.seconds ? fmt::format("{} cases or {} s", *co.count, *co.seconds)
-        : co.count               ? fmt::format("{} cases", *co.count)
-                                 : fmt::format("{} s", *co.seconds),
-        info.gl_renderer, info.backend, info.gl_version, info.model, info.model_source,
-        info.tolerance, s.jobs, s.jobs == 1 ? "" : "s");
-    for (const std::string& w : info.gl_warnings)
+        co_.seed, generators,
+        co_.only_index             ? fmt::format("case {}", *co_.only_index)
+        : co_.count && co_.seconds ? fmt::format("{} cases or {} s", *co_.count, *co_.seconds)
+        : co_.count                ? fmt::format("{} cases", *co_.count)
+                                   : fmt::format("{} s", *co_.seconds),
+        info_.gl_renderer, info_.backend, info_.gl_version, info_.model, info_.model_source,
+        info_.tolerance, s_.jobs, s_.jobs == 1 ? "" : "s");
+    for (const std::string& w : info_.gl_warnings)
       fmt::print("warning: {}\n", w);
     std::fflush(stdout);
-  };
-  WorkerSession session(o, s, on_start);
-  const campaign::Judge judge = [&](const std::vector<Case>& cases) {
-    std::vector<const Case*> pointers;
-    for (const Case& c : cases)
-      pointers.push_back(&c);
-    return session.check(pointers);
-  };
-  const bool terminal = isatty(STDERR_FILENO) && !std::getenv("CI");
-  const auto clear_line = [&] {
-    if (terminal) fmt::print(stderr, "\r\033[K"), std::fflush(stderr);
-  };
-  std::filesystem::create_directories(out / "failures");
-  campaign::CampaignProgress progress;
-  progress.stop = [&] { return caught_signal() != 0; };
-  progress.batch_done = [&](const campaign::CampaignStats& st, size_t distinct) {
-    if (!terminal) return;
-    fmt::print(stderr,
-               "\r\033[K{} cases, {} triangles, {} pixels | {} failing, {} distinct | {:.0f} "
-               "triangles/s | {:.0f} s",
-               st.cases, st.triangles, st.pixels, st.failing_cases, distinct,
-               st.triangles_per_second(), st.seconds);
-    std::fflush(stderr);
-  };
-  progress.found = [&](const campaign::FoundFailure& nf) {
-    clear_line();
-    fmt::print("{} {} in {}_{}_{}: {}\n", known(nf.failure) ? "known failure" : "new failure",
-               nf.failure.signature(), nf.generator, nf.seed, nf.index, nf.first_description);
-    std::fflush(stdout);
-  };
-  progress.shrunk = [&](const campaign::FoundFailure& nf) {
-    const auto file = out / "failures" / campaign::failure_file_name(nf.failure);
+  }
+
+  campaign::CampaignProgress progress() {
+    campaign::CampaignProgress progress;
+    progress.stop = [] { return caught_signal() != 0; };
+    progress.batch_done = [this](const campaign::CampaignStats& st, size_t distinct) {
+      if (!terminal_) return;
+      fmt::print(stderr,
+                 "\r\033[K{} cases, {} triangles, {} pixels | {} failing, {} distinct | {:.0f} "
+                 "triangles/s | {:.0f} s",
+                 st.cases, st.triangles, st.pixels, st.failing_cases, distinct,
+                 st.triangles_per_second(), st.seconds);
+      std::fflush(stderr);
+    };
+    progress.found = [this](const campaign::FoundFailure& nf) {
+      clear_line();
+      fmt::print("{} {} in {}_{}_{}: {}\n",
+                 judging_.known(nf.failure) ? "known failure" : "new failure",
+                 nf.failure.signature(), nf.generator, nf.seed, nf.index, nf.first_description);
+      std::fflush(stdout);
+    };
+    progress.shrunk = [this](const campaign::FoundFailure& nf) { shrunk(nf); };
+    return progress;
+  }
+
+  void shrunk(const campaign::FoundFailure& nf) {
+    const auto file = out_ / "failures" / campaign::failure_file_name(nf.failure);
     write_case_file(file, nf.minimal);
     // Its heatmaps, in <out>/cases/<name>/ as `run` writes a failing case's.
-    with_images.insert(nf.minimal.name);
-    CaseResult again = session.check({&nf.minimal}).front();
-    report::apply(baseline, again);
-    minimal_results.push_back(std::move(again));
+    with_images_.insert(nf.minimal.name);
+    CaseResult again = session_->check({&nf.minimal}).front();
+    report::apply(judging_.baseline, again);
+    minimal_results_.push_back(std::move(again));
     clear_line();
     fmt::print(
         "  {}: {} triangle{}, {} varying{} ({:.1f} s, {} steps, {} checks), {:.1f} s into the "
@@ -298,54 +331,90 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
         nf.minimal.varyings.size() == 1 ? "" : "s", nf.shrink_seconds, nf.shrink_steps,
         nf.shrink_checks, nf.found_after + nf.shrink_seconds, shown_path(file.string()));
     std::fflush(stdout);
-  };
-  campaign::CampaignResult result = campaign::run_campaign(co, judge, progress);
-  clear_line();
-  // Stopped before GL started: nothing was checked, and the folder's earlier campaign comes back
-  // as it was (`earlier`, as it goes) rather than a campaign of no cases over it.
-  if (!gl_started && result.stats.interrupted && caught_signal()) {
-    fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
-               signal_name(caught_signal()), o.out);
-    return 128 + caught_signal();
-  }
-  size_t new_failures = 0;
-  for (campaign::FoundFailure& nf : result.failures) {
-    nf.known = known(nf.failure);
-    new_failures += !nf.known;
   }
 
-  // A campaign stopped by a signal is a run stopped by one: merge refuses it.
-  info.interrupted = result.stats.interrupted;
-  info.total_cases = result.stats.cases;
-  info.seconds = result.stats.seconds;
-  nlohmann::json run;
-  glrc::to_json(run, info);
-  nlohmann::json doc = campaign::campaign_json(result, run);
-  // Each minimal case's check as results.json has a case's, for `merge` and `report`.
-  for (size_t i = 0; i < doc["failures"].size() && i < minimal_results.size(); ++i)
-    doc["failures"][i]["result"] =
-        nlohmann::json::parse(report::case_result_json(minimal_results[i]));
-  write_campaign_files(out, doc);
-  // The page of the minimal failures: each one's statistics and heatmaps.
-  RunInfo page = info;
-  page.seconds = result.stats.seconds;
-  page.total_cases = minimal_results.size();
-  page.interrupted = result.stats.interrupted;
-  report::write_run_html(out / "report.html", {page, minimal_results}, out);
-  earlier.keep_new();
-  const campaign::CampaignStats& st = result.stats;
-  fmt::print(
-      "\n{} cases, {} triangles, {} pixels checked in {:.1f} s ({:.0f} triangles/s); {} "
-      "failing, {} distinct failure{} ({} new){}\n",
-      st.cases, st.triangles, st.pixels, st.seconds, st.triangles_per_second(), st.failing_cases,
-      result.failures.size(), result.failures.size() == 1 ? "" : "s", new_failures,
-      st.skipped ? fmt::format("; {} skipped (beyond GL's specified range)", st.skipped) : "");
-  if (st.interrupted)
-    fmt::print("interrupted by {} after {}: its results hold the cases checked\n",
-               signal_name(caught_signal()), report::count_text(st.cases, "case", "cases"));
-  fmt::print("results in {}\n", shown_path(out.string()));
-  if (st.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
-  return new_failures == 0 ? 0 : 1;
+  int write(campaign::CampaignResult& result) {
+    // Stopped before GL started: nothing was checked, and the folder's earlier campaign comes
+    // back as it was (`earlier_`, as it goes) rather than a campaign of no cases over it.
+    if (!gl_started_ && result.stats.interrupted && caught_signal()) {
+      fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
+                 signal_name(caught_signal()), o_.out);
+      return 128 + caught_signal();
+    }
+    size_t new_failures = 0;
+    for (campaign::FoundFailure& nf : result.failures) {
+      nf.known = judging_.known(nf.failure);
+      new_failures += !nf.known;
+    }
+    // A campaign stopped by a signal is a run stopped by one: merge refuses it.
+    info_.interrupted = result.stats.interrupted;
+    info_.total_cases = result.stats.cases;
+    info_.seconds = result.stats.seconds;
+    nlohmann::json run;
+    glrc::to_json(run, info_);
+    nlohmann::json doc = campaign::campaign_json(result, run);
+    // Each minimal case's check as results.json has a case's, for `merge` and `report`.
+    for (size_t i = 0; i < doc["failures"].size() && i < minimal_results_.size(); ++i)
+      doc["failures"][i]["result"] =
+          nlohmann::json::parse(report::case_result_json(minimal_results_[i]));
+    write_campaign_files(out_, doc);
+    // The page of the minimal failures: each one's statistics and heatmaps.
+    RunInfo page = info_;
+    page.total_cases = minimal_results_.size();
+    report::write_run_html(out_ / "report.html", {page, minimal_results_}, out_);
+    earlier_.keep_new();
+    print_summary(result, new_failures);
+    if (result.stats.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);
+    return new_failures == 0 ? 0 : 1;
+  }
+
+  void print_summary(const campaign::CampaignResult& result, size_t new_failures) const {
+    const campaign::CampaignStats& st = result.stats;
+    fmt::print(
+        "\n{} cases, {} triangles, {} pixels checked in {:.1f} s ({:.0f} triangles/s); {} "
+        "failing, {} distinct failure{} ({} new){}\n",
+        st.cases, st.triangles, st.pixels, st.seconds, st.triangles_per_second(), st.failing_cases,
+        result.failures.size(), result.failures.size() == 1 ? "" : "s", new_failures,
+        st.skipped ? fmt::format("; {} skipped (beyond GL's specified range)", st.skipped) : "");
+    if (st.interrupted)
+      fmt::print("interrupted by {} after {}: its results hold the cases checked\n",
+                 signal_name(caught_signal()), report::count_text(st.cases, "case", "cases"));
+    fmt::print("results in {}\n", shown_path(out_.string()));
+  }
+
+  Options& o_;
+  campaign::CampaignOptions& co_;
+  const CampaignJudging& judging_;
+  const std::optional<MesaPrefix>& prefix_;
+  const std::filesystem::path& out_;
+  EarlierOutputs& earlier_;
+  WorkerSettings s_;
+  RunInfo info_;
+  WorkerSession* session_ = nullptr;  // while execute() runs
+  std::set<std::string> with_images_;
+  std::vector<CaseResult> minimal_results_;
+  bool gl_started_ = false;
+  const bool terminal_ = isatty(STDERR_FILENO) && !std::getenv("CI");
+};
+
+}  // namespace
+
+// Plan (the campaign's options), read what judges it, claim the folder, then run and write.
+int cmd_fuzz(const Options& given, const FuzzOptions& f) {
+  Options o = given;
+  campaign::CampaignOptions co = plan_campaign(o, f);
+  if (!f.emit.empty()) return emit_replayed(f.emit, co);
+  const CampaignJudging judging = read_campaign_judging(o, f);
+  std::optional<MesaPrefix> prefix;
+  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
+  const int interrupt_fd = catch_interrupts();
+  const OutputFolder folder = output_folder(o.out);
+  // Its minimal cases are the campaign's while unedited: one a person changed is theirs.
+  check_replaceable_files(folder.path / "failures", "--out " + o.out, "fuzz",
+                          listed_failure_files(folder.path));
+  // The earlier campaign's outputs come back if this one never gets GL.
+  EarlierOutputs earlier = set_aside_outputs(folder.path, {"failures"});
+  return FuzzCampaign(o, co, judging, prefix, folder.path, earlier, interrupt_fd).execute();
 }
 
 }  // namespace glrc::cli

@@ -152,6 +152,98 @@ void Journal::append(std::string line) {
   }
 }
 
+namespace {
+
+// Line 1: the run's options, its case files and their digests.
+void read_first_line(const json& j, const std::string& where, JournalContents& c) {
+  if (const json version = j.value("glrefcheck_journal", json()); version != kJournalVersion)
+    throw InputError(where +
+                     fmt::format(": expected a run journal of this glrefcheck (version {}), got ",
+                                 kJournalVersion) +
+                     (version.is_number()
+                          ? "version " + version.dump() +
+                                ": the run began under another glrefcheck; start it "
+                                "again without --resume"
+                          : "no glrefcheck_journal version"));
+  if (!j.contains("options")) throw InputError(where + ": expected the run's options");
+  c.options = all_options_from_json(j["options"], where);
+  c.files = option_fields::texts(option_fields::reader(where), j, "", "files");
+  // Each case file's content as the run began (absent in journals before it).
+  if (j.contains("file_digests"))
+    c.file_digests = option_fields::texts(option_fields::reader(where), j, "", "file_digests");
+  if (!c.file_digests.empty() && c.file_digests.size() != c.files.size())
+    throw InputError(where + ": expected one file digest per case file");
+}
+
+// A case's line: its result (with "heatmaps": "follow" when they were on their way), or its
+// heatmaps written. `heatmaps_due`: the cases whose heatmaps followed, not yet written.
+void read_case_line(const json& j, const std::string& where, JournalContents& c,
+                    std::set<size_t>& heatmaps_due) {
+  if (!j.contains("index") || !j["index"].is_number_unsigned())
+    // A hand's 0.5 or 1e300 would be read as another case's index.
+    throw InputError(where + ": expected \"index\": a whole number, got " +
+                     (j.contains("index") ? printable(j["index"].dump(), 40) : "none"));
+  const size_t index = j.at("index");
+  if (!j.contains("result")) {
+    if (j.at("heatmaps") != "written")
+      throw InputError(where + ": expected \"heatmaps\": \"written\" in a line without a result");
+    heatmaps_due.erase(index);
+    return;
+  }
+  CaseResult r = report::case_result_from_json(j.at("result").dump(), where);
+  if (j.contains("heatmaps") && j["heatmaps"] != "follow")
+    throw InputError(where +
+                     ": expected \"heatmaps\": \"follow\" or none in a line with a result, got " +
+                     printable(j["heatmaps"].dump(), 40));
+  // A later line for a case is its heatmaps lost (the same verdict, its message saying so), or
+  // the case checked again by a resume because its heatmaps never came; one with another name
+  // or verdict otherwise is another run's, or a hand's: refused.
+  const bool checked_again = heatmaps_due.erase(index) > 0;
+  if (j.value("heatmaps", "") == "follow") heatmaps_due.insert(index);
+  if (const auto earlier = c.results.find(index);
+      earlier != c.results.end() && (earlier->second.name != r.name ||
+                                     (!checked_again && (earlier->second.status != r.status ||
+                                                         earlier->second.outcome != r.outcome))))
+    throw InputError(fmt::format(
+        "{}: expected case {} (\"{}\", {}) as an earlier line gives it, got \"{}\", {}: two "
+        "results for one case",
+        where, index, printable(earlier->second.name, 80), to_string(earlier->second.outcome),
+        printable(r.name, 80), to_string(r.outcome)));
+  c.results[index] = std::move(r);
+  c.elapsed = std::max(c.elapsed, j.at("at").get<double>());
+}
+
+// Line `n` (1-based) into `c`, each field checked, then its digest (last, so that a malformed
+// field is named first).
+void read_line(const std::string& line, int n, const std::string& where, JournalContents& c,
+               std::set<size_t>& heatmaps_due) {
+  json j;
+  try {
+    j = json::parse(line);
+  } catch (const json::parse_error& e) {
+    throw InputError(where +
+                     ": expected a journal line of glrefcheck's, got invalid JSON at byte " +
+                     std::to_string(e.byte));
+  }
+  if (!j.is_object()) throw InputError(where + ": expected a journal line of glrefcheck's");
+  if (n == 1) {
+    read_first_line(j, where, c);
+  } else if (j.contains("run")) {
+    c.run = report::run_info_from_json(j["run"].dump(), where);
+    const auto model = identify::model_from_json(j.at("model"));
+    if (!model) throw InputError(where + ": expected a model");
+    c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
+  } else {
+    read_case_line(j, where, c, heatmaps_due);
+  }
+  if (!digest_holds(line))
+    throw InputError(where +
+                     ": expected the line as glrefcheck wrote it, got one its digest no longer "
+                     "matches (edited since): start a new run");
+}
+
+}  // namespace
+
 JournalContents read_journal(const fs::path& dir) {
   const fs::path file = dir / kJournalFile;
   const std::string name = printable(file.string());
@@ -179,80 +271,7 @@ JournalContents read_journal(const fs::path& dir) {
     if (line.empty()) continue;  // where a reopened journal ended a cut line
     const std::string where = fmt::format("{}:{}", name, n);
     try {
-      json j;
-      try {
-        j = json::parse(line);
-      } catch (const json::parse_error& e) {
-        throw InputError(where +
-                         ": expected a journal line of glrefcheck's, got invalid JSON at "
-                         "byte " +
-                         std::to_string(e.byte));
-      }
-      if (!j.is_object()) throw InputError(where + ": expected a journal line of glrefcheck's");
-      if (n == 1) {
-        if (const json version = j.value("glrefcheck_journal", json()); version != kJournalVersion)
-          throw InputError(
-              where +
-              fmt::format(": expected a run journal of this glrefcheck (version {}), got ",
-                          kJournalVersion) +
-              (version.is_number() ? "version " + version.dump() +
-                                         ": the run began under another glrefcheck; start it "
-                                         "again without --resume"
-                                   : "no glrefcheck_journal version"));
-        if (!j.contains("options")) throw InputError(where + ": expected the run's options");
-        c.options = all_options_from_json(j["options"], where);
-        c.files = option_fields::texts(option_fields::reader(where), j, "", "files");
-        // Each case file's content as the run began (absent in journals before it).
-        if (j.contains("file_digests"))
-          c.file_digests =
-              option_fields::texts(option_fields::reader(where), j, "", "file_digests");
-        if (!c.file_digests.empty() && c.file_digests.size() != c.files.size())
-          throw InputError(where + ": expected one file digest per case file");
-      } else if (j.contains("run")) {
-        c.run = report::run_info_from_json(j["run"].dump(), where);
-        const auto model = identify::model_from_json(j.at("model"));
-        if (!model) throw InputError(where + ": expected a model");
-        c.model = ModelChoice{*model, j.at("model_source").get<std::string>()};
-      } else if (!j.contains("index") || !j["index"].is_number_unsigned()) {
-        // A hand's 0.5 or 1e300 would be read as another case's index.
-        throw InputError(where + ": expected \"index\": a whole number, got " +
-                         (j.contains("index") ? printable(j["index"].dump(), 40) : "none"));
-      } else if (!j.contains("result")) {
-        if (j.at("heatmaps") != "written")
-          throw InputError(where +
-                           ": expected \"heatmaps\": \"written\" in a line without a result");
-        heatmaps_due.erase(j.at("index").get<size_t>());
-      } else {
-        const size_t index = j.at("index");
-        CaseResult r = report::case_result_from_json(j.at("result").dump(), where);
-        // A later line for a case is its heatmaps lost (the same verdict, its message saying
-        // so), or the case checked again by a resume because its heatmaps never came; one with
-        // another name or verdict otherwise is another run's, or a hand's: refused.
-        if (j.contains("heatmaps") && j["heatmaps"] != "follow")
-          throw InputError(where +
-                           ": expected \"heatmaps\": \"follow\" or none in a line with a "
-                           "result, got " +
-                           printable(j["heatmaps"].dump(), 40));
-        const bool checked_again = heatmaps_due.erase(index) > 0;
-        if (j.value("heatmaps", "") == "follow") heatmaps_due.insert(index);
-        if (const auto earlier = c.results.find(index);
-            earlier != c.results.end() &&
-            (earlier->second.name != r.name ||
-             (!checked_again &&
-              (earlier->second.status != r.status || earlier->second.outcome != r.outcome))))
-          throw InputError(fmt::format(
-              "{}: expected case {} (\"{}\", {}) as an earlier line gives it, got \"{}\", {}: two "
-              "results for one case",
-              where, index, printable(earlier->second.name, 80), to_string(earlier->second.outcome),
-              printable(r.name, 80), to_string(r.outcome)));
-        c.results[index] = std::move(r);
-        c.elapsed = std::max(c.elapsed, j.at("at").get<double>());
-      }
-      // Last, so that a malformed field is named first.
-      if (!digest_holds(line))
-        throw InputError(where +
-                         ": expected the line as glrefcheck wrote it, got one its digest no "
-                         "longer matches (edited since): start a new run");
+      read_line(line, n, where, c, heatmaps_due);
     } catch (const InputError&) {
       throw;
     } catch (const json::exception& e) {

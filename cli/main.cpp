@@ -175,114 +175,167 @@ void reexec_with_mesa(const Options& o, char** argv) {
   throw InputError(std::string("--mesa: cannot start glrefcheck again: ") + std::strerror(errno));
 }
 
-int main_impl(int argc, char** argv) {
-  CLI::App app{"glrefcheck: checks GL rasterization and interpolation against an exact reference"};
-  app.require_subcommand(1);
+// Every subcommand, with where its arguments go.
+struct Commands {
   Options o;
+  FuzzOptions fuzz_options;
+  CompareOptions compare_options;
+  ExportOptions export_options;
+  std::vector<std::string> merge_dirs;
+  std::string report_dir, report_file;
+  CLI::App *run = nullptr, *fuzz = nullptr, *compare = nullptr, *export_command = nullptr,
+           *worker = nullptr, *merge = nullptr, *report = nullptr, *diff = nullptr,
+           *digest = nullptr, *list = nullptr, *identify = nullptr, *selftest = nullptr;
+};
 
-  auto* run = app.add_subcommand("run", "run cases against a GL implementation");
-  add_case_options(*run, o), add_model_options(*run, o), add_gl_options(*run, o);
-  run->add_option("--baseline", o.baseline,
-                  "expected failures, `case,Status` lines (Mesa CI's *-fails.txt, or a previous "
-                  "run's failures.csv)");
-  run->add_option("--flakes", o.flakes,
-                  "known flaky cases, one regular expression per line: their failures do not "
-                  "fail the run (status Flake)");
-  run->add_option("--skips", o.skips, "cases not to run, one regular expression per line");
-  run->add_option("--jobs,-j", o.jobs,
-                  "worker processes in parallel (default and most: one per core; never more "
-                  "than cases)")
-      ->check(whole_number(1));
-  run->add_flag("--jobs-force", o.jobs_force, "allow --jobs beyond the number of cores");
-  run->add_option("--timeout", o.timeout,
-                  "seconds a case may take before its worker is killed (status Timeout)")
+// --jobs-force, --timeout, --fraction, --fraction-start and --worker-wrapper: how run and fuzz
+// spread their cases over worker processes (each says its own --jobs).
+void add_worker_options(CLI::App& command, Options& o, const std::string& timeout_status,
+                        const std::string& fraction_help) {
+  command.add_flag("--jobs-force", o.jobs_force, "allow --jobs beyond the number of cores");
+  command
+      .add_option("--timeout", o.timeout,
+                  "seconds a case may take before its worker is killed (" + timeout_status + ")")
       ->check(finite_range(0.001, 1e6));
-  run->add_option("--fraction", o.fraction, "run every N-th case (a shard, as deqp-runner)")
-      ->check(whole_number(1));
-  run->add_option("--fraction-start", o.fraction_start,
+  command.add_option("--fraction", o.fraction, fraction_help)->check(whole_number(1));
+  command
+      .add_option("--fraction-start", o.fraction_start,
                   "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
       ->check(whole_number(1));
-  add_worker_wrapper_option(*run, o);
-  run->add_flag("--html", o.html, "also write report.html, a self-contained page");
-  run->add_option("--resume", o.resume,
-                  "continue the interrupted or killed run in this folder, with the options and "
-                  "cases it began with (only --jobs, --jobs-force, --threads and --worker-wrapper "
-                  "may be given with it)");
+  add_worker_wrapper_option(command, o);
+}
 
-  FuzzOptions fuzz_options;
-  auto* fuzz = add_fuzz_command(app, fuzz_options);
-  add_model_options(*fuzz, o), add_gl_options(*fuzz, o);
-  fuzz->add_option("--jobs,-j", o.jobs,
+void add_run_command(CLI::App& app, Commands& c) {
+  Options& o = c.o;
+  c.run = app.add_subcommand("run", "run cases against a GL implementation");
+  CLI::App& run = *c.run;
+  add_case_options(run, o), add_model_options(run, o), add_gl_options(run, o);
+  run.add_option("--baseline", o.baseline,
+                 "expected failures, `case,Status` lines (Mesa CI's *-fails.txt, or a previous "
+                 "run's failures.csv)");
+  run.add_option("--flakes", o.flakes,
+                 "known flaky cases, one regular expression per line: their failures do not "
+                 "fail the run (status Flake)");
+  run.add_option("--skips", o.skips, "cases not to run, one regular expression per line");
+  run.add_option("--jobs,-j", o.jobs,
+                 "worker processes in parallel (default and most: one per core; never more "
+                 "than cases)")
+      ->check(whole_number(1));
+  add_worker_options(run, o, "status Timeout", "run every N-th case (a shard, as deqp-runner)");
+  run.add_flag("--html", o.html, "also write report.html, a self-contained page");
+  run.add_option("--resume", o.resume,
+                 "continue the interrupted or killed run in this folder, with the options and "
+                 "cases it began with (only --jobs, --jobs-force, --threads and --worker-wrapper "
+                 "may be given with it)");
+}
+
+void add_fuzz_and_result_commands(CLI::App& app, Commands& c) {
+  Options& o = c.o;
+  c.fuzz = add_fuzz_command(app, c.fuzz_options);
+  add_model_options(*c.fuzz, o), add_gl_options(*c.fuzz, o);
+  c.fuzz
+      ->add_option("--jobs,-j", o.jobs,
                    "worker processes in parallel (default and most: one per core)")
       ->check(whole_number(1));
-  fuzz->add_flag("--jobs-force", o.jobs_force, "allow --jobs beyond the number of cores");
-  fuzz->add_option("--timeout", o.timeout,
-                   "seconds a case may take before its worker is killed (class timeout)")
-      ->check(finite_range(0.001, 1e6));
-  fuzz->add_option("--fraction", o.fraction,
-                   "check every N-th case of the campaign (a shard; `merge` joins them)")
-      ->check(whole_number(1));
-  fuzz->add_option("--fraction-start", o.fraction_start,
-                   "the first case of this shard, 1-based (GitLab's CI_NODE_INDEX)")
-      ->check(whole_number(1));
-  add_worker_wrapper_option(*fuzz, o);
+  add_worker_options(*c.fuzz, o, "class timeout",
+                     "check every N-th case of the campaign (a shard; `merge` joins them)");
+  c.compare = add_compare_command(app, c.compare_options);
+  c.export_command = add_export_command(app, c.export_options);
+  c.merge = app.add_subcommand("merge", "join the results of --fraction shards into one run");
+  c.merge->add_option("shards", c.merge_dirs, "the shards' results folders")->required();
+  c.merge->add_option("--out", o.out, "output folder")->required();
+  c.merge->add_flag("--html", o.html, "also write report.html");
+  c.report = app.add_subcommand("report", "write a self-contained HTML page of a run folder");
+  c.report->add_option("run", c.report_dir, "a results folder (or its results.json)")->required();
+  c.report->add_option("--out", c.report_file, "the HTML file (default: <run>/report.html)");
+}
 
-  CompareOptions compare_options;
-  auto* compare = add_compare_command(app, compare_options);
-
-  ExportOptions export_options;
-  auto* export_command = add_export_command(app, export_options);
-
-  auto* worker = app.add_subcommand("worker", "(internal) a GL worker process of `run`");
-  worker->group("");  // not for people: `run` starts it
-
-  std::vector<std::string> merge_dirs;
-  auto* merge = app.add_subcommand("merge", "join the results of --fraction shards into one run");
-  merge->add_option("shards", merge_dirs, "the shards' results folders")->required();
-  merge->add_option("--out", o.out, "output folder")->required();
-  merge->add_flag("--html", o.html, "also write report.html");
-
-  std::string report_dir, report_file;
-  auto* report_cmd =
-      app.add_subcommand("report", "write a self-contained HTML page of a run folder");
-  report_cmd->add_option("run", report_dir, "a results folder (or its results.json)")->required();
-  report_cmd->add_option("--out", report_file, "the HTML file (default: <run>/report.html)");
-
-  auto* diff = app.add_subcommand("diff", "check one case and write error heatmaps");
-  add_case_options(*diff, o), add_model_options(*diff, o), add_gl_options(*diff, o);
-
-  auto* digest = app.add_subcommand("digest", "SHA-256 of each case's reference frame (no GL)");
-  add_case_options(*digest, o), add_model_options(*digest, o);
-
-  auto* list = app.add_subcommand("list", "list cases with their descriptions");
-  add_case_options(*list, o);
-
-  auto* identify = app.add_subcommand(
+void add_case_commands(CLI::App& app, Commands& c) {
+  Options& o = c.o;
+  c.worker = app.add_subcommand("worker", "(internal) a GL worker process of `run`");
+  c.worker->group("");  // not for people: `run` starts it
+  c.diff = app.add_subcommand("diff", "check one case and write error heatmaps");
+  add_case_options(*c.diff, o), add_model_options(*c.diff, o), add_gl_options(*c.diff, o);
+  c.digest = app.add_subcommand("digest", "SHA-256 of each case's reference frame (no GL)");
+  add_case_options(*c.digest, o), add_model_options(*c.digest, o);
+  c.list = app.add_subcommand("list", "list cases with their descriptions");
+  add_case_options(*c.list, o);
+  c.identify = app.add_subcommand(
       "identify",
       "find which model (subpixel bits, planes, tie rule, default provoking vertex, 24-bit depth "
       "rounding) explains a GL implementation, with the evidence");
-  add_gl_options(*identify, o);
-
-  auto* selftest = app.add_subcommand(
+  add_gl_options(*c.identify, o);
+  c.selftest = app.add_subcommand(
       "selftest", "plant faults on the GL side and show that the suite catches each one");
-  add_case_options(*selftest, o), add_model_options(*selftest, o), add_gl_options(*selftest, o);
-  selftest->add_option("--baseline", o.baseline,
-                       "known failures, `case,Status` lines: they cannot catch a fault");
+  add_case_options(*c.selftest, o), add_model_options(*c.selftest, o),
+      add_gl_options(*c.selftest, o);
+  c.selftest->add_option("--baseline", o.baseline,
+                         "known failures, `case,Status` lines: they cannot catch a fault");
+}
 
-  // CLI11 says "A subcommand is required" for a misspelt one, without naming it.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string names;
-    bool known = false;
-    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-      known = known || sub->get_name() == argv[1];
-      if (sub->get_name() != "worker") names += (names.empty() ? "" : ", ") + sub->get_name();
-    }
-    if (!known) {
-      fmt::print(stderr, "glrefcheck: expected a command ({}), got \"{}\" (see --help)\n", names,
-                 printable(argv[1], 80));
-      return 2;
-    }
+// CLI11 says "A subcommand is required" for a misspelt one, without naming it: false (after one
+// line on stderr) when argv[1] names no command.
+bool command_known(CLI::App& app, int argc, char** argv) {
+  if (argc <= 1 || argv[1][0] == '-') return true;
+  std::string names;
+  bool known = false;
+  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+    known = known || sub->get_name() == argv[1];
+    if (sub->get_name() != "worker") names += (names.empty() ? "" : ", ") + sub->get_name();
   }
+  if (!known)
+    fmt::print(stderr, "glrefcheck: expected a command ({}), got \"{}\" (see --help)\n", names,
+               printable(argv[1], 80));
+  return known;
+}
+
+// The parsed command run; its exit status (2: bad input, one line on stderr).
+int dispatch(CLI::App& app, Commands& c, char** argv) {
+  Options& o = c.o;
+  try {
+    check_no_empty_paths(app);
+    if (*c.run && !o.resume.empty()) check_resume_alone(*c.run);
+    if (*c.worker) return cmd_worker();
+    // GL from a Mesa prefix needs the loader's environment at process start: the commands that
+    // render in this process start it again with that environment (`run` gives it to its
+    // workers only).
+    if (!o.mesa.empty() && (*c.diff || *c.identify || *c.selftest)) reexec_with_mesa(o, argv);
+    if (*c.run) return cmd_run(o);
+    if (*c.fuzz) {
+      // Its own default folder: a campaign's results.json is not a run's.
+      if (c.fuzz->count("--out") == 0) o.out = "fuzz-out";
+      return cmd_fuzz(o, c.fuzz_options);
+    }
+    if (*c.merge) return cmd_merge(c.merge_dirs, o.out, o.html);
+    if (*c.report) return cmd_report(c.report_dir, c.report_file);
+    if (*c.compare) return cmd_compare(c.compare_options);
+    if (*c.export_command) return cmd_export(c.export_options, *c.export_command);
+    if (*c.diff) return cmd_diff(o);
+    if (*c.digest) return cmd_digest(o);
+    if (*c.selftest) return cmd_selftest(o);
+    if (*c.identify) return cmd_identify(o);
+    return cmd_list(o);
+  } catch (const Interrupted& e) {
+    fmt::print(stderr,
+               "glrefcheck: interrupted by {}: the output folder holds what it held before\n",
+               signal_name(e.signal));
+    return 128 + e.signal;
+  } catch (const std::exception& e) {
+    // InputError, and whatever else went wrong (a report that could not be written, say): one
+    // line, not an abort with a core dump.
+    fmt::print(stderr, "glrefcheck: {}\n", e.what());
+    return 2;
+  }
+}
+
+int main_impl(int argc, char** argv) {
+  CLI::App app{"glrefcheck: checks GL rasterization and interpolation against an exact reference"};
+  app.require_subcommand(1);
+  Commands c;
+  add_run_command(app, c);
+  add_fuzz_and_result_commands(app, c);
+  add_case_commands(app, c);
+  if (!command_known(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -296,44 +349,8 @@ int main_impl(int argc, char** argv) {
                printable(plain_parse_error(e.what()), 300));
     return 2;
   }
-  o.model_given = model_options_given(app);
-  try {
-    check_no_empty_paths(app);
-    if (*run && !o.resume.empty()) check_resume_alone(*run);
-    if (*worker) return cmd_worker();
-    // GL from a Mesa prefix needs the loader's environment at process start: the commands that
-    // render in this process start it again with that environment (`run` gives it to its
-    // workers only).
-    if (!o.mesa.empty() && (*diff || *identify || *selftest)) reexec_with_mesa(o, argv);
-    if (*run) return cmd_run(o);
-    if (*fuzz) {
-      // Its own default folder: a campaign's results.json is not a run's.
-      if (fuzz->count("--out") == 0) o.out = "fuzz-out";
-      return cmd_fuzz(o, fuzz_options);
-    }
-    if (*merge) return cmd_merge(merge_dirs, o.out, o.html);
-    if (*report_cmd) return cmd_report(report_dir, report_file);
-    if (*compare) return cmd_compare(compare_options);
-    if (*export_command) return cmd_export(export_options, *export_command);
-    if (*diff) return cmd_diff(o);
-    if (*digest) return cmd_digest(o);
-    if (*selftest) return cmd_selftest(o);
-    if (*identify) return cmd_identify(o);
-    return cmd_list(o);
-  } catch (const Interrupted& e) {
-    fmt::print(stderr,
-               "glrefcheck: interrupted by {}: the output folder holds what it held before\n",
-               signal_name(e.signal));
-    return 128 + e.signal;
-  } catch (const InputError& e) {
-    fmt::print(stderr, "glrefcheck: {}\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    // Whatever else went wrong (a report that could not be written, say): one line, not an
-    // abort with a core dump.
-    fmt::print(stderr, "glrefcheck: {}\n", e.what());
-    return 2;
-  }
+  c.o.model_given = model_options_given(app);
+  return dispatch(app, c, argv);
 }
 
 }  // namespace

@@ -81,7 +81,11 @@ void check_copyable(const std::filesystem::path& dir) {
 
 }  // namespace
 
-int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir) {
+namespace {
+
+// The campaign shards' results joined (campaign::merge_campaigns); `from[i]`: the shard of the
+// i-th failure. Each field checked, then each shard's stamp.
+nlohmann::json merged_campaign(const std::vector<std::string>& dirs, std::vector<size_t>& from) {
   std::vector<nlohmann::json> shards;
   std::vector<report::JsonStamp> stamps;
   for (const auto& d : dirs) {
@@ -93,7 +97,6 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
     shards.push_back(std::move(j->doc));
     stamps.push_back(j->stamp);
   }
-  std::vector<size_t> from;
   nlohmann::json merged;
   try {
     merged = campaign::merge_campaigns(shards, dirs, from);
@@ -106,6 +109,14 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
     if (stamps[k] == report::JsonStamp::edited)
       throw InputError("merge: " + report::edited_stamp_message(
                                        (report::run_folder(dirs[k]) / "results.json").string()));
+  return merged;
+}
+
+}  // namespace
+
+int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir) {
+  std::vector<size_t> from;
+  const nlohmann::json merged = merged_campaign(dirs, from);
   check_apart(dirs, out_dir);
   // Everything to copy is checked before the folder's earlier merge is cleared: a failure moved
   // out of its shard must not cost the last good merge.
@@ -164,7 +175,7 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   earlier.keep_new();
   const nlohmann::json& st = merged["stats"];
   fmt::print("merged {} campaign shards: {} cases, {} triangles, {} distinct failure{} ({} new)\n",
-             shards.size(), st.value("cases", uint64_t(0)), st.value("triangles", uint64_t(0)),
+             dirs.size(), st.value("cases", uint64_t(0)), st.value("triangles", uint64_t(0)),
              merged["failures"].size(), merged["failures"].size() == 1 ? "" : "s", new_failures);
   fmt::print("results in {}\n", shown_path(out.string()));
   return new_failures == 0 ? 0 : 1;
