@@ -13,25 +13,12 @@
 #include "core/text.hpp"
 #include "gl_harness/first_draw.hpp"
 #include "gl_harness/shaders.hpp"
+#include "identify/known_models.hpp"
 #include "report/report.hpp"
 #include "report/stamp.hpp"
 
 namespace glrc::cli {
 namespace {
-
-// What `glrefcheck identify` finds for Mesa's drivers (22.3.6, OSMesa and EGL alike; the top
-// docs/findings.md), and the GL_SUBPIXEL_BITS each reports, which sets the
-// specification's allowance: what `run` judges them by.
-struct DriverModel {
-  const char* name;
-  Model model;
-  int reported_subpixel_bits;
-};
-const DriverModel kDriverModels[] = {
-    {"llvmpipe", {8, Planes::unsnapped, TieBreak::bottom_left}, 8},
-    {"softpipe", {0, Planes::unsnapped, TieBreak::bottom_right}, 4},
-    {"zink", {8, Planes::unsnapped, TieBreak::bottom_left}, 4},
-};
 
 campaign::ReproducerShaders shaders_of(const Case& c) {
   return {gl::vertex_shader_source(c), gl::geometry_shader_source(c),
@@ -153,9 +140,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   int reported_bits = std::max(o.subpixel_bits, 4);
   options.model = Model{o.subpixel_bits, o.planes, o.tie_break};
   if (!o.driver.empty()) {
-    const DriverModel* found = nullptr;
-    for (const DriverModel& d : kDriverModels)
-      if (o.driver == d.name) found = &d;
+    const identify::KnownModel* found = identify::known_model(o.driver);
     if (!found)
       throw InputError("--driver: expected llvmpipe, softpipe or zink, got \"" +
                        printable(o.driver, 80) + "\"");

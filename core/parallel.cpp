@@ -51,7 +51,7 @@ void parallel_for(int n, int threads, const std::function<void(int)>& fn) {
   if (error) std::rethrow_exception(error);
 }
 
-struct WorkerPool::State {
+struct ThreadPool::State {
   std::mutex lock;
   std::condition_variable wake, done;
   // The current call: its items, the next one to take, and the helpers still in it.
@@ -93,13 +93,13 @@ struct WorkerPool::State {
   }
 };
 
-WorkerPool::WorkerPool(int threads)
+ThreadPool::ThreadPool(int threads)
     : threads_(thread_count(threads)), state_(std::make_unique<State>()) {
   for (int t = 1; t < threads_; ++t)
     state_->helpers.emplace_back([s = state_.get()] { s->helper(); });
 }
 
-WorkerPool::~WorkerPool() {
+ThreadPool::~ThreadPool() {
   {
     const std::lock_guard hold(state_->lock);
     state_->stop = true;
@@ -108,7 +108,7 @@ WorkerPool::~WorkerPool() {
   state_->helpers.clear();  // joined
 }
 
-void WorkerPool::parallel_for(int n, const std::function<void(int)>& fn) {
+void ThreadPool::parallel_for(int n, const std::function<void(int)>& fn) {
   if (n <= 0) return;
   State& s = *state_;
   if (threads_ <= 1 || n == 1) {

@@ -22,13 +22,13 @@ void parallel_for(int n, int threads, const std::function<void(int)>& fn);
 // thread's start, its allocator's cache and its thread-local scratch made anew each time: the
 // reference's two dozen calls per frame scaled poorly for it). Owned by the caller for the
 // run: no pool outlives it, and no state is shared between pools.
-class WorkerPool {
+class ThreadPool {
  public:
   // thread_count(threads) threads in all, the calling one among them.
-  explicit WorkerPool(int threads);
-  ~WorkerPool();  // stops the threads and joins them
-  WorkerPool(const WorkerPool&) = delete;
-  WorkerPool& operator=(const WorkerPool&) = delete;
+  explicit ThreadPool(int threads);
+  ~ThreadPool();  // stops the threads and joins them
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
 
   int threads() const { return threads_; }
   // As parallel_for(n, threads(), fn), on the pool's threads. Not from within fn (one call at a

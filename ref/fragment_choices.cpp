@@ -252,7 +252,7 @@ std::vector<FragmentChoices> choose(const Case& c, const Model& m, int freedom_b
                                 std::to_string(given->triangles.size()) +
                                 " triangles for a case of " + std::to_string(c.triangles.size()));
   const int bits = std::max(freedom_bits, 4);  // render.cpp's Settings::bits
-  WorkerPool pool(thread_count(threads));
+  ThreadPool pool(thread_count(threads));
   const PixelIndex index(pixels, c.fb_width);
   // Only the triangles that may reach a pixel asked (most of a large case's are far from the
   // few pixels traced), judged in primitive order; set up here only without render()'s.

@@ -174,7 +174,7 @@ std::vector<std::array<bool, 3>> shared_edges(
 }
 
 CaseSetup::~CaseSetup() {
-  WorkerPool pool(thread_count(threads));
+  ThreadPool pool(thread_count(threads));
   pool.parallel_for(int(triangles.size()), [&](int k) { triangles[size_t(k)].reset(); });
 }
 

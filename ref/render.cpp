@@ -557,7 +557,7 @@ namespace {
 // hold many GMP numbers each, and freeing them on one thread was a serial tenth of drawing a
 // fan.
 template <class T>
-void release(std::vector<T>& v, WorkerPool& pool) {
+void release(std::vector<T>& v, ThreadPool& pool) {
   pool.parallel_for(int(v.size()), [&](int k) { v[size_t(k)] = {}; });
 }
 
@@ -565,7 +565,7 @@ void release(std::vector<T>& v, WorkerPool& pool) {
 // pixel no fragment was drawn at (no primitive): the frames were made with their components
 // uncleared (Frame::reset_uncleared_components), and a drawn fragment writes every component of
 // both. In chunks of pixels on the pool's threads, each finding its runs of undrawn pixels once.
-void clear_uncovered(Reference& r, WorkerPool& pool) {
+void clear_uncovered(Reference& r, ThreadPool& pool) {
   const Frame& f = r.frame;
   const size_t n = f.pixel_count();
   constexpr size_t kChunk = size_t(1) << 16;
@@ -602,7 +602,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
                                 ") outside a framebuffer " + std::to_string(c.fb_height) + " high");
   threads = thread_count(threads);
   // One set of threads for every step below (core/parallel.hpp).
-  WorkerPool pool(threads);
+  ThreadPool pool(threads);
   // The frames cleared on every thread, a buffer each: on a large frame of many channels,
   // filling them is otherwise a serial part of drawing it.
   Reference r;

@@ -271,7 +271,7 @@ namespace {
 // place: a TriangleSetup default-constructed first costs its rationals' allocations.
 template <class Primitive>
 std::vector<std::optional<TriangleSetup>> set_up_each(const Case& c, const Model& m, int count,
-                                                      Primitive primitive, WorkerPool& pool) {
+                                                      Primitive primitive, ThreadPool& pool) {
   std::vector<uint8_t> used(c.vertices.size(), 0);
   for (int k = 0; k < count; ++k)
     for (uint32_t i : c.triangles[size_t(primitive(k))])
@@ -299,14 +299,14 @@ std::vector<std::optional<TriangleSetup>> set_up_each(const Case& c, const Model
 }  // namespace
 
 std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
-                                                          WorkerPool& pool) {
+                                                          ThreadPool& pool) {
   return set_up_each(
       c, m, int(c.triangles.size()), [](int p) { return p; }, pool);
 }
 
 std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
                                                           const std::vector<int>& primitives,
-                                                          WorkerPool& pool) {
+                                                          ThreadPool& pool) {
   return set_up_each(
       c, m, int(primitives.size()), [&](int k) { return primitives[size_t(k)]; }, pool);
 }

@@ -111,11 +111,11 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
 // vertex a triangle uses transformed to the window once, shared by its triangles. Every element
 // holds a setup.
 std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
-                                                          WorkerPool& pool);
+                                                          ThreadPool& pool);
 // The triangles `primitives` of c (indices into c.triangles) set up likewise, in that order.
 std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const Model& m,
                                                           const std::vector<int>& primitives,
-                                                          WorkerPool& pool);
+                                                          ThreadPool& pool);
 
 // The window-pixel region of the viewport inside the framebuffer.
 PixelBox viewport_box(const Case& c);

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "identify/known_models.hpp"
 #include "tests/support/glrefcheck_process.hpp"
 
 namespace {
@@ -111,6 +112,24 @@ TEST(Identify, EglAgreesWithOsmesa) {
     for (const char* key : {"subpixel_bits", "planes", "tie_break", "depth24"})
       EXPECT_EQ(egl.json[key], osmesa.json[key]) << driver << " " << key;
   }
+}
+
+// The table export --driver judges by (identify/known_models.hpp) is what identify finds, and
+// the subpixel bits each driver reports, on every driver it names.
+TEST(Identify, KnownModelsAreWhatIdentifyFinds) {
+  for (const glrc::identify::KnownModel& k : glrc::identify::known_models()) {
+    const std::string driver(k.driver);
+    SCOPED_TRACE(driver);
+    const Identified r = identify(std::string("--backend ") +
+                                  (driver == "zink" ? "egl" : "osmesa") + " --driver " + driver);
+    ASSERT_EQ(r.outcome.exit_code, 0) << r.outcome.err;
+    EXPECT_EQ(r.summary.at("subpixel_bits"), std::to_string(k.model.subpixel_bits));
+    EXPECT_EQ(r.summary.at("planes"), glrc::to_string(k.model.planes));
+    EXPECT_EQ(r.summary.at("tie"), glrc::to_string(k.model.tie_break));
+    ASSERT_TRUE(r.json.is_object());
+    EXPECT_EQ(r.json["subpixel_bits"]["reported"], k.reported_subpixel_bits);
+  }
+  EXPECT_EQ(glrc::identify::known_model("i965"), nullptr);
 }
 
 TEST(Identify, BadInputIsOneLineAndExitTwo) {

@@ -57,12 +57,12 @@ TEST(Tiles, AnItemsExceptionReachesTheCaller) {
                std::runtime_error);
 }
 
-TEST(Tiles, AWorkerPoolRunsEveryItemOfEveryCallOnce) {
+TEST(Tiles, AThreadPoolRunsEveryItemOfEveryCallOnce) {
   // Many calls on the same threads, of every size (none, one, fewer items than threads, many):
   // every item of each call once, each call done when it returns; an exception leaves the pool
   // usable.
   for (int threads : {1, 2, 5}) {
-    WorkerPool pool(threads);
+    ThreadPool pool(threads);
     EXPECT_EQ(pool.threads(), threads);
     std::set<std::thread::id> ids;
     std::mutex ids_lock;
