@@ -3,14 +3,14 @@
 #include <fmt/core.h>
 #include <filesystem>
 
-#include "campaign/reproducer.hpp"
-#include "campaign/shader_test.hpp"
 #include "casefile/casefile.hpp"
 #include "check/check.hpp"
 #include "cli/output_dir.hpp"
 #include "cli/session.hpp"
 #include "cli/validators.hpp"
 #include "core/text.hpp"
+#include "export/reproducer.hpp"
+#include "export/shader_test.hpp"
 #include "gl_harness/first_draw.hpp"
 #include "gl_harness/shaders.hpp"
 #include "identify/known_models.hpp"
@@ -20,7 +20,7 @@
 namespace glrc::cli {
 namespace {
 
-campaign::ReproducerShaders shaders_of(const Case& c) {
+reproducer::ReproducerShaders shaders_of(const Case& c) {
   return {gl::vertex_shader_source(c), gl::geometry_shader_source(c),
           gl::fragment_shader_source(c, false), gl::fragment_shader_source(c, true)};
 }
@@ -46,7 +46,7 @@ std::string model_words(const ExportOptions& o, const check::CheckOptions& optio
   return words;
 }
 
-// --format shader_test: campaign/shader_test's file, refused with one line where shader_runner
+// --format shader_test: export/shader_test's file, refused with one line where shader_runner
 // cannot express the case.
 int export_shader_test(const ExportOptions& o, const CLI::App& command, const Case& c,
                        const check::CheckOptions& options, int reported_bits) {
@@ -62,7 +62,7 @@ int export_shader_test(const ExportOptions& o, const CLI::App& command, const Ca
     throw InputError(why);
   }
   // What the states alone rule out, before the reference is drawn.
-  if (const auto why = campaign::shader_test_state_refusal(c)) {
+  if (const auto why = reproducer::shader_test_state_refusal(c)) {
     std::string message = printable(o.case_path, 200);
     message += ": ";
     message += *why;
@@ -71,24 +71,24 @@ int export_shader_test(const ExportOptions& o, const CLI::App& command, const Ca
   check_replaceable(out, "--out", "export");
   const Expectation expected = check::expectation_for(c, options, reported_bits);
   const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
-  if (const auto why = campaign::shader_test_refusal(c, expected, tolerance)) {
+  if (const auto why = reproducer::shader_test_refusal(c, expected, tolerance)) {
     std::string message = printable(o.case_path, 200);
     message += ": ";
     message += *why;
     throw InputError(message);
   }
-  campaign::ShaderTestSetup setup;
+  reproducer::ShaderTestSetup setup;
   setup.file_name = std::filesystem::path(out).filename().string();
   setup.exported_by = command_line(o, command);
   setup.model = model_words(o, options);
-  const campaign::ShaderTest test = campaign::shader_test(c, expected, tolerance, setup);
+  const reproducer::ShaderTest test = reproducer::shader_test(c, expected, tolerance, setup);
   // Its stamp last (report/stamp.hpp): an export replaces this file only while it is unchanged.
   report::write_file_atomically(out, report::stamped(test.text + "# written by glrefcheck export " +
                                                      report::stamp_placeholder() + "\n"));
   fmt::print(
       "wrote {}: run with {} (values checked against their ranges at {} of {} (pixel, "
       "triangle) pairs, for NaN and Inf everywhere; coverage at {} pixels in {} probes)\n",
-      out, campaign::shader_runner_command(out), test.value_checks, test.value_pairs,
+      out, reproducer::shader_runner_command(out), test.value_checks, test.value_pairs,
       test.pixels_decided, test.coverage_probes);
   return 0;
 }
@@ -160,8 +160,8 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
     throw InputError(e.what());
   }
   if (o.format == "shader_test") return export_shader_test(o, command, c, options, reported_bits);
-  const size_t values = campaign::reproducer_values(c);
-  if (values > campaign::kMaxReproducerValues) {
+  const size_t values = reproducer::reproducer_values(c);
+  if (values > reproducer::kMaxReproducerValues) {
     std::string n = std::to_string(values);
     for (int at = int(n.size()) - 3; at > 0; at -= 3)
       n.insert(size_t(at), ",");
@@ -177,7 +177,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
 
   const Expectation expected = check::expectation_for(c, options, reported_bits);
   const Tolerance tolerance = check::tolerance_for(c, options, reported_bits);
-  campaign::CReproducerSetup setup;
+  reproducer::CReproducerSetup setup;
   setup.shaders = shaders_of(c);
   setup.first_draw = gl::first_draw_case();
   setup.first_draw_shaders = shaders_of(setup.first_draw);
@@ -193,10 +193,10 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   // Its stamp last (report/stamp.hpp): an export replaces this file only while it is unchanged.
   report::write_file_atomically(
       out,
-      report::stamped(campaign::c_reproducer(c, expected, tolerance, setup) +
+      report::stamped(reproducer::c_reproducer(c, expected, tolerance, setup) +
                       "/* written by glrefcheck export " + report::stamp_placeholder() + " */\n"));
   fmt::print("wrote {}: compile with {}, run with {} [egl|osmesa]\n", out,
-             campaign::c_compile_command(out), campaign::c_run_command(out));
+             reproducer::c_compile_command(out), reproducer::c_run_command(out));
   return 0;
 }
 

@@ -1,5 +1,5 @@
 // glrefcheck export CASE [--format c|shader_test] [--out FILE]: one case as a self-contained C
-// reproducer (campaign/reproducer.hpp) or a piglit shader_test (campaign/shader_test.hpp) that
+// reproducer (export/reproducer.hpp) or a piglit shader_test (export/shader_test.hpp) that
 // draws it on GL as the harness does and checks the reference's expectation, embedded, without
 // glrefcheck.
 #pragma once

@@ -13,7 +13,7 @@
 set -euo pipefail
 
 [ $# -eq 0 ] || { echo "usage: scripts/piglit-fetch.sh" >&2; exit 2; }
-# Debian 12's piglit, the one whose shader_runner commands campaign/shader_test.cpp writes for.
+# Debian 12's piglit, the one whose shader_runner commands export/shader_test.cpp writes for.
 version=0~git20220119-124bca3c9-1
 root=$(cd "$(dirname "$0")/.." && pwd)
 dest=$root/.piglit

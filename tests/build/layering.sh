@@ -21,6 +21,7 @@ declare -A allowed=(
   [identify]="core ref compare gl_harness"
   [selftest]="core check compare driver_models gl_harness report"
   [campaign]="core casefile selftest compare"
+  [export]="core compare"
 )
 
 status=0

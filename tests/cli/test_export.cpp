@@ -3,9 +3,9 @@
 // clipper NaN (cases/known-failures.txt) on llvmpipe, passes the cases llvmpipe passes, and finds
 // softpipe's gap and double hit on a shared edge (tests/cli/data/, minimal cases from
 // `glrefcheck fuzz --generator mesh --driver softpipe --seed 22`) on softpipe only. Bad input is
-// one line and exit 2. The library's text (campaign/reproducer.hpp) is checked without GL too.
+// one line and exit 2. The library's text (export/reproducer.hpp) is checked without GL too.
 // --format shader_test's name and refusals are checked here; its text in
-// tests/campaign/test_shader_test.cpp, its runs on shader_runner in export_shader_test.sh.
+// tests/export/test_shader_test.cpp, its runs on shader_runner in export_shader_test.sh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,10 +15,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "campaign/reproducer.hpp"
-#include "campaign/shader_test.hpp"
 #include "casefile/casefile.hpp"
 #include "check/check.hpp"
+#include "export/reproducer.hpp"
+#include "export/shader_test.hpp"
 #include "gl_harness/first_draw.hpp"
 #include "gl_harness/shaders.hpp"
 #include "tests/support/glrefcheck_process.hpp"
@@ -192,7 +192,7 @@ TEST_F(Export, DefaultNameAndItsOwnFileReplaced) {
               "with ./face_on [egl|osmesa]\n");
   }
   const std::string text = read(dir_ / "face_on.c");
-  EXPECT_EQ(text.rfind(glrc::campaign::kCReproducerSignature, 0), 0u);
+  EXPECT_EQ(text.rfind(glrc::reproducer::kCReproducerSignature, 0), 0u);
   EXPECT_NE(text.find(" *   Build:  cc -std=c99 -O2 -o face_on face_on.c -ldl -lm\n"),
             std::string::npos);
   // Issue 45: a name starting with '-' was taken for cc's option, one with a space split.
@@ -237,7 +237,7 @@ TEST_F(Export, BadInputIsOneLineAndExit2) {
   EXPECT_FALSE(std::filesystem::exists(dir_ / "x.txt"));
 }
 
-// --format shader_test (campaign/shader_test.hpp; tests/cli/export_shader_test.sh runs the files
+// --format shader_test (export/shader_test.hpp; tests/cli/export_shader_test.sh runs the files
 // with piglit's shader_runner): its name, its own file replaced, and what it refuses.
 TEST_F(Export, ShaderTestDefaultNameAndItsOwnFileReplaced) {
   const std::string cd = "cd '" + dir_.string() + "' && '" + GLRC_BINARY_DIR + "/glrefcheck' ";
@@ -254,8 +254,9 @@ TEST_F(Export, ShaderTestDefaultNameAndItsOwnFileReplaced) {
         << r.out;
   }
   const std::string text = read(dir_ / "face_on.shader_test");
-  EXPECT_EQ(text.rfind(std::string(glrc::campaign::kShaderTestSignature) + " of case face_on\n", 0),
-            0u);
+  EXPECT_EQ(
+      text.rfind(std::string(glrc::reproducer::kShaderTestSignature) + " of case face_on\n", 0),
+      0u);
   EXPECT_NE(text.find("\n# Written by: glrefcheck export " + source("cases/face_on.json") +
                       " --format shader_test --driver llvmpipe\n"),
             std::string::npos);
@@ -305,7 +306,7 @@ TEST(ExportLibrary, EmbedsTheHarnessShadersAndExactFloats) {
   glrc::check::CheckOptions o;
   const glrc::Expectation e = glrc::check::expectation_for(c, o, 8);
   const glrc::Tolerance t = glrc::check::tolerance_for(c, o, 8);
-  glrc::campaign::CReproducerSetup setup;
+  glrc::reproducer::CReproducerSetup setup;
   setup.shaders = {glrc::gl::vertex_shader_source(c), glrc::gl::geometry_shader_source(c),
                    glrc::gl::fragment_shader_source(c, false),
                    glrc::gl::fragment_shader_source(c, true)};
@@ -321,8 +322,8 @@ TEST(ExportLibrary, EmbedsTheHarnessShadersAndExactFloats) {
   setup.file_name = "repro.c";
   setup.exported_by = "test";
   setup.model = o.model.describe();
-  const std::string text = glrc::campaign::c_reproducer(c, e, t, setup);
-  EXPECT_EQ(text.rfind(glrc::campaign::kCReproducerSignature, 0), 0u);
+  const std::string text = glrc::reproducer::c_reproducer(c, e, t, setup);
+  EXPECT_EQ(text.rfind(glrc::reproducer::kCReproducerSignature, 0), 0u);
   EXPECT_NE(text.find(" *   Build:  cc -std=c99 -O2 -o repro repro.c -ldl -lm\n"),
             std::string::npos);
   // Every line of the harness's shaders, as C string literals.
@@ -338,12 +339,12 @@ TEST(ExportLibrary, EmbedsTheHarnessShadersAndExactFloats) {
   // Not a driver model's bits, and not beyond the size limit.
   glrc::Tolerance exact = t;
   exact.mode = glrc::ToleranceMode::exact;
-  EXPECT_THROW(glrc::campaign::c_reproducer(c, e, exact, setup), std::invalid_argument);
+  EXPECT_THROW(glrc::reproducer::c_reproducer(c, e, exact, setup), std::invalid_argument);
   glrc::Case big = c;
   big.fb_width = big.fb_height = 300;
-  EXPECT_GT(glrc::campaign::reproducer_values(big), glrc::campaign::kMaxReproducerValues);
-  EXPECT_THROW(glrc::campaign::c_reproducer(big, e, t, setup), std::invalid_argument);
-  EXPECT_EQ(glrc::campaign::c_compile_command("dir/my case.c"),
+  EXPECT_GT(glrc::reproducer::reproducer_values(big), glrc::reproducer::kMaxReproducerValues);
+  EXPECT_THROW(glrc::reproducer::c_reproducer(big, e, t, setup), std::invalid_argument);
+  EXPECT_EQ(glrc::reproducer::c_compile_command("dir/my case.c"),
             "cc -std=c99 -O2 -o 'dir/my case' 'dir/my case.c' -ldl -lm");
 }
 

@@ -73,7 +73,7 @@
 #include "core/case.hpp"
 #include "core/frame.hpp"
 
-namespace glrc::campaign {
+namespace glrc::reproducer {
 
 // The first characters of every shader_test written (its first line): `export --out` replaces
 // only a file that holds them.
@@ -137,4 +137,4 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
 // shell where needed: how the header, and `export`, say to run it.
 std::string shader_runner_command(const std::string& file);
 
-}  // namespace glrc::campaign
+}  // namespace glrc::reproducer

@@ -23,7 +23,7 @@
 #include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
 
-namespace glrc::campaign {
+namespace glrc::reproducer {
 
 // The first characters of every C reproducer (its first line): `export --out` replaces only a
 // file that holds them.
@@ -89,4 +89,4 @@ std::string c_run_command(const std::string& file);
 std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
                          const CReproducerSetup& setup);
 
-}  // namespace glrc::campaign
+}  // namespace glrc::reproducer

@@ -1,6 +1,6 @@
-#include "campaign/expectation_shape.hpp"
+#include "export/expectation_shape.hpp"
 
-namespace glrc::campaign {
+namespace glrc::reproducer {
 
 std::string expectation_shape_error(const Case& c, const Expectation& e, const Tolerance& t) {
   const Frame& f = e.frame;
@@ -36,4 +36,4 @@ std::string expectation_shape_error(const Case& c, const Expectation& e, const T
   return "";
 }
 
-}  // namespace glrc::campaign
+}  // namespace glrc::reproducer

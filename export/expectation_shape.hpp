@@ -8,7 +8,7 @@
 #include "core/case.hpp"
 #include "core/frame.hpp"
 
-namespace glrc::campaign {
+namespace glrc::reproducer {
 
 // What is wrong with expectation `e` as one of case `c` under tolerance `t`, in a few words
 // ("the expectation is not of this case's framebuffer and varyings"), or "" when nothing is:
@@ -17,4 +17,4 @@ namespace glrc::campaign {
 // component, every triangle's vertices within the case's.
 std::string expectation_shape_error(const Case& c, const Expectation& e, const Tolerance& t);
 
-}  // namespace glrc::campaign
+}  // namespace glrc::reproducer

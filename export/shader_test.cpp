@@ -1,6 +1,6 @@
 // A case as one piglit shader_test (shader_test.hpp): the case's draw with a fragment shader
 // that judges and counts, a resolve draw, and probes of the verdict.
-#include "campaign/shader_test.hpp"
+#include "export/shader_test.hpp"
 
 #include <algorithm>
 #include <array>
@@ -18,11 +18,11 @@
 #include <tuple>
 #include <vector>
 
-#include "campaign/expectation_shape.hpp"
 #include "compare/compare.hpp"
 #include "core/text.hpp"
+#include "export/expectation_shape.hpp"
 
-namespace glrc::campaign {
+namespace glrc::reproducer {
 namespace {
 
 // ---- Numbers as text that reads back as the same float32 ----
@@ -966,4 +966,4 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   return result;
 }
 
-}  // namespace glrc::campaign
+}  // namespace glrc::reproducer

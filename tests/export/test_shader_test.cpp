@@ -1,4 +1,4 @@
-// campaign/shader_test's text without GL: what shader_runner cannot express is refused with one
+// export/shader_test's text without GL: what shader_runner cannot express is refused with one
 // line, every float reads back as the same float32 (vertex data through strtod and a cast, as
 // shader_runner reads it; GLSL ranges through strtof, as Mesa's GLSL lexer does) and the ranges
 // are exactly the values `run` accepts, and the probes reach the pixels where Mesa 22.3.6 fails
@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "campaign/random.hpp"
-#include "campaign/shader_test.hpp"
 #include "casefile/casefile.hpp"
 #include "check/check.hpp"
 #include "compare/compare.hpp"
+#include "export/shader_test.hpp"
 
 namespace {
 
@@ -35,7 +35,7 @@ struct Exported {
   Case c;
   Expectation expected;
   Tolerance tolerance;
-  campaign::ShaderTest test;
+  reproducer::ShaderTest test;
 };
 
 // As `export --driver llvmpipe` (or softpipe) judges: that driver's model and reported bits.
@@ -55,10 +55,10 @@ Exported export_case(Case c, bool softpipe = false) {
   Exported x{std::move(c), {}, {}, {}};
   x.expected = check::expectation_for(x.c, o, bits);
   x.tolerance = check::tolerance_for(x.c, o, bits);
-  campaign::ShaderTestSetup setup;
+  reproducer::ShaderTestSetup setup;
   setup.exported_by = "test";
   setup.model = o.model.describe();
-  x.test = campaign::shader_test(x.c, x.expected, x.tolerance, setup);
+  x.test = reproducer::shader_test(x.c, x.expected, x.tolerance, setup);
   return x;
 }
 
@@ -133,7 +133,7 @@ bool accepted(float g, float e, double a) {
 TEST(ShaderTest, RefusesWhatShaderRunnerCannotExpressInOneLine) {
   const Case face_on = casefile::load(source("cases/face_on.json"));
   auto refusal = [](const Case& c) {
-    const std::optional<std::string> why = campaign::shader_test_state_refusal(c);
+    const std::optional<std::string> why = reproducer::shader_test_state_refusal(c);
     EXPECT_TRUE(why.has_value()) << c.name;
     if (why) {
       EXPECT_EQ(why->find('\n'), std::string::npos) << *why;
@@ -159,7 +159,7 @@ TEST(ShaderTest, RefusesWhatShaderRunnerCannotExpressInOneLine) {
                              0),
             0u);
   c = face_on;
-  c.triangles.assign(campaign::kMaxShaderTestTriangles + 1, c.triangles.front());
+  c.triangles.assign(reproducer::kMaxShaderTestTriangles + 1, c.triangles.front());
   EXPECT_EQ(refusal(c),
             "4,097 triangles; a shader_test takes at most 4,096: shrink the case first (glrefcheck "
             "fuzz --replay ...)");
@@ -174,20 +174,20 @@ TEST(ShaderTest, RefusesWhatShaderRunnerCannotExpressInOneLine) {
     for (CullFace cull : {CullFace::front, CullFace::back}) {
       c = face_on;
       c.cull = cull, c.front_face = f;
-      EXPECT_FALSE(campaign::shader_test_state_refusal(c).has_value());
+      EXPECT_FALSE(reproducer::shader_test_state_refusal(c).has_value());
     }
 
   // A driver model's bits are no range; shader_test() throws the refusal.
   Exported x = export_case(face_on);
   Tolerance exact = x.tolerance;
   exact.mode = ToleranceMode::exact;
-  const auto why = campaign::shader_test_refusal(x.c, x.expected, exact);
+  const auto why = reproducer::shader_test_refusal(x.c, x.expected, exact);
   ASSERT_TRUE(why.has_value());
   EXPECT_EQ(why->rfind("exact tolerance (a driver model's bits) cannot be expressed", 0), 0u);
-  EXPECT_THROW(campaign::shader_test(x.c, x.expected, exact, {}), std::invalid_argument);
+  EXPECT_THROW(reproducer::shader_test(x.c, x.expected, exact, {}), std::invalid_argument);
   c = face_on;
   c.depth_near = 1, c.depth_far = 0;
-  EXPECT_THROW(campaign::shader_test(c, x.expected, x.tolerance, {}), std::invalid_argument);
+  EXPECT_THROW(reproducer::shader_test(c, x.expected, x.tolerance, {}), std::invalid_argument);
 }
 
 // Vertex data and stated ranges of a case whose numbers are hard to write: random bit patterns,
@@ -343,7 +343,7 @@ TEST(ShaderTest, StatesAsShaderRunnerCommands) {
       export_file("cases/cull_front_cw.json").test.text.find("  if (!gl_FrontFacing) discard;\n"),
       std::string::npos);
   const std::string plain = export_file("cases/face_on.json").test.text;
-  EXPECT_EQ(plain.rfind(campaign::kShaderTestSignature, 0), 0u);
+  EXPECT_EQ(plain.rfind(reproducer::kShaderTestSignature, 0), 0u);
   for (const char* absent : {"viewport indexed", "provoking vertex", "depthbuffer", "discard"})
     EXPECT_EQ(plain.find(absent), std::string::npos) << absent;
 }
@@ -351,14 +351,15 @@ TEST(ShaderTest, StatesAsShaderRunnerCommands) {
 TEST(ShaderTest, ValueChecksAreBounded) {
   // 4,096 pixels with five channels: 64 pairs; many channels: 512 ranges in all.
   const Exported face_on = export_file("cases/face_on.json");
-  EXPECT_EQ(face_on.test.value_checks, campaign::kMaxShaderTestValueChecks);
+  EXPECT_EQ(face_on.test.value_checks, reproducer::kMaxShaderTestValueChecks);
   EXPECT_GT(face_on.test.value_pairs, 1000u);
   const Exported mixed = export_file("cases/varyings_mixed.json");
   const size_t channels = size_t(mixed.c.component_count()) + 1;
-  EXPECT_EQ(mixed.test.value_checks, campaign::shader_test_value_checks(mixed.c.component_count()));
-  EXPECT_LE(mixed.test.value_checks * channels, campaign::kMaxShaderTestRanges);
-  EXPECT_EQ(campaign::shader_test_value_checks(1000), 1u);
-  EXPECT_EQ(campaign::shader_test_value_checks(0), campaign::kMaxShaderTestValueChecks);
+  EXPECT_EQ(mixed.test.value_checks,
+            reproducer::shader_test_value_checks(mixed.c.component_count()));
+  EXPECT_LE(mixed.test.value_checks * channels, reproducer::kMaxShaderTestRanges);
+  EXPECT_EQ(reproducer::shader_test_value_checks(1000), 1u);
+  EXPECT_EQ(reproducer::shader_test_value_checks(0), reproducer::kMaxShaderTestValueChecks);
 }
 
 }  // namespace

@@ -1,0 +1,520 @@
+// A case as one self-contained C file (reproducer.hpp): the case's draw, its expectation as
+// hexadecimal float literals, and a C runtime that opens GL through dlopen, draws as gl_harness/
+// does and judges as compare/ does.
+#include "export/reproducer.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "compare/compare.hpp"
+#include "core/text.hpp"
+#include "export/c_runtime.hpp"
+#include "export/expectation_shape.hpp"
+
+namespace glrc::reproducer {
+namespace {
+
+// ---- The C runtime: the same text in every reproducer (export/c_runtime/, embedded) ----
+
+// ---- Writing C ----
+
+// A C99 literal of v, exactly: hexadecimal floating point, or NAN / INFINITY (math.h).
+std::string hex_literal(double v) {
+  if (std::isnan(v)) return "NAN";
+  if (std::isinf(v)) return v < 0 ? "-INFINITY" : "INFINITY";
+  char digits[64];
+  const auto [end, ec] =
+      std::to_chars(digits, digits + sizeof digits, std::fabs(v), std::chars_format::hex);
+  if (ec != std::errc()) throw std::logic_error("hex_literal: to_chars failed");
+  return (std::signbit(v) ? "-0x" : "0x") + std::string(digits, end);
+}
+
+// A C string literal of `text`, one literal per line of it, the later ones on lines of their
+// own after `indent`. '?' is escaped (no trigraphs), bytes outside printable ASCII are octal.
+std::string c_string(std::string_view text, std::string_view indent = "    ") {
+  if (text.empty()) return "\"\"";
+  std::string out;
+  for (size_t start = 0; start < text.size();) {
+    size_t end = text.find('\n', start);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    if (start > 0) out += "\n" + std::string(indent);
+    out += '"';
+    for (const char ch : text.substr(start, end - start)) {
+      const auto u = static_cast<unsigned char>(ch);
+      if (ch == '\n') {
+        out += "\\n";
+      } else if (ch == '"' || ch == '\\' || ch == '?') {
+        out += '\\';
+        out += ch;
+      } else if (u < 0x20 || u >= 0x7f) {
+        const char octal[] = {'\\', char('0' + (u >> 6)), char('0' + ((u >> 3) & 7)),
+                              char('0' + (u & 7))};
+        out.append(octal, sizeof octal);
+      } else {
+        out += ch;
+      }
+    }
+    out += '"';
+    start = end;
+  }
+  return out;
+}
+
+// Text for a /* */ comment: no "*/" to end it early, no trigraph, no control character.
+std::string comment_text(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto u = static_cast<unsigned char>(ch);
+    if ((ch == '/' && !out.empty() && out.back() == '*') ||
+        (ch == '?' && !out.empty() && out.back() == '?'))
+      out += ' ';
+    out += u < 0x20 || u == 0x7f ? ' ' : ch;
+  }
+  return out;
+}
+
+// `text` as comment lines " * ..." of at most `width` characters, broken at spaces.
+std::string comment_lines(std::string_view text, size_t width = 96) {
+  return wrap_words(comment_text(text), width, " * ");
+}
+
+// Items separated by ", ", lines broken before 100 columns after `indent`; a lone "0" when
+// there are none (C has no empty initializer lists; a count beside the array says so).
+class ListWriter {
+ public:
+  ListWriter(std::string& out, std::string indent) : out_(out), indent_(std::move(indent)) {}
+  void item(std::string_view text) {
+    separate();
+    if (column_ == 0 || column_ + 1 + text.size() > 100) {
+      newline();
+    } else {
+      out_ += ' ';
+      ++column_;
+    }
+    out_ += text;
+    column_ += text.size();
+    ++items_;
+    comma_ = false;
+  }
+  // A comment starting a line of its own; the next items follow it.
+  void line_comment(std::string_view text) {
+    separate();
+    newline();
+    out_ += "/* " + std::string(text) + " */";
+    column_ += text.size() + 6;
+  }
+  void finish() {
+    if (items_ == 0) {
+      newline();
+      out_ += "0";
+    }
+    out_ += "\n";
+  }
+
+ private:
+  void separate() {
+    if (items_ > 0 && !comma_) out_ += ",", comma_ = true;
+  }
+  void newline() {
+    out_ += "\n" + indent_;
+    column_ = indent_.size();
+  }
+  std::string& out_;
+  std::string indent_;
+  size_t column_ = 0, items_ = 0;
+  bool comma_ = false;
+};
+
+// A float for people: the shortest "%.9g".
+std::string printable_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+const char* gl_cull(CullFace f) {
+  switch (f) {
+    case CullFace::none:
+      return "0 /* no culling */";
+    case CullFace::front:
+      return "GL_FRONT";
+    case CullFace::back:
+      return "GL_BACK";
+    case CullFace::front_and_back:
+      return "GL_FRONT_AND_BACK";
+  }
+  return "0";
+}
+
+// GL's name of the depth function, which the C text defines: the case file's, upper case.
+std::string gl_depth_func(DepthFunc f) {
+  std::string name(name_of(f));
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](char ch) { return char(ch - 'a' + 'A'); });
+  return "GL_" + name;
+}
+
+// The arrays and the struct scene `name` of case `c`, drawn with `shaders`; its arrays' names
+// start with `prefix`.
+void write_scene(std::string& out, const Case& c, const ReproducerShaders& shaders,
+                 const std::string& prefix, const std::string& name, const std::string& case_name) {
+  out += "static const int " + prefix + "_varying_sizes[] = {";
+  for (size_t k = 0; k < c.varyings.size(); ++k)
+    out += (k ? ", " : "") + std::to_string(c.varyings[k].size);
+  if (c.varyings.empty()) out += "0 /* none */";
+  out += "};\n";
+
+  std::string components;
+  for (const std::string& n : component_names(c))
+    components += ", " + n;
+  out += "/* Per vertex: clip coordinates (x_c, y_c, z_c, w_c), exactly what gl_Position receives" +
+         comment_text(components.empty() ? std::string() : ", then " + components.substr(2)) +
+         ". */\n";
+  out += "static const float " + prefix + "_vertices[] = {";
+  {
+    std::string list;
+    ListWriter w(list, "    ");
+    for (size_t v = 0; v < c.vertices.size(); ++v) {
+      w.line_comment("vertex " + std::to_string(v));
+      for (float x : c.vertices[v].clip)
+        w.item(hex_literal(x));
+      for (float x : c.vertices[v].values)
+        w.item(hex_literal(x));
+    }
+    w.finish();
+    out += list;
+  }
+  out += "};\n";
+  out += "static const GLuint " + prefix + "_indices[] = {";
+  {
+    std::string list;
+    ListWriter w(list, "    ");
+    for (const auto& t : c.triangles)
+      for (uint32_t i : t)
+        w.item(std::to_string(i));
+    w.finish();
+    out += list;
+  }
+  out += "};\n";
+  const std::pair<const char*, const std::string*> sources[] = {
+      {"vertex_shader", &shaders.vertex},
+      {"geometry_shader", &shaders.geometry},
+      {"fragment_shader", &shaders.fragment},
+      {"fragment_after_geometry", &shaders.fragment_after_geometry}};
+  for (const auto& [field, text] : sources)
+    out += "static const char " + prefix + "_" + field + "[] =\n    " + c_string(*text) + ";\n";
+
+  out += "static const struct scene " + name + " = {\n";
+  out += "    .name = " + case_name + ",\n";
+  out += "    .width = " + std::to_string(c.fb_width) +
+         ", .height = " + std::to_string(c.fb_height) + ",\n";
+  out += "    .viewport = {" + std::to_string(c.viewport.x) + ", " + std::to_string(c.viewport.y) +
+         ", " + std::to_string(c.viewport.width) + ", " + std::to_string(c.viewport.height) +
+         "},\n";
+  out += "    .depth_near = " + hex_literal(c.depth_near) +
+         ", .depth_far = " + hex_literal(c.depth_far) + ", /* " +
+         comment_text(printable_number(c.depth_near) + ", " + printable_number(c.depth_far)) +
+         " */\n";
+  out += std::string("    .cull = ") + gl_cull(c.cull) + ",\n";
+  out += std::string("    .front_face = ") + (c.front_face == FrontFace::ccw ? "GL_CCW" : "GL_CW") +
+         ",\n";
+  out += std::string("    .provoking_vertex = ") +
+         (c.provoking == ProvokingVertex::last ? "GL_LAST_VERTEX_CONVENTION"
+                                               : "GL_FIRST_VERTEX_CONVENTION") +
+         ",\n";
+  out += std::string("    .depth_func = ") + gl_depth_func(c.depth_func) +
+         ", .depth_clear = " + hex_literal(c.depth_clear) + ", /* " +
+         comment_text(printable_number(c.depth_clear)) + " */\n";
+  out += std::string("    .work_arounds = ") + (c.work_arounds ? "1" : "0") + ",\n";
+  out += "    .varying_count = " + std::to_string(c.varyings.size()) +
+         ", .varying_sizes = " + prefix + "_varying_sizes,\n";
+  out += "    .component_count = " + std::to_string(c.component_count()) + ",\n";
+  out += "    .vertex_count = " + std::to_string(c.vertices.size()) + ", .vertices = " + prefix +
+         "_vertices,\n";
+  out += "    .index_count = " + std::to_string(c.triangles.size() * 3) + ", .indices = " + prefix +
+         "_indices,\n";
+  out += "    .vertex_shader = " + prefix + "_vertex_shader, .geometry_shader = " + prefix +
+         "_geometry_shader,\n";
+  out += "    .fragment_shader = " + prefix + "_fragment_shader,\n";
+  out += "    .fragment_after_geometry = " + prefix + "_fragment_after_geometry,\n";
+  out += "    .count_vertex_shader = count_vertex_shader,\n";
+  out += "    .count_geometry_shader = count_geometry_shader,\n";
+  out += "    .count_fragment_shader = count_fragment_shader,\n";
+  out += "    .trace_fragment_shader = trace_fragment_shader};\n\n";
+}
+
+// Throws std::invalid_argument unless `e` is an expectation of case `c` the C file can embed.
+void check_inputs(const Case& c, const Expectation& e, const Tolerance& t,
+                  const CReproducerSetup& setup) {
+  auto fail = [&](const std::string& why) {
+    throw std::invalid_argument("c_reproducer: case '" + c.name + "': " + why);
+  };
+  if (t.mode == ToleranceMode::exact)
+    fail("exact tolerance (a driver model's bits) is not what a reproducer judges");
+  if (reproducer_values(c) > kMaxReproducerValues)
+    fail(std::to_string(reproducer_values(c)) + " pixel values, more than " +
+         std::to_string(kMaxReproducerValues));
+  if (const std::string why = expectation_shape_error(c, e, t); !why.empty()) fail(why);
+  if (setup.first_draw.component_count() != 1 || setup.first_draw.triangles.empty())
+    fail("the first draw is not the harness's (one flat float, one triangle)");
+}
+
+}  // namespace
+
+size_t reproducer_values(const Case& c) {
+  return size_t(std::max(c.fb_width, 0)) * size_t(std::max(c.fb_height, 0)) *
+         (3 + size_t(std::max(c.component_count(), 0)));
+}
+
+std::string c_compile_command(const std::string& file) {
+  std::string program = file;
+  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
+  return "cc -std=c99 -O2 -o " + shell_word(program) + " " + shell_word(file) + " -ldl -lm";
+}
+
+std::string c_run_command(const std::string& file) {
+  std::string program = file;
+  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
+  if (program.find('/') == std::string::npos) program = "./" + program;
+  return shell_word(program);
+}
+
+std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
+                         const CReproducerSetup& setup) {
+  check_inputs(c, expected, tolerance, setup);
+  const Frame& f = expected.frame;
+  const size_t pixels = f.pixel_count();
+  const int components = c.component_count();
+  const std::vector<std::string> names = component_names(c);
+  std::string file_name = setup.file_name.empty() ? c.name + ".c" : setup.file_name;
+  if (const size_t slash = file_name.rfind('/'); slash != std::string::npos)
+    file_name = file_name.substr(slash + 1);
+  const std::string program = c_run_command(file_name);
+
+  std::string out;
+  out.reserve(pixels * 64 + 65536);
+
+  // The header: what this is and how to use it.
+  out += std::string(kCReproducerSignature) + " of case " + comment_text(c.name) + ", in C99\n";
+  out += " *\n";
+  if (!c.description.empty()) out += comment_lines(c.description) + " *\n";
+  out += comment_lines(
+      "Written by `" + setup.exported_by +
+      "`. It draws this one case on GL as glrefcheck's GL harness draws it and checks every "
+      "pixel against glrefcheck's exact reference, embedded below. Self-contained: C99 and libc "
+      "only, no glrefcheck and no GL, EGL or OSMesa headers; libEGL or libOSMesa is opened at "
+      "run time (dlopen).");
+  out += " *\n";
+  out += " *   Build:  " + comment_text(c_compile_command(file_name)) + "\n";
+  out += " *   Run:    " + comment_text(program) + " [egl|osmesa]       (default: egl)\n";
+  out += " *           GALLIUM_DRIVER=softpipe " + comment_text(program) + " osmesa\n";
+  out += " *\n";
+  out += comment_lines(
+      "egl: Mesa's surfaceless EGL platform (libEGL.so.1, EGL_PLATFORM_SURFACELESS_MESA), an "
+      "OpenGL 3.3 core context current without a surface. osmesa: libOSMesa.so.8, "
+      "OSMesaCreateContextAttribs with an OpenGL 3.3 core profile. GALLIUM_DRIVER picks Mesa's "
+      "driver as usual (llvmpipe when unset, softpipe, or zink through egl); with a CPU driver "
+      "named, egl sets LIBGL_ALWAYS_SOFTWARE=1 unless it is set, as glrefcheck does, and a "
+      "GALLIUM_DRIVER that GL_RENDERER does not name is refused.");
+  out += " *\n";
+  std::string judged =
+      "Judged as `glrefcheck run` judges it, against the exact reference of model " + setup.model +
+      ", under ";
+  if (tolerance.mode == ToleranceMode::spec)
+    judged +=
+        "the specification's allowance for an implementation that reports GL_SUBPIXEL_BITS = " +
+        std::to_string(tolerance.subpixel_bits) +
+        " (it must be what the driver reports: llvmpipe 8, softpipe 4)";
+  else
+    judged += "fixed thresholds (" + printable_number(tolerance.varying_ulps) +
+              " ULPs of each attribute's scale, depth " + printable_number(tolerance.depth_ulps) +
+              " ULPs of 1.0, flat values 0)";
+  judged += std::string(
+                ". Coverage: per pixel the reference's primitive (-1: none), its fragment "
+                "count and its edge bits; a different primitive passes only where the "
+                "edge bits say the specification's freedom allows it (a centre exactly on "
+                "an edge, within the snapping band of an edge, near a triangle that may "
+                "turn over, or where another fragment may win the depth test)") +
+            (tolerance.allow_boundary ? "" : " and this case allows no such difference") +
+            "; away from outer edges GL must rasterize as many fragments as the reference, "
+            "counted without the depth test (gaps and double hits on shared edges fail). Values: "
+            "depth, then every component, where GL's "
+            "primitive is the reference's (or a candidate of the depth test): |GL - reference| "
+            "must be at most the allowed absolute error; NaN or Inf from GL always fails; a "
+            "reference value that is NaN or Inf (the specification determines none there) is not "
+            "judged. Pixels are in GL window coordinates: (x, y) from the bottom left.";
+  out += comment_lines(judged);
+  out += " *\n";
+  out += comment_lines(
+      "Prints each failing check (the first 30, then how many more) and a summary line with "
+      "GL_RENDERER and GL_VERSION. Exit status: 0 when everything is within what is allowed, 1 "
+      "when a check fails or GL cannot draw the case, 2 when GL cannot be had (library, display, "
+      "context, OpenGL 3.3 core).");
+  out += " */\n";
+  out += kCDeclarations;
+
+  // The case and the first draw, as the harness draws them.
+  out += "\n/* ---- The case ---- */\n";
+  out += "static const char CASE_NAME[] = " + c_string(c.name) + ";\n";
+  out += "#define FB_WIDTH " + std::to_string(c.fb_width) + "\n";
+  out += "#define FB_HEIGHT " + std::to_string(c.fb_height) + "\n";
+  out += "#define PIXELS (FB_WIDTH * FB_HEIGHT)\n";
+  out += "#define COMPONENT_COUNT " + std::to_string(components) + "\n";
+  out += "#define CHANNELS (1 + COMPONENT_COUNT) /* depth, then every component */\n";
+  out += "static const char *const CHANNEL_NAMES[CHANNELS] = {\"depth\"";
+  for (const std::string& n : names)
+    out += ", " + c_string(n);
+  out += "};\n";
+  out += "static const char count_vertex_shader[] =\n    " + c_string(setup.count_vertex) + ";\n";
+  out +=
+      "static const char count_geometry_shader[] =\n    " + c_string(setup.count_geometry) + ";\n";
+  out +=
+      "static const char count_fragment_shader[] =\n    " + c_string(setup.count_fragment) + ";\n";
+  out +=
+      "static const char trace_fragment_shader[] =\n    " + c_string(setup.trace_fragment) + ";\n";
+  write_scene(out, c, setup.shaders, "case", "THE_CASE", "CASE_NAME");
+  out +=
+      "/* The harness's first draw: one triangle over a 4x4 framebuffer, one flat float of 1; "
+      "primitive 0\n   and value 1 expected at every pixel. */\n";
+  write_scene(out, setup.first_draw, setup.first_draw_shaders, "first_draw", "FIRST_DRAW",
+              c_string(setup.first_draw.name));
+
+  // The expectation.
+  const compare::UlpTable ulps(c);
+  std::vector<compare::ChannelAllowance> allowances;
+  for (int k = compare::kDepth; k < components; ++k)
+    allowances.emplace_back(c, expected, tolerance, k);
+  const bool per_pixel = allowances.front().per_pixel();
+  out += "\n/* ---- What the reference expects (glrefcheck's exact CPU rasterizer) ---- */\n";
+  out += "#define ALLOW_BOUNDARY " + std::to_string(int(tolerance.allow_boundary)) +
+         " /* 0: coverage differences at edges fail too */\n";
+  out += "#define COUNTS_CHECKED " + std::to_string(int(f.fragments.size() == pixels)) + "\n";
+  out += "/* Edge bits (core/frame.hpp's edge::). */\n";
+  out += "#define EDGE_TIE " + std::to_string(edge::tie) +
+         " /* the centre lies exactly on an edge */\n";
+  out += "#define EDGE_SNAPPING " + std::to_string(edge::snapping) +
+         " /* within the snapping band of an outer edge or clip plane */\n";
+  out += "#define EDGE_SHARED " + std::to_string(edge::shared) +
+         " /* within the snapping band of an edge two triangles share */\n";
+  out += "#define EDGE_UNSTABLE " + std::to_string(edge::unstable) +
+         " /* near a triangle the freedom may turn over: anything goes */\n";
+  out += "#define EDGE_DEPTH_ORDER " + std::to_string(edge::depth_order) +
+         " /* another fragment may win the depth test */\n";
+  out += "#define TRIANGLE_COUNT " + std::to_string(c.triangles.size()) + "\n";
+
+  auto per_row = [&](const char* type, const char* array, const char* what, auto value) {
+    out += "/* " + std::string(what) + ", per pixel, row by row from the bottom. */\n";
+    out += std::string("static const ") + type + " " + array + "[PIXELS] = {";
+    ListWriter w(out, "    ");
+    for (int y = 0; y < f.height; ++y) {
+      w.line_comment("y = " + std::to_string(y));
+      for (int x = 0; x < f.width; ++x)
+        w.item(value(f.index(x, y)));
+    }
+    w.finish();
+    out += "};\n";
+  };
+  per_row("int", "REF_PRIMITIVE", "The reference's primitive (gl_PrimitiveID; -1: none)",
+          [&](size_t i) { return std::to_string(f.primitive[i]); });
+  per_row("unsigned short", "REF_FRAGMENTS", "How many fragments the reference writes",
+          [&](size_t i) { return std::to_string(f.fragments.empty() ? 0 : f.fragments[i]); });
+  per_row("unsigned char", "REF_EDGES", "Edge bits",
+          [&](size_t i) { return std::to_string(expected.edges[i]); });
+
+  // Values and allowances of the pixels the reference covers.
+  size_t covered = 0;
+  std::string values, allowed;
+  {
+    ListWriter v(values, "    "), a(allowed, "    ");
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x) {
+        const size_t i = f.index(x, y);
+        const int32_t p = f.primitive[i];
+        if (p == Frame::kNoPrimitive) continue;
+        ++covered;
+        const std::string at = std::to_string(x) + ", " + std::to_string(y);
+        v.line_comment(at);
+        a.line_comment(at);
+        for (int k = compare::kDepth; k < components; ++k) {
+          v.item(hex_literal(k == compare::kDepth ? f.depth[i] : f.components[size_t(k)][i]));
+          a.item(hex_literal(allowances[size_t(k + 1)].at(i, ulps.ulp(p, k))));
+        }
+      }
+    v.finish();
+    a.finish();
+  }
+  out +=
+      "/* At each pixel the reference covers (REF_PRIMITIVE >= 0), in pixel order: depth, then "
+      "every\n   component (CHANNEL_NAMES)... */\n";
+  out += "#define COVERED " + std::to_string(covered) + "\n";
+  out += "static const float REF_VALUES[] = {" + values + "};\n";
+  out +=
+      "/* ...and the largest |GL - reference| a conforming implementation can produce there. */\n";
+  out += "static const double REF_ALLOWED[] = {" + allowed + "};\n";
+
+  out +=
+      "/* Where another fragment may win the depth test (EDGE_DEPTH_ORDER): its primitive, "
+      "depth and\n   components, and their allowances; sorted by pixel (y * FB_WIDTH + x). */\n";
+  out +=
+      "struct candidate {\n  int pixel, primitive;\n  float values[CHANNELS];\n"
+      "  double allowed[CHANNELS];\n};\n";
+  out += "#define CANDIDATE_COUNT " + std::to_string(expected.candidates.size()) + "\n";
+  out += "static const struct candidate CANDIDATES[] = {\n";
+  for (const Candidate& o : expected.candidates) {
+    out += "    {" + std::to_string(o.pixel) + ", " + std::to_string(o.primitive) + ", {";
+    out += hex_literal(o.depth);
+    for (float v : o.values)
+      out += ", " + hex_literal(v);
+    out += "}, {";
+    for (int k = compare::kDepth; k < components; ++k) {
+      const double a = per_pixel
+                           ? double(k == compare::kDepth ? o.allowed_depth : o.allowed[size_t(k)])
+                           : allowances[size_t(k + 1)].at(o.pixel, ulps.ulp(o.primitive, k));
+      out += (k == compare::kDepth ? "" : ", ") + hex_literal(a);
+    }
+    out += "}},\n";
+  }
+  if (expected.candidates.empty()) out += "    {-1, -1, {0}, {0}} /* none */\n";
+  out += "};\n";
+  // The traces a conforming implementation may give where the edge bits excuse a count.
+  out +=
+      "/* Where the edge bits excuse coverage (EDGE_SNAPPING, EDGE_UNSTABLE, EDGE_SHARED), the "
+      "traces a\n   conforming implementation may give: fragments, the sum of p + 1 and the sum "
+      "of a hash of p\n   over them (TRACES[first .. first + count)); sorted by pixel. A pixel "
+      "not listed is not\n   judged by its trace. */\n";
+  out += "struct traced {\n  int pixel, first, count;\n};\n";
+  size_t listed = 0;
+  std::string pixels_text, traces_text;
+  for (const AdmittedTraces& a : setup.admitted) {
+    pixels_text += "    {" + std::to_string(a.pixel) + ", " + std::to_string(listed) + ", " +
+                   std::to_string(a.traces.size()) + "},\n";
+    for (const FragmentTrace& t : a.traces)
+      traces_text += "    {" + std::to_string(t.count) + ", " + std::to_string(t.id_sum) + ", " +
+                     std::to_string(t.hash_sum) + "},\n";
+    listed += a.traces.size();
+  }
+  if (setup.admitted.empty()) pixels_text = "    {-1, 0, 0} /* none */\n";
+  if (listed == 0) traces_text = "    {0, 0, 0} /* none */\n";
+  out += "#define TRACED_COUNT " + std::to_string(setup.admitted.size()) + "\n";
+  out += "static const struct traced TRACED_PIXELS[] = {\n" + pixels_text + "};\n";
+  out += "static const unsigned TRACES[][3] = {\n" + traces_text + "};\n";
+  const std::optional<std::string> outside = outside_specified_range(c);
+  out += "/* Why the case asks for more than GL specifies, if it does. */\n";
+  out += "static const char OUTSIDE_SPECIFIED_RANGE[] = " + c_string(outside.value_or("")) + ";\n";
+  out +=
+      "/* Whether the allowances are the specification's, whose infinite ones bound nothing. */\n";
+  out += std::string("static const int SPEC_ALLOWANCE = ") +
+         (tolerance.mode == ToleranceMode::spec ? "1" : "0") + ";\n";
+  out += kCRuntime;
+  return out;
+}
+
+}  // namespace glrc::reproducer
