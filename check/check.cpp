@@ -19,14 +19,29 @@ int freedom_bits(const CheckOptions& o, int reported_bits) {
   return std::max(o.spec_subpixel_bits.value_or(reported_bits), 4);
 }
 
+std::optional<ToleranceMode> mode_override(const CheckOptions& o) {
+  if (o.tolerance == ToleranceMode::exact) return ToleranceMode::exact;
+  if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps)
+    return ToleranceMode::ulps;
+  return std::nullopt;
+}
+
+std::optional<std::string> judging_problem(const CheckOptions& o) {
+  const bool thresholds = o.varying_ulps || o.depth_ulps;
+  if (o.driver_model && !mode_override(o))
+    return "a driver model is judged bit for bit (exact) or by fixed ULPs, not by the "
+           "specification's allowance";
+  if (o.tolerance == ToleranceMode::exact && thresholds)
+    return "exact judges bit for bit: no ULP thresholds with it";
+  return std::nullopt;
+}
+
 Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits) {
   Tolerance t = c.tolerance.applied_to(Tolerance{});
   t.subpixel_bits = freedom_bits(o, reported_bits);
   if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
   if (o.depth_ulps) t.depth_ulps = *o.depth_ulps;
-  if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps)
-    t.mode = ToleranceMode::ulps;
-  if (o.tolerance == ToleranceMode::exact) t.mode = ToleranceMode::exact;
+  if (const auto mode = mode_override(o)) t.mode = *mode;
   if (o.strict_coverage) t.allow_boundary = false;
   return t;
 }
@@ -96,8 +111,7 @@ std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& ex
 }
 
 std::string tolerance_text(const CheckOptions& o, int reported_bits) {
-  if (o.tolerance == ToleranceMode::exact) return "exact";
-  if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps) return "ulps";
+  if (const auto mode = mode_override(o)) return to_string(*mode);
   return "spec (subpixel bits " + std::to_string(freedom_bits(o, reported_bits)) + ")";
 }
 
@@ -233,12 +247,7 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
 
 Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o,
                           Checked last) {
-  // A driver's frame under the specification's allowance would pass whatever the driver model
-  // gets wrong by less than the allowance: the model is there to be matched bit for bit.
-  if (o.driver_model && o.tolerance == ToleranceMode::spec && !o.varying_ulps && !o.depth_ulps)
-    throw std::invalid_argument(
-        "a driver model is judged bit for bit or by fixed ULPs, not by the specification's "
-        "allowance");
+  if (const auto problem = judging_problem(o)) throw std::invalid_argument(*problem);
   const auto start = std::chrono::steady_clock::now();
   Checked out;
   const int reported = renderer.info().subpixel_bits;

@@ -86,6 +86,18 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 // reports, never below the 4 GL requires (OpenGL 4.6 section 14.6.1's minimum).
 int freedom_bits(const CheckOptions& o, int reported_bits);
 
+// The mode the options set over any case file's, decided here only: exact when asked for; ulps
+// when asked for or when a threshold (varying_ulps, depth_ulps) is given; nullopt otherwise
+// (spec: each case is judged by its file's mode, the specification's allowance unless it says
+// otherwise).
+std::optional<ToleranceMode> mode_override(const CheckOptions& o);
+
+// What in `o` cannot judge a case, in a few words, or nullopt: a driver model under the
+// specification's allowance (it would pass whatever the model gets wrong by less than the
+// allowance: the model is there to be matched bit for bit or by fixed ULPs); exact with ULP
+// thresholds. check() throws std::invalid_argument with it; cli/ says it before any work.
+std::optional<std::string> judging_problem(const CheckOptions& o);
+
 // The tolerance of case `c`: the defaults, then the case file's, then the options' (exact
 // wins; ULPs given turn to fixed thresholds; strict coverage drops the boundary allowance).
 Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits);

@@ -146,6 +146,7 @@ namespace {
 // The campaign asked for: generators, seed and count or time (or the one case of --replay),
 // shard, shrinking. InputError on options that do not go together.
 campaign::CampaignOptions plan_campaign(const Options& o, const FuzzOptions& f) {
+  check_judgeable(o);
   campaign::CampaignOptions co;
   co.generators = chosen_generators(f);
   if (!f.emit.empty() && !f.replay)

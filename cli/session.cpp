@@ -53,9 +53,7 @@ check::CheckOptions check_options(const Options& o) {
   check::CheckOptions c;
   c.model = model_of(o);
   c.driver_model = driver_models::driver_from_string(o.model);
-  c.tolerance = o.tolerance == ToleranceMode::exact ? ToleranceMode::exact
-                : o.varying_ulps || o.depth_ulps    ? ToleranceMode::ulps
-                                                    : ToleranceMode::spec;
+  c.tolerance = o.tolerance;  // with the thresholds, check::mode_override decides the mode
   c.varying_ulps = o.varying_ulps;
   c.depth_ulps = o.depth_ulps;
   c.spec_subpixel_bits = o.spec_subpixel_bits;
@@ -64,17 +62,20 @@ check::CheckOptions check_options(const Options& o) {
   return c;
 }
 
+void check_judgeable(const Options& o) {
+  const check::CheckOptions judged = check_options(o);
+  if (const auto problem = check::judging_problem(judged))
+    throw InputError(judged.driver_model && !check::mode_override(judged)
+                         ? "--model " + o.model + ": " + *problem +
+                               " (--tolerance exact, or --tolerance-ulps)"
+                         : "--tolerance exact: " + *problem +
+                               " (--tolerance-ulps/--depth-tolerance-ulps given)");
+}
+
 std::vector<Case> load_cases(const Options& o) {
   // Every command loads its cases first: options that cannot go together stop it here, before
   // any work.
-  const bool fixed = o.varying_ulps || o.depth_ulps;
-  if (driver_models::driver_from_string(o.model) && o.tolerance == ToleranceMode::spec && !fixed)
-    throw InputError("--model " + o.model +
-                     ": a driver model is judged bit for bit (--tolerance exact) or by fixed "
-                     "ULPs (--tolerance-ulps), not by the specification's allowance");
-  if (o.tolerance == ToleranceMode::exact && fixed)
-    throw InputError(
-        "--tolerance exact: expected no --tolerance-ulps/--depth-tolerance-ulps with it");
+  check_judgeable(o);
   std::vector<std::string> paths = o.paths;
   if (paths.empty()) {
     if (!std::filesystem::is_directory("cases"))

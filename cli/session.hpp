@@ -123,6 +123,11 @@ void set_model(Options& o, const Model& m);
 // copies the run began with). InputError when one cannot be read.
 std::map<std::string, std::string> verdict_inputs(const Options& o);
 
+// InputError naming the option when the options cannot judge a case (check::judging_problem:
+// a driver model under the specification's allowance, exact with ULP thresholds): before any
+// work, in every command that judges.
+void check_judgeable(const Options& o);
+
 // The model when the command line decides it, nullopt when the implementation must be
 // identified (--model identified, the default, with no --subpixel-bits, --planes, --tie-break).
 // With a driver model (--model llvmpipe) the reference's model only labels ties and bands.

@@ -270,6 +270,23 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
   EXPECT_TRUE(std::filesystem::exists(merged / "report.html"));
 }
 
+// A campaign judged by a driver model under the specification's allowance ran, every case an
+// "error" failure; the rule is check::judging_problem's, said before any work as run says it.
+TEST_F(Fuzz, OptionsThatCannotJudgeAreRefusedBeforeAnyWork) {
+  const auto out = dir_ / "judged";
+  auto o = glrefcheck("fuzz --model llvmpipe --count 2 --out '" + out.string() + "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("--model llvmpipe: a driver model is judged bit for bit (exact) or by "
+                       "fixed ULPs, not by the specification's allowance"),
+            std::string::npos)
+      << o.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  o = glrefcheck("fuzz --tolerance exact --tolerance-ulps 2 --count 2 --out '" + out.string() +
+                 "'");
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_NE(o.err.find("--tolerance exact: exact judges bit for bit"), std::string::npos) << o.err;
+}
+
 TEST_F(Fuzz, ReplayEmitsTheCaseTheCampaignDrew) {
   const auto file = dir_ / "clip_1_7.json";
   const auto r = glrefcheck("fuzz --generator clip --replay 1:7 --emit '" + file.string() + "'");
