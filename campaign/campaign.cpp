@@ -176,6 +176,8 @@ nlohmann::json campaign_json(const CampaignResult& r, const nlohmann::json& run)
                              {"fraction_start", r.options.fraction_start}};
   campaign["count"] = r.options.count ? nlohmann::json(*r.options.count) : nlohmann::json();
   campaign["seconds"] = r.options.seconds ? nlohmann::json(*r.options.seconds) : nlohmann::json();
+  // One case replayed (fuzz --replay S:I): no campaign's shard, which merge refuses.
+  if (r.options.only_index) campaign["replay"] = *r.options.only_index;
   // How the failures were shrunk: a shard shrunk otherwise has other minimal cases.
   campaign["shrink"] = r.options.shrink;
   campaign["shrink_seconds"] = r.options.shrinking.seconds;
@@ -319,7 +321,7 @@ std::map<std::string, std::string> verdict_inputs(const nlohmann::json& run,
 nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
                                const std::vector<std::string>& sources, std::vector<size_t>& from) {
   using T = nlohmann::json::value_t;
-  if (shards.empty()) throw std::runtime_error("merge: no campaign shards");
+  if (shards.empty()) throw std::runtime_error("no campaign shards");
   const auto& first = field(shards[0], sources[0], "", "campaign", T::object);
   const uint64_t fraction = field(first, sources[0], "campaign", "fraction", T::number_unsigned);
   std::vector<bool> seen(fraction + 1, false);
@@ -340,6 +342,10 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
                                  first.value(key, nlohmann::json()).dump() +
                                  " as the first shard, got " +
                                  campaign.value(key, nlohmann::json()).dump().substr(0, 80));
+    if (campaign.contains("replay"))
+      throw std::runtime_error(source +
+                               ": campaign.replay: expected a campaign shard, got one case "
+                               "replayed (fuzz --replay): merge joins the shards of one campaign");
     const uint64_t start =
         field(campaign, source, "campaign", "fraction_start", T::number_unsigned);
     if (start < 1 || start > fraction || seen[start])
@@ -354,8 +360,10 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
         shards[k].value("stats", nlohmann::json::object()).value("interrupted", false))
       throw std::runtime_error(
           source + ": an interrupted campaign shard (stopped by a signal): run it again");
-    for (const char* key : {"gl_renderer", "gl_version", "gl_library", "mesa_prefix", "model",
-                            "tolerance", "subpixel_bits", "backend", "driver"})
+    // The options asked for first: shards of two backends differ in their GL library too, and
+    // the backend is the difference to name.
+    for (const char* key : {"backend", "driver", "mesa_prefix", "gl_renderer", "gl_version",
+                            "gl_library", "model", "tolerance", "subpixel_bits"})
       if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
@@ -366,6 +374,18 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
                                d->value + " where " + sources[0] + " has " + d->other +
                                ": run the shards with the same options and files");
     const CampaignStats shard_stats = checked_stats(shards[k], source);
+    // A campaign of --count C draws indices 0 .. C - 1; shard K of N those of K - 1 + j·N: all
+    // of them unless --time stopped it first.
+    if (const auto& count = campaign.value("count", nlohmann::json()); count.is_number_unsigned()) {
+      const uint64_t c = count.get<uint64_t>();
+      const uint64_t drawn = c > start - 1 ? (c - start) / fraction + 1 : 0;
+      const bool timed = !campaign.value("seconds", nlohmann::json()).is_null();
+      if (timed ? shard_stats.cases > drawn : shard_stats.cases != drawn)
+        throw std::runtime_error(source + ": stats.cases: expected " + (timed ? "at most " : "") +
+                                 std::to_string(drawn) + " (shard " + std::to_string(start) +
+                                 " of " + std::to_string(fraction) + " of a " + std::to_string(c) +
+                                 "-case campaign), got " + std::to_string(shard_stats.cases));
+    }
     total = k == 0 ? shard_stats : summed(total, shard_stats, source);
     // The first skipped cases of every shard; the first of them all are the unsharded ones'.
     if (shards[k].contains("skipped")) {
@@ -423,7 +443,7 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
   }
   for (uint64_t start = 1; start <= fraction; ++start)
     if (!seen[start])
-      throw std::runtime_error("merge: shard " + std::to_string(start) + " of " +
+      throw std::runtime_error("shard " + std::to_string(start) + " of " +
                                std::to_string(fraction) + " is missing");
   // In the order the unsharded campaign meets them: by the index that first showed each.
   std::vector<size_t> order(failures.size());

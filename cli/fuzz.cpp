@@ -151,10 +151,10 @@ campaign::CampaignOptions plan_campaign(const Options& o, const FuzzOptions& f) 
   co.generators = chosen_generators(f);
   if (!f.emit.empty() && !f.replay)
     throw InputError("--emit: expected --replay SEED:INDEX with it (the case to write)");
-  if (f.replay && (f.seed || f.count || f.seconds))
+  if (f.replay && (f.seed || f.count || f.seconds || o.fraction != 1 || o.fraction_start != 1))
     throw InputError(
-        "--replay: expected no --seed, --count or --time with it (SEED:INDEX names "
-        "the case)");
+        "--replay: expected no --seed, --count, --time, --fraction or --fraction-start with it "
+        "(SEED:INDEX names the case)");
   if (o.fraction < 1 || o.fraction_start < 1 || o.fraction_start > o.fraction)
     throw InputError(
         fmt::format("--fraction {} --fraction-start {}: expected 1 <= fraction-start <= fraction",
@@ -410,10 +410,11 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
   const int interrupt_fd = catch_interrupts();
   const OutputFolder folder = output_folder(o.out);
-  // Its minimal cases are the campaign's while unedited: one a person changed is theirs.
-  check_replaceable_files(folder.path / "failures", "--out " + o.out, "fuzz",
-                          listed_failure_files(folder.path));
-  // The earlier campaign's outputs come back if this one never gets GL.
+  if (!f.baseline.empty())
+    check_inputs_outside(folder.path, {"failures"}, {{"this campaign's --baseline", f.baseline}},
+                         "--out " + o.out);
+  // The earlier campaign's outputs come back if this one never gets GL; its minimal cases are
+  // the campaign's while unedited (set_aside_outputs refuses one a person changed or added).
   EarlierOutputs earlier = set_aside_outputs(folder.path, {"failures"});
   return FuzzCampaign(o, co, judging, prefix, folder.path, earlier, interrupt_fd).execute();
 }

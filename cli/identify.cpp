@@ -11,6 +11,8 @@
 
 #include "cli/output_dir.hpp"
 #include "identify/identify.hpp"
+#include "report/report.hpp"
+#include "report/stamp.hpp"
 
 namespace glrc::cli {
 namespace {
@@ -169,6 +171,8 @@ ModelChoice choose_model(const Options& o, gl::Renderer& renderer) {
 int cmd_identify(const Options& o) {
   const auto start = Clock::now();
   const OutputFolder folder = output_folder(o.out);
+  // Only an identify.json glrefcheck identify wrote and nobody changed since (its stamp).
+  check_replaceable(folder.path / "identify.json", "--out " + o.out, "identify");
   const std::filesystem::path& out = folder.path;
   auto renderer = open_renderer(o);
   auto raw = open_raw_renderer(o);
@@ -195,9 +199,7 @@ int cmd_identify(const Options& o) {
                                          gl::to_string(o.backend), o.driver);
   j["seconds"] = seconds_since(start);
   const std::filesystem::path file = out / "identify.json";
-  std::ofstream stream(file);
-  stream << j.dump(2) << "\n";
-  if (!stream) throw InputError("could not write " + file.string());
+  report::write_file_atomically(file, report::stamped_json("identify", j.dump(2) + "\n"));
   fmt::print("wrote {}/identify.json in {:.2f} s\n", o.out, seconds_since(start));
   return 0;
 }

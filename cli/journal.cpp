@@ -193,7 +193,8 @@ void read_case_line(const json& j, const std::string& where, JournalContents& c,
   CaseResult r = report::case_result_from_json(j.at("result").dump(), where);
   if (j.contains("heatmaps") && j["heatmaps"] != "follow")
     throw InputError(where +
-                     ": expected \"heatmaps\": \"follow\" or none in a line with a result, got " +
+                     ": expected \"heatmaps\": \"follow\", or no \"heatmaps\" field, in a line "
+                     "with a result, got " +
                      printable(j["heatmaps"].dump(), 40));
   // A later line for a case is its heatmaps lost (the same verdict, its message saying so), or
   // the case checked again by a resume because its heatmaps never came; one with another name
@@ -237,9 +238,10 @@ void read_line(const std::string& line, int n, const std::string& where, Journal
     read_case_line(j, where, c, heatmaps_due);
   }
   if (!digest_holds(line))
-    throw InputError(where +
-                     ": expected the line as glrefcheck wrote it, got one its digest no longer "
-                     "matches (edited since): start a new run");
+    throw InputError(
+        where + ": expected the line as glrefcheck wrote it, got one " +
+        (j.contains("digest") ? "its digest no longer matches" : "without its digest") +
+        " (edited since): start a new run");
 }
 
 }  // namespace

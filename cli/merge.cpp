@@ -15,6 +15,8 @@
 #include "cli/output_dir.hpp"
 #include "cli/run.hpp"
 #include "cli/run_support.hpp"
+#include "core/text.hpp"
+#include "report/format.hpp"
 #include "report/html.hpp"
 #include "report/merge.hpp"
 #include "report/report.hpp"
@@ -109,6 +111,9 @@ nlohmann::json merged_campaign(const std::vector<std::string>& dirs, std::vector
     if (stamps[k] == report::JsonStamp::edited)
       throw InputError("merge: " + report::edited_stamp_message(
                                        (report::run_folder(dirs[k]) / "results.json").string()));
+  // As read_run_results says it of a run's.
+  for (size_t k = 0; k < dirs.size(); ++k)
+    if (stamps[k] == report::JsonStamp::none) note_unstamped(dirs[k]);
   return merged;
 }
 
@@ -132,9 +137,8 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   }
   const OutputFolder folder = output_folder(out_dir);
   const std::filesystem::path& out = folder.path;
-  check_replaceable_files(out / "failures", "merge --out " + out_dir, "fuzz",
-                          listed_failure_files(out));
-  // The folder's earlier merge comes back if this one fails halfway.
+  // The folder's earlier merge comes back if this one fails halfway (its minimal cases as
+  // set_aside_outputs checks them: none a person changed or added).
   EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
   std::filesystem::create_directories(out / "failures");
   // Each failure's minimal case and heatmaps, from the shard it was taken from.
@@ -156,6 +160,11 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
                                 std::filesystem::copy_options::overwrite_existing,
                             ec);
       if (ec) throw InputError("merge: cannot copy the heatmaps of " + name + ": " + ec.message());
+    } else {
+      fmt::print(stderr,
+                 "note: {}: no heatmaps of {} (cases/{}/): the merged report.html shows "
+                 "none for it\n",
+                 printable(dirs[from[i]], 200), name, name);
     }
     if (f.contains("result"))
       minimal.push_back(
@@ -174,9 +183,12 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
   report::write_run_html(out / "report.html", {page, minimal}, out);
   earlier.keep_new();
   const nlohmann::json& st = merged["stats"];
-  fmt::print("merged {} campaign shards: {} cases, {} triangles, {} distinct failure{} ({} new)\n",
-             dirs.size(), st.value("cases", uint64_t(0)), st.value("triangles", uint64_t(0)),
-             merged["failures"].size(), merged["failures"].size() == 1 ? "" : "s", new_failures);
+  fmt::print("merged {}: {}, {} triangles, {} ({} new)\n",
+             report::count_text(dirs.size(), "campaign shard", "campaign shards"),
+             report::count_text(st.value("cases", uint64_t(0)), "case", "cases"),
+             st.value("triangles", uint64_t(0)),
+             report::count_text(merged["failures"].size(), "distinct failure", "distinct failures"),
+             new_failures);
   fmt::print("results in {}\n", shown_path(out.string()));
   return new_failures == 0 ? 0 : 1;
 }
@@ -207,7 +219,7 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
   const std::filesystem::path& out = folder.path;
   // Heatmaps and files of an earlier run or merge here would be taken for this merge's; they come
   // back if this merge fails halfway.
-  EarlierOutputs earlier = set_aside_outputs(out);
+  EarlierOutputs earlier = set_aside_outputs(out, {"failures"});
   for (size_t k = 0; k < shards.size(); ++k) {
     const auto images = report::run_folder(dirs[k]) / "cases";
     std::error_code ec;
@@ -217,7 +229,8 @@ int cmd_merge(const std::vector<std::string>& dirs, const std::string& out_dir, 
                                 std::filesystem::copy_options::overwrite_existing);
     stop_if_interrupted();
   }
-  fmt::print("merged {} shards: {}\n", shards.size(), report::run_summary(list, info.seconds));
+  fmt::print("merged {}: {}\n", report::count_text(shards.size(), "shard", "shards"),
+             report::run_summary(list, info.seconds));
   write_outputs(out, info, list, html);
   earlier.keep_new();
   return report::any_fails_run(list) ? 1 : 0;
@@ -236,7 +249,14 @@ int cmd_report(const std::string& dir, const std::string& file) {
   if (is_marked(run_dir)) {
     lock = lock_folder(run_dir, "report");
     // A run killed before it had GL left the folder's results aside: they are the folder's.
-    restore_earlier_outputs(run_dir);
+    std::error_code ec;
+    if (std::filesystem::exists(run_dir / kEarlierFolder, ec)) {
+      restore_earlier_outputs(run_dir);
+      fmt::print(
+          "put back {}'s earlier results, which a glrefcheck stopped before it finished "
+          "had set aside\n",
+          shown_path(run_dir.string()));
+    }
   }
   results = read_run_results(dir, "report");
   const std::filesystem::path html =

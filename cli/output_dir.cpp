@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/fuzz.hpp"
 #include "cli/session.hpp"
 #include "core/text.hpp"
 #include "report/report.hpp"
@@ -117,6 +118,22 @@ FolderLock lock_folder(const fs::path& dir, const std::string& option) {
     // The line is only a courtesy to whoever is refused.
   }
   return FolderLock(fd);
+}
+
+std::optional<std::string> lock_holder(const fs::path& dir) {
+  const int fd = open((dir / kLockFile).c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd < 0) return std::nullopt;
+  std::optional<std::string> holder;
+  if (flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
+    std::string line(512, '\0');
+    const ssize_t n = pread(fd, line.data(), line.size(), 0);
+    line.resize(size_t(std::max<ssize_t>(n, 0)));
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\0'))
+      line.pop_back();
+    holder = line.empty() ? "its pid not yet written" : printable(line, 300);
+  }
+  close(fd);  // releases a shared lock taken to look
+  return holder;
 }
 
 const std::vector<std::string>& run_output_names() {
@@ -351,6 +368,58 @@ void check_no_output_folder_inside(const fs::path& dir, const std::vector<std::s
   }
 }
 
+namespace {
+
+// InputError naming the file when what a run replaces in `dir` holds something glrefcheck did
+// not write there, checked before anything is moved: a report.html a person edited (its stamp
+// no longer matches), a file in cases/ other than a case's heatmaps (cases/<case>/*.png, *.exr),
+// a file in logs/ other than a worker's log, a minimal case in failures/ a person edited or
+// added (check_replaceable_files). A run replaces its own files, never a person's notes.
+void check_outputs_ours(const fs::path& dir, const std::vector<std::string>& names) {
+  const std::string option = "--out " + printable(dir.string(), 200);
+  const auto refuse = [&](const fs::path& file, const std::string& why) {
+    throw InputError(option + ": " + printable(file.string(), 200) + " " + why +
+                     ", and a run, merge or campaign here replaces it: move it out of the "
+                     "folder, or name another --out");
+  };
+  std::error_code ec;
+  const fs::path page = dir / "report.html";
+  if (const auto st = fs::symlink_status(page, ec); fs::exists(st)) {
+    std::ifstream in(page, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (!fs::is_regular_file(st) || !report::stamp_intact(text))
+      refuse(page,
+             "is not a page glrefcheck wrote, or was changed since (its stamp no longer "
+             "matches)");
+  }
+  const auto entries = [&](const fs::path& folder, const auto& fits) {
+    if (!fs::is_directory(fs::symlink_status(folder, ec))) return;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+      if (const char* why = fits(*it)) refuse(it->path(), why);
+  };
+  entries(dir / "cases", [&](const fs::directory_entry& e) -> const char* {
+    if (!fs::is_directory(e.symlink_status(ec))) return "is not a case's folder of heatmaps";
+    entries(e.path(), [&](const fs::directory_entry& image) -> const char* {
+      const std::string ext = image.path().extension().string();
+      return fs::is_regular_file(image.symlink_status(ec)) && (ext == ".png" || ext == ".exr")
+                 ? nullptr
+                 : "is not a heatmap glrefcheck writes";
+    });
+    return nullptr;
+  });
+  entries(dir / "logs", [&](const fs::directory_entry& e) -> const char* {
+    const std::string name = e.path().filename().string();
+    return fs::is_regular_file(e.symlink_status(ec)) && name.starts_with("worker-") &&
+                   name.ends_with(".log")
+               ? nullptr
+               : "is not a worker's log";
+  });
+  if (std::find(names.begin(), names.end(), "failures") != names.end())
+    check_replaceable_files(dir / "failures", option, "fuzz", listed_failure_files(dir));
+}
+
+}  // namespace
+
 EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::string>& also) {
   if (!is_marked(dir))
     throw std::logic_error("set_aside_outputs: " + dir.string() + " is not a marked folder");
@@ -359,6 +428,7 @@ EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::str
   fs::remove_all(dir / kDiscardedFolder, ec);
   const std::vector<std::string> names = with_run_outputs(also);
   check_no_output_folder_inside(dir, names);
+  check_outputs_ours(dir, names);
   const fs::path aside = dir / kEarlierFolder;
   fs::create_directory(aside, ec);
   if (ec) throw InputError("--out: cannot make " + aside.string() + " (" + ec.message() + ")");

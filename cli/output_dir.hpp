@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -75,6 +76,11 @@ void check_replaceable(const std::filesystem::path& file, const std::string& opt
 // added there is theirs. Nothing when `dir` does not exist.
 void check_replaceable_files(const std::filesystem::path& dir, const std::string& option,
                              const std::string& writer, const std::set<std::string>& listed);
+
+// The holder's line ("pid N: command") when another glrefcheck holds `dir`'s lock now, else
+// nullopt (no lock file, or one nobody holds): for commands that only read a folder, to name a
+// live run rather than take its half-written folder for a killed one.
+std::optional<std::string> lock_holder(const std::filesystem::path& dir);
 
 // Whether `dir` carries the marker.
 bool is_marked(const std::filesystem::path& dir);

@@ -149,21 +149,20 @@ Prepared prepare_folder(RunPlan& p, const Judging& judging) {
   OutputFolder folder = output_folder(o.out);
   p.out = folder.path;
   p.lock = std::move(folder.lock);
-  // The run replaces its own outputs; case files among them would go with them. Each path
-  // resolved once (a resolution is a system call per folder of the path).
-  std::error_code ec;
-  std::vector<std::pair<std::string, std::filesystem::path>> outputs;
-  for (const std::string& name : run_output_names())
-    outputs.emplace_back(name, std::filesystem::weakly_canonical(p.out / name, ec));
-  for (const Case& c : p.all) {
-    const auto source = std::filesystem::weakly_canonical(c.source_path, ec);
-    for (const auto& [name, output] : outputs)
-      if (inside_resolved(source, output))
-        throw InputError("--out " + o.out + ": " + (p.out / name).string() +
-                         " holds this run's case files (" + c.source_path +
-                         "), and a run replaces it: name another --out");
-  }
-  std::optional<EarlierOutputs> earlier_outputs(set_aside_outputs(p.out));
+  // The run replaces its own outputs; case files or expectation files among them would go
+  // with them (`--baseline O/failures.csv --out O`: the run's failures.csv, which lists no
+  // expected failure, replaces the baseline). Each path resolved once (a resolution is a system
+  // call per folder of the path).
+  std::vector<std::pair<std::string, std::string>> read;
+  for (const Case& c : p.all)
+    read.emplace_back("this run's case files", c.source_path);
+  for (const auto& [option, file] :
+       {std::pair{"--baseline", &o.baseline}, {"--flakes", &o.flakes}, {"--skips", &o.skips}})
+    if (!file->empty()) read.emplace_back(std::string("this run's ") + option, *file);
+  check_inputs_outside(p.out, {"failures"}, read, "--out " + o.out);
+  // A campaign's failures/ too, where the folder held one: no minimal case beside a run's
+  // results passes for this run's.
+  std::optional<EarlierOutputs> earlier_outputs(set_aside_outputs(p.out, {"failures"}));
   if (!inputs.files.empty()) std::filesystem::create_directories(p.out / kInputsFolder);
   for (const auto& [name, text] : inputs.files)
     report::write_file_atomically(p.out / kInputsFolder / name, text);
@@ -350,7 +349,15 @@ class SuiteRun {
       fmt::print("interrupted by {} after {} of {}: `glrefcheck run --resume {}` checks the rest\n",
                  signal_name(caught_signal()), list.size(),
                  report::count_text(cases_.size(), "case", "cases"), o_.out);
-    write_outputs(p_.out, info_, list, o_.html);
+    // The folder's page too when it holds one of glrefcheck's (`report` on the interrupted run,
+    // before this resume): a page of the run as it stopped beside its whole results would be
+    // stale. (A fresh run set the folder's page aside with its other outputs.)
+    std::error_code ec;
+    const std::filesystem::path page = p_.out / "report.html";
+    const bool our_page =
+        std::filesystem::is_regular_file(std::filesystem::symlink_status(page, ec)) &&
+        report::stamp_intact(read_file(page));
+    write_outputs(p_.out, info_, list, o_.html || our_page);
     if (prepared_.earlier_outputs) prepared_.earlier_outputs->keep_new();
     // 128 + the signal, as a shell reports a process the signal ended.
     if (info_.interrupted) return 128 + (caught_signal() ? caught_signal() : SIGINT);

@@ -86,6 +86,26 @@ bool inside(const std::filesystem::path& inner, const std::filesystem::path& out
                          std::filesystem::weakly_canonical(outer, ec));
 }
 
+void check_inputs_outside(const std::filesystem::path& out, const std::vector<std::string>& also,
+                          const std::vector<std::pair<std::string, std::string>>& inputs,
+                          const std::string& option) {
+  std::error_code ec;
+  std::vector<std::pair<std::string, std::filesystem::path>> outputs;
+  for (const std::string& name : run_output_names())
+    outputs.emplace_back(name, std::filesystem::weakly_canonical(out / name, ec));
+  for (const std::string& name : also)
+    outputs.emplace_back(name, std::filesystem::weakly_canonical(out / name, ec));
+  for (const auto& [what, path] : inputs) {
+    const auto source = std::filesystem::weakly_canonical(path, ec);
+    for (const auto& [name, output] : outputs)
+      if (inside_resolved(source, output))
+        throw InputError(option + ": " + (out / name).string() + " holds " + what + " (" +
+                         printable(path, 200) +
+                         "), and a run replaces it: copy it out of the folder, or name another "
+                         "--out");
+  }
+}
+
 bool inside_resolved(const std::filesystem::path& inner, const std::filesystem::path& outer) {
   const auto rel = inner.lexically_relative(outer);
   return !rel.empty() && *rel.begin() != "..";
@@ -123,10 +143,14 @@ report::RunResults read_run_results(const std::string& path, const std::string& 
   const std::filesystem::path dir(path);
   if (std::filesystem::is_directory(dir, ec) &&
       !std::filesystem::exists(std::filesystem::symlink_status(dir / "results.json", ec))) {
+    if (const auto holder = lock_holder(dir))
+      throw InputError(command + ": " + printable(path, 200) +
+                       " holds no results.json yet: another glrefcheck is writing into it (" +
+                       *holder + "): wait for it to end");
     if (std::filesystem::exists(dir / kEarlierFolder, ec))
       throw InputError(command + ": " + printable(path, 200) +
-                       " holds no results.json: a glrefcheck stopped before GL started set "
-                       "them aside (" +
+                       " holds no results.json: a glrefcheck stopped before it finished (a run "
+                       "or campaign before GL started, or a merge) set them aside (" +
                        kEarlierFolder + "/); `glrefcheck report " + printable(path, 200) +
                        "` puts them back");
     if (std::filesystem::exists(dir / kJournalFile, ec))
@@ -141,12 +165,15 @@ report::RunResults read_run_results(const std::string& path, const std::string& 
     // One line on stderr, whatever the JSON parser's message holds.
     throw InputError(command + ": " + printable(e.what(), 2000));
   }
-  if (results.stamp == report::JsonStamp::none)
-    fmt::print(stderr,
-               "note: {}: its results.json holds no written_by stamp (an older glrefcheck's, or "
-               "made by hand): read as it stands\n",
-               printable(path, 200));
+  if (results.stamp == report::JsonStamp::none) note_unstamped(path);
   return results;
+}
+
+void note_unstamped(const std::string& path) {
+  fmt::print(stderr,
+             "note: {}: its results.json holds no written_by stamp (an older glrefcheck's, or "
+             "made by hand): read as it stands\n",
+             printable(path, 200));
 }
 
 }  // namespace glrc::cli

@@ -34,9 +34,15 @@ bool inside(const std::filesystem::path& inner, const std::filesystem::path& out
 // resolved once, not once per comparison (a suite's cases against the run's outputs).
 bool inside_resolved(const std::filesystem::path& inner, const std::filesystem::path& outer);
 
+// InputError when one of `inputs` (what it is, its path: "this run's case files", a case file)
+// lies among what a run, merge or campaign into `out` replaces (run_output_names() and `also`):
+// it would be gone with them. `option` names the output folder in the message.
+void check_inputs_outside(const std::filesystem::path& out, const std::vector<std::string>& also,
+                          const std::vector<std::pair<std::string, std::string>>& inputs,
+                          const std::string& option);
+
 // The expectation files as this run read them: copied into the run folder, since --resume must
-// judge by the same ones (a --baseline may be this folder's failures.csv, which the run
-// replaces).
+// judge by the same ones (the files named may change after the run began).
 struct Inputs {
   std::vector<std::pair<std::string, std::string>> files;  // name in kInputsFolder, text
 };
@@ -64,6 +70,8 @@ void write_outputs(const std::filesystem::path& out, const RunInfo& info,
 // (an older glrefcheck's, or made by hand: read as it stands, which a stamped one that a
 // person edited is not).
 report::RunResults read_run_results(const std::string& path, const std::string& command);
+// That note, for the results folder or file `path`.
+void note_unstamped(const std::string& path);
 
 // A path under the working folder as a relative one, so logs and READMEs stay short.
 std::string shown_path(const std::string& path);

@@ -33,8 +33,16 @@ std::string hex(const unsigned char* md, unsigned len) {
   return out;
 }
 
+// Whether `file` is one to read: opening a FIFO put in the cache's place would wait for a
+// writer for good (a run that neither SIGINT nor SIGTERM could stop), a device is no cache.
+bool readable_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(file, ec);
+}
+
 // The cache's entries, or none when the file is missing, unreadable or not ours.
 json read_entries(const std::filesystem::path& file) {
+  if (!readable_file(file)) return json::array();
   std::ifstream in(file);
   if (!in) return json::array();
   const json j = json::parse(in, nullptr, /*allow_exceptions=*/false);
@@ -176,8 +184,10 @@ std::string remembered_files_digest(const std::vector<std::string>& files,
   }
   json kept = json::array();
   try {
-    std::ifstream in(store);
-    const json j = in ? json::parse(in, nullptr, /*allow_exceptions=*/false) : json();
+    std::ifstream in;
+    if (readable_file(store)) in.open(store);
+    const json j =
+        in.is_open() && in ? json::parse(in, nullptr, /*allow_exceptions=*/false) : json();
     if (j.is_object() && j.value("format", 0) == kFormat && j.contains("digests") &&
         j["digests"].is_array())
       for (const json& entry : j["digests"]) {

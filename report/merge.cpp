@@ -39,14 +39,16 @@ RunResults merge_shards(const std::vector<RunResults>& shards,
           fmt::format("merge: {}: expected a shard of a {}-case suite, got {} cases", names[k],
                       first.total_cases, r.total_cases));
     // What judged the shard, each named as results.json names it and by the option that sets it.
+    // The options asked for first: shards of two backends differ in their GL library too, and
+    // the backend is the difference to name.
     for (const auto& [field, option, value, value0] :
-         {std::tuple{"gl_renderer", "the driver: --backend, --driver, --mesa", &r.gl_renderer,
-                     &first.gl_renderer},
-          {"gl_version", "the driver: --mesa", &r.gl_version, &first.gl_version},
-          {"gl_library", "the driver: --mesa", &r.gl_library, &first.gl_library},
-          {"backend", "--backend", &r.backend, &first.backend},
+         {std::tuple{"backend", "--backend", &r.backend, &first.backend},
           {"driver", "--driver", &r.driver, &first.driver},
           {"mesa_prefix", "--mesa", &r.mesa_prefix, &first.mesa_prefix},
+          {"gl_renderer", "the driver: --backend, --driver, --mesa", &r.gl_renderer,
+           &first.gl_renderer},
+          {"gl_version", "the driver: --mesa", &r.gl_version, &first.gl_version},
+          {"gl_library", "the driver: --mesa", &r.gl_library, &first.gl_library},
           {"model", "--model, --subpixel-bits, --planes, --tie-break", &r.model, &first.model},
           {"tolerance", "--tolerance, --spec-subpixel-bits", &r.tolerance, &first.tolerance}})
       if (*value != *value0)

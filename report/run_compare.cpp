@@ -147,6 +147,17 @@ RunComparison compare_runs(const RunResults& base, const RunResults& current, do
       out.incomplete.push_back(
           fmt::format("{}: {} of {} cases", label, side->cases.size(), expected));
   }
+  // Shards of one fraction compare case for case; a shard against the whole suite (or another
+  // shard) would call every case outside it removed or added.
+  const auto shard = [](const RunInfo& r) {
+    return r.fraction > 1 ? fmt::format("shard {} of {}", r.fraction_start, r.fraction)
+                          : std::string("the whole suite");
+  };
+  if (base.run.fraction != current.run.fraction ||
+      base.run.fraction_start != current.run.fraction_start)
+    out.incomplete.push_back(fmt::format(
+        "current: {}, base: {} (merge the shards first, or compare shards of one fraction)",
+        shard(current.run), shard(base.run)));
 
   std::unordered_map<std::string, const CaseResult*> in_base, in_current;
   for (const auto& r : base.cases)

@@ -429,3 +429,98 @@ TEST_F(EarlierOutputs, AMergeStoppedBySigintGivesTheEarlierMergeBack) {
   }
   EXPECT_GE(stopped, 1) << "no signal landed in the middle of the merge";
 }
+
+// The seventh hostile campaign (issue 45): a run deleted a note put in its cases/ or logs/, a
+// report.html a person annotated, and the --baseline it was given when that was the folder's own
+// failures.csv (the natural next baseline), which it replaced with a list of no expected
+// failure; identify replaced any identify.json. Each is refused now, and left as it was.
+TEST_F(EarlierOutputs, ARunReplacesOnlyItsOwnFiles) {
+  const fs::path out = dir_ / "out";
+  const std::string run = "run cases/face_on.json --jobs 1 --out '" + out.string() + "'";
+  ASSERT_EQ(glrefcheck(run).exit_code, 0);
+  const auto refused = [&](const std::string& command, const fs::path& file,
+                           const std::string& says) {
+    const std::string before = read(file);
+    const Outcome o = glrefcheck(command);
+    EXPECT_EQ(o.exit_code, 2) << command << o.out << o.err;
+    EXPECT_NE(o.err.find(says), std::string::npos) << o.err;
+    EXPECT_EQ(read(file), before) << file;
+  };
+  fs::create_directories(out / "cases");
+  std::ofstream(out / "cases/notes.txt") << "mine\n";
+  refused(run, out / "cases/notes.txt", "notes.txt is not a case's folder of heatmaps");
+  fs::remove(out / "cases/notes.txt");
+  fs::create_directories(out / "cases/face_on");
+  std::ofstream(out / "cases/face_on/notes.txt") << "mine\n";
+  refused(run, out / "cases/face_on/notes.txt", "notes.txt is not a heatmap glrefcheck writes");
+  fs::remove_all(out / "cases/face_on");
+  fs::create_directories(out / "logs");
+  std::ofstream(out / "logs/mine.log") << "mine\n";
+  refused(run, out / "logs/mine.log", "mine.log is not a worker's log");
+  fs::remove(out / "logs/mine.log");
+  ASSERT_EQ(glrefcheck("report '" + out.string() + "'").exit_code, 0);
+  std::ofstream(out / "report.html", std::ios::app) << "<!-- mine -->\n";
+  refused(run, out / "report.html", "report.html is not a page glrefcheck wrote, or was changed");
+  fs::remove(out / "report.html");
+  std::ofstream(out / "failures.csv", std::ios::app) << "face_on,Fail\n";
+  refused(run + " --baseline '" + (out / "failures.csv").string() + "'", out / "failures.csv",
+          "holds this run's --baseline");
+  refused("fuzz --count 2 --baseline '" + (out / "results.csv").string() + "' --out '" +
+              out.string() + "'",
+          out / "results.csv", "holds this campaign's --baseline");
+  // identify: a file of its own is replaced, one of a person's is not.
+  ASSERT_EQ(glrefcheck("identify --out '" + out.string() + "'").exit_code, 0);
+  ASSERT_EQ(glrefcheck("identify --out '" + out.string() + "'").exit_code, 0);
+  std::ofstream(out / "identify.json") << "{\"my\": 1}\n";
+  refused("identify --out '" + out.string() + "'", out / "identify.json",
+          "which glrefcheck did not write (it holds no stamp)");
+  EXPECT_EQ(glrefcheck(run).exit_code, 0);  // the run's own files it replaces, as ever
+}
+
+// A run into a campaign's folder left the campaign's failures/ beside its results, and the next
+// campaign there refused them as files a person added. The run replaces them with the rest.
+TEST_F(EarlierOutputs, ARunIntoACampaignsFolderReplacesItsFailures) {
+  const fs::path out = dir_ / "out";
+  const std::string campaign =
+      "fuzz --seed 1 --count 20 --generator clip --jobs 1 --out '" + out.string() + "'";
+  ASSERT_EQ(glrefcheck(campaign).exit_code, 1);
+  ASSERT_TRUE(fs::exists(out / "failures"));
+  ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --out '" + out.string() + "'").exit_code,
+            0);
+  EXPECT_FALSE(fs::exists(out / "failures"));
+  const Outcome again = glrefcheck(campaign);
+  EXPECT_EQ(again.exit_code, 1) << again.out << again.err;
+}
+
+// A resumed run left the page `report` wrote of it as it stopped ("interrupted after 1 case")
+// beside its whole results; compare on the folder of a live run called it killed.
+TEST_F(EarlierOutputs, AResumeRefreshesTheFoldersPageAndALiveRunIsNamed) {
+  const fs::path out = dir_ / "out", pidfile = dir_ / "worker.pid";
+  std::thread run = run_held_at_attr_tiny(out, pidfile);
+  const pid_t proxy = wait_for_pid(pidfile);
+  ASSERT_GT(proxy, 0);
+  const Outcome live = glrefcheck("compare '" + out.string() + "' '" + out.string() + "'");
+  EXPECT_EQ(live.exit_code, 2) << live.out << live.err;
+  EXPECT_NE(live.err.find("another glrefcheck is writing into it (pid "), std::string::npos)
+      << live.err;
+  ASSERT_EQ(kill(parent_of(proxy), SIGINT), 0);
+  run.join();
+  ASSERT_EQ(glrefcheck("report '" + out.string() + "'").exit_code, 0);
+  ASSERT_NE(read(out / "report.html").find("interrupted"), std::string::npos);
+  const Outcome resumed = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.out << resumed.err;
+  EXPECT_EQ(read(out / "report.html").find("interrupted"), std::string::npos);
+  EXPECT_NE(read(out / "report.html").find("attr_tiny"), std::string::npos);
+}
+
+// A model cache that is a FIFO (a hostile or broken $XDG_CACHE_HOME) held a run in open() for
+// good, beyond SIGINT and SIGTERM; it is not read now.
+TEST_F(EarlierOutputs, AModelCacheThatIsAFifoIsNotWaitedFor) {
+  fs::create_directories(dir_ / "cache/glrefcheck");
+  ASSERT_EQ(mkfifo((dir_ / "cache/glrefcheck/models.json").c_str(), 0600), 0);
+  ASSERT_EQ(mkfifo((dir_ / "cache/glrefcheck/driver_digests.json").c_str(), 0600), 0);
+  const Outcome o =
+      glrefcheck("run cases/face_on.json --jobs 1 --out '" + (dir_ / "out").string() + "'",
+                 "XDG_CACHE_HOME='" + (dir_ / "cache").string() + "' timeout 60");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;  // 124: timeout's, a hang
+}

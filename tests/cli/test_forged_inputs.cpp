@@ -259,9 +259,17 @@ TEST_F(Forged, EditsUnderAStampAreRefused) {
   const fs::path bogus = resumed_journal("heatmaps", [&](std::string& s) {
     replaced(s, "\"result\":", "\"heatmaps\":\"bogus\",\"result\":");
   });
-  expect_one_line(glrefcheck("run --resume '" + bogus.string() + "'"),
-                  "expected \"heatmaps\": \"follow\" or none in a line with a result, got "
-                  "\"bogus\"");
+  expect_one_line(
+      glrefcheck("run --resume '" + bogus.string() + "'"),
+      "expected \"heatmaps\": \"follow\", or no \"heatmaps\" field, in a line with a result, got "
+      "\"bogus\"");
+  const fs::path undigested = resumed_journal("undigested", [&](std::string& s) {
+    const size_t at = s.find(",\"digest\":\"sha256:");
+    ASSERT_NE(at, std::string::npos);
+    s.erase(at, s.find('}', at) - at);
+  });
+  expect_one_line(glrefcheck("run --resume '" + undigested.string() + "'"),
+                  "got one without its digest (edited since)");
   const fs::path older = resumed_journal("version1", [&](std::string& s) {
     replaced(s, "\"glrefcheck_journal\":2", "\"glrefcheck_journal\":1");
   });
@@ -291,7 +299,14 @@ TEST_F(Forged, MergeRefusesShardsOfAnotherDriverPrefixSubpixelBitsOrTimeout) {
         {"subpixel_bits", [](json& j) { j["run"]["gl_subpixel_bits"] = 4; },
          "got run.subpixel_bits 4 where"},
         {"timeout", [](json& j) { j["run"]["verdict_inputs"]["timeout"] = "5"; },
-         "got timeout 5 where"}}) {
+         "got timeout 5 where"},
+        // The backend named, not the GL library that follows from it.
+        {"backend",
+         [](json& j) {
+           j["run"]["backend"] = "egl";
+           j["run"]["gl_library"] = "libEGL_mesa.so.0";
+         },
+         "got run.backend \"egl\" where"}}) {
     SCOPED_TRACE(field);
     const fs::path second = shard("second", edit);
     expect_one_line(glrefcheck("merge '" + first.string() + "' '" + second.string() + "' --out '" +
@@ -316,10 +331,33 @@ TEST_F(Forged, AGarbledMarkerAndResultsSetAsideAreNamed) {
   fs::create_directories(aside / ".glrefcheck-earlier");
   fs::rename(aside / "results.json", aside / ".glrefcheck-earlier/results.json");
   expect_one_line(glrefcheck("compare '" + (dir_ / "run").string() + "' '" + aside.string() + "'"),
-                  "holds no results.json: a glrefcheck stopped before GL started set them aside "
-                  "(.glrefcheck-earlier/); `glrefcheck report ");
-  // As it says: report puts them back.
-  EXPECT_EQ(glrefcheck("report '" + aside.string() + "'").exit_code, 0);
+                  "holds no results.json: a glrefcheck stopped before it finished (a run or "
+                  "campaign before GL started, or a merge) set them aside (.glrefcheck-earlier/); "
+                  "`glrefcheck report ");
+  // As it says: report puts them back, and says so.
+  const Outcome report = glrefcheck("report '" + aside.string() + "'");
+  EXPECT_EQ(report.exit_code, 0) << report.out << report.err;
+  EXPECT_NE(report.out.find("earlier results, which a glrefcheck stopped before it finished had "
+                            "set aside"),
+            std::string::npos)
+      << report.out;
+  // A shard compared with the whole suite: every case outside it "removed", exit 0.
+  const fs::path shard = forged_results("shard", [](json& j) {
+    j["run"]["fraction"] = 2;
+    j["run"]["total_cases"] = 2;
+  });
+  const Outcome against =
+      glrefcheck("compare '" + (dir_ / "run").string() + "' '" + shard.string() + "'");
+  EXPECT_EQ(against.exit_code, 1) << against.out << against.err;
+  EXPECT_NE(against.out.find("current: shard 1 of 2, base: the whole suite (merge the shards "
+                             "first"),
+            std::string::npos)
+      << against.out;
+  // --emit writes one file: an --out beside it was ignored.
+  expect_one_line(
+      glrefcheck("fuzz --generator clip --replay 1:7 --emit '" + (dir_ / "x.json").string() +
+                 "' --out '" + (dir_ / "d").string() + "'"),
+      "--out: expected no --out with --emit");
   EXPECT_TRUE(fs::exists(aside / "results.json"));
 }
 

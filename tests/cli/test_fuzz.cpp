@@ -243,6 +243,10 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
        "failures[0].index: expected an index of shard 2 of 2, got 8"},
       // Every field fine, but a failure taken out by hand (the sixth hostile campaign): the
       // shard's stamp no longer holds.
+      // A shard of a --count campaign holds every index of its shard (the seventh campaign:
+      // one cut from 33 cases to 10 was merged as given).
+      {[](nlohmann::json& j) { j["stats"]["cases"] = 21; },
+       "stats.cases: expected 20 (shard 2 of 2 of a 40-case campaign), got 21"},
       {[](nlohmann::json& j) { j["failures"].erase(j["failures"].begin()); },
        "results.json: written_by: expected the stamp glrefcheck wrote to match the file's text"},
   };
@@ -257,6 +261,38 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
     EXPECT_EQ(o.exit_code, 2) << k << o.out << o.err;
     EXPECT_NE(o.err.find(forgeries[k].second), std::string::npos) << k << ": " << o.err;
     EXPECT_EQ(read(merged / "results.json"), good) << k;
+  }
+  // Without its stamp and its heatmaps (the seventh campaign): merged, and both said.
+  {
+    const auto bare = dir_ / "bare";
+    std::filesystem::copy(b, bare, std::filesystem::copy_options::recursive);
+    auto j = nlohmann::json::parse(read(bare / "results.json"));
+    j.erase("written_by");
+    std::ofstream(bare / "results.json") << j.dump(2);
+    std::filesystem::remove_all(bare / "cases");
+    const auto o = glrefcheck("merge '" + a.string() + "' '" + bare.string() + "' --out '" +
+                              (dir_ / "merged_bare").string() + "'");
+    EXPECT_EQ(o.exit_code, 1) << o.out << o.err;
+    EXPECT_NE(o.err.find("holds no written_by stamp"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("the merged report.html shows none for it"), std::string::npos) << o.err;
+  }
+  // One case replayed is no shard (it recorded count 2 and passed for a campaign's).
+  {
+    const auto replay = glrefcheck("fuzz --generator clip --replay 1:1 --fraction 2 --out '" +
+                                   (dir_ / "r").string() + "'");
+    EXPECT_EQ(replay.exit_code, 2) << replay.out << replay.err;
+    EXPECT_NE(replay.err.find("--replay: expected no --seed, --count, --time, --fraction"),
+              std::string::npos)
+        << replay.err;
+    const auto one = dir_ / "one";
+    ASSERT_LE(
+        glrefcheck("fuzz --generator clip --replay 1:7 --out '" + one.string() + "'").exit_code, 1);
+    const auto o =
+        glrefcheck("merge '" + one.string() + "' --out '" + (dir_ / "m1").string() + "'");
+    EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+    EXPECT_NE(o.err.find("campaign.replay: expected a campaign shard, got one case replayed"),
+              std::string::npos)
+        << o.err;
   }
   // A failure moved out of its shard ("ready for cases/"): refused before the last good merge
   // is cleared (the hostile campaign's D4).
