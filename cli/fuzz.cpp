@@ -151,6 +151,8 @@ campaign::CampaignOptions plan_campaign(const Options& o, const FuzzOptions& f) 
   co.generators = chosen_generators(f);
   if (!f.emit.empty() && !f.replay)
     throw InputError("--emit: expected --replay SEED:INDEX with it (the case to write)");
+  if (!f.emit.empty() && f.out_given)
+    throw InputError("--out: expected no --out with --emit (--emit names the one file written)");
   if (f.replay && (f.seed || f.count || f.seconds || o.fraction != 1 || o.fraction_start != 1))
     throw InputError(
         "--replay: expected no --seed, --count, --time, --fraction or --fraction-start with it "

@@ -27,6 +27,7 @@ struct FuzzOptions {
   // Known campaign failures, `<failure>,Fail` lines (Mesa CI's format; <failure> is the name of
   // the minimal case, "non_finite_noperspective"): reported as known, they do not fail it.
   std::string baseline;
+  bool out_given = false;  // --out given (with --emit, which writes one file, it is refused)
   double shrink_seconds = 60;
   bool no_shrink = false;
 };

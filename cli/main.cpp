@@ -303,11 +303,8 @@ int dispatch(CLI::App& app, Commands& c, char** argv) {
     if (*c.run) return cmd_run(o);
     if (*c.fuzz) {
       // Its own default folder: a campaign's results.json is not a run's.
-      if (c.fuzz->count("--out") == 0)
-        o.out = "fuzz-out";
-      else if (!c.fuzz_options.emit.empty())
-        throw InputError(
-            "--out: expected no --out with --emit (--emit names the one file written)");
+      c.fuzz_options.out_given = c.fuzz->count("--out") > 0;
+      if (!c.fuzz_options.out_given) o.out = "fuzz-out";
       return cmd_fuzz(o, c.fuzz_options);
     }
     if (*c.merge) return cmd_merge(c.merge_dirs, o.out, o.html);
