@@ -6,6 +6,8 @@
 // a typo in a suite of dozens of files points at its place at once.
 #include "casefile/casefile.hpp"
 
+#include "core/text.hpp"
+
 #include <sys/stat.h>
 #include <algorithm>
 #include <cstdio>
@@ -25,8 +27,6 @@ namespace fs = std::filesystem;
 using typed_json::json_quoted;
 using typed_json::printable;
 using typed_json::utf8_length;
-
-std::string file_kind(const fs::file_status& st);
 
 }  // namespace
 
@@ -64,26 +64,6 @@ Case parse(std::string text, const std::string& source, const std::string& name)
 }
 
 namespace {
-
-// What a path that is not a regular file is, for messages.
-std::string file_kind(const fs::file_status& st) {
-  switch (st.type()) {
-    case fs::file_type::directory:
-      return "a directory";
-    case fs::file_type::fifo:
-      return "a FIFO";
-    case fs::file_type::socket:
-      return "a socket";
-    case fs::file_type::character:
-      return "a character device";
-    case fs::file_type::block:
-      return "a block device";
-    case fs::file_type::not_found:
-      return "a broken symbolic link";
-    default:
-      return "something other than a regular file";
-  }
-}
 
 // Case names become JSON strings in results.json and reports, which must be UTF-8: a path that
 // is not is refused here, before any work, rather than by the JSON library mid-run.

@@ -65,24 +65,32 @@ Options all_options_from_json(const json& j, const std::string& where) {
   return o;
 }
 
-// Each line ends in its own digest, `,"digest":"sha256:<hex>"}`: the SHA-256 of the line as it
-// would be without that field. A line a person edited (a verdict flipped, an option changed,
-// a model's rule) no longer matches it, and --resume refuses the journal instead of mixing the
-// edit into the run's results.
+// Each line ends in its own digest, `,"digest":"sha256:<hex>"}`: the SHA-256 of the previous
+// line's digest (none for the first) followed by the line as it would be without that field. A
+// line a person edited (a verdict flipped, an option changed, a model's rule) no longer matches
+// it, nor does a line taken from another run's journal (its chain is that run's), and --resume
+// refuses the journal instead of mixing either into the run's results.
 constexpr std::string_view kDigestField = ",\"digest\":\"";
 
-std::string with_digest(std::string line) {
-  const std::string digest = report::content_digest(line);
+std::string with_digest(std::string line, const std::string& previous) {
+  const std::string digest = report::content_digest(previous + line);
   line.pop_back();  // the object's closing brace, which follows the digest instead
   return line + std::string(kDigestField) + digest + "\"}";
 }
 
-bool digest_holds(std::string_view line) {
+// The digest a line ends in, or "" when it ends in none.
+std::string digest_of(std::string_view line) {
   const size_t at = line.rfind(kDigestField);
-  if (at == std::string_view::npos || !line.ends_with("\"}")) return false;
+  if (at == std::string_view::npos || !line.ends_with("\"}")) return "";
   const size_t from = at + kDigestField.size();
-  return report::content_digest(std::string(line.substr(0, at)) + "}") ==
-         line.substr(from, line.size() - 2 - from);
+  return std::string(line.substr(from, line.size() - 2 - from));
+}
+
+bool digest_holds(std::string_view line, const std::string& previous) {
+  const std::string digest = digest_of(line);
+  return !digest.empty() &&
+         report::content_digest(previous + std::string(line.substr(0, line.rfind(kDigestField))) +
+                                "}") == digest;
 }
 
 int open_journal(const fs::path& file, int flags) {
@@ -118,7 +126,12 @@ Journal Journal::reopen(const fs::path& dir) {
     if (keep < text.size()) fs::resize_file(file, keep, ec);
     if (ec) throw InputError("cannot write the run journal " + file.string() + ": " + ec.message());
   }
-  return Journal(open_journal(file, 0), file);
+  Journal j(open_journal(file, 0), file);
+  // The chain goes on from the last whole line's digest.
+  std::ifstream in(file, std::ios::binary);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) j.last_digest_ = digest_of(line);
+  return j;
 }
 
 Journal::~Journal() {
@@ -142,7 +155,9 @@ void Journal::record_heatmaps_written(size_t index) {
 }
 
 void Journal::append(std::string line) {
-  line = with_digest(std::move(line)) + '\n';
+  line = with_digest(std::move(line), last_digest_);
+  last_digest_ = digest_of(line);
+  line += '\n';
   // One write per line (O_APPEND): a kill leaves whole lines, and at worst the last one cut.
   for (size_t done = 0; done < line.size();) {
     const ssize_t n = write(fd_, line.data() + done, line.size() - done);
@@ -217,7 +232,7 @@ void read_case_line(const json& j, const std::string& where, JournalContents& c,
 // Line `n` (1-based) into `c`, each field checked, then its digest (last, so that a malformed
 // field is named first).
 void read_line(const std::string& line, int n, const std::string& where, JournalContents& c,
-               std::set<size_t>& heatmaps_due) {
+               std::set<size_t>& heatmaps_due, std::string& previous) {
   json j;
   try {
     j = json::parse(line);
@@ -237,11 +252,13 @@ void read_line(const std::string& line, int n, const std::string& where, Journal
   } else {
     read_case_line(j, where, c, heatmaps_due);
   }
-  if (!digest_holds(line))
+  if (!digest_holds(line, previous))
     throw InputError(
-        where + ": expected the line as glrefcheck wrote it, got one " +
-        (j.contains("digest") ? "its digest no longer matches" : "without its digest") +
-        " (edited since): start a new run");
+        where + ": expected the line as glrefcheck wrote it after the line before, got " +
+        (j.contains("digest") ? "one its digest no longer matches (edited since, or another run's)"
+                              : "one without its digest (edited since)") +
+        ": start a new run");
+  previous = digest_of(line);
 }
 
 }  // namespace
@@ -264,6 +281,7 @@ JournalContents read_journal(const fs::path& dir) {
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   JournalContents c;
   std::set<size_t> heatmaps_due;  // cases whose heatmaps followed their verdict, not yet written
+  std::string previous;           // the last line's digest, which the next line's chains on
   size_t at = 0;
   for (int n = 1; at < text.size(); ++n) {
     const size_t eol = text.find('\n', at);
@@ -273,7 +291,7 @@ JournalContents read_journal(const fs::path& dir) {
     if (line.empty()) continue;  // where a reopened journal ended a cut line
     const std::string where = fmt::format("{}:{}", name, n);
     try {
-      read_line(line, n, where, c, heatmaps_due);
+      read_line(line, n, where, c, heatmaps_due, previous);
     } catch (const InputError&) {
       throw;
     } catch (const json::exception& e) {

@@ -2,8 +2,9 @@
 // each line handed to the kernel with one write(2) as it happens, so that a run killed at any
 // moment (kill -9 included) leaves every finished case on disk and `run --resume` can go on.
 //
-// Every line ends in "digest": the SHA-256 of the line without it, so that --resume refuses a
-// journal edited by hand (version 2; version 1 had none and is refused).
+// Every line ends in "digest": the SHA-256 of the previous line's digest and the line without
+// it, so that --resume refuses a journal edited by hand or holding another run's lines (version
+// 3; earlier versions are refused).
 //
 // Line 1: {"glrefcheck_journal": 2, "options": {every option of the run}, "files": [the case
 // files, after --filter, before sharding, in order], "file_digests": [each one's content,
@@ -30,7 +31,7 @@
 
 namespace glrc::cli {
 
-inline constexpr int kJournalVersion = 2;
+inline constexpr int kJournalVersion = 3;
 
 struct JournalContents {
   Options options;
@@ -53,7 +54,8 @@ class Journal {
                        const std::vector<std::string>& file_digests);
   // Appends to an existing one.
   static Journal reopen(const std::filesystem::path& dir);
-  Journal(Journal&& other) noexcept : fd_(other.fd_), file_(std::move(other.file_)) {
+  Journal(Journal&& other) noexcept
+      : fd_(other.fd_), file_(std::move(other.file_)), last_digest_(std::move(other.last_digest_)) {
     other.fd_ = -1;
   }
   Journal(const Journal&) = delete;
@@ -71,6 +73,7 @@ class Journal {
   void append(std::string line);
   int fd_;
   std::filesystem::path file_;
+  std::string last_digest_;  // the last line's, which the next line's digest chains on
 };
 
 // InputError naming the file and line for a journal that is missing or malformed.

@@ -91,6 +91,7 @@ nlohmann::json merged_campaign(const std::vector<std::string>& dirs, std::vector
   std::vector<nlohmann::json> shards;
   std::vector<report::JsonStamp> stamps;
   for (const auto& d : dirs) {
+    check_settled(d, "merge");
     auto j = raw_results(d);
     if (!j || !campaign::is_campaign_json(j->doc))
       throw InputError("merge: " + d + ": expected the results of a fuzz campaign shard, as the " +

@@ -1,6 +1,7 @@
 #include "cli/output_dir.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -130,7 +131,9 @@ std::optional<std::string> lock_holder(const fs::path& dir) {
     line.resize(size_t(std::max<ssize_t>(n, 0)));
     while (!line.empty() && (line.back() == '\n' || line.back() == '\0'))
       line.pop_back();
-    holder = line.empty() ? "its pid not yet written" : printable(line, 300);
+    // This process's own lock (report holds the folder while it reads it) is no other's.
+    if (!line.starts_with(fmt::format("pid {}:", getpid())))
+      holder = line.empty() ? "its pid not yet written" : printable(line, 300);
   }
   close(fd);  // releases a shared lock taken to look
   return holder;
@@ -420,10 +423,34 @@ void check_outputs_ours(const fs::path& dir, const std::vector<std::string>& nam
 
 }  // namespace
 
+namespace {
+
+// Removes the temporary files (report::write_file_atomically's `.<name>.tmp-<pid>`) that a
+// glrefcheck killed outright left in `dir`: those of a process that no longer runs.
+void remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const size_t at = name.rfind(".tmp-");
+    if (!name.starts_with(".") || at == std::string::npos) continue;
+    const std::string digits = name.substr(at + 5);
+    if (digits.empty() || digits.size() > 9 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    if (kill(pid_t(std::stol(digits)), 0) != 0 && errno == ESRCH) {
+      std::error_code removed;
+      fs::remove(it->path(), removed);
+    }
+  }
+}
+
+}  // namespace
+
 EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::string>& also) {
   if (!is_marked(dir))
     throw std::logic_error("set_aside_outputs: " + dir.string() + " is not a marked folder");
   restore_earlier_outputs(dir);
+  remove_stale_temporaries(dir);
   std::error_code ec;
   fs::remove_all(dir / kDiscardedFolder, ec);
   const std::vector<std::string> names = with_run_outputs(also);

@@ -137,27 +137,37 @@ WorkerSettings worker_settings(Options& o, const std::filesystem::path& out, int
   return s;
 }
 
-report::RunResults read_run_results(const std::string& path, const std::string& command) {
-  // A run folder without its results.json: what left it so says what to do.
+void check_settled(const std::string& path, const std::string& command) {
   std::error_code ec;
-  const std::filesystem::path dir(path);
-  if (std::filesystem::is_directory(dir, ec) &&
-      !std::filesystem::exists(std::filesystem::symlink_status(dir / "results.json", ec))) {
-    if (const auto holder = lock_holder(dir))
-      throw InputError(command + ": " + printable(path, 200) +
-                       " holds no results.json yet: another glrefcheck is writing into it (" +
-                       *holder + "): wait for it to end");
-    if (std::filesystem::exists(dir / kEarlierFolder, ec))
-      throw InputError(command + ": " + printable(path, 200) +
-                       " holds no results.json: a glrefcheck stopped before it finished (a run "
-                       "or campaign before GL started, or a merge) set them aside (" +
-                       kEarlierFolder + "/); `glrefcheck report " + printable(path, 200) +
-                       "` puts them back");
-    if (std::filesystem::exists(dir / kJournalFile, ec))
-      throw InputError(command + ": " + printable(path, 200) + " holds no results.json but a " +
-                       kJournalFile + ": the run was killed; `glrefcheck run --resume " +
-                       printable(path, 200) + "` finishes it");
-  }
+  // A folder, or its results.json: another file names no folder of glrefcheck's.
+  if (!std::filesystem::is_directory(path, ec) &&
+      std::filesystem::path(path).filename() != "results.json")
+    return;
+  const std::filesystem::path dir = report::run_folder(path);
+  const std::string shown = printable(path, 200);
+  const bool results =
+      std::filesystem::exists(std::filesystem::symlink_status(dir / "results.json", ec));
+  if (const auto holder = lock_holder(dir))
+    throw InputError(command + ": " + shown + (results ? "" : " holds no results.json yet:") +
+                     " another glrefcheck is writing into it (" + *holder +
+                     "): wait for it to end");
+  // Set aside by a glrefcheck stopped before it finished: beside them, what it wrote of its own
+  // (a merge killed halfway) is no run's results.
+  if (std::filesystem::exists(dir / kEarlierFolder, ec))
+    throw InputError(
+        command + ": " + shown +
+        (results ? " holds what a glrefcheck stopped before it finished wrote, beside "
+                   "the earlier results it set aside ("
+                 : " holds no results.json: a glrefcheck stopped before it finished "
+                   "(a run or campaign before GL started, or a merge) set them aside (") +
+        kEarlierFolder + "/); `glrefcheck report " + shown + "` puts the earlier ones back");
+  if (!results && std::filesystem::exists(dir / kJournalFile, ec))
+    throw InputError(command + ": " + shown + " holds no results.json but a " + kJournalFile +
+                     ": the run was killed; `glrefcheck run --resume " + shown + "` finishes it");
+}
+
+report::RunResults read_run_results(const std::string& path, const std::string& command) {
+  check_settled(path, command);
   report::RunResults results;
   try {
     results = report::read_results_json(path);

@@ -70,6 +70,10 @@ void write_outputs(const std::filesystem::path& out, const RunInfo& info,
 // (an older glrefcheck's, or made by hand: read as it stands, which a stamped one that a
 // person edited is not).
 report::RunResults read_run_results(const std::string& path, const std::string& command);
+// InputError when the results folder of `path` is not one to read now: held by a live glrefcheck
+// (lock_holder), holding what a glrefcheck stopped before it finished set aside (and perhaps half
+// of its own outputs), or a killed run's journal without results.
+void check_settled(const std::string& path, const std::string& command);
 // That note, for the results folder or file `path`.
 void note_unstamped(const std::string& path);
 

@@ -94,4 +94,30 @@ std::string shell_word(std::string_view s) {
   return q + "'";
 }
 
+std::string file_kind(const std::filesystem::file_status& st) {
+  namespace fs = std::filesystem;
+  switch (st.type()) {
+    case fs::file_type::directory:
+      return "a directory";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::not_found:
+      return "a broken symbolic link";
+    default:
+      return "something other than a regular file";
+  }
+}
+
+std::string file_kind(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return "no such file";
+  return file_kind(std::filesystem::status(path, ec));
+}
+
 }  // namespace glrc

@@ -1,6 +1,7 @@
 // Text from files, drivers and the command line, made fit for one-line messages and JSON.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -19,5 +20,13 @@ std::string wrap_words(std::string_view text, size_t width, std::string_view pre
 // it is plain, else in single quotes; one that starts with '-' (a file "-dash.c") gets "./",
 // or the command would take it for an option.
 std::string shell_word(std::string_view s);
+
+// What a path that is not a regular file is, for a message, from its status (followed through
+// links): "a directory", "a FIFO", "a socket", "a character device", "a block device", "a broken
+// symbolic link" (not found: the path was listed, its link's target is gone), or "something
+// other than a regular file".
+std::string file_kind(const std::filesystem::file_status& st);
+// The same of a path, "no such file" where nothing is there.
+std::string file_kind(const std::filesystem::path& path);
 
 }  // namespace glrc

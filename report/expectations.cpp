@@ -29,9 +29,9 @@ std::string trim(const std::string& s) {
 Baseline read_baseline(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
-    throw std::runtime_error(
-        file.string() + ": expected a baseline file of `case,Status` lines, " + "got " +
-        (std::filesystem::exists(file, ec) ? "something else" : "no such file"));
+    throw std::runtime_error(file.string() +
+                             ": expected a baseline file of `case,Status` lines, got " +
+                             file_kind(file) + " (not read)");
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   Baseline b;
@@ -131,9 +131,9 @@ const std::string* Patterns::match(const std::string& name) const {
 Patterns read_patterns(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
-    throw std::runtime_error(
-        file.string() + ": expected a file of regular expressions, one per line, got " +
-        (std::filesystem::exists(file, ec) ? "something else" : "no such file"));
+    throw std::runtime_error(file.string() +
+                             ": expected a file of regular expressions, one per line, got " +
+                             file_kind(file) + " (not read)");
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot read it");
   Patterns p;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 
 #include <chrono>
 #include <filesystem>
@@ -475,6 +476,16 @@ TEST_F(EarlierOutputs, ARunReplacesOnlyItsOwnFiles) {
   refused("identify --out '" + out.string() + "'", out / "identify.json",
           "which glrefcheck did not write (it holds no stamp)");
   EXPECT_EQ(glrefcheck(run).exit_code, 0);  // the run's own files it replaces, as ever
+  // A temporary file a glrefcheck killed outright left (the eighth campaign: a merge's
+  // .junit.xml.tmp-PID stayed for good) goes with the next claim of the folder.
+  const pid_t gone = fork();
+  if (gone == 0) _exit(0);
+  ASSERT_GT(gone, 0);
+  waitpid(gone, nullptr, 0);
+  const fs::path stale = out / (".junit.xml.tmp-" + std::to_string(gone));
+  std::ofstream(stale) << "half";
+  EXPECT_EQ(glrefcheck(run).exit_code, 0);
+  EXPECT_FALSE(fs::exists(stale));
 }
 
 // A run into a campaign's folder left the campaign's failures/ beside its results, and the next

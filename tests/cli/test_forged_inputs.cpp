@@ -252,10 +252,22 @@ TEST_F(Forged, EditsUnderAStampAreRefused) {
     const fs::path d = resumed_journal(name, [&](std::string& s) { replaced(s, from, to); });
     const Outcome resumed = glrefcheck("run --resume '" + d.string() + "'");
     expect_one_line(resumed,
-                    "expected the line as glrefcheck wrote it, got one its digest no "
-                    "longer matches (edited since): start a new run");
+                    "expected the line as glrefcheck wrote it after the line before, got one its "
+                    "digest no longer matches (edited since, or another run's): start a new run");
     EXPECT_FALSE(fs::exists(d / "results.json"));
   }
+  // A line of another run's journal, its own digest intact (the eighth hostile campaign: a
+  // result of a spec run went into an exact one's resume).
+  ASSERT_LE(glrefcheck("run cases/face_on.json --jobs 1 --tolerance exact --out '" +
+                       (dir_ / "exact_run").string() + "'")
+                .exit_code,
+            1);
+  const std::string other = read(dir_ / "exact_run/journal.jsonl");
+  const fs::path mixed = resumed_journal("mixed", [&](std::string& s) {
+    s = s.substr(0, s.find('\n') + 1) + other.substr(other.find('\n') + 1);
+  });
+  expect_one_line(glrefcheck("run --resume '" + mixed.string() + "'"),
+                  "digest no longer matches (edited since, or another run's)");
   const fs::path bogus = resumed_journal("heatmaps", [&](std::string& s) {
     replaced(s, "\"result\":", "\"heatmaps\":\"bogus\",\"result\":");
   });
@@ -264,17 +276,17 @@ TEST_F(Forged, EditsUnderAStampAreRefused) {
       "expected \"heatmaps\": \"follow\", or no \"heatmaps\" field, in a line with a result, got "
       "\"bogus\"");
   const fs::path undigested = resumed_journal("undigested", [&](std::string& s) {
-    const size_t at = s.find(",\"digest\":\"sha256:");
-    ASSERT_NE(at, std::string::npos);
-    s.erase(at, s.find('}', at) - at);
+    const size_t cut = s.find(",\"digest\":\"sha256:");
+    ASSERT_NE(cut, std::string::npos);
+    s.erase(cut, s.find('}', cut) - cut);
   });
   expect_one_line(glrefcheck("run --resume '" + undigested.string() + "'"),
                   "got one without its digest (edited since)");
   const fs::path older = resumed_journal("version1", [&](std::string& s) {
-    replaced(s, "\"glrefcheck_journal\":2", "\"glrefcheck_journal\":1");
+    replaced(s, "\"glrefcheck_journal\":3", "\"glrefcheck_journal\":2");
   });
   expect_one_line(glrefcheck("run --resume '" + older.string() + "'"),
-                  ":1: expected a run journal of this glrefcheck (version 2), got version 1");
+                  ":1: expected a run journal of this glrefcheck (version 3), got version 2");
 }
 
 // The sixth hostile campaign: merge compared neither the driver asked for, nor the Mesa tree,
@@ -341,6 +353,31 @@ TEST_F(Forged, AGarbledMarkerAndResultsSetAsideAreNamed) {
                             "set aside"),
             std::string::npos)
       << report.out;
+  // Beside the results a stopped glrefcheck set aside, what it wrote of its own (a merge killed
+  // halfway) was compared as the folder's results; and report on a killed run's folder named its
+  // own lock as the other glrefcheck writing there.
+  const fs::path halfway = dir_ / "halfway";
+  fs::remove_all(halfway);
+  fs::copy(dir_ / "run", halfway, fs::copy_options::recursive);
+  fs::create_directories(halfway / ".glrefcheck-earlier");
+  fs::copy_file(halfway / "results.json", halfway / ".glrefcheck-earlier/results.json");
+  expect_one_line(
+      glrefcheck("compare '" + (dir_ / "run").string() + "' '" + halfway.string() + "'"),
+      "holds what a glrefcheck stopped before it finished wrote, beside the earlier "
+      "results it set aside");
+  const fs::path killed = dir_ / "killed";
+  fs::remove_all(killed);
+  fs::copy(dir_ / "run", killed, fs::copy_options::recursive);
+  fs::remove(killed / "results.json");
+  expect_one_line(glrefcheck("report '" + killed.string() + "'"),
+                  "holds no results.json but a journal.jsonl: the run was killed");
+  // A FIFO for a --baseline is named as one.
+  const fs::path fifo = dir_ / "baseline.fifo";
+  fs::remove(fifo);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  expect_one_line(glrefcheck("run cases/face_on.json --baseline '" + fifo.string() + "' --out '" +
+                             (dir_ / "fifo_run").string() + "'"),
+                  "expected a baseline file of `case,Status` lines, got a FIFO (not read)");
   // A shard compared with the whole suite: every case outside it "removed", exit 0.
   const fs::path shard = forged_results("shard", [](json& j) {
     j["run"]["fraction"] = 2;
