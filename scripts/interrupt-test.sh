@@ -30,7 +30,8 @@ while [ "$made" -lt "$n" ]; do
   copy=$((copy + 1))
 done
 
-comparable() { jq -S 'del(.run.seconds, .run.model_source) | del(.cases[].seconds)' "$1/results.json"; }
+# Timings, the model's source and the stamp (of the file's text, timings included) aside.
+comparable() { jq -S 'del(.written_by, .run.seconds, .run.model_source) | del(.cases[].seconds)' "$1/results.json"; }
 # Workers of this binary still running (a zombie waiting for init is not running).
 live_workers() {
   local count=0 pid
