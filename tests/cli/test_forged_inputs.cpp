@@ -398,6 +398,27 @@ TEST_F(Forged, AGarbledMarkerAndResultsSetAsideAreNamed) {
   EXPECT_TRUE(fs::exists(aside / "results.json"));
 }
 
+// The ninth hostile campaign (issue 45): more shards than cases (the suite's 6 in GitLab's
+// `parallel: 8`) left a shard of no case, which never started GL, and merge refused it as a
+// shard of another GL. Its empty GL fields say nothing now.
+TEST_F(Forged, AShardOfNoCaseMergesWithTheOthers) {
+  for (const int start : {1, 2})
+    ASSERT_EQ(glrefcheck("run cases/face_on.json --jobs 1 --fraction 2 --fraction-start " +
+                         std::to_string(start) + " --out '" +
+                         (dir_ / ("empty_shard" + std::to_string(start))).string() + "'")
+                  .exit_code,
+              0);
+  const fs::path merged = dir_ / "empty_merged";
+  const Outcome o =
+      glrefcheck("merge '" + (dir_ / "empty_shard2").string() + "' '" +
+                 (dir_ / "empty_shard1").string() + "' --out '" + merged.string() + "'");
+  EXPECT_EQ(o.exit_code, 0) << o.out << o.err;
+  const json j = json::parse(read(merged / "results.json"));
+  EXPECT_EQ(j["cases"].size(), 1u);
+  EXPECT_EQ(j["run"]["gl_renderer"],
+            json::parse(read(dir_ / "empty_shard1/results.json"))["run"]["gl_renderer"]);
+}
+
 // `compare --json FILE` and `report --out FILE` replaced whatever FILE held. A file glrefcheck
 // wrote is still replaced, so the same command can run again.
 TEST_F(Forged, OutputFilesReplaceOnlyWhatGlrefcheckWrote) {
