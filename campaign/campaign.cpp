@@ -375,11 +375,12 @@ nlohmann::json merge_campaigns(const std::vector<nlohmann::json>& shards,
     // A shard of no case (more shards than cases) never started GL: its GL fields say nothing.
     const bool gl = !run.value("gl_renderer", std::string()).empty() &&
                     !run0.value("gl_renderer", std::string()).empty();
-    for (const char* key : {"backend", "driver", "mesa_prefix", "gl_renderer", "gl_version",
-                            "gl_library", "model", "tolerance", "subpixel_bits"})
-      if ((gl || std::string_view(key) == "backend" || std::string_view(key) == "driver" ||
-           std::string_view(key) == "mesa_prefix") &&
-          run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
+    std::vector<const char*> keys = {"backend", "driver", "mesa_prefix"};
+    if (gl)
+      keys.insert(keys.end(), {"gl_renderer", "gl_version", "gl_library", "model", "tolerance",
+                               "subpixel_bits"});
+    for (const char* key : keys)
+      if (run.value(key, nlohmann::json()) != run0.value(key, nlohmann::json()))
         throw std::runtime_error(
             source + ": run." + key + ": expected " + run0.value(key, nlohmann::json()).dump() +
             " as the first shard, got " + run.value(key, nlohmann::json()).dump().substr(0, 80));

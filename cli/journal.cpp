@@ -116,21 +116,18 @@ Journal Journal::start(const fs::path& dir, const Options& o, const std::vector<
 
 Journal Journal::reopen(const fs::path& dir) {
   const fs::path file = dir / kJournalFile;
+  std::ifstream in(file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
   // A line cut short by a kill (its case runs again) goes, so the next line starts clean.
-  {
-    std::ifstream in(file, std::ios::binary);
-    const std::string text((std::istreambuf_iterator<char>(in)), {});
-    const size_t end = text.rfind('\n');
-    const size_t keep = end == std::string::npos ? 0 : end + 1;
-    std::error_code ec;
-    if (keep < text.size()) fs::resize_file(file, keep, ec);
-    if (ec) throw InputError("cannot write the run journal " + file.string() + ": " + ec.message());
-  }
+  const size_t end = text.rfind('\n');
+  const size_t keep = end == std::string::npos ? 0 : end + 1;
+  std::error_code ec;
+  if (keep < text.size()) fs::resize_file(file, keep, ec);
+  if (ec) throw InputError("cannot write the run journal " + file.string() + ": " + ec.message());
   Journal j(open_journal(file, 0), file);
   // The chain goes on from the last whole line's digest.
-  std::ifstream in(file, std::ios::binary);
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty()) j.last_digest_ = digest_of(line);
+  const std::string_view whole = std::string_view(text).substr(0, keep > 0 ? keep - 1 : 0);
+  j.last_digest_ = digest_of(whole.substr(whole.rfind('\n') + 1));
   return j;
 }
 

@@ -61,6 +61,14 @@ class Forged : public ::testing::Test {
     return d;
   }
 
+  // A fresh copy of the run folder, named `name`.
+  static fs::path copied_run(const std::string& name) {
+    const fs::path d = dir_ / name;
+    fs::remove_all(d);
+    fs::copy(dir_ / "run", d, fs::copy_options::recursive);
+    return d;
+  }
+
   static void write_restamped(const fs::path& file, json j) {
     j.erase("written_by");
     std::ofstream(file, std::ios::binary) << report::stamped_json("run", j.dump(2) + "\n");
@@ -68,9 +76,7 @@ class Forged : public ::testing::Test {
 
   // A copy of the run folder with `edit` applied to the options on its journal's first line.
   static fs::path forged_journal(const std::string& name, const std::function<void(json&)>& edit) {
-    const fs::path d = dir_ / name;
-    fs::remove_all(d);
-    fs::copy(dir_ / "run", d, fs::copy_options::recursive);
+    const fs::path d = copied_run(name);
     std::string text = read(d / "journal.jsonl");
     const size_t eol = text.find('\n');
     json first = json::parse(text.substr(0, eol));
@@ -201,9 +207,7 @@ TEST_F(Forged, AResumedJournalsOptionsAreCheckedAsTheCommandLineChecksThem) {
 // glrefcheck's) reads as it stands, with a note saying so.
 TEST_F(Forged, EditsUnderAStampAreRefused) {
   const std::string run = "'" + (dir_ / "run").string() + "'";
-  const fs::path edited = dir_ / "edited";
-  fs::remove_all(edited);
-  fs::copy(dir_ / "run", edited, fs::copy_options::recursive);
+  const fs::path edited = copied_run("edited");
   std::string text = read(edited / "results.json");
   const size_t at = text.find("\"status\": \"Pass\"");
   ASSERT_NE(at, std::string::npos);
@@ -230,9 +234,7 @@ TEST_F(Forged, EditsUnderAStampAreRefused) {
   // The journal: each line's digest.
   const auto resumed_journal = [&](const std::string& name,
                                    const std::function<void(std::string&)>& edit) {
-    const fs::path d = dir_ / name;
-    fs::remove_all(d);
-    fs::copy(dir_ / "run", d, fs::copy_options::recursive);
+    const fs::path d = copied_run(name);
     std::string journal = read(d / "journal.jsonl");
     edit(journal);
     std::ofstream(d / "journal.jsonl", std::ios::binary) << journal;
@@ -330,16 +332,12 @@ TEST_F(Forged, MergeRefusesShardsOfAnotherDriverPrefixSubpixelBitsOrTimeout) {
 // The sixth hostile campaign's unclear messages: a marker a person garbled was called no marker;
 // compare on a folder whose results a stopped glrefcheck set aside said "no such file".
 TEST_F(Forged, AGarbledMarkerAndResultsSetAsideAreNamed) {
-  const fs::path garbled = dir_ / "garbled";
-  fs::remove_all(garbled);
-  fs::copy(dir_ / "run", garbled, fs::copy_options::recursive);
+  const fs::path garbled = copied_run("garbled");
   std::ofstream(garbled / ".glrefcheck") << "my notes\n";
   expect_one_line(glrefcheck("run cases/face_on.json --out '" + garbled.string() + "'"),
                   "whose .glrefcheck is not glrefcheck's marker (its first line edited, or made by "
                   "hand)");
-  const fs::path aside = dir_ / "aside";
-  fs::remove_all(aside);
-  fs::copy(dir_ / "run", aside, fs::copy_options::recursive);
+  const fs::path aside = copied_run("aside");
   fs::create_directories(aside / ".glrefcheck-earlier");
   fs::rename(aside / "results.json", aside / ".glrefcheck-earlier/results.json");
   expect_one_line(glrefcheck("compare '" + (dir_ / "run").string() + "' '" + aside.string() + "'"),
@@ -356,18 +354,14 @@ TEST_F(Forged, AGarbledMarkerAndResultsSetAsideAreNamed) {
   // Beside the results a stopped glrefcheck set aside, what it wrote of its own (a merge killed
   // halfway) was compared as the folder's results; and report on a killed run's folder named its
   // own lock as the other glrefcheck writing there.
-  const fs::path halfway = dir_ / "halfway";
-  fs::remove_all(halfway);
-  fs::copy(dir_ / "run", halfway, fs::copy_options::recursive);
+  const fs::path halfway = copied_run("halfway");
   fs::create_directories(halfway / ".glrefcheck-earlier");
   fs::copy_file(halfway / "results.json", halfway / ".glrefcheck-earlier/results.json");
   expect_one_line(
       glrefcheck("compare '" + (dir_ / "run").string() + "' '" + halfway.string() + "'"),
       "holds what a glrefcheck stopped before it finished wrote, beside the earlier "
       "results it set aside");
-  const fs::path killed = dir_ / "killed";
-  fs::remove_all(killed);
-  fs::copy(dir_ / "run", killed, fs::copy_options::recursive);
+  const fs::path killed = copied_run("killed");
   fs::remove(killed / "results.json");
   expect_one_line(glrefcheck("report '" + killed.string() + "'"),
                   "holds no results.json but a journal.jsonl: the run was killed");
