@@ -82,6 +82,13 @@ void write_case_file(const std::filesystem::path& file, const Case& c) {
 std::set<std::string> listed_failure_files(const std::filesystem::path& out) {
   std::set<std::string> names;
   std::error_code ec;
+  if (std::filesystem::is_regular_file(
+          std::filesystem::symlink_status(out / kFailuresWritten, ec))) {
+    std::ifstream written(out / kFailuresWritten);
+    for (std::string name; std::getline(written, name);)
+      // A file's name alone: a line naming a path elsewhere lists nothing.
+      if (!name.empty() && std::filesystem::path(name).filename() == name) names.insert(name);
+  }
   if (!std::filesystem::is_regular_file(out / "results.json", ec)) return names;
   try {
     std::ifstream in(out / "results.json", std::ios::binary);
@@ -109,6 +116,9 @@ void write_campaign_files(const std::filesystem::path& out, const nlohmann::json
                        seconds);
   }
   report::write_file_atomically(out / "results.csv", csv);
+  // results.json lists the minimal cases now.
+  std::error_code ec;
+  std::filesystem::remove(out / kFailuresWritten, ec);
 }
 
 CLI::App* add_fuzz_command(CLI::App& app, FuzzOptions& f) {
@@ -319,6 +329,15 @@ class FuzzCampaign {
 
   void shrunk(const campaign::FoundFailure& nf) {
     const auto file = out_ / "failures" / campaign::failure_file_name(nf.failure);
+    // Named as this campaign's before it exists: killed outright, the campaign leaves no
+    // results.json, and the next one there must know the file for its own.
+    {
+      std::ofstream written(out_ / kFailuresWritten,
+                            failures_written_ ? std::ios::app : std::ios::trunc);
+      written << file.filename().string() << '\n' << std::flush;
+      if (!written) throw std::runtime_error("cannot write " + (out_ / kFailuresWritten).string());
+      failures_written_ = true;
+    }
     write_case_file(file, nf.minimal);
     // Its heatmaps, in <out>/cases/<name>/ as `run` writes a failing case's.
     with_images_.insert(nf.minimal.name);
@@ -397,6 +416,7 @@ class FuzzCampaign {
   std::set<std::string> with_images_;
   std::vector<CaseResult> minimal_results_;
   bool gl_started_ = false;
+  bool failures_written_ = false;  // kFailuresWritten holds this campaign's names, not another's
   const bool terminal_ = isatty(STDERR_FILENO) && !std::getenv("CI");
 };
 

@@ -41,9 +41,16 @@ int cmd_fuzz(const Options& o, const FuzzOptions& f);
 // A campaign's results.json (campaign::campaign_json, each failure with its minimal case's
 // "result") and results.csv (`<failure>,Fail|ExpectedFail,seconds`) in `out`.
 void write_campaign_files(const std::filesystem::path& out, const nlohmann::json& doc);
-// The minimal cases (file names in failures/) the campaign results in `out` list; none when
-// there are none, or they are not a campaign's.
+// The minimal cases (file names in failures/) the campaign results in `out` list, and those a
+// campaign still running, or killed outright, wrote before its results (kFailuresWritten); none
+// when there are none, or they are not a campaign's.
 std::set<std::string> listed_failure_files(const std::filesystem::path& out);
+// In a campaign's folder while it runs: the name of each minimal case it writes into failures/,
+// a line each, added before the case is written. A campaign killed outright (SIGKILL, a machine
+// that went down) has no results.json listing them; this file names them as its own, so that the
+// next campaign there replaces them instead of taking them for a person's. Written over by the
+// next campaign's first minimal case, removed once results.json lists them (write_campaign_files).
+inline constexpr const char* kFailuresWritten = ".glrefcheck-failures";
 
 // `merge` of campaign shards (`fuzz --fraction`): campaign::merge_campaigns, each failure's
 // minimal case and heatmaps copied from the shard it came from, report.html. Exit 0 when no

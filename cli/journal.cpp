@@ -219,7 +219,8 @@ void read_case_line(const json& j, const std::string& where, JournalContents& c,
                                                          earlier->second.outcome != r.outcome))))
     throw InputError(fmt::format(
         "{}: expected case {} (\"{}\", {}) as an earlier line gives it, got \"{}\", {}: two "
-        "results for one case",
+        "results for one case (a line of another run's journal, or one edited by hand): start a "
+        "new run",
         where, index, printable(earlier->second.name, 80), to_string(earlier->second.outcome),
         printable(r.name, 80), to_string(r.outcome)));
   c.results[index] = std::move(r);

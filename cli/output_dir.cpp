@@ -265,8 +265,9 @@ void check_replaceable_files(const fs::path& dir, const std::string& option,
                                    "which the folder's results.json does not list (added, or "
                                    "left by a campaign that was killed)")
                              : not_replaceable(it->path(), it->symlink_status(ec), writer))
-      throw InputError(option + ": expected only glrefcheck " + writer + "'s files in " +
-                       printable(dir.string(), 200) + ", which it replaces, got \"" +
+      throw InputError(option + ": expected only the files glrefcheck " + writer + " wrote in " +
+                       printable(dir.string(), 200) +
+                       ", which a run, merge or campaign here replaces, got \"" +
                        printable(it->path().filename().string(), 100) + "\", " + *why +
                        ": move it out of the folder first");
   if (ec) throw InputError(option + ": cannot read " + printable(dir.string(), 200));
@@ -300,6 +301,9 @@ void move_outputs(const fs::path& from, const fs::path& to, const std::vector<st
 std::vector<std::string> with_run_outputs(const std::vector<std::string>& also) {
   std::vector<std::string> names = run_output_names();
   names.insert(names.end(), also.begin(), also.end());
+  // failures/ goes with its list of the minimal cases a campaign wrote before its results.
+  if (std::find(also.begin(), also.end(), "failures") != also.end())
+    names.push_back(kFailuresWritten);
   return names;
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <stdexcept>
 
 #include <re2/re2.h>
@@ -35,6 +36,8 @@ Baseline read_baseline(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   Baseline b;
+  // Every line's case, expectation or not: `fan,Fail` then `fan,Pass` says two things of one case.
+  std::set<std::string> listed;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
     // A UTF-8 byte-order mark (an editor's) would join the first case's name and match nothing.
@@ -64,6 +67,8 @@ Baseline read_baseline(const std::filesystem::path& file) {
     }
     // The failing statuses of Mesa CI's fails files; Crash and Timeout come from worker processes,
     // Error from a case the GL side could not render.
+    if (!listed.insert(name).second)
+      throw std::runtime_error(where + "expected each case once, got " + shown(name) + " again");
     constexpr std::array<const char*, 4> kExpectations = {"Fail", "Crash", "Timeout", "Error"};
     constexpr std::array<const char*, 4> kNoExpectation = {"Pass", "Skip", "Flake",
                                                            "UnexpectedPass"};
@@ -76,8 +81,7 @@ Baseline read_baseline(const std::filesystem::path& file) {
           (status == "ExpectedFail" ? " (ExpectedFail says that a case failed, not how: write "
                                       "its outcome)"
                                     : ""));
-    if (!b.expected.emplace(name, status).second)
-      throw std::runtime_error(where + "expected each case once, got " + shown(name) + " again");
+    b.expected.emplace(name, status);
   }
   if (in.bad()) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   return b;

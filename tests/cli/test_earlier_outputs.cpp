@@ -535,3 +535,44 @@ TEST_F(EarlierOutputs, AModelCacheThatIsAFifoIsNotWaitedFor) {
                  "XDG_CACHE_HOME='" + (dir_ / "cache").string() + "' timeout 60");
   EXPECT_EQ(o.exit_code, 0) << o.out << o.err;  // 124: timeout's, a hang
 }
+
+// The ninth hostile campaign (issue 45): a campaign killed outright (kill -9) after it had
+// written a minimal case left failures/ with no results.json to list it, and every later campaign
+// there refused the case as a person's. The campaign names its cases as it writes them
+// (kFailuresWritten): the next campaign replaces them; a case a person adds is still refused.
+TEST_F(EarlierOutputs, ACampaignKilledOutrightLeavesNothingThatBlocksTheNext) {
+  const fs::path out = dir_ / "out";
+  const std::string campaign =
+      "fuzz --seed 1 --generator clip --jobs 1 --out '" + out.string() + "'";
+  // Killed once its first minimal case is there, long before its 600 s are up.
+  const Outcome killed = glrefcheck(
+      campaign + " --time 600 >/dev/null & pid=$!; for k in $(seq 1200); do ls '" +
+      (out / "failures").string() + "'/*.json >/dev/null 2>&1 && break; sleep 0.1; done; " +
+      "kill -9 $pid; wait $pid");
+  ASSERT_EQ(killed.exit_code, 128 + SIGKILL) << killed.out << killed.err;
+  ASSERT_FALSE(fs::exists(out / "results.json"));
+  ASSERT_FALSE(fs::is_empty(out / "failures"));
+
+  // A person's copy of a minimal case put beside the killed campaign's is theirs: refused.
+  ASSERT_EQ(glrefcheck("fuzz --generator clip --replay 1:7 --emit '" +
+                       (out / "failures/keep_me.json").string() + "'")
+                .exit_code,
+            0);
+  const auto left = snapshot(out);
+  const Outcome refused = glrefcheck(campaign + " --count 20");
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_NE(refused.err.find("\"keep_me.json\", which the folder's results.json does not list"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(snapshot(out), left) << differences(left, snapshot(out));
+
+  fs::remove(out / "failures/keep_me.json");
+  const Outcome next = glrefcheck(campaign + " --count 20");
+  EXPECT_EQ(next.exit_code, 1) << next.out << next.err;
+  EXPECT_TRUE(fs::exists(out / "results.json"));
+  EXPECT_FALSE(fs::exists(out / ".glrefcheck-failures"));  // results.json lists them now
+  const std::string results = read(out / "results.json");
+  for (const auto& e : fs::directory_iterator(out / "failures"))
+    EXPECT_NE(results.find("\"failures/" + e.path().filename().string() + "\""), std::string::npos)
+        << e.path();
+}

@@ -158,6 +158,28 @@ TEST(Patterns, ABaselinesByteOrderMarkIsNoPartOfTheFirstName) {
   fs::remove_all(d);
 }
 
+// The ninth hostile campaign (issue 45): `fan,Fail` then `fan,Pass` was read as an expected
+// failure, the Pass line ignored (only expectations were checked for a second line). Either order
+// is refused, naming the second line; two lines of one case with one status too.
+TEST(Patterns, ABaselineNamesEachCaseOnceWhateverItsStatus) {
+  const fs::path d = temp_dir("twice");
+  for (const char* lines : {"a,Pass\nfan,Fail\nfan,Pass\n", "a,Pass\nfan,Pass\nfan,Fail\n",
+                            "a,Pass\nfan,Skip\nfan,Skip\n"}) {
+    std::ofstream(d / "known.txt") << lines;
+    try {
+      report::read_baseline(d / "known.txt");
+      ADD_FAILURE() << "accepted: " << lines;
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                (d / "known.txt").string() + ":3: expected each case once, got fan again");
+    }
+  }
+  std::ofstream(d / "known.txt") << "a,Pass\nfan,Fail\nb,Skip\n";
+  EXPECT_EQ(report::read_baseline(d / "known.txt").expected,
+            (std::map<std::string, std::string>{{"fan", "Fail"}}));
+  fs::remove_all(d);
+}
+
 TEST(EglDriver, AnUnknownDriverIsNamed) {
   const auto o =
       test::glrefcheck("run cases/face_on.json --backend egl --driver bogus --jobs 1 --out '" +
