@@ -1,6 +1,6 @@
 // The comparator. Coverage first (which primitive covers each pixel), then, where both frames
 // agree on the primitive, every varying component and depth, in ULPs of the attribute's scale:
-// the coverage pass here, each channel's values in channel_pass.cpp.
+// the coverage pass in coverage_pass.cpp, each channel's values in channel_pass.cpp.
 #include "compare/compare.hpp"
 
 #include <algorithm>
@@ -28,7 +28,6 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   const Tolerance& tolerance = st.r.tolerance;
   const Frame& reference = expected.frame;
   const bool spec = tolerance.mode == ToleranceMode::spec;
-  const bool exact = tolerance.mode == ToleranceMode::exact;
   if (reference.width != st.width || reference.width != gl.width || reference.height != gl.height ||
       y0 != st.next_row || reference.height < 0 || y0 + reference.height > st.height ||
       reference.components.size() != size_t(c.component_count()) ||
@@ -48,102 +47,8 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   st.next_row += reference.height;
 
   // Coverage first, then the values where both frames name the same triangle (or GL a
-  // candidate of the depth test), channel by channel. Which pixels those are is kept as one
-  // byte per pixel of the band (Judgement), kept between bands; a candidate is looked up again
-  // in each channel's pass (rare: only where the depth test's order is free).
-  std::vector<uint8_t>& judgement = st.judgement;
-  judgement.resize(reference.pixel_count());
-  auto& cov = st.r.coverage;
-  cov.fragments_checked = cov.fragments_checked &&
-                          reference.fragments.size() == reference.pixel_count() &&
-                          gl.fragments.size() == gl.pixel_count();
-  using Label = CoverageStats::Label;
-  // Blocks of rows on every thread, each counted apart and added in order: the counts are
-  // sums, and the first mismatches kept are the first of the blocks' own first ones, in order.
-  const int blocks = std::clamp(4 * st.threads, 1, std::max(reference.height, 1));
-  std::vector<CoverageStats> part(static_cast<size_t>(blocks));
-  std::vector<std::vector<State::Excused>> excused(static_cast<size_t>(blocks));
-  constexpr int kRun = RunGrid::kRun;
-  const RunGrid grid{reference.width, reference.height};
-  st.plain_runs.assign(grid.count(), -1);
-  st.own_runs.assign(st.plain_runs.size(), 0);
-  const PlainlyOwn plainly_own(c, expected, gl);
-  parallel_for(blocks, st.threads, [&](int b) {
-    CoverageStats& cv = part[size_t(b)];
-    const int first = int(int64_t(reference.height) * b / blocks);
-    const int end = int(int64_t(reference.height) * (b + 1) / blocks);
-    for (int y = first; y < end; ++y) {
-      for (int x = 0; x < reference.width; ++x) {
-        const size_t i = reference.index(x, y);
-        const int32_t pr = reference.primitive[i], pg = gl.primitive[i];
-        if (plainly_own(i)) {
-          judgement[i] = kOwn;
-          ++cv.both;
-          continue;
-        }
-        const Judged judged = judged_against(c, expected, gl, i, tolerance);
-        judgement[i] = !judged.compared ? kNotCompared : judged.candidate ? kCandidate : kOwn;
-        if (pr == pg && pr == Frame::kNoPrimitive) {
-          ++cv.neither;
-        } else if (judged.compared) {
-          ++cv.both;
-        } else if (pg == Frame::kNoPrimitive) {
-          ++cv.reference_only;
-        } else if (pr == Frame::kNoPrimitive) {
-          ++cv.gl_only;
-        } else {
-          ++cv.other_primitive;
-        }
-        const std::optional<Label> label = coverage_label(expected, gl, i);
-        if (count_excused(expected, gl, i, label))
-          excused[size_t(b)].push_back({size_t(y0 + y) * size_t(st.width) + size_t(x),
-                                        {x, y0 + y, pr, pg, label && explained(*label),
-                                         label.value_or(Label::within_snapping)},
-                                        label,
-                                        untraceable_label(expected, gl, i),
-                                        gl.fragments[i]});
-        if (!label) continue;
-        ++(*label == Label::exact_tie         ? cv.exact_tie
-           : *label == Label::within_snapping ? cv.within_snapping
-           : *label == Label::gap             ? cv.gaps
-           : *label == Label::double_hit      ? cv.double_hits
-                                              : cv.fill_rule);
-        const bool free = explained(*label);
-        if (free) ++cv.boundary;
-        if (!free || !tolerance.allow_boundary || exact) ++cv.failures;
-        if (cv.mismatches.size() < kMismatchesKept)
-          cv.mismatches.push_back({x, y0 + y, pr, pg, free, *label});
-      }
-      // The row's plain runs, now that its judgement is known (whole runs only: add_run's).
-      for (int r = 0; r < grid.whole_runs_per_row(); ++r) {
-        const size_t first_pixel = reference.index(r * kRun, y);
-        const int32_t p = reference.primitive[first_pixel];
-        bool own = true, plain = true;
-        for (int j = 0; j < kRun; ++j) {
-          own = own && judgement[first_pixel + size_t(j)] == kOwn;
-          plain = plain && reference.primitive[first_pixel + size_t(j)] == p;
-        }
-        const size_t run = grid.index(y, r);
-        st.own_runs[run] = uint8_t(own);
-        if (own && plain) st.plain_runs[run] = p;
-      }
-    }
-  });
-  for (const CoverageStats& cv : part) {
-    cov.neither += cv.neither, cov.both += cv.both, cov.reference_only += cv.reference_only;
-    cov.gl_only += cv.gl_only, cov.other_primitive += cv.other_primitive;
-    cov.exact_tie += cv.exact_tie, cov.within_snapping += cv.within_snapping;
-    cov.gaps += cv.gaps, cov.double_hits += cv.double_hits, cov.fill_rule += cv.fill_rule;
-    cov.boundary += cv.boundary, cov.failures += cv.failures;
-    for (const CoverageStats::Pixel& m : cv.mismatches)
-      if (cov.mismatches.size() < kMismatchesKept) cov.mismatches.push_back(m);
-  }
-  for (const std::vector<State::Excused>& list : excused)
-    for (const State::Excused& e : list)
-      if (st.excused.size() < kMostTracedPixels)
-        st.excused.push_back(e);
-      else
-        ++st.excused_beyond;
+  // candidate of the depth test), channel by channel.
+  add_coverage(expected, gl, y0);
 
   // Then the values, channel by channel (depth, then each component), each in pixel order. The
   // channels share nothing but what they read, so several threads take one each: every
@@ -191,25 +96,6 @@ void Comparator::add_band_channel(const Expectation& expected, const Frame& gl, 
       std::max(bounds.largest_lo, st.channels[size_t(k + 1)].tally.largest_allowance_ulps);
   add_channel(expected, gl, y0, k, &bounds);
 }
-
-namespace {
-
-// Whether a mismatch labelled l counts against the verdict under tolerance t (add_rows' rule).
-bool counts_against(CoverageStats::Label l, const Tolerance& t) {
-  return !explained(l) || !t.allow_boundary || t.mode == ToleranceMode::exact;
-}
-
-// The counter of label l.
-uint64_t& label_counter(CoverageStats& cov, CoverageStats::Label l) {
-  using Label = CoverageStats::Label;
-  return l == Label::exact_tie         ? cov.exact_tie
-         : l == Label::within_snapping ? cov.within_snapping
-         : l == Label::gap             ? cov.gaps
-         : l == Label::double_hit      ? cov.double_hits
-                                       : cov.fill_rule;
-}
-
-}  // namespace
 
 void Comparator::trace_excused(CoverageStats& cov, const TraceSource* traces) {
   State& st = *state_;

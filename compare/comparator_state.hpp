@@ -67,6 +67,21 @@ struct Comparator::State {
   uint64_t excused_beyond = 0;  // found beyond kMostTracedPixels
 };
 
+// Whether a mismatch labelled l counts against the verdict under tolerance t.
+inline bool counts_against(CoverageStats::Label l, const Tolerance& t) {
+  return !explained(l) || !t.allow_boundary || t.mode == ToleranceMode::exact;
+}
+
+// The counter of label l.
+inline uint64_t& label_counter(CoverageStats& cov, CoverageStats::Label l) {
+  using Label = CoverageStats::Label;
+  return l == Label::exact_tie         ? cov.exact_tie
+         : l == Label::within_snapping ? cov.within_snapping
+         : l == Label::gap             ? cov.gaps
+         : l == Label::double_hit      ? cov.double_hits
+                                       : cov.fill_rule;
+}
+
 // Whether pixel i is one of those most of a frame is: the same drawn triangle in both frames,
 // no edge bit, as many fragments (where both frames have counts). judged_against gives such a
 // pixel the reference's own fragment and coverage_label nothing, which is all this says

@@ -111,6 +111,9 @@ class Comparator {
  private:
   // finish()'s judging of the pixels count_excused found, by `traces` (the rest untraced).
   void trace_excused(CoverageStats& cov, const TraceSource* traces);
+  // add_rows' first pass: the band's coverage, counted, and which of its pixels each channel's
+  // pass compares, and against what (coverage_pass.cpp).
+  void add_coverage(const Expectation& expected, const Frame& gl, int y0);
   // The values of channel k (kDepth or a component) in the band add_rows is comparing.
   // `bounds`: for a component whose allowance is deferred, bounds of it over each of the band's
   // plain runs (add_whole_channel), or none: every run's allowances are computed.
@@ -125,6 +128,8 @@ class Comparator {
   // the band (guess_floors guesses them from sample bands).
   void add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k);
   struct State;
+  class CoveragePass;  // add_coverage's loop
+  class ChannelPass;   // add_channel's loop (channel_pass.cpp)
   std::unique_ptr<State> state_;
 };
 
