@@ -103,13 +103,15 @@ int open_journal(const fs::path& file, int flags) {
 }  // namespace
 
 Journal Journal::start(const fs::path& dir, const Options& o, const std::vector<std::string>& files,
-                       const std::vector<std::string>& file_digests) {
+                       const std::vector<std::string>& file_digests,
+                       const std::map<std::string, std::string>& verdict_inputs) {
   const fs::path file = dir / kJournalFile;
   Journal j(open_journal(file, O_CREAT | O_TRUNC), file);
   j.append(json{{"glrefcheck_journal", kJournalVersion},
                 {"options", all_options_json(o)},
                 {"files", files},
-                {"file_digests", file_digests}}
+                {"file_digests", file_digests},
+                {"verdict_inputs", verdict_inputs}}
                .dump(-1, ' ', false, json::error_handler_t::replace));
   return j;
 }
@@ -185,6 +187,17 @@ void read_first_line(const json& j, const std::string& where, JournalContents& c
     c.file_digests = option_fields::texts(option_fields::reader(where), j, "", "file_digests");
   if (!c.file_digests.empty() && c.file_digests.size() != c.files.size())
     throw InputError(where + ": expected one file digest per case file");
+  if (j.contains("verdict_inputs")) {
+    const json& inputs = j["verdict_inputs"];
+    if (!inputs.is_object())
+      throw InputError(where + ": expected \"verdict_inputs\": an object of texts");
+    for (const auto& [name, value] : inputs.items()) {
+      if (!value.is_string())
+        throw InputError(where + ": expected verdict_inputs." + printable(name, 40) +
+                         ": a text, got " + printable(value.dump(), 40));
+      c.verdict_inputs[name] = value.get<std::string>();
+    }
+  }
 }
 
 // A case's line: its result (with "heatmaps": "follow" when they were on their way), or its

@@ -39,6 +39,10 @@ struct JournalContents {
   // Each file's content as the run began (report::content_digest), for --resume to notice an
   // edit; empty in a journal written before it was recorded.
   std::vector<std::string> file_digests;
+  // What judged the run besides GL and the model as it began (RunInfo::verdict_inputs: the
+  // expectation files' digests among them), for --resume to notice a copy edited since; empty
+  // in a journal written before it was recorded.
+  std::map<std::string, std::string> verdict_inputs;
   std::optional<RunInfo> run;
   std::optional<ModelChoice> model;
   std::map<size_t, CaseResult> results;
@@ -51,7 +55,8 @@ class Journal {
   // Starts a new journal (replacing any) with its first line.
   static Journal start(const std::filesystem::path& dir, const Options& o,
                        const std::vector<std::string>& files,
-                       const std::vector<std::string>& file_digests);
+                       const std::vector<std::string>& file_digests,
+                       const std::map<std::string, std::string>& verdict_inputs);
   // Appends to an existing one.
   static Journal reopen(const std::filesystem::path& dir);
   Journal(Journal&& other) noexcept

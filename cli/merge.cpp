@@ -118,6 +118,28 @@ nlohmann::json merged_campaign(const std::vector<std::string>& dirs, std::vector
   return merged;
 }
 
+// InputError when a shard's minimal case is not as its campaign wrote it (its stamp, fuzz's, no
+// longer matches: edited since), which merge would give as the merged campaign's own; a note
+// when it holds no stamp (an older glrefcheck's), read as it stands.
+void check_minimal_case(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  if (!in.good() && !in.eof())
+    throw InputError("merge: cannot read " + printable(file.string(), 200));
+  if (text.find(report::kStampPrefix) == std::string::npos) {
+    fmt::print(stderr,
+               "note: {}: the minimal case holds no stamp (an older glrefcheck's, or made by "
+               "hand): merged as it stands\n",
+               printable(file.string(), 200));
+    return;
+  }
+  if (!report::stamp_intact(text) || report::stamp_writer(text) != "fuzz")
+    throw InputError("merge: " + printable(file.string(), 200) +
+                     ": expected the failure's minimal case as the shard's campaign wrote it, got "
+                     "one changed since (its stamp no longer matches): merge gives it as the "
+                     "campaign's own; run the shard again, or put its file back");
+}
+
 }  // namespace
 
 int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& out_dir) {
@@ -134,6 +156,7 @@ int cmd_merge_campaign(const std::vector<std::string>& dirs, const std::string& 
       throw InputError("merge: " + (shard / file).string() +
                        ": expected the failure's minimal case, as the shard's results.json names "
                        "it (moved or deleted?)");
+    check_minimal_case(shard / file);
     check_copyable(shard / "cases" / file.stem());
   }
   const OutputFolder folder = output_folder(out_dir);

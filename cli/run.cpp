@@ -112,6 +112,22 @@ struct Judging {
   std::vector<std::string> case_digests;         // each case file's content, for the journal
 };
 
+// InputError when what judges a resumed run (its copies of the expectation files above all) is
+// not what judged it as it began: one results.json would hold verdicts of two baselines.
+void check_judged_alike(const JournalContents& earlier,
+                        const std::map<std::string, std::string>& judged_by,
+                        const std::filesystem::path& out) {
+  for (const auto& [name, value] : earlier.verdict_inputs) {
+    const auto now = judged_by.find(name);
+    if (now != judged_by.end() && now->second == value) continue;
+    const bool copy = name == "baseline" || name == "flakes" || name == "skips";
+    throw InputError(fmt::format(
+        "--resume {}: {} is not as the run began{}: start a new run", printable(out.string(), 200),
+        copy ? (out / kInputsFolder / name).string() : "verdict input " + name,
+        copy ? " (edited since)" : ""));
+  }
+}
+
 Judging read_judging(const RunPlan& p) {
   Judging j{load_baseline(p.expectations),
             load_patterns(p.expectations.flakes, "--flakes"),
@@ -129,6 +145,7 @@ Judging read_judging(const RunPlan& p) {
   // A case past --timeout is a Timeout: shards of two timeouts would merge into a run no single
   // --timeout gives.
   j.judged_by["timeout"] = fmt::format("{}", p.o.timeout);
+  if (p.earlier) check_judged_alike(*p.earlier, j.judged_by, p.out);
   return j;
 }
 
@@ -170,7 +187,8 @@ Prepared prepare_folder(RunPlan& p, const Judging& judging) {
   std::vector<std::string> files;
   for (const Case& c : p.all)
     files.push_back(std::filesystem::absolute(c.source_path).lexically_normal().string());
-  return {std::move(earlier_outputs), Journal::start(p.out, o, files, judging.case_digests)};
+  return {std::move(earlier_outputs),
+          Journal::start(p.out, o, files, judging.case_digests, judging.judged_by)};
 }
 
 // The run itself: this shard's cases, those the journal holds already, the rest checked in

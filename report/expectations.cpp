@@ -25,6 +25,14 @@ std::string trim(const std::string& s) {
   const auto e = s.find_last_not_of(" \t\r");
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
+
+// Line n (1-based) of a baseline, flakes or skips file as meant: without the UTF-8 byte-order
+// mark an editor may put first (it would join the first case's name or pattern, which would
+// then match nothing), blanks and a CRLF's CR.
+std::string line_content(std::string line, int n) {
+  if (n == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
+  return trim(line);
+}
 }  // namespace
 
 Baseline read_baseline(const std::filesystem::path& file) {
@@ -40,9 +48,7 @@ Baseline read_baseline(const std::filesystem::path& file) {
   std::set<std::string> listed;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
-    // A UTF-8 byte-order mark (an editor's) would join the first case's name and match nothing.
-    if (n == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
-    line = trim(line);
+    line = line_content(std::move(line), n);
     if (line.empty() || line[0] == '#') continue;
     // `case,Status` or `case,Status,seconds`
     std::vector<std::string> fields;
@@ -143,7 +149,7 @@ Patterns read_patterns(const std::filesystem::path& file) {
   Patterns p;
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
-    line = trim(line);
+    line = line_content(std::move(line), n);
     if (line.empty() || line[0] == '#') continue;
     try {
       p.list.emplace_back(line, Regex(line));

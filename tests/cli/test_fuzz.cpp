@@ -262,6 +262,29 @@ TEST_F(Fuzz, ShardsMergeIntoTheUnshardedCampaign) {
     EXPECT_NE(o.err.find(forgeries[k].second), std::string::npos) << k << ": " << o.err;
     EXPECT_EQ(read(merged / "results.json"), good) << k;
   }
+  // A minimal case edited by hand in the shard the merge takes it from (the tenth campaign: it
+  // was copied as the merged campaign's own, a case no campaign found): refused.
+  {
+    const auto edited = dir_ / "edited_case";
+    std::filesystem::copy(b, edited, std::filesystem::copy_options::recursive);
+    const auto file = edited / "failures/non_finite_noperspective.json";
+    std::string text = read(file);
+    ASSERT_NE(text.find("\"clip\": ["), std::string::npos) << text;
+    EXPECT_EQ(glrefcheck("merge '" + a.string() + "' '" + edited.string() + "' --out '" +
+                         merged.string() + "'")
+                  .exit_code,
+              1);
+    text.replace(text.rfind("\"clip\": [") + 9, 1, "  ");
+    std::ofstream(file) << text;
+    const auto o = glrefcheck("merge '" + a.string() + "' '" + edited.string() + "' --out '" +
+                              merged.string() + "'");
+    EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+    EXPECT_NE(o.err.find("non_finite_noperspective.json: expected the failure's minimal case as "
+                         "the shard's campaign wrote it"),
+              std::string::npos)
+        << o.err;
+    EXPECT_EQ(read(merged / "results.json"), good);
+  }
   // Without its stamp and its heatmaps (the seventh campaign): merged, and both said.
   {
     const auto bare = dir_ / "bare";

@@ -273,6 +273,19 @@ TEST_F(RunFolder, ResumeJudgesByTheBaselineTheRunBeganWith) {
   run.join();
   EXPECT_EQ(o.exit_code, 130) << o.out << o.err;
   std::ofstream(baseline) << "";  // the list edited while the run is stopped
+  // The copy edited (the tenth hostile campaign): the cases checked before were judged by the
+  // baseline as it was, the rest would be by the edit. Refused, the journal as it was.
+  const fs::path copy = out / ".glrefcheck-inputs/baseline";
+  const std::string copied = read(copy), journal = read(out / "journal.jsonl");
+  std::ofstream(copy, std::ios::app) << "viewport_tiny,Fail\n";
+  const Outcome edited = glrefcheck("run --resume '" + out.string() + "'");
+  EXPECT_EQ(edited.exit_code, 2) << edited.out << edited.err;
+  EXPECT_NE(edited.err.find(copy.string() + " is not as the run began (edited since): start a "
+                                            "new run"),
+            std::string::npos)
+      << edited.err;
+  EXPECT_EQ(read(out / "journal.jsonl"), journal);
+  std::ofstream(copy) << copied;
 
   const Outcome resumed = glrefcheck("run --resume '" + out.string() + "'");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.out << resumed.err;
