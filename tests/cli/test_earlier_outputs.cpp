@@ -403,7 +403,7 @@ TEST_F(EarlierOutputs, AMergeStoppedBySigintGivesTheEarlierMergeBack) {
   const std::string merge =
       "merge '" + a.string() + "' '" + b.string() + "' --out '" + out.string() + "'";
   ASSERT_EQ(glrefcheck(merge).exit_code, 0);
-  const auto earlier = snapshot(out);
+  auto earlier = snapshot(out);
   // Heatmaps enough that copying them takes a while: a signal lands in the middle.
   fs::create_directories(a / "cases/face_on/many");
   for (int k = 0; k < 20000; ++k)
@@ -416,8 +416,10 @@ TEST_F(EarlierOutputs, AMergeStoppedBySigintGivesTheEarlierMergeBack) {
                            delay + "; kill -INT $pid; wait $pid");
     o.err = read(dir_ / "err.txt");
     if (o.exit_code == 0) {
+      // Whole (a signal before the handler was set, as under a sanitizer's slower start, is
+      // ignored: a background job's SIGINT is): the folder's merge from now on.
       EXPECT_TRUE(fs::exists(out / "cases/face_on/many/19999.png"));
-      fs::remove_all(out / "cases/face_on/many");  // back as the earlier merge left it
+      earlier = snapshot(out);
     } else {
       EXPECT_EQ(o.exit_code, 130) << o.out << o.err;
       EXPECT_NE(o.err.find("interrupted by SIGINT: the output folder holds what it held before"),
