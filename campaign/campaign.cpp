@@ -284,7 +284,8 @@ CampaignStats summed(const CampaignStats& a, const CampaignStats& b, const std::
     if (y > std::numeric_limits<uint64_t>::max() - x)
       throw std::runtime_error(source + ": stats." + key +
                                ": expected a count the shards' sum can hold, got " +
-                               std::to_string(y));
+                               std::to_string(y) + " after " + std::to_string(x) +
+                               " in the shards before (one of them forged?)");
     return x + y;
   };
   CampaignStats s;

@@ -359,8 +359,8 @@ class FuzzCampaign {
     // Stopped before GL started: nothing was checked, and the folder's earlier campaign comes
     // back as it was (`earlier_`, as it goes) rather than a campaign of no cases over it.
     if (!gl_started_ && result.stats.interrupted && caught_signal()) {
-      fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
-                 signal_name(caught_signal()), o_.out);
+      fmt::print("interrupted by {} before GL started: {}\n", signal_name(caught_signal()),
+                 earlier_.left_as_it_was(o_.out));
       return 128 + caught_signal();
     }
     size_t new_failures = 0;

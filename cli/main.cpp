@@ -138,12 +138,15 @@ void check_no_empty_paths(const CLI::App& app) {
     for (const CLI::Option* opt : sub->get_options()) {
       if (opt->count() == 0 || opt->get_expected_min() == 0) continue;  // not given, or a flag
       const std::string name = opt->get_name();
-      const bool path = std::find(paths.begin(), paths.end(), name) != paths.end() ||
+      // Every command's positional arguments are paths too: case files, run folders.
+      const bool positional = !opt->nonpositional();
+      const bool path = positional || std::find(paths.begin(), paths.end(), name) != paths.end() ||
                         (name == "--html" && sub->get_name() == "compare");
       if (!path) continue;
       for (const std::string& value : opt->results())
         if (value.empty())
-          throw InputError(name + ": expected a path, got \"\" (an empty or unset variable?)");
+          throw InputError((positional ? sub->get_name() + ": " + name : name) +
+                           ": expected a path, got \"\" (an empty or unset variable?)");
     }
 }
 
@@ -269,6 +272,8 @@ void add_case_commands(CLI::App& app, Commands& c) {
       "selftest", "plant faults on the GL side and show that the suite catches each one");
   add_case_options(*c.selftest, o), add_model_options(*c.selftest, o),
       add_gl_options(*c.selftest, o);
+  // It prints its verdicts and writes no file: an --out would be silently ignored.
+  c.selftest->remove_option(c.selftest->get_option("--out"));
   c.selftest->add_option("--baseline", o.baseline,
                          "known failures, `case,Status` lines: they cannot catch a fault");
 }

@@ -18,8 +18,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/fuzz.hpp"
+#include "cli/process.hpp"
 #include "cli/session.hpp"
 #include "core/text.hpp"
+#include "image_io/glrc_images.h"
 #include "report/report.hpp"
 #include "report/stamp.hpp"
 
@@ -206,6 +208,12 @@ OutputFolder output_folder(const std::string& out, const std::string& option) {
   } else {
     // Only the folder named is glrefcheck's: a parent made on the way (proj/ of --out proj/o1) is
     // no output the user named, and a later --out proj must not take its proj/cases/ for ours.
+    if (fs::is_symlink(fs::symlink_status(dir, ec)))
+      // create_directories says only "File exists" of a link to nothing.
+      throw InputError(option + ": expected a folder that can be created, got \"" + shown +
+                       "\", a symbolic link to " +
+                       printable(fs::read_symlink(dir, ec).string(), 200) +
+                       ", which does not exist: create that folder, or name another");
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
       throw InputError(option + ": expected a folder that can be created, got \"" + shown + "\"" +
@@ -326,8 +334,14 @@ constexpr const char* kDiscardedFolder = ".glrefcheck-discarded";
 
 }  // namespace
 
-EarlierOutputs::EarlierOutputs(EarlierOutputs&& other) noexcept : dir_(std::move(other.dir_)) {
+EarlierOutputs::EarlierOutputs(EarlierOutputs&& other) noexcept
+    : dir_(std::move(other.dir_)), any_(other.any_) {
   other.dir_.clear();
+}
+
+std::string EarlierOutputs::left_as_it_was(const std::string& folder) const {
+  return any_ ? folder + " holds its earlier results as they were"
+              : folder + " holds no results (it held none before)";
 }
 
 namespace {
@@ -377,6 +391,28 @@ void check_no_output_folder_inside(const fs::path& dir, const std::vector<std::s
 
 namespace {
 
+// Whether the first `size` bytes of `file` hold `mark`: an image's Software (ahead of its pixels
+// in a PNG and an EXR alike), a log's first line.
+bool begins_with_mark(const fs::path& file, size_t size, std::string_view mark) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(size, '\0');
+  in.read(head.data(), std::streamsize(size));
+  head.resize(size_t(in.gcount()));
+  return head.find(mark) != std::string::npos;
+}
+
+// Whether the images and logs in `dir` carry glrefcheck's marks (GLRC_IMAGES_SOFTWARE,
+// kChildLogHeader): unless its results.json is an older glrefcheck's, without a stamp.
+bool outputs_marked(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "results.json", ec)) return true;
+  std::ifstream in(dir / "results.json", std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(size_t(in.gcount()));
+  return head.find(report::kStampPrefix) != std::string::npos;
+}
+
 // InputError naming the file when what a run replaces in `dir` holds something glrefcheck did
 // not write there, checked before anything is moved: a report.html a person edited (its stamp
 // no longer matches), a file in cases/ other than a case's heatmaps (cases/<case>/*.png, *.exr),
@@ -398,28 +434,37 @@ void check_outputs_ours(const fs::path& dir, const std::vector<std::string>& nam
       refuse(page,
              "is not a page glrefcheck wrote, or was changed since (its stamp no longer "
              "matches)");
+    // A comparison's page (`compare --html`) is a page of its own, not this folder's report.
+    if (report::stamp_writer(text) != "report")
+      refuse(page, "is a page glrefcheck " + report::stamp_writer(text) +
+                       " wrote, not the folder's report");
   }
   const auto entries = [&](const fs::path& folder, const auto& fits) {
     if (!fs::is_directory(fs::symlink_status(folder, ec))) return;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
       if (const char* why = fits(*it)) refuse(it->path(), why);
   };
+  // An older glrefcheck's folder (results.json without a stamp) holds images and logs without
+  // glrefcheck's mark: those are taken by their names alone.
+  const bool marked = outputs_marked(dir);
   entries(dir / "cases", [&](const fs::directory_entry& e) -> const char* {
     if (!fs::is_directory(e.symlink_status(ec))) return "is not a case's folder of heatmaps";
     entries(e.path(), [&](const fs::directory_entry& image) -> const char* {
       const std::string ext = image.path().extension().string();
-      return fs::is_regular_file(image.symlink_status(ec)) && (ext == ".png" || ext == ".exr")
+      return fs::is_regular_file(image.symlink_status(ec)) && (ext == ".png" || ext == ".exr") &&
+                     (!marked || begins_with_mark(image.path(), 64 * 1024, GLRC_IMAGES_SOFTWARE))
                  ? nullptr
-                 : "is not a heatmap glrefcheck writes";
+                 : "is not a heatmap glrefcheck wrote (none names glrefcheck as its Software)";
     });
     return nullptr;
   });
   entries(dir / "logs", [&](const fs::directory_entry& e) -> const char* {
     const std::string name = e.path().filename().string();
     return fs::is_regular_file(e.symlink_status(ec)) && name.starts_with("worker-") &&
-                   name.ends_with(".log")
+                   name.ends_with(".log") &&
+                   (!marked || begins_with_mark(e.path(), kChildLogHeader.size(), kChildLogHeader))
                ? nullptr
-               : "is not a worker's log";
+               : "is not a worker's log glrefcheck wrote";
   });
   if (std::find(names.begin(), names.end(), "failures") != names.end())
     check_replaceable_files(dir / "failures", option, "fuzz", listed_failure_files(dir));
@@ -465,6 +510,8 @@ EarlierOutputs set_aside_outputs(const fs::path& dir, const std::vector<std::str
   if (ec) throw InputError("--out: cannot make " + aside.string() + " (" + ec.message() + ")");
   EarlierOutputs earlier;
   earlier.dir_ = dir;
+  for (const std::string& name : names)
+    earlier.any_ = earlier.any_ || fs::exists(fs::symlink_status(dir / name, ec));
   move_outputs(dir, aside, names);
   report::write_file_atomically(aside / kSetAsideComplete, "");
   return earlier;

@@ -102,11 +102,16 @@ class EarlierOutputs {
   ~EarlierOutputs();
   // The new run is under way (it has GL, or has written its results): the earlier outputs go.
   void keep_new();
+  // Whether the folder held any output to set aside (a new folder's first run: none).
+  bool any() const { return any_; }
+  // What the folder holds once this run stops before GL, in words for the line saying so.
+  std::string left_as_it_was(const std::string& folder) const;
 
  private:
   friend EarlierOutputs set_aside_outputs(const std::filesystem::path& dir,
                                           const std::vector<std::string>& also);
   std::filesystem::path dir_;  // empty once kept (or moved from)
+  bool any_ = false;
 };
 
 // Sets aside what an earlier run or merge wrote into the marked folder `dir`, whose lock the

@@ -91,6 +91,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv_text,
     throw std::runtime_error("cannot write " + log.string());
   }
   log_start_ = lseek(log_fd, 0, SEEK_END);
+  if (log_start_ == 0 && write(log_fd, kChildLogHeader.data(), kChildLogHeader.size()) ==
+                             ssize_t(kChildLogHeader.size()))
+    log_start_ = static_cast<long long>(kChildLogHeader.size());
   // Built before fork: the child may only call async-signal-safe functions.
   std::vector<std::string> args = argv_text, env = env_text;
   std::vector<char*> argv, envp;

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -37,11 +38,16 @@ std::pair<std::string, std::string> huge_page_malloc_tunable();
 // Ignored by any other allocator.
 std::pair<std::string, std::string> huge_page_jemalloc_conf();
 
+// The first line of every log a ChildProcess starts: a run, merge or campaign replaces in its
+// logs/ only logs that open with it, never a person's file named like one.
+inline constexpr std::string_view kChildLogHeader = "glrefcheck: a worker's standard error\n";
+
 class ChildProcess {
  public:
   ChildProcess() = default;
   // Starts argv[0] (a path) with `argv` and the environment `env` (NAME=value each), stderr
-  // appended to `log`. Throws std::runtime_error when no pipe, log or process can be had.
+  // appended to `log` (kChildLogHeader first, where it is new or empty). Throws std::runtime_error
+  // when no pipe, log or process can be had.
   ChildProcess(const std::vector<std::string>& argv, const std::vector<std::string>& env,
                const std::filesystem::path& log);
   ChildProcess(ChildProcess&& other) noexcept;

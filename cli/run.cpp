@@ -353,8 +353,8 @@ class SuiteRun {
     // come back as they were (earlier_outputs, as it goes) rather than a run of no cases over
     // them.
     if (prepared_.earlier_outputs && !gl_started_ && !to_check_.empty() && caught_signal()) {
-      fmt::print("interrupted by {} before GL started: {} holds its earlier results as they were\n",
-                 signal_name(caught_signal()), o_.out);
+      fmt::print("interrupted by {} before GL started: {}\n", signal_name(caught_signal()),
+                 prepared_.earlier_outputs->left_as_it_was(o_.out));
       return 128 + caught_signal();
     }
     std::vector<CaseResult> list;

@@ -13,7 +13,12 @@ extern "C" {
 
 /* Raised whenever a function below or its meaning changes; the loader refuses a plugin whose
  * glrc_images_entry() gives another version (a stale build). */
-#define GLRC_IMAGES_ABI_VERSION 1
+#define GLRC_IMAGES_ABI_VERSION 2
+
+/* Every image write_image writes names glrefcheck as its "Software" (a PNG tEXt chunk, an EXR
+ * header attribute, both ahead of the pixels): a run, merge or campaign replaces in its cases/
+ * only images that carry it, never a person's picture put there (version 2). */
+#define GLRC_IMAGES_SOFTWARE "glrefcheck"
 
 /* The name the loader looks for, and the symbol it looks up in it. */
 #define GLRC_IMAGES_PLUGIN_FILE "glrefcheck_images.so"
@@ -34,8 +39,9 @@ struct glrc_images_api {
 
   /* Writes width x height pixels of `channels` floats (1: channel "Y"; 3: "R", "G", "B") to
    * `path`, the format chosen by its extension (.png, .exr, ...), stored as `storage` (UINT8
-   * maps 0..1 to 0..255). `description` (NULL: none) goes into the file's ImageDescription,
-   * `compression` (NULL: the format's default) into its "compression" attribute. */
+   * maps 0..1 to 0..255), its "Software" GLRC_IMAGES_SOFTWARE. `description` (NULL: none)
+   * goes into the file's ImageDescription, `compression` (NULL: the format's default) into its
+   * "compression" attribute. */
   int (*write_image)(const char* path, int width, int height, int channels, const float* pixels,
                      int storage, const char* description, const char* compression, char* error,
                      size_t error_size);

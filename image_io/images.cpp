@@ -53,6 +53,7 @@ int write_image(const char* path, int width, int height, int channels, const flo
     }
     OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
     if (channels == 1) spec.channelnames = {"Y"};
+    spec.attribute("Software", GLRC_IMAGES_SOFTWARE);
     if (description) spec.attribute("ImageDescription", description);
     if (compression) spec.attribute("compression", compression);
     OIIO::ImageBuf buf(spec);

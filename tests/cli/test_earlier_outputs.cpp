@@ -332,6 +332,22 @@ TEST_F(EarlierOutputs, ASignalBeforeGlOrARefusalLeavesTheFolderAsItWas) {
               std::string::npos)
         << o.out;
     EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
+    // Into a new folder it held no earlier results (the tenth hostile campaign: it said it did).
+    const fs::path fresh = dir_ / ("fresh" + std::to_string(signal));
+    fs::remove(pidfile);
+    std::thread first([&] {
+      o = glrefcheck(command + " --out '" + fresh.string() + "'" +
+                     proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
+    });
+    const pid_t stalled = wait_for_pid(pidfile);
+    ASSERT_GT(stalled, 0);
+    ASSERT_EQ(kill(parent_of(stalled), signal), 0);
+    first.join();
+    EXPECT_EQ(o.exit_code, 128 + signal) << o.out << o.err;
+    EXPECT_NE(o.out.find("before GL started: " + fresh.string() +
+                         " holds no results (it held none before)"),
+              std::string::npos)
+        << o.out;
   }
 
   // A refused diff changes nothing: the check comes before the last diff's images are cleared.
@@ -405,9 +421,12 @@ TEST_F(EarlierOutputs, AMergeStoppedBySigintGivesTheEarlierMergeBack) {
   ASSERT_EQ(glrefcheck(merge).exit_code, 0);
   auto earlier = snapshot(out);
   // Heatmaps enough that copying them takes a while: a signal lands in the middle.
-  fs::create_directories(a / "cases/face_on/many");
+  // (Named as glrefcheck's images are, glrefcheck their Software: a merge completed replaces
+  // them in the next attempt.)
+  fs::create_directories(a / "cases/face_on");
   for (int k = 0; k < 20000; ++k)
-    std::ofstream(a / "cases/face_on/many" / (std::to_string(k) + ".png")) << k;
+    std::ofstream(a / "cases/face_on" / ("m" + std::to_string(k) + "_error.png"))
+        << "Software glrefcheck " << k;
   int stopped = 0;
   for (const char* delay : {"0.2", "0.4", "0.7", "1.0"}) {
     SCOPED_TRACE(delay);
@@ -418,7 +437,7 @@ TEST_F(EarlierOutputs, AMergeStoppedBySigintGivesTheEarlierMergeBack) {
     if (o.exit_code == 0) {
       // Whole (a signal before the handler was set, as under a sanitizer's slower start, is
       // ignored: a background job's SIGINT is): the folder's merge from now on.
-      EXPECT_TRUE(fs::exists(out / "cases/face_on/many/19999.png"));
+      EXPECT_TRUE(fs::exists(out / "cases/face_on/m19999_error.png"));
       earlier = snapshot(out);
     } else {
       EXPECT_EQ(o.exit_code, 130) << o.out << o.err;
@@ -455,7 +474,7 @@ TEST_F(EarlierOutputs, ARunReplacesOnlyItsOwnFiles) {
   fs::remove(out / "cases/notes.txt");
   fs::create_directories(out / "cases/face_on");
   std::ofstream(out / "cases/face_on/notes.txt") << "mine\n";
-  refused(run, out / "cases/face_on/notes.txt", "notes.txt is not a heatmap glrefcheck writes");
+  refused(run, out / "cases/face_on/notes.txt", "notes.txt is not a heatmap glrefcheck wrote");
   fs::remove_all(out / "cases/face_on");
   fs::create_directories(out / "logs");
   std::ofstream(out / "logs/mine.log") << "mine\n";
@@ -464,6 +483,13 @@ TEST_F(EarlierOutputs, ARunReplacesOnlyItsOwnFiles) {
   ASSERT_EQ(glrefcheck("report '" + out.string() + "'").exit_code, 0);
   std::ofstream(out / "report.html", std::ios::app) << "<!-- mine -->\n";
   refused(run, out / "report.html", "report.html is not a page glrefcheck wrote, or was changed");
+  fs::remove(out / "report.html");
+  // A comparison's page put there (the tenth hostile campaign: `report` refused it, a run did not).
+  const Outcome compared = glrefcheck("compare '" + out.string() + "' '" + out.string() +
+                                      "' --html '" + (out / "report.html").string() + "'");
+  ASSERT_LE(compared.exit_code, 1) << compared.out << compared.err;
+  refused(run, out / "report.html",
+          "report.html is a page glrefcheck compare wrote, not the folder's report");
   fs::remove(out / "report.html");
   std::ofstream(out / "failures.csv", std::ios::app) << "face_on,Fail\n";
   refused(run + " --baseline '" + (out / "failures.csv").string() + "'", out / "failures.csv",
@@ -577,4 +603,36 @@ TEST_F(EarlierOutputs, ACampaignKilledOutrightLeavesNothingThatBlocksTheNext) {
   for (const auto& e : fs::directory_iterator(out / "failures"))
     EXPECT_NE(results.find("\"failures/" + e.path().filename().string() + "\""), std::string::npos)
         << e.path();
+}
+
+// The tenth hostile campaign (issue 45): a run deleted a picture a person put among a case's
+// heatmaps (cases/<case>/my_annotation.png), in a folder of their own in cases/, and a log named
+// like a worker's: anything named *.png, *.exr or worker-*.log passed for glrefcheck's. Its
+// images name glrefcheck as their Software, its logs open with its line: the rest is refused.
+TEST_F(EarlierOutputs, APictureOrLogNamedLikeARunsIsNotTakenForOne) {
+  const fs::path out = dir_ / "out";
+  const std::string run =
+      "run --filter 'clip_noperspective_x_plane$' --jobs 1 --out '" + out.string() + "'";
+  ASSERT_EQ(glrefcheck(run).exit_code, 1);
+  const fs::path heatmaps = out / "cases/clip_noperspective_x_plane";
+  ASSERT_TRUE(fs::exists(heatmaps / "coverage.png"));
+  ASSERT_TRUE(fs::exists(out / "logs/worker-1.log"));
+  const auto refused = [&](const fs::path& file, const std::string& says) {
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << "mine\n";
+    const auto before = snapshot(out);
+    const Outcome o = glrefcheck(run);
+    EXPECT_EQ(o.exit_code, 2) << file << o.out << o.err;
+    EXPECT_NE(o.err.find(file.filename().string() + " " + says), std::string::npos) << o.err;
+    EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
+    fs::remove(file);
+  };
+  refused(heatmaps / "my_annotation.png", "is not a heatmap glrefcheck wrote");
+  refused(out / "cases/mine/shot.png", "is not a heatmap glrefcheck wrote");
+  fs::remove_all(out / "cases/mine");
+  refused(out / "logs/worker-99.log", "is not a worker's log glrefcheck wrote");
+  // The run's own images and logs it replaces, as before.
+  const Outcome again = glrefcheck(run);
+  EXPECT_EQ(again.exit_code, 1) << again.out << again.err;
+  EXPECT_TRUE(fs::exists(heatmaps / "coverage.png"));
 }
