@@ -150,6 +150,17 @@ void check_no_empty_paths(const CLI::App& app) {
     }
 }
 
+// --device picks among the EGL devices of --backend egl-device; with another backend it would be
+// ignored without a word.
+void check_device_with_its_backend(const CLI::App& app, const Options& o) {
+  for (const CLI::App* sub : app.get_subcommands())
+    if (const CLI::Option* device = sub->get_option_no_throw("--device");
+        device && device->count() > 0 && o.backend != gl::Backend::egl_device)
+      throw InputError(std::string("--device: expected with --backend egl-device, whose EGL "
+                                   "devices it picks among, got --backend ") +
+                       gl::to_string(o.backend));
+}
+
 // `run --resume DIR` runs what DIR's journal recorded: any other option would be silently
 // overridden, so it is refused instead. --jobs only changes how fast.
 void check_resume_alone(const CLI::App& run) {
@@ -299,6 +310,7 @@ int dispatch(CLI::App& app, Commands& c, char** argv) {
   Options& o = c.o;
   try {
     check_no_empty_paths(app);
+    check_device_with_its_backend(app, o);
     if (*c.run && !o.resume.empty()) check_resume_alone(*c.run);
     if (*c.worker) return cmd_worker();
     // GL from a Mesa prefix needs the loader's environment at process start: the commands that

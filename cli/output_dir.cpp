@@ -426,11 +426,26 @@ void check_outputs_ours(const fs::path& dir, const std::vector<std::string>& nam
                      "folder, or name another --out");
   };
   std::error_code ec;
+  // Each output of the kind glrefcheck writes under its name: a folder of a person's where a
+  // file goes (a junit.xml/ holding notes), or a file where a folder goes (a file named logs),
+  // would be replaced with all it holds. A link is replaced, not what it names.
+  for (const std::string& name : names) {
+    const fs::file_status st = fs::symlink_status(dir / name, ec);
+    if (!fs::exists(st) || fs::is_symlink(st)) continue;
+    const bool folder =
+        name == "cases" || name == "logs" || name == "failures" || name == kInputsFolder;
+    if (folder && !fs::is_directory(st))
+      refuse(dir / name, "is not a folder, where glrefcheck writes a folder of that name");
+    if (!folder && !fs::is_regular_file(st))
+      refuse(dir / name, "is not a regular file, where glrefcheck writes a file of that name");
+  }
   const fs::path page = dir / "report.html";
   if (const auto st = fs::symlink_status(page, ec); fs::exists(st)) {
+    if (!fs::is_regular_file(st))
+      refuse(page, "is not a regular file, where glrefcheck writes a file of that name");
     std::ifstream in(page, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), {});
-    if (!fs::is_regular_file(st) || !report::stamp_intact(text))
+    if (!report::stamp_intact(text))
       refuse(page,
              "is not a page glrefcheck wrote, or was changed since (its stamp no longer "
              "matches)");

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -635,4 +636,52 @@ TEST_F(EarlierOutputs, APictureOrLogNamedLikeARunsIsNotTakenForOne) {
   const Outcome again = glrefcheck(run);
   EXPECT_EQ(again.exit_code, 1) << again.out << again.err;
   EXPECT_TRUE(fs::exists(heatmaps / "coverage.png"));
+}
+
+// The eleventh hostile campaign (issue 45): a folder of a person's under a file's name
+// (junit.xml/, results.csv/ with notes in it) was deleted with what it held by the next run,
+// merge or campaign there, and a file under a folder's name (logs) replaced; report.html as a
+// folder gave the C++ library's words. Each is refused in one line, the folder as it was.
+TEST_F(EarlierOutputs, AnOutputOfAnotherKindUnderItsNameIsRefused) {
+  const fs::path out = dir_ / "out";
+  const std::string run = "run cases/face_on.json --jobs 1 --out '" + out.string() + "'";
+  ASSERT_EQ(glrefcheck(run).exit_code, 0);
+  const auto refused = [&](const std::string& command, const std::string& says) {
+    const auto before = snapshot(out);
+    const Outcome o = glrefcheck(command);
+    EXPECT_EQ(o.exit_code, 2) << command << o.out << o.err;
+    EXPECT_NE(o.err.find(says), std::string::npos) << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
+  };
+  fs::remove(out / "junit.xml");
+  fs::create_directories(out / "junit.xml");
+  std::ofstream(out / "junit.xml/notes.txt") << "precious\n";
+  refused(run, "junit.xml is not a regular file, where glrefcheck writes a file of that name");
+  fs::remove_all(out / "junit.xml");
+  fs::remove_all(out / "logs");
+  std::ofstream(out / "logs") << "precious\n";
+  refused(run, "logs is not a folder, where glrefcheck writes a folder of that name");
+  fs::remove(out / "logs");
+  fs::create_directories(out / "report.html");
+  refused(run + " --html",
+          "report.html is not a regular file, where glrefcheck writes a file of that name");
+  fs::remove_all(out / "report.html");
+  // A campaign's folder the same (its results.csv).
+  const fs::path f = dir_ / "f";
+  const std::string campaign =
+      "fuzz --seed 1 --count 4 --generator clip --jobs 1 --out '" + f.string() + "'";
+  ASSERT_LE(glrefcheck(campaign).exit_code, 1);
+  fs::remove(f / "results.csv");
+  fs::create_directories(f / "results.csv");
+  std::ofstream(f / "results.csv/notes.txt") << "precious\n";
+  const Outcome o = glrefcheck(campaign);
+  EXPECT_EQ(o.exit_code, 2) << o.out << o.err;
+  EXPECT_EQ(read(f / "results.csv/notes.txt"), "precious\n");
+  // --device without egl-device was ignored without a word.
+  const Outcome device = glrefcheck("run cases/face_on.json --device 3 --jobs 1 --out '" +
+                                    (dir_ / "d").string() + "'");
+  EXPECT_EQ(device.exit_code, 2) << device.out << device.err;
+  EXPECT_NE(device.err.find("--device: expected with --backend egl-device"), std::string::npos)
+      << device.err;
 }
