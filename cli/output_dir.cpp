@@ -469,7 +469,8 @@ void check_outputs_ours(const fs::path& dir, const std::vector<std::string>& nam
       return fs::is_regular_file(image.symlink_status(ec)) && (ext == ".png" || ext == ".exr") &&
                      (!marked || begins_with_mark(image.path(), 64 * 1024, GLRC_IMAGES_SOFTWARE))
                  ? nullptr
-                 : "is not a heatmap glrefcheck wrote (none names glrefcheck as its Software)";
+                 : "is not a heatmap glrefcheck wrote (a .png or .exr naming glrefcheck as its "
+                   "Software)";
     });
     return nullptr;
   });
