@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,12 @@ inline Outcome glrefcheck(const std::string& args, const std::string& env = "") 
   o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream e(err_file);
   o.err.assign(std::istreambuf_iterator<char>(e), {});
+  // Aborted (a sanitizer's report, or LeakSanitizer's tracer crashing among Mesa's threads at
+  // exit): its stderr in the test's output whatever the test checks, so that the log says which
+  // (scripts/sanitize.sh runs a test again only when its log shows the tracer's crash).
+  if (o.exit_code == 128 + SIGABRT || o.exit_code == -1)
+    std::fprintf(stderr, "glrefcheck %s: exit %d, its stderr:\n%s\n", args.c_str(), o.exit_code,
+                 o.err.c_str());
   return o;
 }
 
