@@ -318,33 +318,32 @@ TEST_F(EarlierOutputs, ASignalBeforeGlOrARefusalLeavesTheFolderAsItWas) {
        {std::pair{std::string("run cases/attr_tiny.json --jobs 1"), SIGINT},
         {std::string("fuzz --count 4 --jobs 1"), SIGTERM}}) {
     SCOPED_TRACE(command);
-    fs::remove(pidfile);
-    Outcome o;
-    std::thread run([&] {
-      o = glrefcheck(command + " --out '" + out.string() + "'" +
-                     proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
-    });
-    const pid_t proxy = wait_for_pid(pidfile);
-    ASSERT_GT(proxy, 0);
-    ASSERT_EQ(kill(parent_of(proxy), signal), 0);
-    run.join();
-    EXPECT_EQ(o.exit_code, 128 + signal) << o.out << o.err;
+    // The command into `folder`, its workers held before GL, stopped by the signal.
+    const auto stopped_before_gl = [&, &command = command,
+                                    signal = signal](const fs::path& folder) {
+      fs::remove(pidfile);
+      Outcome o;
+      std::thread run([&] {
+        o = glrefcheck(command + " --out '" + folder.string() + "'" +
+                       proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
+      });
+      const pid_t proxy = wait_for_pid(pidfile);
+      EXPECT_GT(proxy, 0);
+      if (proxy > 0) {
+        EXPECT_EQ(kill(parent_of(proxy), signal), 0);
+      }
+      run.join();
+      EXPECT_EQ(o.exit_code, 128 + signal) << o.out << o.err;
+      return o;
+    };
+    Outcome o = stopped_before_gl(out);
     EXPECT_NE(o.out.find("before GL started: " + out.string() + " holds its earlier results"),
               std::string::npos)
         << o.out;
     EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
     // Into a new folder it held no earlier results (the tenth hostile campaign: it said it did).
     const fs::path fresh = dir_ / ("fresh" + std::to_string(signal));
-    fs::remove(pidfile);
-    std::thread first([&] {
-      o = glrefcheck(command + " --out '" + fresh.string() + "'" +
-                     proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
-    });
-    const pid_t stalled = wait_for_pid(pidfile);
-    ASSERT_GT(stalled, 0);
-    ASSERT_EQ(kill(parent_of(stalled), signal), 0);
-    first.join();
-    EXPECT_EQ(o.exit_code, 128 + signal) << o.out << o.err;
+    o = stopped_before_gl(fresh);
     EXPECT_NE(o.out.find("before GL started: " + fresh.string() +
                          " holds no results (it held none before)"),
               std::string::npos)
