@@ -405,12 +405,8 @@ bool begins_with_mark(const fs::path& file, size_t size, std::string_view mark) 
 // kChildLogHeader): unless its results.json is an older glrefcheck's, without a stamp.
 bool outputs_marked(const fs::path& dir) {
   std::error_code ec;
-  if (!fs::is_regular_file(dir / "results.json", ec)) return true;
-  std::ifstream in(dir / "results.json", std::ios::binary);
-  std::string head(4096, '\0');
-  in.read(head.data(), std::streamsize(head.size()));
-  head.resize(size_t(in.gcount()));
-  return head.find(report::kStampPrefix) != std::string::npos;
+  return !fs::is_regular_file(dir / "results.json", ec) ||
+         begins_with_mark(dir / "results.json", 4096, report::kStampPrefix);
 }
 
 // InputError naming the file when what a run replaces in `dir` holds something glrefcheck did

@@ -16,6 +16,7 @@
 #include "cli/run_support.hpp"
 #include "cli/workers.hpp"
 #include "core/text.hpp"
+#include "core/verdict_inputs.hpp"
 #include "report/expectations.hpp"
 #include "report/format.hpp"
 #include "report/merge.hpp"
@@ -117,15 +118,15 @@ struct Judging {
 void check_judged_alike(const JournalContents& earlier,
                         const std::map<std::string, std::string>& judged_by,
                         const std::filesystem::path& out) {
-  for (const auto& [name, value] : earlier.verdict_inputs) {
-    const auto now = judged_by.find(name);
-    if (now != judged_by.end() && now->second == value) continue;
-    const bool copy = name == "baseline" || name == "flakes" || name == "skips";
-    throw InputError(fmt::format(
-        "--resume {}: {} is not as the run began{}: start a new run", printable(out.string(), 200),
-        copy ? (out / kInputsFolder / name).string() : "verdict input " + name,
-        copy ? " (edited since)" : ""));
-  }
+  // A journal written before they were recorded holds none: nothing to compare.
+  if (earlier.verdict_inputs.empty()) return;
+  const auto d = verdict_input_difference(earlier.verdict_inputs, judged_by);
+  if (!d) return;
+  const bool copy = d->name == "baseline" || d->name == "flakes" || d->name == "skips";
+  throw InputError(fmt::format(
+      "--resume {}: {} is not as the run began{}: start a new run", printable(out.string(), 200),
+      copy ? (out / kInputsFolder / d->name).string() : "verdict input " + d->name,
+      copy ? " (edited since)" : ""));
 }
 
 Judging read_judging(const RunPlan& p) {
