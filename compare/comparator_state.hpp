@@ -67,11 +67,6 @@ struct Comparator::State {
   uint64_t excused_beyond = 0;  // found beyond kMostTracedPixels
 };
 
-// Whether a mismatch labelled l counts against the verdict under tolerance t.
-inline bool counts_against(CoverageStats::Label l, const Tolerance& t) {
-  return !explained(l) || !t.allow_boundary || t.mode == ToleranceMode::exact;
-}
-
 // The counter of label l.
 inline uint64_t& label_counter(CoverageStats& cov, CoverageStats::Label l) {
   using Label = CoverageStats::Label;

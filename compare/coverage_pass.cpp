@@ -24,15 +24,14 @@ class Comparator::CoveragePass {
         gl_(gl),
         y0_(y0),
         grid_{reference_.width, reference_.height},
-        plainly_own_(st.c, expected, gl) {}
+        plainly_own_(st.c, expected, gl),
+        counts_(counts_checked(expected, gl)) {}
 
   void run() {
     st_.judgement.resize(reference_.pixel_count());
     judgement_ = st_.judgement.data();
     CoverageStats& cov = st_.r.coverage;
-    cov.fragments_checked = cov.fragments_checked &&
-                            reference_.fragments.size() == reference_.pixel_count() &&
-                            gl_.fragments.size() == gl_.pixel_count();
+    cov.fragments_checked = cov.fragments_checked && counts_;
     st_.plain_runs.assign(grid_.count(), -1);
     st_.own_runs.assign(st_.plain_runs.size(), 0);
     const int blocks = std::clamp(4 * st_.threads, 1, std::max(reference_.height, 1));
@@ -83,13 +82,15 @@ class Comparator::CoveragePass {
       ++cv.other_primitive;
     }
     using Label = CoverageStats::Label;
-    const std::optional<Label> label = coverage_label(expected_, gl_, i);
-    if (count_excused(expected_, gl_, i, label))
+    const uint8_t edges = expected_.edges[i];
+    const CoverageObservation seen = observe(expected_, gl_, i);
+    const std::optional<Label> label = coverage_label(edges, counts_, seen);
+    if (count_excused(edges, counts_, label, seen.count))
       block.excused.push_back(
           {size_t(y0_ + y) * size_t(st_.width) + size_t(x),
            {x, y0_ + y, pr, pg, label && explained(*label), label.value_or(Label::within_snapping)},
            label,
-           untraceable_label(expected_, gl_, i),
+           untraceable_label(edges, seen.count),
            gl_.fragments[i]});
     if (!label) return;
     ++label_counter(cv, *label);
@@ -142,6 +143,7 @@ class Comparator::CoveragePass {
   const int y0_;
   const RunGrid grid_;
   const PlainlyOwn plainly_own_;
+  const bool counts_;  // both frames have fragment counts
   // State::judgement's data, taken once it has the band's size: a store through the vector
   // would load its data pointer again at every pixel.
   uint8_t* judgement_ = nullptr;

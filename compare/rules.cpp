@@ -71,29 +71,26 @@ Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size
   return {other != nullptr, other};
 }
 
-std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
-                                                   size_t i) {
+std::optional<CoverageStats::Label> coverage_label(uint8_t edges, bool counts,
+                                                   const CoverageObservation& gl) {
   using Label = CoverageStats::Label;
-  const Frame& reference = expected.frame;
-  const uint8_t edges = expected.edges[i];
+  using Count = CoverageObservation::Count;
+  using Kept = CoverageObservation::Kept;
+  const bool differs = counts && gl.count != Count::same;
+  // Where either fragment may win the depth test, GL may keep any of them.
+  const bool kept =
+      gl.kept == Kept::reference || (gl.kept == Kept::candidate && (edges & edge::depth_order));
+  // Near a triangle the freedom may turn over, make vanish or make appear, any primitive and
+  // any count is what some conforming implementation draws.
+  if (edges & edge::unstable)
+    return !kept || differs ? std::optional(Label::within_snapping) : std::nullopt;
   // Watertightness: away from outer edges, GL must rasterize as many fragments as the
   // reference; near a shared edge that is one, never zero or two. Both count every fragment,
   // passing the depth test or not (core/frame.hpp), so the count is decided even where the
   // depth test's order is free.
-  const bool counts = reference.fragments.size() == reference.pixel_count() &&
-                      gl.fragments.size() == gl.pixel_count();
-  // Where either fragment may win the depth test, GL may keep any of them.
-  const bool kept = reference.primitive[i] == gl.primitive[i] ||
-                    ((edges & edge::depth_order) && expected.candidate(i, gl.primitive[i]));
-  // Near a triangle the freedom may turn over, make vanish or make appear, any primitive and
-  // any count is what some conforming implementation draws.
-  if (edges & edge::unstable) {
-    const bool differs = !kept || (counts && gl.fragments[i] != reference.fragments[i]);
-    return differs ? std::optional(Label::within_snapping) : std::nullopt;
-  }
-  if (counts && !(edges & edge::snapping) && gl.fragments[i] != reference.fragments[i]) {
+  if (differs && !(edges & edge::snapping)) {
     if (!(edges & edge::shared)) return Label::fill_rule;
-    return gl.fragments[i] < reference.fragments[i] ? Label::gap : Label::double_hit;
+    return gl.count == Count::fewer ? Label::gap : Label::double_hit;
   }
   if (kept) return std::nullopt;
   if (edges & edge::tie) return Label::exact_tie;
@@ -101,23 +98,69 @@ std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, 
   return Label::fill_rule;
 }
 
-bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
-                   const std::optional<CoverageStats::Label>& label) {
-  const Frame& reference = expected.frame;
-  if (reference.fragments.size() != reference.pixel_count() ||
-      gl.fragments.size() != gl.pixel_count() ||
-      !(expected.edges[i] & (edge::snapping | edge::unstable | edge::shared)))
-    return false;
+bool count_excused(uint8_t edges, bool counts, const std::optional<CoverageStats::Label>& label,
+                   CoverageObservation::Count count) {
+  if (!counts || !(edges & (edge::snapping | edge::unstable | edge::shared))) return false;
   // A mismatch the bands explain, or a count they leave free.
   if (label) return explained(*label);
-  return gl.fragments[i] != reference.fragments[i];
+  return count != CoverageObservation::Count::same;
+}
+
+CoverageStats::Label untraceable_label(uint8_t edges, CoverageObservation::Count count) {
+  using Label = CoverageStats::Label;
+  using Count = CoverageObservation::Count;
+  if (!(edges & edge::shared) || count == Count::same) return Label::fill_rule;
+  return count == Count::fewer ? Label::gap : Label::double_hit;
+}
+
+std::optional<CoverageStats::Label> coverage_verdict(uint8_t edges, bool counts,
+                                                     const CoverageObservation& gl,
+                                                     bool trace_admitted) {
+  const std::optional<CoverageStats::Label> label = coverage_label(edges, counts, gl);
+  if (trace_admitted || !count_excused(edges, counts, label, gl.count)) return label;
+  return untraceable_label(edges, gl.count);
+}
+
+bool counts_against(CoverageStats::Label l, const Tolerance& t) {
+  return !explained(l) || !t.allow_boundary || t.mode == ToleranceMode::exact;
+}
+
+bool counts_checked(const Expectation& expected, const Frame& gl) {
+  return expected.frame.fragments.size() == expected.frame.pixel_count() &&
+         gl.fragments.size() == gl.pixel_count();
+}
+
+CoverageObservation observe(const Expectation& expected, const Frame& gl, size_t i) {
+  using Count = CoverageObservation::Count;
+  using Kept = CoverageObservation::Kept;
+  const Frame& reference = expected.frame;
+  CoverageObservation o;
+  // A candidate matters only where the depth order is free (coverage_label): looked for there
+  // alone, since most pixels with another primitive have none.
+  o.kept = reference.primitive[i] == gl.primitive[i] ? Kept::reference
+           : (expected.edges[i] & edge::depth_order) && expected.candidate(i, gl.primitive[i])
+               ? Kept::candidate
+               : Kept::other;
+  if (counts_checked(expected, gl)) {
+    const uint16_t g = gl.fragments[i], r = reference.fragments[i];
+    o.count = g == r ? Count::same : g < r ? Count::fewer : Count::more;
+  }
+  return o;
+}
+
+std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
+                                                   size_t i) {
+  return coverage_label(expected.edges[i], counts_checked(expected, gl), observe(expected, gl, i));
+}
+
+bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
+                   const std::optional<CoverageStats::Label>& label) {
+  return count_excused(expected.edges[i], counts_checked(expected, gl), label,
+                       observe(expected, gl, i).count);
 }
 
 CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i) {
-  using Label = CoverageStats::Label;
-  const uint16_t g = gl.fragments[i], r = expected.frame.fragments[i];
-  if (!(expected.edges[i] & edge::shared) || g == r) return Label::fill_rule;
-  return g < r ? Label::gap : Label::double_hit;
+  return untraceable_label(expected.edges[i], observe(expected, gl, i).count);
 }
 
 }  // namespace glrc::compare

@@ -120,25 +120,64 @@ struct Judged {
 Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,
                       const Tolerance& tolerance);
 
-// How pixel i's coverage disagrees with what is expected, or nothing where it does not: a
+// What GL did at one pixel, relative to what is expected there: all that the coverage verdict
+// reads of GL. The rules below are functions of it and of the pixel's edge bits alone, so that
+// the comparator and the reproducers (export/, which carry the verdict as a table of these)
+// judge a pixel one way.
+struct CoverageObservation {
+  // GL's kept primitive: the reference's; another that Expectation::candidates lists there (a
+  // fragment that may win the depth test); or any other, none included.
+  enum class Kept : uint8_t { reference, candidate, other };
+  // GL's fragment count against the reference's (both counted without the depth test); `same`
+  // where either frame has no counts.
+  enum class Count : uint8_t { same, fewer, more };
+  Kept kept = Kept::reference;
+  Count count = Count::same;
+};
+inline constexpr int kKeptKinds = 3, kCountKinds = 3;
+
+// How a pixel's coverage disagrees with what is expected, or nothing where it does not: a
 // different primitive is an exact tie, within snapping or a fill-rule error by the expected
 // edge bits (GL may keep a candidate of the depth test where the depth order is free); a
 // different fragment count (when both frames have counts: every fragment rasterized, through the
 // depth test or not) away from outer edges is a gap or double hit near a shared edge, else a
 // fill-rule error, where the depth order is free too.
-std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
-                                                   size_t i);
-// The label of pixel i whose coverage its edge bits excuse (count_excused), once its trace shows
-// the fragments came from no set of triangles a conforming implementation may rasterize there:
-// a gap or double hit near a shared edge (fewer or more fragments than the reference's), else
-// (as many, from other triangles; or away from shared edges) a fill-rule error.
-CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i);
-// Whether pixel i's coverage differs from the reference's where its edge bits (a band, a
+//   edges:  the pixel's edge bits (core/frame.hpp, edge::);
+//   counts: whether both frames have fragment counts.
+std::optional<CoverageStats::Label> coverage_label(uint8_t edges, bool counts,
+                                                   const CoverageObservation& gl);
+// Whether a pixel's coverage differs from the reference's where its edge bits (a band, a
 // shared edge, a triangle that may turn over) excuse it, both frames having counts: a
 // mismatch coverage_label explains, or a count it leaves free (no label). The pixels a trace
 // judges; a pixel where GL agrees (the same primitive and count) is not traced.
+bool count_excused(uint8_t edges, bool counts, const std::optional<CoverageStats::Label>& label,
+                   CoverageObservation::Count count);
+// The label of a pixel whose coverage its edge bits excuse (count_excused), once its trace shows
+// the fragments came from no set of triangles a conforming implementation may rasterize there:
+// a gap or double hit near a shared edge (fewer or more fragments than the reference's), else
+// (as many, from other triangles; or away from shared edges) a fill-rule error.
+CoverageStats::Label untraceable_label(uint8_t edges, CoverageObservation::Count count);
+// The whole coverage verdict at a pixel, as the comparator reaches it: coverage_label, then, for
+// a pixel count_excused, untraceable_label unless GL's fragment trace there is one a conforming
+// implementation may give (trace_admitted; true where no trace is known).
+std::optional<CoverageStats::Label> coverage_verdict(uint8_t edges, bool counts,
+                                                     const CoverageObservation& gl,
+                                                     bool trace_admitted);
+// Whether a mismatch labelled l counts against the verdict under tolerance t: always, unless
+// the specification's freedom explains it and the case allows such differences (exact mode
+// allows none).
+bool counts_against(CoverageStats::Label l, const Tolerance& t);
+
+// The observation at pixel i of `gl` against `expected` (both of one case).
+CoverageObservation observe(const Expectation& expected, const Frame& gl, size_t i);
+// Whether both frames have fragment counts (CoverageObservation::Count means something).
+bool counts_checked(const Expectation& expected, const Frame& gl);
+// coverage_label, count_excused and untraceable_label at pixel i of `gl`.
+std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
+                                                   size_t i);
 bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
                    const std::optional<CoverageStats::Label>& label);
+CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i);
 
 // Labels that the specification's freedom explains (exact tie, within snapping).
 inline bool explained(CoverageStats::Label l) {

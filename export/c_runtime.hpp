@@ -1,7 +1,9 @@
-// The C reproducer's runtime: export/c_runtime/declarations.c (GL, EGL and OSMesa declared by
-// hand, and the scene a draw takes) and export/c_runtime/runtime.c (GL's context, the draw, the
-// readback and the verdict), embedded at build time by cmake/embed_c_runtime.cmake. Every
-// reproducer holds kCDeclarations, then the case's data (reproducer.cpp), then kCRuntime.
+// The C reproducer's runtime, embedded at build time by cmake/embed_c_runtime.cmake:
+// export/c_runtime/declarations.c (GL, EGL and OSMesa declared by hand, and the scene a draw
+// takes), export/c_runtime/verdict.c (a pixel's coverage label looked up in the verdict table a
+// reproducer embeds: export/coverage_verdict_table.hpp) and export/c_runtime/runtime.c (GL's
+// context, the draw, the readback and the judging). Every reproducer holds kCDeclarations, the
+// case's size, kCVerdict, the case's data (reproducer.cpp), then kCRuntime.
 #pragma once
 
 #include <string_view>
@@ -9,6 +11,7 @@
 namespace glrc::reproducer {
 
 extern const std::string_view kCDeclarations;
+extern const std::string_view kCVerdict;
 extern const std::string_view kCRuntime;
 
 }  // namespace glrc::reproducer

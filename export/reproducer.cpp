@@ -17,6 +17,7 @@
 #include "compare/compare.hpp"
 #include "core/text.hpp"
 #include "export/c_runtime.hpp"
+#include "export/coverage_verdict_table.hpp"
 #include "export/expectation_shape.hpp"
 
 namespace glrc::reproducer {
@@ -287,6 +288,40 @@ std::string c_run_command(const std::string& file) {
   return shell_word(program);
 }
 
+std::string c_verdict_table(const CoverageVerdictTable& table) {
+  using Observation = compare::CoverageObservation;
+  std::string out;
+  out +=
+      "/* The coverage verdict, computed by glrefcheck with its comparator's rules for every "
+      "value of the\n   edge bits (REF_EDGES): the label (enum label) by what GL kept (enum "
+      "kept), its fragment\n   count against the reference's (enum count) and whether its "
+      "fragment trace is admitted (0, 1). */\n";
+  out += "static const verdict_row COVERAGE_VERDICT[" +
+         std::to_string(CoverageVerdictTable::kEdgeBitValues) + "] = {\n";
+  for (int edges = 0; edges < CoverageVerdictTable::kEdgeBitValues; ++edges) {
+    out += "    {";
+    for (int kept = 0; kept < compare::kKeptKinds; ++kept) {
+      out += kept ? ", {" : "{";
+      for (int count = 0; count < compare::kCountKinds; ++count) {
+        const Observation seen{Observation::Kept(kept), Observation::Count(count)};
+        out += (count ? ", {" : "{") + std::to_string(table.label(uint8_t(edges), seen, false)) +
+               ", " + std::to_string(table.label(uint8_t(edges), seen, true)) + "}";
+      }
+      out += "}";
+    }
+    out += "}, /* " + std::to_string(edges) + " */\n";
+  }
+  out += "};\n";
+  out +=
+      "/* Whether a label fails this case (0: the specification's freedom explains it, and the "
+      "case allows\n   that). */\n";
+  out += "static const unsigned char LABEL_FAILS[] = {";
+  for (int code = 0; code < kLabelCodes; ++code)
+    out += (code ? ", " : "") + std::to_string(int(table.fails(uint8_t(code))));
+  out += "};\n";
+  return out;
+}
+
 std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
                          const CReproducerSetup& setup) {
   check_inputs(c, expected, tolerance, setup);
@@ -393,21 +428,11 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   for (int k = compare::kDepth; k < components; ++k)
     allowances.emplace_back(c, expected, tolerance, k);
   const bool per_pixel = allowances.front().per_pixel();
+  out += kCVerdict;
   out += "\n/* ---- What the reference expects (glrefcheck's exact CPU rasterizer) ---- */\n";
-  out += "#define ALLOW_BOUNDARY " + std::to_string(int(tolerance.allow_boundary)) +
-         " /* 0: coverage differences at edges fail too */\n";
-  out += "#define COUNTS_CHECKED " + std::to_string(int(f.fragments.size() == pixels)) + "\n";
-  out += "/* Edge bits (core/frame.hpp's edge::). */\n";
-  out += "#define EDGE_TIE " + std::to_string(edge::tie) +
-         " /* the centre lies exactly on an edge */\n";
-  out += "#define EDGE_SNAPPING " + std::to_string(edge::snapping) +
-         " /* within the snapping band of an outer edge or clip plane */\n";
-  out += "#define EDGE_SHARED " + std::to_string(edge::shared) +
-         " /* within the snapping band of an edge two triangles share */\n";
-  out += "#define EDGE_UNSTABLE " + std::to_string(edge::unstable) +
-         " /* near a triangle the freedom may turn over: anything goes */\n";
-  out += "#define EDGE_DEPTH_ORDER " + std::to_string(edge::depth_order) +
-         " /* another fragment may win the depth test */\n";
+  const bool counts = f.fragments.size() == pixels;
+  out += "#define COUNTS_CHECKED " + std::to_string(int(counts)) + "\n";
+  out += c_verdict_table(CoverageVerdictTable(counts, tolerance));
   out += "#define TRIANGLE_COUNT " + std::to_string(c.triangles.size()) + "\n";
 
   auto per_row = [&](const char* type, const char* array, const char* what, auto value) {
@@ -426,7 +451,14 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
           [&](size_t i) { return std::to_string(f.primitive[i]); });
   per_row("unsigned short", "REF_FRAGMENTS", "How many fragments the reference writes",
           [&](size_t i) { return std::to_string(f.fragments.empty() ? 0 : f.fragments[i]); });
-  per_row("unsigned char", "REF_EDGES", "Edge bits",
+  const std::string edge_bits =
+      "Edge bits (COVERAGE_VERDICT's row): " + std::to_string(edge::tie) +
+      ", the centre lies exactly on an edge;\n   " + std::to_string(edge::snapping) +
+      ", within the snapping band of an outer edge or clip plane; " + std::to_string(edge::shared) +
+      ", within the snapping\n   band of an edge two triangles share; " +
+      std::to_string(edge::unstable) + ", near a triangle the freedom may turn over; " +
+      std::to_string(edge::depth_order) + ", another\n   fragment may win the depth test";
+  per_row("unsigned char", "REF_EDGES", edge_bits.c_str(),
           [&](size_t i) { return std::to_string(expected.edges[i]); });
 
   // Values and allowances of the pixels the reference covers.
@@ -463,9 +495,6 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   out +=
       "/* Where another fragment may win the depth test (EDGE_DEPTH_ORDER): its primitive, "
       "depth and\n   components, and their allowances; sorted by pixel (y * FB_WIDTH + x). */\n";
-  out +=
-      "struct candidate {\n  int pixel, primitive;\n  float values[CHANNELS];\n"
-      "  double allowed[CHANNELS];\n};\n";
   out += "#define CANDIDATE_COUNT " + std::to_string(expected.candidates.size()) + "\n";
   out += "static const struct candidate CANDIDATES[] = {\n";
   for (const Candidate& o : expected.candidates) {
@@ -490,7 +519,6 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
       "traces a\n   conforming implementation may give: fragments, the sum of p + 1 and the sum "
       "of a hash of p\n   over them (TRACES[first .. first + count)); sorted by pixel. A pixel "
       "not listed is not\n   judged by its trace. */\n";
-  out += "struct traced {\n  int pixel, first, count;\n};\n";
   size_t listed = 0;
   std::string pixels_text, traces_text;
   for (const AdmittedTraces& a : setup.admitted) {
@@ -506,6 +534,7 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   out += "#define TRACED_COUNT " + std::to_string(setup.admitted.size()) + "\n";
   out += "static const struct traced TRACED_PIXELS[] = {\n" + pixels_text + "};\n";
   out += "static const unsigned TRACES[][3] = {\n" + traces_text + "};\n";
+  out += "static const struct trace_list TRACE_LIST = {TRACED_COUNT, TRACED_PIXELS, TRACES};\n";
   const std::optional<std::string> outside = outside_specified_range(c);
   out += "/* Why the case asks for more than GL specifies, if it does. */\n";
   out += "static const char OUTSIDE_SPECIFIED_RANGE[] = " + c_string(outside.value_or("")) + ";\n";

@@ -6,11 +6,12 @@
 // coordinates to gl_Position untouched, one RGBA32F attachment per varying, an R32I
 // gl_PrimitiveID attachment, 32-bit float depth, the case's states, then the fragment-count pass
 // with additive blending into R32F without the depth test, and the fragment-trace pass beside
-// it), reads the frame back with
-// glReadPixels, and judges every pixel as compare/ does: coverage by compare::coverage_label's
-// rules over the embedded edge bits, fragment counts where the reference requires them (gaps
-// and double hits on shared edges), and depth and every component where GL's primitive is the
-// reference's (or a depth-test candidate's), within the embedded allowance. It does not compute
+// it), reads the frame back with glReadPixels, and judges every pixel as compare/ does. It
+// restates none of compare/'s rules: coverage is the label the embedded verdict table
+// (coverage_verdict_table.hpp, computed with compare::coverage_verdict) gives for the pixel's
+// edge bits and what GL kept, counted and traced there; depth and every component are judged
+// where GL's primitive is the reference's (or a depth-test candidate's), within the embedded
+// allowance. It does not compute
 // statistics (ULPs, percentiles), does not mark a case outside GL's specified range as a skip
 // (it says so in a note and still fails), and draws the whole frame at once.
 #pragma once
@@ -22,6 +23,7 @@
 #include "core/case.hpp"
 #include "core/fragment_trace.hpp"
 #include "core/frame.hpp"
+#include "export/coverage_verdict_table.hpp"
 
 namespace glrc::reproducer {
 
@@ -69,6 +71,12 @@ std::string c_compile_command(const std::string& file);
 // The program c_compile_command builds, as a shell runs it ("./NAME" for a name without a
 // folder; quoted where needed).
 std::string c_run_command(const std::string& file);
+
+// A case's coverage verdict as C data, as every reproducer embeds it after kCVerdict
+// (export/c_runtime/verdict.c): COVERAGE_VERDICT (a verdict_row per value of the edge bits, the
+// labels numbered as label_code numbers them) and LABEL_FAILS (per label code, 1 where it fails
+// the case).
+std::string c_verdict_table(const CoverageVerdictTable& table);
 
 // The C99 text of a reproducer of case `c`.
 //   c:         a valid case (casefile::load's), at most kMaxReproducerValues pixel values;

@@ -20,6 +20,7 @@
 
 #include "compare/compare.hpp"
 #include "core/text.hpp"
+#include "export/coverage_verdict_table.hpp"
 #include "export/expectation_shape.hpp"
 
 namespace glrc::reproducer {
@@ -178,30 +179,30 @@ std::string glsl_comment(std::string_view text) {
 
 // ---- The expectation, per pixel ----
 
-// What the probes require at one pixel, as compare::coverage_label judges it.
+// What the probes require at one pixel, as compare/ judges it (the verdict table: its label
+// of each thing GL may do there). Traces are not checked here (the header says why): a trace is
+// taken as admitted.
 struct Decided {
   bool fragments = false;  // GL's fragment count must be the reference's
   bool primitive = false;  // GL's kept triangle must be the reference's
 };
 
-Decided decided(const Expectation& e, const Tolerance& t, const Case& c, size_t i) {
+Decided decided(const Expectation& e, const CoverageVerdictTable& table, const Case& c, size_t i) {
+  using Observation = compare::CoverageObservation;
   const uint8_t edges = e.edges[i];
+  const auto fails = [&](Observation::Kept kept, Observation::Count count) {
+    return table.fails(table.label(edges, {kept, count}, true));
+  };
   const Frame& f = e.frame;
-  const bool counts = f.fragments.size() == f.pixel_count();
   Decided d;
-  if (edges & edge::unstable) {
-    // Anything goes, unless the case allows no coverage difference at all.
-    d.fragments = counts && !t.allow_boundary;
-    d.primitive = !t.allow_boundary;
-    return d;
-  }
-  // The count is taken without the depth test, so it is decided even where the depth test's
-  // order is not.
-  d.fragments = counts && !(edges & edge::snapping);
-  d.primitive = !t.allow_boundary || !(edges & (edge::tie | edge::snapping | edge::shared));
-  // Either fragment may win the depth test: GL may keep a candidate. (coverage_label still
-  // judges a triangle that is neither; the probes leave the triangle there alone.)
-  if (edges & edge::depth_order) d.primitive = false;
+  // The probes ask for the reference's count only where both fewer and more fragments fail (the
+  // rules never fail one and pass the other); the count is taken without the depth test.
+  d.fragments = table.counts() && fails(Observation::Kept::reference, Observation::Count::fewer) &&
+                fails(Observation::Kept::reference, Observation::Count::more);
+  // The probes cannot tell a candidate of the depth test from another triangle: the kept
+  // triangle is the reference's to keep only where keeping either fails.
+  d.primitive = fails(Observation::Kept::other, Observation::Count::same) &&
+                fails(Observation::Kept::candidate, Observation::Count::same);
   // On the 24-bit depth buffer a fragment within its step of the clear value may be stored as
   // that value and fail the test against it, where the harness's 32-bit float depth keeps it.
   if (c.depth_func != DepthFunc::always && f.primitive[i] != Frame::kNoPrimitive &&
@@ -430,12 +431,13 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
     return k == compare::kDepth ? f.depth[i] : f.components[size_t(k)][i];
   };
 
+  const CoverageVerdictTable verdicts(f.fragments.size() == pixels, tolerance);
   std::vector<Decided> decisions(pixels);
   // Where the kept fragment's values are judged only at listed pairs: GL may keep a fragment
   // the reference does not judge, or the reference determines no value.
   std::vector<bool> free(pixels, false);
   for (size_t i = 0; i < pixels; ++i) {
-    decisions[i] = decided(expected, tolerance, c, i);
+    decisions[i] = decided(expected, verdicts, c, i);
     // No value determined: a reference that is NaN or Inf, or an unbounded allowance (any
     // number passes there, and NaN or Inf is not judged either).
     bool determined = true;

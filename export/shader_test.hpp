@@ -41,9 +41,9 @@
 //      resolve 1`) writes per pixel (fragments, kept triangle or -1, verdict, 1) into an
 //      RGBA32F texture, which the probes read: the verdict must be 0 everywhere (`probe all`),
 //      and fragments and triangle must be the reference's wherever the reference decides them
-//      (`probe rect`, rectangles of equal expectation), as compare::coverage_label does: a
-//      gap or double hit on a shared edge or any other fragment count away from outer edges,
-//      or another triangle where no edge bit explains it, fails.
+//      (`probe rect`, rectangles of equal expectation): where the verdict table
+//      (coverage_verdict_table.hpp, compare/'s rules) fails every other count, or every other
+//      triangle, there.
 // Where the reference does not decide which triangle is kept (a centre on an edge, within the
 // snapping band of an edge, near a triangle the freedom may turn over, where another fragment
 // may win the depth test; the edge bits), the kept fragment's values are judged only at the

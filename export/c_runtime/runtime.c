@@ -482,67 +482,13 @@ static int first_draw_wrong(const struct frame *f, char *fault, size_t size) {
   return wrong;
 }
 
-/* ---- Judging as glrefcheck's comparator does ---- */
-enum label { NO_LABEL, EXACT_TIE, WITHIN_SNAPPING, GAP, DOUBLE_HIT, FILL_RULE };
-
+/* A fragment count read from the R32F count target: additive blending of 1.0 per fragment. */
 static unsigned fragment_count(float counted) {
   if (!(counted >= 0.0f)) return 0;
   return counted > 65535.0f ? 65535u : (unsigned)counted;
 }
 
-/* The candidate of primitive p among `first`..`end` (one pixel's), or NULL. */
-static const struct candidate *candidate_of(const struct candidate *first,
-                                            const struct candidate *end, int p) {
-  for (; first != end; ++first)
-    if (first->primitive == p && p >= 0) return first;
-  return NULL;
-}
-
-/* compare/compare.cpp's coverage_label: how pixel i's coverage disagrees with the reference. */
-static enum label coverage_label(int i, int gl_primitive, unsigned gl_fragments,
-                                 const struct candidate *candidate) {
-  const int reference = REF_PRIMITIVE[i];
-  const unsigned char edges = REF_EDGES[i];
-  /* Where either fragment may win the depth test, GL may keep any of them. */
-  const int kept = gl_primitive == reference || ((edges & EDGE_DEPTH_ORDER) && candidate);
-  /* Near a triangle the freedom may turn over, make vanish or appear: anything goes. */
-  if (edges & EDGE_UNSTABLE)
-    return !kept || (COUNTS_CHECKED && gl_fragments != REF_FRAGMENTS[i]) ? WITHIN_SNAPPING
-                                                                          : NO_LABEL;
-  /* Watertightness: away from outer edges, as many fragments as the reference, counted
-     without the depth test (whose order between close depths is free). */
-  if (COUNTS_CHECKED && !(edges & EDGE_SNAPPING) && gl_fragments != REF_FRAGMENTS[i]) {
-    if (!(edges & EDGE_SHARED)) return FILL_RULE;
-    return gl_fragments < REF_FRAGMENTS[i] ? GAP : DOUBLE_HIT;
-  }
-  if (kept) return NO_LABEL;
-  if (edges & EDGE_TIE) return EXACT_TIE;
-  if (edges & (EDGE_SNAPPING | EDGE_SHARED)) return WITHIN_SNAPPING;
-  return FILL_RULE;
-}
-
-/* Where the edge bits excuse coverage that differs (compare::count_excused): whether GL's trace
-   there is one a conforming implementation may give, from the embedded list of them
-   (TRACED_PIXELS, TRACES; made by glrefcheck from the reference's choices there). 1: it is, or
-   nothing is known (no list for the pixel, or sums that are not exact integers). */
-static int trace_admitted(int i, unsigned gl_fragments, const float *trace) {
-  int lo = 0, hi = TRACED_COUNT, k;
-  const float ids = trace[0], hashes = trace[1];
-  while (lo < hi) {
-    const int mid = lo + (hi - lo) / 2;
-    if (TRACED_PIXELS[mid].pixel < i) lo = mid + 1; else hi = mid;
-  }
-  if (lo == TRACED_COUNT || TRACED_PIXELS[lo].pixel != i) return 1;
-  if (!(ids >= 0 && ids < 16777216.0f && ids == floor(ids)) ||
-      !(hashes >= 0 && hashes < 16777216.0f && hashes == floor(hashes)))
-    return 1;
-  for (k = TRACED_PIXELS[lo].first; k < TRACED_PIXELS[lo].first + TRACED_PIXELS[lo].count; ++k)
-    if (TRACES[k][0] == gl_fragments && TRACES[k][1] == (unsigned)ids &&
-        TRACES[k][2] == (unsigned)hashes)
-      return 1;
-  return 0;
-}
-
+/* ---- Reporting ---- */
 static const char *number(char *buffer, size_t size, double v) {
   if (isnan(v)) return "nan";
   if (isinf(v)) return v < 0 ? "-inf" : "inf";
@@ -639,6 +585,8 @@ int main(int argc, char **argv) {
       const int i = y * FB_WIDTH + x;
       const int reference = REF_PRIMITIVE[i], gl_primitive = frame.primitive[i];
       const unsigned gl_fragments = fragment_count(frame.fragments[i]);
+      const struct expected_coverage expected_here = {REF_PRIMITIVE[i], REF_FRAGMENTS[i],
+                                                      REF_EDGES[i]};
       const struct candidate *first = candidate, *other;
       const float *expected = NULL;
       const double *allowed = NULL;
@@ -648,16 +596,9 @@ int main(int argc, char **argv) {
       while (candidate != candidates_end && candidate->pixel == i) ++candidate;
       other = gl_primitive != reference ? candidate_of(first, candidate, gl_primitive) : NULL;
 
-      label = coverage_label(i, gl_primitive, gl_fragments, other);
-      /* Coverage the edge bits excuse (compare::count_excused), from fragments no conforming
-         implementation rasterizes there: the count's own label (compare::untraceable_label). */
-      if (COUNTS_CHECKED && (REF_EDGES[i] & (EDGE_SNAPPING | EDGE_UNSTABLE | EDGE_SHARED)) &&
-          (label == EXACT_TIE || label == WITHIN_SNAPPING ||
-           (label == NO_LABEL && gl_fragments != REF_FRAGMENTS[i])) &&
-          !trace_admitted(i, gl_fragments, &frame.traces[2 * (size_t)i]))
-        label = !(REF_EDGES[i] & EDGE_SHARED) || gl_fragments == REF_FRAGMENTS[i] ? FILL_RULE
-                : gl_fragments < REF_FRAGMENTS[i] ? GAP : DOUBLE_HIT;
-      if (label != NO_LABEL && (!(label == EXACT_TIE || label == WITHIN_SNAPPING) || !ALLOW_BOUNDARY)) {
+      label = pixel_label(COVERAGE_VERDICT, COUNTS_CHECKED, &TRACE_LIST, i, &expected_here,
+                          gl_primitive, gl_fragments, &frame.traces[2 * (size_t)i], other);
+      if (LABEL_FAILS[label]) {
         ++coverage_failures;
         if (failures < MOST_PRINTED) {
           if (label == GAP || label == DOUBLE_HIT)
