@@ -27,7 +27,7 @@ def progress(text):
 
 
 def worker_environment():
-    """The environment `run` gives its GL workers (cli/process.hpp, huge_page_malloc_tunable
+    """The environment `run` gives its GL workers (cli/workers/process.hpp, huge_page_malloc_tunable
     and huge_page_jemalloc_conf): the parts are timed as a worker runs them."""
     env = dict(os.environ)
     tunables = env.get("GLIBC_TUNABLES", "")

@@ -28,7 +28,7 @@
 #include "cli/selftest.hpp"
 #include "cli/session.hpp"
 #include "cli/validators.hpp"
-#include "cli/workers.hpp"
+#include "cli/workers/workers.hpp"
 #include "compare/compare.hpp"
 #include "core/large_buffer.hpp"
 #include "core/text.hpp"

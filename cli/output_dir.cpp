@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/fuzz.hpp"
-#include "cli/process.hpp"
+#include "cli/workers/process.hpp"
 #include "cli/session.hpp"
 #include "core/text.hpp"
 #include "image_io/glrc_images.h"

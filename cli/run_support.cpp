@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "cli/output_dir.hpp"
-#include "cli/process.hpp"
+#include "cli/workers/process.hpp"
 #include "core/text.hpp"
 #include "ref/tiles.hpp"
 #include "report/html.hpp"

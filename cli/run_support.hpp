@@ -11,7 +11,7 @@
 
 #include "cli/mesa_prefix.hpp"
 #include "cli/session.hpp"
-#include "cli/workers.hpp"
+#include "cli/workers/workers.hpp"
 #include "core/result.hpp"
 #include "report/report.hpp"
 

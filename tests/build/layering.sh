@@ -2,7 +2,7 @@
 # The modules' layering: a module includes headers of the modules below it only. Each line of
 # the table names a folder and what its sources may include (besides itself); a folder not in
 # the table, or an include outside its line, fails the test with the file and the include.
-# cli/, bench/ and tests/ sit on top and may include anything.
+# cli/, bench/ and tests/ sit on top and may include anything, but for cli/workers/ (below).
 set -euo pipefail
 root="${1:?usage: layering.sh SOURCE_DIR}"
 cd "$root"
@@ -45,4 +45,19 @@ for dir in */; do
   done < <(grep -oE '^#include "[a-z_]+/[^"]+"' "$dir"/*.[ch]pp "$dir"/*.h 2>/dev/null |
     sed -E 's/:#include "/:/; s/"$//')
 done
+
+# cli/workers/, the process engine: it may include of the rest of cli/ only the run's options
+# (session.hpp) and the identify command a worker runs (identify.hpp); the rest of cli/ may
+# include of it only its interface (workers.hpp) and the child process's environment and log
+# header (process.hpp), never the pool or the protocol.
+while IFS=: read -r file include; do
+  case "$include" in cli/workers/* | cli/session.hpp | cli/identify.hpp) ;;
+  *) echo "$file includes \"$include\": cli/workers/ may include of cli/ only session.hpp and identify.hpp"; status=1 ;;
+  esac
+done < <(grep -oE '^#include "cli/[^"]+"' cli/workers/*.[ch]pp 2>/dev/null | sed -E 's/:#include "/:/; s/"$//')
+while IFS=: read -r file include; do
+  case "$include" in cli/workers/workers.hpp | cli/workers/process.hpp) ;;
+  *) echo "$file includes \"$include\": cli/ may include of cli/workers/ only workers.hpp and process.hpp"; status=1 ;;
+  esac
+done < <(grep -oE '^#include "cli/workers/[^"]+"' cli/*.[ch]pp 2>/dev/null | sed -E 's/:#include "/:/; s/"$//')
 exit $status

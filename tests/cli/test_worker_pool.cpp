@@ -1,4 +1,4 @@
-// The worker pool (cli/worker_pool.*) on fake workers: tests/tools/fake_worker.py speaks the
+// The worker pool (cli/workers/pool.*) on fake workers: tests/tools/fake_worker.py speaks the
 // protocol without GL and fails where it is told to, so every way a worker can go wrong is
 // checked here in milliseconds, apart from any driver. The real workers' crash, timeout and
 // interrupt handling is tested end to end in test_workers.cpp and test_run_folder.cpp.
@@ -9,9 +9,9 @@
 #include <map>
 #include <stdexcept>
 
-#include "cli/process.hpp"
-#include "cli/worker_pool.hpp"
-#include "cli/workers.hpp"
+#include "cli/workers/process.hpp"
+#include "cli/workers/pool.hpp"
+#include "cli/workers/workers.hpp"
 #include "report/report.hpp"
 #include "tests/support/temp_dir_test.hpp"
 

@@ -1,4 +1,4 @@
-// The worker protocol's messages (cli/worker_protocol.hpp): GL's description crosses from the
+// The worker protocol's messages (cli/workers/protocol.hpp): GL's description crosses from the
 // worker to the runner whole, and a job carries its case and model.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "casefile/casefile.hpp"
 #include "casefile/wire.hpp"
-#include "cli/worker_protocol.hpp"
+#include "cli/workers/protocol.hpp"
 #include "identify/model_cache.hpp"
 
 namespace glrc::cli {

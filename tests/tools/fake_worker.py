@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A worker process without GL, speaking run's protocol (cli/workers.hpp), for the worker pool's
+"""A worker process without GL, speaking run's protocol (cli/workers/workers.hpp), for the worker pool's
 own tests (tests/cli/test_worker_pool.cpp): each case passes unless a flag says what goes wrong.
 
   fake_worker.py [--no-context] [--die-at-start] [--crash-at NAME] [--hang-at NAME]

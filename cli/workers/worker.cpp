@@ -1,4 +1,4 @@
-// The child side of cli/workers.hpp: one GL context, many cases.
+// The child side of cli/workers/workers.hpp: one GL context, many cases.
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,8 +13,8 @@
 #include "casefile/casefile.hpp"
 #include "casefile/wire.hpp"
 #include "cli/identify.hpp"
-#include "cli/worker_protocol.hpp"
-#include "cli/workers.hpp"
+#include "cli/workers/protocol.hpp"
+#include "cli/workers/workers.hpp"
 #include "identify/model_cache.hpp"
 #include "report/report.hpp"
 

@@ -11,7 +11,8 @@
 // "planes", "tie_break"}} per case, or {"identify": true}; end of input means stop. On its
 // stdout: {"hello": {every gl::GlInfo field, "driver_files": [paths]}} (GL strings, subpixel
 // bits, the initial provoking vertex, whether gl_PrimitiveID comes from a geometry shader, and
-// warnings: what the implementation got wrong while the context set up; cli/worker_protocol.hpp) or
+// warnings: what the implementation got wrong while the context set up; cli/workers/protocol.hpp)
+// or
 // {"error": "one line"} once the context exists, then
 // {"index": k, "result": CaseResult, "images": true when heatmaps follow} per case (the verdict
 // comes first), then for a case with heatmaps {"images_done": k} or {"images_done": k,
@@ -107,10 +108,6 @@ class WorkerSession {
   bool interrupted() const;
 
  private:
-  Options o_;
-  WorkerSettings s_;
-  OnStart on_start_;
-  std::function<void(size_t, CaseResult)> on_result_;
   std::vector<std::optional<CaseResult>> results_;
   size_t offset_ = 0;  // the pool's index of results_[0]
   std::unique_ptr<Pool> pool_;

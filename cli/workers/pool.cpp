@@ -1,6 +1,6 @@
 // The worker pool's processes: starts workers, hands out cases one at a time (so a slow case
 // never holds up a queue behind it), watches for deaths and timeouts with poll().
-#include "cli/worker_pool.hpp"
+#include "cli/workers/pool.hpp"
 
 #include <poll.h>
 #include <signal.h>
@@ -9,17 +9,20 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <utility>
+#include <variant>
 
-#include "cli/worker_protocol.hpp"
+#include "cli/workers/protocol.hpp"
 
 namespace glrc::cli {
 
 namespace {
 
-// Busy: a case, heatmaps, identification or its start-up, each under a deadline.
-bool busy(const Worker& w) {
-  return w.job || w.imaging || !w.ready || w.identifying;
-}
+// std::visit with one lambda per state.
+template <class... Handlers>
+struct PerState : Handlers... {
+  using Handlers::operator()...;
+};
 
 }  // namespace
 
@@ -36,20 +39,19 @@ std::vector<std::string> worker_argv(const WorkerSettings& s) {
   return wrapped;
 }
 
-Pool::Pool(std::vector<const Case*> cases, const Options& o, const WorkerSettings& s,
-           const OnStart& on_start, const std::function<void(size_t, CaseResult)>& on_result,
-           bool persistent)
+Pool::Pool(std::vector<const Case*> cases, Options o, WorkerSettings s, OnStart on_start,
+           std::function<void(size_t, CaseResult)> on_result, PoolLifetime lifetime)
     : cases_(std::move(cases)),
-      persistent_(persistent),
-      o_(o),
-      s_(s),
-      on_start_(on_start),
-      on_result_(on_result) {
+      o_(std::move(o)),
+      s_(std::move(s)),
+      on_start_(std::move(on_start)),
+      on_result_(std::move(on_result)),
+      lifetime_(lifetime) {
   for (size_t k = 0; k < cases_.size(); ++k)
     queue_.push_back(k);
-  options_line_ = options_json(o) + "\n";
-  env_ = environment_with(s.environment);
-  argv_ = worker_argv(s);
+  options_line_ = options_json(o_) + "\n";
+  env_ = environment_with(s_.environment);
+  argv_ = worker_argv(s_);
 }
 
 Pool::~Pool() {
@@ -68,7 +70,7 @@ void Pool::run() {
   if (interrupted()) return;
   if (workers_.empty()) {
     const size_t jobs = size_t(std::max(s_.jobs, 1));
-    const size_t n = persistent_ ? jobs : std::min(jobs, cases_.size());
+    const size_t n = lifetime_ == PoolLifetime::persistent ? jobs : std::min(jobs, cases_.size());
     workers_.resize(n);
     for (size_t k = 0; k < n; ++k)
       start(workers_[k], k);
@@ -78,7 +80,7 @@ void Pool::run() {
       Worker& w = workers_[k];
       if (!w.process.running())
         start(w, k);
-      else if (w.ready && !busy(w))
+      else if (w.in<worker_state::Idle>())
         assign(w);
     }
   }
@@ -108,7 +110,7 @@ void Pool::run() {
 
 bool Pool::imaging() const {
   return std::any_of(workers_.begin(), workers_.end(),
-                     [](const Worker& w) { return w.process.running() && w.imaging; });
+                     [](const Worker& w) { return w.in<worker_state::Imaging>(); });
 }
 
 bool Pool::interrupted() const {
@@ -120,19 +122,21 @@ bool Pool::interrupted() const {
 int Pool::next_deadline_ms() const {
   std::optional<Clock::time_point> next;
   for (const auto& w : workers_)
-    if (w.process.running() && busy(w) && (!next || w.deadline < *next)) next = w.deadline;
+    if (w.busy() && (!next || w.deadline < *next)) next = w.deadline;
   if (!next) return -1;
   const double ms = std::chrono::duration<double, std::milli>(*next - Clock::now()).count();
   return int(std::clamp(std::ceil(ms), 0.0, 3.6e6));
 }
 
+double Pool::startup_seconds() const {
+  return std::max(s_.timeout, 30.0);
+}
+
 void Pool::start(Worker& w, size_t slot) {
   w = Worker{};
   w.process = ChildProcess(argv_, env_, s_.log_dir / fmt::format("worker-{}.log", slot + 1));
-  w.started = Clock::now();
-  // A driver can hang making its context too; that gets at least 30 s, since starting a
-  // process and JIT-compiling shaders on a loaded CI machine takes a while.
-  w.deadline = after(w.started, std::max(s_.timeout, 30.0));
+  // A driver can hang making its context too.
+  w.enter(worker_state::Starting{}, startup_seconds());
   // A worker that died cannot be written to: reading its end of the pipe will say so.
   (void)w.process.send(options_line_);
 }
@@ -150,51 +154,69 @@ void Pool::read_from(Worker& w, size_t slot) {
 }
 
 void Pool::died(Worker& w, size_t slot) {
+  namespace state = worker_state;
   const std::string how = w.process.wait();
   const std::string tail = w.process.log_tail();
   const std::string log_ends = tail.empty() ? "" : "; its log ends: " + tail;
-  const auto job = w.job;
-  const auto imaging = w.imaging;
-  const bool was_ready = w.ready, was_identifying = w.identifying;
-  w.identifying = false;
-  w.imaging.reset();
-  if (imaging)
-    images_lost(*imaging, "heatmaps not written: the worker " + how + " writing them" + log_ends);
-  if (was_identifying) model_chosen(fallback_model(o_, "its worker " + how));
-  if (job) {
-    finish(*job, unfinished_result(*cases_[*job], Status::crash, "worker " + how + log_ends,
-                                   seconds_since(w.started)));
-  } else if (!was_ready) {
-    // It died making its context. Once is a broken driver or prefix, not a case.
-    if (!started_ || ++startup_deaths_ > 3)
-      throw InputError("a GL worker " + how + " before it could make a GL context" + log_ends);
-  }
+  const WorkerState was = std::exchange(w.state, state::Ended{});
+  std::visit(PerState{
+                 [&](state::Starting) {
+                   // It died making its context. Once is a broken driver or prefix, not a case.
+                   if (!started_ || ++startup_deaths_ > 3)
+                     throw InputError("a GL worker " + how + " before it could make a GL context" +
+                                      log_ends);
+                 },
+                 [&](state::Identifying) { model_chosen(fallback_model(o_, "its worker " + how)); },
+                 [&](state::Checking checking) {
+                   finish(checking.job,
+                          unfinished_result(*cases_[checking.job], Status::crash,
+                                            "worker " + how + log_ends, seconds_since(w.started)));
+                 },
+                 [&](state::Imaging imaging) {
+                   images_lost(imaging.job, "heatmaps not written: the worker " + how +
+                                                " writing them" + log_ends);
+                 },
+                 [](state::Idle) {},
+                 [](state::Ended) {},
+             },
+             was);
   if (!queue_.empty()) start(w, slot);
 }
 
 void Pool::check_deadlines() {
+  namespace state = worker_state;
   const auto now = Clock::now();
-  const double startup = std::max(s_.timeout, 30.0);
   for (size_t k = 0; k < workers_.size(); ++k) {
     Worker& w = workers_[k];
-    if (!w.process.running() || now < w.deadline || !busy(w)) continue;
+    if (!w.busy() || now < w.deadline) continue;
     w.process.kill_now();
-    if (w.imaging) {
-      images_lost(*w.imaging, fmt::format("heatmaps not written: not done after {} s "
-                                          "(--timeout); worker killed",
-                                          s_.timeout));
-      w.imaging.reset();
-    } else if (w.identifying) {
-      w.identifying = false;
-      model_chosen(fallback_model(o_, fmt::format("no answer after {} s; worker killed", startup)));
-    } else if (w.job) {
-      finish(*w.job, unfinished_result(
-                         *cases_[*w.job], Status::timeout,
+    const WorkerState was = std::exchange(w.state, state::Ended{});
+    std::visit(
+        PerState{
+            [&](state::Starting) {
+              throw InputError(fmt::format("a GL worker took over {} s to make a GL context",
+                                           startup_seconds()));
+            },
+            [&](state::Identifying) {
+              model_chosen(fallback_model(
+                  o_, fmt::format("no answer after {} s; worker killed", startup_seconds())));
+            },
+            [&](state::Checking checking) {
+              finish(checking.job,
+                     unfinished_result(
+                         *cases_[checking.job], Status::timeout,
                          fmt::format("no result after {} s (--timeout); worker killed", s_.timeout),
                          seconds_since(w.started)));
-    } else {
-      throw InputError(fmt::format("a GL worker took over {} s to make a GL context", startup));
-    }
+            },
+            [&](state::Imaging imaging) {
+              images_lost(imaging.job, fmt::format("heatmaps not written: not done after {} s "
+                                                   "(--timeout); worker killed",
+                                                   s_.timeout));
+            },
+            [](state::Idle) {},
+            [](state::Ended) {},
+        },
+        was);
     if (!queue_.empty()) start(w, k);
   }
 }
@@ -202,10 +224,9 @@ void Pool::check_deadlines() {
 // Ends a worker: closing its input makes it exit; `now` kills it instead.
 void Pool::stop(Worker& w, bool now) {
   if (!w.process.running()) return;
-  if (now)
-    w.process.kill_now();
-  else
-    w.process.finish();
+  if (!now) return w.process.finish();
+  w.process.kill_now();
+  w.state = worker_state::Ended{};
 }
 
 void Pool::finish(size_t k, CaseResult r) {
@@ -224,18 +245,18 @@ void run_in_workers(const std::vector<const Case*>& cases, const Options& o,
   // A worker that dies while we write to it must not take the runner with it.
   signal(SIGPIPE, SIG_IGN);
   std::filesystem::create_directories(s.log_dir);
-  Pool pool(cases, o, s, on_start, on_result);
+  Pool pool(cases, o, s, on_start, on_result, PoolLifetime::queue);
   pool.run();
 }
 
-WorkerSession::WorkerSession(const Options& o, const WorkerSettings& s, OnStart on_start)
-    : o_(o), s_(s), on_start_(std::move(on_start)) {
+WorkerSession::WorkerSession(const Options& o, const WorkerSettings& s, OnStart on_start) {
   signal(SIGPIPE, SIG_IGN);
-  std::filesystem::create_directories(s_.log_dir);
-  on_result_ = [this](size_t k, CaseResult r) {
+  std::filesystem::create_directories(s.log_dir);
+  auto on_result = [this](size_t k, CaseResult r) {
     if (k >= offset_ && k - offset_ < results_.size()) results_[k - offset_] = std::move(r);
   };
-  pool_ = std::make_unique<Pool>(std::vector<const Case*>{}, o_, s_, on_start_, on_result_, true);
+  pool_ = std::make_unique<Pool>(std::vector<const Case*>{}, o, s, std::move(on_start),
+                                 std::move(on_result), PoolLifetime::persistent);
 }
 
 WorkerSession::~WorkerSession() = default;

@@ -1,4 +1,4 @@
-#include "cli/process.hpp"
+#include "cli/workers/process.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -184,8 +184,8 @@ std::string ChildProcess::wait() {
 }
 
 void ChildProcess::kill_now() {
-  // Its whole process group: a wrapper (cli/workers.hpp) and the worker it started. The child
-  // itself too, should it be killed before its setpgid.
+  // Its whole process group: a wrapper (cli/workers/workers.hpp) and the worker it started. The
+  // child itself too, should it be killed before its setpgid.
   kill(-pid_, SIGKILL);
   kill(pid_, SIGKILL);
   waitpid(pid_, nullptr, 0);

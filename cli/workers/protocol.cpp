@@ -1,4 +1,4 @@
-#include "cli/worker_protocol.hpp"
+#include "cli/workers/protocol.hpp"
 
 #include <stdexcept>
 

@@ -1,5 +1,5 @@
-// The messages between `run` and its workers (cli/workers.hpp has the protocol), written and
-// read in one place so the two sides cannot drift: GL's description in the worker's hello, a
+// The messages between `run` and its workers (cli/workers/workers.hpp has the protocol), written
+// and read in one place so the two sides cannot drift: GL's description in the worker's hello, a
 // job line, and the result a case gets when its worker gave none.
 #pragma once
 
