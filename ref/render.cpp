@@ -1,7 +1,7 @@
 // The frame: every triangle, in primitive order, classified and drawn pixel by pixel. The work
 // about a triangle that does not depend on the pixel (setup, freedom, planes, allowances) is
-// prepared once, on several threads, for a chunk of triangles at a time; then bands of rows
-// (tiles.hpp) draw the chunk on several threads, each band every triangle of the chunk in
+// prepared once, on several threads, for a chunk of triangles at a time; then tiles of rows
+// (tiles.hpp) draw the chunk on several threads, each tile every triangle of the chunk in
 // order, so a pixel sees the same triangles in the same order on any number of threads.
 #include <algorithm>
 #include <cmath>
@@ -55,7 +55,7 @@ struct Settings {
 using CandidateMap = std::map<size_t, std::vector<Candidate>>;
 
 // One triangle, ready to draw: everything about it that does not depend on the pixel. Read
-// only once built, so that every band may draw it at once.
+// only once built, so that every tile may draw it at once.
 struct Prepared {
   Prepared(const Settings& s, const TriangleSetup& setup, const std::array<bool, 3>& shared_edges)
       : t(setup), shared(shared_edges), coverage(setup, s.m, s.edges) {
@@ -447,10 +447,10 @@ class FrameBlocks {
   std::vector<float> block_values_;
 };
 
-// Draws triangle p's rows [band.y0, band.y1] into r: the edge bits of the pixels it may reach,
+// Draws triangle p's rows [tile.y0, tile.y1] into r: the edge bits of the pixels it may reach,
 // then the fragments it covers, depth-tested, with their allowances and the candidates. With an
 // AVX2 copy (core/vector_clones.hpp): the spans' ceil and floor are an instruction each there.
-GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, Band band,
+GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, Tile tile,
                                   Reference& r, CandidateMap& candidates) {
   const TriangleSetup& t = w.t;
   Frame& f = r.frame;
@@ -467,11 +467,11 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
     frame_blocks.emplace(s, w, p, f);
 
   if (w.eye)
-    mark_unstable(s.viewport.x0, std::max(band.y0, s.viewport.y0), s.viewport.x1,
-                  std::min(band.y1, s.viewport.y1), s.row0, f, r.edges);
-  // Rows [cy0, cy1]: those of the band the triangle may cover.
+    mark_unstable(s.viewport.x0, std::max(tile.y0, s.viewport.y0), s.viewport.x1,
+                  std::min(tile.y1, s.viewport.y1), s.row0, f, r.edges);
+  // Rows [cy0, cy1]: those of the tile the triangle may cover.
   const bool draws = t.drawn && !t.box.empty();
-  const int cy0 = std::max(band.y0, t.box.y0), cy1 = std::min(band.y1, t.box.y1);
+  const int cy0 = std::max(tile.y0, t.box.y0), cy1 = std::min(tile.y1, t.box.y1);
   auto add = [&](int px, int py) {
     if (blocks)
       blocks->add(px, py);
@@ -483,7 +483,7 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
     if (frame_blocks) frame_blocks->flush();
   };
   // Without edge bits, a walked triangle needs no spans: its runs are exact. Walked down its
-  // columns where they are fewer than its rows in the band (a thin triangle nearer vertical: a
+  // columns where they are fewer than its rows in the tile (a thin triangle nearer vertical: a
   // pixel or none a row, where a column has several), else along its rows, each line's run at
   // once; over the columns that can hold its pixels of these rows, not the whole box.
   if (!s.edges && draws && cy0 <= cy1) {
@@ -527,7 +527,7 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, B
   // ORs edge bits and drawing never reads them, so one span per row serves both, in one pass.
   // The span holds every pixel the triangle covers, so a walked row's run is cut to it for
   // nothing: the same pixels either way.
-  const int y0 = std::max(band.y0, w.reach.y0), y1 = std::min(band.y1, w.reach.y1);
+  const int y0 = std::max(tile.y0, w.reach.y0), y1 = std::min(tile.y1, w.reach.y1);
   const CoverageTest::RowSpans spans =
       w.coverage.row_spans(w.reach_px, w.reach.x0, w.reach.x1, y0, y1);
   for (int py = y0; py <= y1; ++py) {
@@ -661,7 +661,7 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   SharedEdges groups = edges ? shared_edge_groups(setups, threads) : SharedEdges(setups.size());
   const std::vector<std::array<bool, 3>> shared = shared_flags(groups);
 
-  const std::vector<Band> rows = bands(s.viewport.y0, s.viewport.y1, threads);
+  const std::vector<Tile> rows = tiles(s.viewport.y0, s.viewport.y1, threads);
   std::vector<CandidateMap> candidates(rows.size());
   // A chunk of triangles prepared at a time: their work held at once, not the whole case's.
   constexpr int kChunk = 512;
@@ -716,10 +716,10 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
     release(setups, pool);
   }
   clear_uncovered(r, pool);
-  // Bands in order, each in pixel order: the candidates sorted by pixel, as with one band.
+  // Tiles in order, each in pixel order: the candidates sorted by pixel, as with one tile.
   // (Only with an allowance are there any.)
-  for (CandidateMap& band : candidates)
-    for (auto& [i, list] : band) {
+  for (CandidateMap& tile : candidates)
+    for (auto& [i, list] : tile) {
       if (list.empty()) continue;
       r.edges[i] |= edge::depth_order;
       for (Candidate& k : list)

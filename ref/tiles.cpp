@@ -4,12 +4,12 @@
 
 namespace glrc::ref {
 
-std::vector<Band> bands(int y0, int y1, int threads) {
-  std::vector<Band> out;
+std::vector<Tile> tiles(int y0, int y1, int threads) {
+  std::vector<Tile> out;
   const int rows = y1 - y0 + 1;
   if (rows <= 0) return out;
-  // Four bands per thread balance an uneven scene; bands of fewer than 8 rows cost more in
-  // per-band overhead (each walks every triangle's list) than they gain.
+  // Four tiles per thread balance an uneven scene; tiles of fewer than 8 rows cost more in
+  // per-tile overhead (each walks every triangle's list) than they gain.
   const int count = std::clamp(std::min(4 * threads, rows / 8), 1, rows);
   for (int k = 0; k < count; ++k)
     out.push_back(

@@ -25,7 +25,7 @@ namespace {
 TEST(Tiles, BandsCoverEveryRowOnceInOrder) {
   for (int threads : {1, 2, 5, 64})
     for (auto [y0, y1] : {std::pair{0, 0}, {0, 7}, {3, 1002}, {0, 4095}}) {
-      const std::vector<Band> b = bands(y0, y1, threads);
+      const std::vector<Tile> b = tiles(y0, y1, threads);
       ASSERT_FALSE(b.empty());
       EXPECT_EQ(b.front().y0, y0);
       EXPECT_EQ(b.back().y1, y1);
@@ -37,7 +37,7 @@ TEST(Tiles, BandsCoverEveryRowOnceInOrder) {
       }
       EXPECT_LE(int(b.size()), std::max(1, 4 * threads));
     }
-  EXPECT_TRUE(bands(5, 4, 2).empty());
+  EXPECT_TRUE(tiles(5, 4, 2).empty());
 }
 
 TEST(Tiles, ParallelForRunsEveryItemOnce) {
