@@ -224,7 +224,7 @@ void Loader::load_triangles(const CaseJson* list, Case& c) const {
   }
   if (!list->is_array() || list->empty())
     r_.fail("triangles", "a non-empty array of [i, j, k] index triples", Reader::describe(*list));
-  const std::string what = "an index in 0.." + std::to_string(n - 1);
+  const std::string what = "an integer index in 0.." + std::to_string(n - 1);
   for (size_t t = 0; t < list->size(); ++t) {
     const std::string path = path_index("triangles", t);
     const CaseJson& tri = (*list)[t];

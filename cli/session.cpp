@@ -185,11 +185,14 @@ std::map<std::string, std::string> verdict_inputs(const Options& o) {
 
 Baseline load_baseline(const Options& o) {
   if (o.baseline.empty()) return {};
+  Baseline b;
   try {
-    return report::read_baseline(o.baseline);
+    b = report::read_baseline(o.baseline);
   } catch (const std::runtime_error& e) {
     throw InputError(e.what());
   }
+  if (const std::string note = report::ignored_note(b); !note.empty()) fmt::print("{}\n", note);
+  return b;
 }
 
 void to_json(nlohmann::json& j, const Options& o) {

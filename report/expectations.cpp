@@ -78,12 +78,17 @@ Baseline read_baseline(const std::filesystem::path& file) {
     constexpr std::array<const char*, 4> kExpectations = {"Fail", "Crash", "Timeout", "Error"};
     constexpr std::array<const char*, 4> kNoExpectation = {"Pass", "Skip", "Flake",
                                                            "UnexpectedPass"};
-    if (std::find(kNoExpectation.begin(), kNoExpectation.end(), status) != kNoExpectation.end())
+    if (std::find(kNoExpectation.begin(), kNoExpectation.end(), status) != kNoExpectation.end()) {
+      if ((status == "Skip" || status == "Flake") && b.skip_or_flake_lines++ == 0)
+        b.first_skip_or_flake = where + shown(name) + "," + status;
       continue;
+    }
     if (std::find(kExpectations.begin(), kExpectations.end(), status) == kExpectations.end())
       throw std::runtime_error(
-          where + "expected a status of Fail, Crash, Timeout or Error, got \"" + shown(status) +
-          "\"" +
+          where +
+          "expected a status of Fail, Crash, Timeout or Error (or Pass, Skip, Flake or "
+          "UnexpectedPass, as a results.csv has them, which expect nothing), got \"" +
+          shown(status) + "\"" +
           (status == "ExpectedFail" ? " (ExpectedFail says that a case failed, not how: write "
                                       "its outcome)"
                                     : ""));
@@ -91,6 +96,17 @@ Baseline read_baseline(const std::filesystem::path& file) {
   }
   if (in.bad()) throw std::runtime_error(file.string() + ": cannot read the baseline file");
   return b;
+}
+
+std::string ignored_note(const Baseline& b) {
+  if (b.skip_or_flake_lines == 0) return "";
+  const size_t more = b.skip_or_flake_lines - 1;
+  return "note: " + b.first_skip_or_flake +
+         (more ? " (and " + std::to_string(more) + " more Skip or Flake line" +
+                     (more == 1 ? "" : "s") + ")"
+               : "") +
+         ": a baseline lists expected failures; it expects no skip or flake and ignores such "
+         "lines (--skips and --flakes take patterns of cases to skip or to let flake)";
 }
 
 void apply(const Baseline& b, CaseResult& r) {

@@ -18,11 +18,19 @@ namespace glrc::report {
 
 struct Baseline {
   std::map<std::string, std::string> expected;  // case name -> status as written ("Fail")
+  // Lines that say Skip or Flake: a baseline expects no skip or flake of them (--skips and
+  // --flakes do), so a person who wrote one is told (ignored_note). How many, and the first.
+  size_t skip_or_flake_lines = 0;
+  std::string first_skip_or_flake;  // "file:line: case,Status"
 };
+
+// One line for a baseline that holds Skip or Flake lines, which it ignores; "" for none.
+std::string ignored_note(const Baseline& b);
 
 // Throws std::runtime_error with "<file>:<line>: expected `case,Status`, got ..." on bad input.
 // Statuses Fail, Crash, Timeout and Error are expectations; Pass, Skip, Flake and UnexpectedPass
-// (lines of a results.csv or failures.csv) expect nothing and are ignored.
+// (lines of a results.csv or failures.csv) expect nothing and are ignored (Skip and Flake lines
+// counted in Baseline::skip_or_flake_lines).
 Baseline read_baseline(const std::filesystem::path& file);
 
 // Applies the baseline to a result: a listed case with the listed status becomes ExpectedFail, a

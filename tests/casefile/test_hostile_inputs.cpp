@@ -80,6 +80,20 @@ TEST_F(CaseFileTest, HugeNumberInAnIntegerFieldExpectsAnInteger) {
       file +
           ": varyings[0].size: expected an integer in 1..4, got 1e400 (beyond the range "
           "of a double)");
+  // The twelfth hostile campaign (issue 45): an integral value written as a float was quoted
+  // inside the range the message asked for ("expected an index in 0..2, got 2.0"); 1e-400
+  // (read as 0.0) too. Such a number is no integer as written, and the message says so.
+  for (const char* index : {"2.0", "2e0", "1e-400"})
+    EXPECT_EQ(
+        error_of(R"({"description": "d", )" + tri + R"(, "triangles": [[0, 1, )" + index + "]]}"),
+        file + ": triangles[0][2]: expected an integer index in 0..2, got " +
+            (std::string(index) == "1e-400" ? "0.0" : "2.0") +
+            " (written with a decimal point or an exponent: not an integer)");
+  EXPECT_EQ(
+      error_of(R"({"description": "d", "framebuffer": {"width": 64.0, "height": 8}, )" + tri + "}"),
+      file +
+          ": framebuffer.width: expected an integer in 1..4096, got 64.0 (written with a "
+          "decimal point or an exponent: not an integer)");
   // A float field keeps the float32 expectation.
   EXPECT_EQ(error_of(R"({"description": "d", "vertices": [{"clip": [1e400, -1, 0, 1]}]})"),
             file +

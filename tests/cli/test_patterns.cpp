@@ -214,3 +214,43 @@ TEST(EglDriver, AnUnknownDriverIsNamed) {
 
 }  // namespace
 }  // namespace glrc::cli
+
+// The twelfth hostile campaign (issue 45): `case,Skip` in a baseline was accepted and did
+// nothing, without a word, and an unknown status was refused naming only the four expected
+// failures. Skip and Flake lines now get one note (run, selftest and fuzz print it); Pass and
+// UnexpectedPass lines (a results.csv as a baseline) none; the refusal names every status.
+TEST(Patterns, ABaselinesSkipOrFlakeLinesAreIgnoredWithANote) {
+  const fs::path d = temp_dir("skip_lines");
+  const std::string file = (d / "known.txt").string();
+  std::ofstream(file) << "a,Pass\nb,UnexpectedPass\nc,Fail\n";
+  EXPECT_EQ(report::ignored_note(report::read_baseline(file)), "");
+  std::ofstream(file) << "a,Pass\nclip_noperspective_x_plane,Skip\nc,Fail\nd,Flake\ne,Flake\n";
+  const report::Baseline b = report::read_baseline(file);
+  EXPECT_EQ(b.expected, (std::map<std::string, std::string>{{"c", "Fail"}}));
+  EXPECT_EQ(report::ignored_note(b),
+            "note: " + file +
+                ":2: clip_noperspective_x_plane,Skip (and 2 more Skip or Flake lines): a baseline "
+                "lists expected failures; it expects no skip or flake and ignores such lines "
+                "(--skips and --flakes take patterns of cases to skip or to let flake)");
+  std::ofstream(file) << "a,Skipped\n";
+  try {
+    report::read_baseline(file);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file +
+                  ":1: expected a status of Fail, Crash, Timeout or Error (or Pass, Skip, Flake "
+                  "or UnexpectedPass, as a results.csv has them, which expect nothing), got "
+                  "\"Skipped\"");
+  }
+  // As a user meets it: the run says so, and the case still fails.
+  std::ofstream(file) << "clip_noperspective_x_plane,Skip\n";
+  const auto r =
+      test::glrefcheck("run --filter 'clip_noperspective_x_plane$' --jobs 1 --baseline '" + file +
+                       "' --out '" + (d / "out").string() + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("note: " + file + ":1: clip_noperspective_x_plane,Skip: a baseline lists"),
+            std::string::npos)
+      << r.out;
+  fs::remove_all(d);
+}
