@@ -18,8 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/fuzz.hpp"
-#include "cli/workers/process.hpp"
 #include "cli/session.hpp"
+#include "cli/workers/process.hpp"
 #include "core/text.hpp"
 #include "image_io/glrc_images.h"
 #include "report/report.hpp"

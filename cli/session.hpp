@@ -82,8 +82,8 @@ struct Options {
   // Threads drawing the reference: 0 for the default, every core this process may use (`run`:
   // the cores shared among its workers). How, not what: --resume takes it from its own line.
   int threads = 0;
-  // A command the workers run under (cli/workers/workers.hpp WorkerSettings::wrapper); "" for none. How
-  // the run is carried out, not what it checks: --resume takes it from its own command line.
+  // A command the workers run under (cli/workers/workers.hpp WorkerSettings::wrapper); "" for none.
+  // How the run is carried out, not what it checks: --resume takes it from its own command line.
   std::string worker_wrapper;
   // Sharding as deqp-runner does it: every `fraction`-th case, starting at `fraction_start`
   // (1-based, like GitLab's CI_NODE_INDEX).

@@ -227,9 +227,10 @@ void Reader::check_keys(const J& obj, const std::string& path,
 template <class J>
 long long Reader::integer(const J& v, const std::string& path, long long lo, long long hi,
                           const std::string& what) const {
-  // A number written with a fraction or an exponent is no integer, whatever its value: said so,
-  // since "expected an integer in 0..2, got 2.0" reads as a contradiction.
-  if (v.is_number_float())
+  // A number written with a fraction or an exponent is no integer, whatever its value: said so
+  // where the value is whole, since "expected an integer in 0..2, got 2.0" reads as a
+  // contradiction.
+  if (v.is_number_float() && std::trunc(v.template get<double>()) == v.template get<double>())
     fail(path, what,
          describe(v) + " (written with a decimal point or an exponent: not an integer)");
   if (!v.is_number_integer()) fail(path, what, got(v));

@@ -212,9 +212,6 @@ TEST(EglDriver, AnUnknownDriverIsNamed) {
   fs::remove_all(temp_dir("bogus"));
 }
 
-}  // namespace
-}  // namespace glrc::cli
-
 // The twelfth hostile campaign (issue 45): `case,Skip` in a baseline was accepted and did
 // nothing, without a word, and an unknown status was refused naming only the four expected
 // failures. Skip and Flake lines now get one note (run, selftest and fuzz print it); Pass and
@@ -254,3 +251,6 @@ TEST(Patterns, ABaselinesSkipOrFlakeLinesAreIgnoredWithANote) {
       << r.out;
   fs::remove_all(d);
 }
+
+}  // namespace
+}  // namespace glrc::cli

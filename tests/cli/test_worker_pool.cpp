@@ -9,8 +9,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "cli/workers/process.hpp"
 #include "cli/workers/pool.hpp"
+#include "cli/workers/process.hpp"
 #include "cli/workers/workers.hpp"
 #include "report/report.hpp"
 #include "tests/support/temp_dir_test.hpp"

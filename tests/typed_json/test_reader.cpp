@@ -95,6 +95,11 @@ TEST(Reader, IntegersInRanges) {
             "f.json: w: expected an integer in 1..4096, got 4097");
   EXPECT_EQ(error_of([] { full.integer(json(1.5), "w", 1, 4096, "an integer in 1..4096"); }),
             "f.json: w: expected an integer in 1..4096, got 1.5");
+  // A whole value written as a float is no integer either, and the message says why (the
+  // twelfth hostile campaign of issue 45: "expected an integer in 1..4096, got 64.0").
+  EXPECT_EQ(error_of([] { full.integer(json(64.0), "w", 1, 4096, "an integer in 1..4096"); }),
+            "f.json: w: expected an integer in 1..4096, got 64.0 (written with a decimal point or "
+            "an exponent: not an integer)");
   // Out of range says what came in the brief wording too.
   EXPECT_EQ(error_of([] { brief.integer(json(0), "run.fraction", 1, 9, "an integer >= 1"); }),
             "r.json: run.fraction: expected an integer >= 1, got 0");
