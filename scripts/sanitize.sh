@@ -2,10 +2,14 @@
 # Builds everything with AddressSanitizer and UndefinedBehaviorSanitizer (into build-asan/)
 # and runs the whole test suite under them. Mesa's own leaks at exit (its libraries are not
 # instrumented) are suppressed by tests/sanitizers/lsan.supp; nothing of ours is.
+# Built with Clang (RelWithDebInfo): the whole tree's Clang build, beside the GCC one of
+# scripts/test.sh, and at less than half GCC's time with the sanitizers (cli/fuzz.cpp: 18 s
+# against 44 s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${GLRC_SANITIZE_BUILD_DIR:-build-asan}
-GLRC_BUILD_DIR=$build GLRC_CMAKE_ARGS="-DGLRC_SANITIZE=address,undefined -DGLRC_FLAG_VARIANTS=OFF ${GLRC_CMAKE_ARGS:-}" \
+CC=${GLRC_SANITIZE_CC:-clang} CXX=${GLRC_SANITIZE_CXX:-clang++} GLRC_BUILD_DIR=$build \
+  GLRC_CMAKE_ARGS="-DGLRC_SANITIZE=address,undefined -DGLRC_FLAG_VARIANTS=OFF ${GLRC_CMAKE_ARGS:-}" \
   scripts/build.sh
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=0
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizers/lsan.supp:print_suppressions=0

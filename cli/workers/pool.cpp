@@ -23,6 +23,9 @@ template <class... Handlers>
 struct PerState : Handlers... {
   using Handlers::operator()...;
 };
+// Clang 14 deduces no aggregate's template arguments (C++20's P1816) without a guide.
+template <class... Handlers>
+PerState(Handlers...) -> PerState<Handlers...>;
 
 }  // namespace
 

@@ -251,7 +251,10 @@ TEST_F(Forged, EditsUnderAStampAreRefused) {
         {"tolerance", "\"tolerance\":\"spec\"", "\"tolerance\":\"exact\""},
         {"model", "\"planes\":\"unsnapped\"", "\"planes\":\"snapped\""}}) {
     SCOPED_TRACE(name);
-    const fs::path d = resumed_journal(name, [&](std::string& s) { replaced(s, from, to); });
+    // Copies: Clang 14 captures no structured binding in a lambda.
+    const std::string old_text = from, new_text = to;
+    const fs::path d =
+        resumed_journal(name, [&](std::string& s) { replaced(s, old_text, new_text); });
     const Outcome resumed = glrefcheck("run --resume '" + d.string() + "'");
     expect_one_line(resumed,
                     "expected the line as glrefcheck wrote it after the line before, got one its "
@@ -552,7 +555,9 @@ TEST_F(Forged, CaseNamesRunRefusesAndShardsJudgedByAnotherToleranceAreNamed) {
                                          {"comma", "face,on", "a comma"},
                                          {"line_break", "face\non", "a line break"}}) {
     SCOPED_TRACE(name);
-    const fs::path forged = forged_results(name, [&](json& j) { j["cases"][0]["name"] = bad; });
+    const std::string bad_name = bad;  // a copy: Clang 14 captures no structured binding
+    const fs::path forged =
+        forged_results(name, [&](json& j) { j["cases"][0]["name"] = bad_name; });
     expect_one_line(glrefcheck("compare " + run + " '" + forged.string() + "'"),
                     std::string("cases[0].name: expected a case name fit for results.csv (it "
                                 "holds ") +
