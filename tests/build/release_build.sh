@@ -4,12 +4,9 @@
 # -Wrestrict inside std::string in report/ (growth_text, now in comparison_sections.cpp) and
 # casefile/ once broke `cmake -DCMAKE_BUILD_TYPE=Release`). Configures SOURCE into BUILD twice: with the defaults
 # (GLRC_WERROR must be OFF), then with -Werror, and builds glrefcheck (every library and the CLI).
-# When the tree under test (TESTED, its build folder) is itself such a build (Release, -Werror,
-# the same compiler: CI's, .ci/run), building it again would prove nothing more: only the default
-# is checked then.
-#   release_build.sh SOURCE BUILD CXX [TESTED]
+#   release_build.sh SOURCE BUILD CXX
 set -euo pipefail
-source=$1 build=$2 cxx=$3 tested=${4:-}
+source=$1 build=$2 cxx=$3
 rm -rf "$build"
 configure() {
   cmake -S "$source" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER="$cxx" \
@@ -19,12 +16,6 @@ configure() {
 configure
 werror=$(sed -n 's/^GLRC_WERROR:BOOL=//p' "$build/CMakeCache.txt")
 [ "$werror" = OFF ] || { echo "GLRC_WERROR defaults to '$werror', expected OFF"; exit 1; }
-cached() { sed -n "s/^$1:[A-Z]*=//p" "$tested/CMakeCache.txt" 2>/dev/null; }
-if [ -n "$tested" ] && [ "$(cached CMAKE_BUILD_TYPE)" = Release ] && [ "$(cached GLRC_WERROR)" = ON ] &&
-  [ "$(cached CMAKE_CXX_COMPILER)" = "$cxx" ]; then
-  echo "the tree under test ($tested) is a Release build of glrefcheck with -Werror: clean"
-  exit 0
-fi
 configure -DGLRC_WERROR=ON
 cmake --build "$build" --target glrefcheck -j "$(nproc)" >"$build.build.log" 2>&1 ||
   { grep -E "error|warning" "$build.build.log" | head -20; exit 1; }
