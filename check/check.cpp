@@ -127,9 +127,9 @@ size_t frame_bytes(const Case& c) {
          (3 + size_t(std::max(c.component_count(), 0))) * 4;
 }
 
-int band_rows(const Case& c, const CheckOptions& o) {
+int slice_rows(const Case& c, const CheckOptions& o) {
   const size_t row_bytes = std::max<size_t>(frame_bytes(c) / size_t(std::max(c.fb_height, 1)), 1);
-  return int(std::clamp<size_t>(o.band_bytes / row_bytes, 1, size_t(std::max(c.fb_height, 1))));
+  return int(std::clamp<size_t>(o.slice_bytes / row_bytes, 1, size_t(std::max(c.fb_height, 1))));
 }
 
 Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_bits, int y0,
@@ -139,42 +139,42 @@ Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_
 
 namespace {
 
-// Bands of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
-// are guessed (compare::Comparator::add_floor_sample): kSampleBands of them, about twice the
+// Slices of rows [y0, y0 + rows) spread evenly over a streamed frame, from which its floors
+// are guessed (compare::Comparator::add_floor_sample): kSampleSlices of them, about twice the
 // fewest runs of compare::RunGrid::kRun pixels a guess is made from, none where that is more than
 // an eighth of the frame. Sixty-four places, not thirty-two: the 4096x4096 scene's guess from 32
-// bands of four rows did not hold (its stream compared twice), from 64 of two it did.
-std::vector<std::pair<int, int>> floor_sample_bands(const Case& c) {
-  constexpr int kSampleBands = 64;
+// slices of four rows did not hold (its stream compared twice), from 64 of two it did.
+std::vector<std::pair<int, int>> floor_sample_slices(const Case& c) {
+  constexpr int kSampleSlices = 64;
   constexpr size_t kRuns = 2 * compare::kFewestFloorSamples;
   const int runs_per_row = compare::RunGrid{c.fb_width, c.fb_height}.whole_runs_per_row();
   if (runs_per_row <= 0 || c.fb_height <= 0) return {};
   const int rows = int((kRuns + size_t(runs_per_row) - 1) / size_t(runs_per_row));
   if (int64_t(rows) * 8 > c.fb_height) return {};
-  const int bands = std::min(kSampleBands, rows);
-  const int height = (rows + bands - 1) / bands;
+  const int slices = std::min(kSampleSlices, rows);
+  const int height = (rows + slices - 1) / slices;
   std::vector<std::pair<int, int>> out;
-  for (int b = 0; b < bands; ++b) {
-    const int middle = int((2 * int64_t(b) + 1) * c.fb_height / (2 * bands));
+  for (int b = 0; b < slices; ++b) {
+    const int middle = int((2 * int64_t(b) + 1) * c.fb_height / (2 * slices));
     out.emplace_back(std::clamp(middle - height / 2, 0, c.fb_height - height), height);
   }
   return out;
 }
 
-// Band by band: GL draws once, then for each band the reference renders its rows (with its
+// Slice by slice: GL draws once, then for each slice the reference renders its rows (with its
 // allowances deferred where CheckOptions::deferred_allowance asks and that pays), GL's are read
-// back (glReadPixels of the band) and both are compared; GL's band is then digested on a thread
-// of its own while the next band is drawn, read and compared (the digest is one SHA-256 stream
-// in row order, which nothing else of a band needs). At most three bands of GL's frame (one read,
+// back (glReadPixels of the slice) and both are compared; GL's slice is then digested on a thread
+// of its own while the next slice is drawn, read and compared (the digest is one SHA-256 stream
+// in row order, which nothing else of a slice needs). At most three slices of GL's frame (one read,
 // one hashed, one spare) and two of the reference's (one compared, one drawn) are alive at a
-// time. The comparator's floors are guessed first from bands spread over the frame
-// (floor_sample_bands), as a frame compared whole guesses them from a sample of itself: without
+// time. The comparator's floors are guessed first from slices spread over the frame
+// (floor_sample_slices), as a frame compared whole guesses them from a sample of itself: without
 // them, a channel keeps every value until it has a percent of the frame's, and its allowances
 // are computed at every pixel until then (a sixth of the 2048x2048 scene's check). Should the
-// stream not bear them out, its bands are compared again without (GL's frame stays drawn).
+// stream not bear them out, its slices are compared again without (GL's frame stays drawn).
 void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o, int reported,
                     Checked& out) {
-  const int rows = band_rows(c, o);
+  const int rows = slice_rows(c, o);
   const bool deferred = o.deferred_allowance && deferral_pays(c);
   const Tolerance tolerance = tolerance_for(c, o, reported);
   renderer.draw(c);
@@ -185,17 +185,17 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
                     : expectation_rows(c, o, reported, y0, n);
   };
   ref::FrameDigest digest(c.fb_width, c.fb_height);
-  // Declared before the digest's future, whose destructor waits for it: the band it hashes
-  // outlives it, whatever throws. GL's band is read into the buffers of the band before the
-  // last (`spare`), hashed by then: a fresh band's pages are faulted in and zeroed by the kernel
+  // Declared before the digest's future, whose destructor waits for it: the slice it hashes
+  // outlives it, whatever throws. GL's slice is read into the buffers of the slice before the
+  // last (`spare`), hashed by then: a fresh slice's pages are faulted in and zeroed by the kernel
   // (perf: a twentieth of the 2048x2048 scene's check).
   Frame hashing, spare;
   std::future<void> hashed;
-  // Every band compared by `comparator`, and hashed when `hash`. The reference's next band is
-  // drawn while this one is read back and compared, in the buffers of the band before
-  // (`drawn`): a band's drawing has parts on one thread (each triangle set up and prepared),
+  // Every slice compared by `comparator`, and hashed when `hash`. The reference's next slice is
+  // drawn while this one is read back and compared, in the buffers of the slice before
+  // (`drawn`): a slice's drawing has parts on one thread (each triangle set up and prepared),
   // as its reading back has, which the other's work fills.
-  const auto compare_bands = [&](compare::Comparator& comparator, bool hash) {
+  const auto compare_slices = [&](compare::Comparator& comparator, bool hash) {
     Expectation drawn;
     std::future<Expectation> next;  // after `drawn`: its destructor waits for the drawing
     const auto draw_next = [&](int y0) {
@@ -220,10 +220,10 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
   };
   std::optional<compare::Comparator> comparator;
   comparator.emplace(c, tolerance, c.fb_width, c.fb_height, o.threads);
-  // One band of the whole frame guesses its floors from itself, and may compare a channel
+  // One slice of the whole frame guesses its floors from itself, and may compare a channel
   // again (compare::Comparator::add_rows).
   const std::vector<std::pair<int, int>> samples =
-      rows < c.fb_height ? floor_sample_bands(c) : std::vector<std::pair<int, int>>{};
+      rows < c.fb_height ? floor_sample_slices(c) : std::vector<std::pair<int, int>>{};
   Expectation sample;
   for (const auto& [y0, n] : samples) {
     sample = draw_rows(y0, n, std::move(sample));
@@ -232,10 +232,10 @@ void check_streamed(const Case& c, gl::Renderer& renderer, const CheckOptions& o
   }
   sample = {};
   comparator->guess_floors();
-  compare_bands(*comparator, true);
+  compare_slices(*comparator, true);
   if (!comparator->floors_held()) {
     comparator.emplace(c, tolerance, c.fb_width, c.fb_height, o.threads);
-    compare_bands(*comparator, false);
+    compare_slices(*comparator, false);
   }
   const std::optional<compare::TraceSource> traces = trace_source(c, renderer, o, reported);
   out.result = comparator->finish(traces ? &*traces : nullptr);

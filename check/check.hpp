@@ -48,19 +48,19 @@ struct CheckOptions {
   // Threads drawing the reference (ref::render) and judging the channels (compare::compare); the
   // same bits for any number; 0: every core this process may use.
   int threads = 1;
-  // A case whose frame (frame_bytes) is larger than this is checked band of rows by band of
-  // rows (streamed): the reference rendered, GL's frame read back and the two compared one band
+  // A case whose frame (frame_bytes) is larger than this is checked slice of rows by slice of
+  // rows (streamed): the reference rendered, GL's frame read back and the two compared one slice
   // at a time, so that neither is held whole. Same verdict and statistics, bit for bit; no
   // frames are kept (Checked::streamed: report::write_streamed_diff_images makes the heatmaps
-  // from the bands again). Not with a driver model.
+  // from the slices again). Not with a driver model.
   size_t whole_frame_bytes = size_t(256) << 20;
-  // About how many bytes of frame one band of a streamed case holds.
-  size_t band_bytes = size_t(16) << 20;
+  // About how many bytes of frame one slice of a streamed case holds.
+  size_t slice_bytes = size_t(16) << 20;
   // The reference's component allowances computed only where the comparison needs them
   // (ref::render_deferred), in a case where that pays (deferral_pays): the same verdict and
   // statistics, bit for bit, in less time; Checked::reference then holds them deferred
   // (complete_allowance fills them in for a heatmap). Not with a driver model. A streamed case
-  // defers them band by band (ref::render_rows_deferred).
+  // defers them slice by slice (ref::render_rows_deferred).
   bool deferred_allowance = false;
 };
 
@@ -75,9 +75,9 @@ bool deferral_pays(const Case& c);
 // The bytes of one Frame of case c: every pixel's primitive, depth, fragment count and
 // components, 4 bytes each.
 size_t frame_bytes(const Case& c);
-// The rows of one band of a streamed case: about o.band_bytes of frame, at least 1, at most
+// The rows of one slice of a streamed case: about o.slice_bytes of frame, at least 1, at most
 // the framebuffer's height.
-int band_rows(const Case& c, const CheckOptions& o);
+int slice_rows(const Case& c, const CheckOptions& o);
 // Rows [y0, y0 + rows) of expectation_for (no driver model): ref::render_rows.
 Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_bits, int y0,
                              int rows);
@@ -136,7 +136,7 @@ struct Checked {
   CaseResult result;
   Expectation reference;
   Frame gl;
-  bool streamed = false;  // checked band by band: no frames kept
+  bool streamed = false;  // checked slice by slice: no frames kept
 };
 
 // Renders `c` on the reference and on `renderer`, and compares them. A GL error drawing this
@@ -145,7 +145,7 @@ struct Checked {
 // `last`: the previous case's Checked, whose frames' buffers this case's frames reuse where
 // they are large enough (Frame::reset), so that a caller checking case after case (a worker)
 // does not have the kernel fault in and zero fresh memory for every case; the same result
-// and frames, bit for bit, as without. A streamed case frees them first: its bands need none.
+// and frames, bit for bit, as without. A streamed case frees them first: its slices need none.
 Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOptions& o,
                           Checked last = {});
 // The same, the verdict only.

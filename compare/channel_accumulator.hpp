@@ -25,7 +25,7 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The running figures of one channel: plain numbers, which a channel's loop keeps in a local
 // copy (registers, where the accumulator's members would be stored and reloaded per pixel)
-// and hands back after each band. Every sum still runs in pixel order.
+// and hands back after each slice. Every sum still runs in pixel order.
 struct Tally {
   uint64_t compared = 0, differing = 0, over_tolerance = 0, non_finite = 0, finite = 0;
   double sum = 0, sum_sq = 0, max_abs = 0, max_ulps = 0, max_ratio = 0;

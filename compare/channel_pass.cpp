@@ -1,4 +1,4 @@
-// The values of one channel in a band (Comparator::add_channel): the comparator's inner loop,
+// The values of one channel in a slice (Comparator::add_channel): the comparator's inner loop,
 // run by run (channel_accumulator.hpp's kernels) where a run allows, pixel by pixel elsewhere.
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 
 namespace glrc::compare {
 
-// One pass over channel k of a band: what add_channel's loop reads, taken once, and the loop's
+// One pass over channel k of a slice: what add_channel's loop reads, taken once, and the loop's
 // steps. Lives for one add_channel call; its tally is the channel's, copied in and back out.
 class Comparator::ChannelPass {
  public:

@@ -38,7 +38,7 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
                 (expected.allowed.depth.size() != reference.pixel_count() &&
                  !(expected.deferred && expected.deferred->depth())))))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
-  // A deferred allowance knows the first row of the frame it drew: it must be this band's.
+  // A deferred allowance knows the first row of the frame it drew: it must be this slice's.
   if (expected.deferred && expected.deferred->first_row() != y0)
     throw std::invalid_argument("compare: a deferred allowance drawn for rows from " +
                                 std::to_string(expected.deferred->first_row()) +
@@ -54,13 +54,13 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   // channels share nothing but what they read, so several threads take one each: every
   // channel's figures are the same bits for any number of threads.
   // A frame compared whole guesses its floors from itself, unless they were guessed from
-  // sample bands already (a stream of one band).
+  // sample slices already (a stream of one slice).
   const bool whole = y0 == 0 && reference.height == st.height && !st.floors_guessed;
   parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
     if (whole)
       add_whole_channel(expected, gl, slot - 1);
     else
-      add_band_channel(expected, gl, y0, slot - 1);
+      add_slice_channel(expected, gl, y0, slot - 1);
   });
 }
 
@@ -82,15 +82,15 @@ void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl,
   add_channel(expected, gl, 0, k, known);
 }
 
-void Comparator::add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
+void Comparator::add_slice_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
   State& st = *state_;
   const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
   const DeferredAllowance* deferred = allowance.deferred();
   if (!deferred) return add_channel(expected, gl, y0, k);
-  // The band's bounds as a whole frame's (run_bounds); the largest allowance the channel
-  // certainly has is also the largest of the bands before (the tally's: it only grows). Its
-  // floors are not guessed from the band: a band cannot be compared again should they not hold
-  // (the caller may guess them from sample bands first: guess_floors).
+  // The slice's bounds as a whole frame's (run_bounds); the largest allowance the channel
+  // certainly has is also the largest of the slices before (the tally's: it only grows). Its
+  // floors are not guessed from the slice: a slice cannot be compared again should they not hold
+  // (the caller may guess them from sample slices first: guess_floors).
   ChannelBounds bounds = run_bounds(*deferred, st.plain_runs, st.ulps, expected.frame, k);
   bounds.largest_lo =
       std::max(bounds.largest_lo, st.channels[size_t(k + 1)].tally.largest_allowance_ulps);

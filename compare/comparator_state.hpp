@@ -1,4 +1,4 @@
-// What a Comparator gathers between bands, and what its passes share (internal to compare/).
+// What a Comparator gathers between slices, and what its passes share (internal to compare/).
 #pragma once
 
 #include <algorithm>
@@ -23,7 +23,7 @@ struct Comparator::State {
     r.name = c.name;
     r.description = c.description;
     r.tolerance = t;
-    r.coverage.fragments_checked = true;  // until a band without counts says otherwise
+    r.coverage.fragments_checked = true;  // until a slice without counts says otherwise
     const std::vector<std::string> names = component_names(c);
     for (int k = kDepth; k < int(names.size()); ++k) {
       ChannelAccumulator& acc = channels.emplace_back(size_t(w) * size_t(std::max(h, 0)));
@@ -40,10 +40,10 @@ struct Comparator::State {
   CaseResult r;
   std::vector<ChannelAccumulator> channels;       // depth, then each component
   std::vector<std::optional<double>> fixed_ulps;  // a channel's fixed allowance, if not per pixel
-  // Per pixel of the band add_rows compares: whether its values are compared, and against the
+  // Per pixel of the slice add_rows compares: whether its values are compared, and against the
   // reference's own fragment or a candidate (judged_against), found once for every channel.
   std::vector<uint8_t> judgement;
-  // Per run of ChannelAccumulator::kRun pixels of each row of the band: the primitive when every
+  // Per run of ChannelAccumulator::kRun pixels of each row of the slice: the primitive when every
   // pixel of it is compared against the reference's own fragment of that primitive, else -1 (a
   // row's last, shorter run always: add_run takes whole runs). The same for every channel, so
   // found once.

@@ -52,8 +52,8 @@ CaseResult compare(const Case& c, const Expectation& expected, const Frame& gl,
                    const Tolerance& tolerance, int threads = 1,
                    const TraceSource* traces = nullptr);
 
-// The same comparison, band of rows by band of rows, so that neither frame need be held whole:
-// the result of adding a frame's bands in order, top row of each following the last, is the
+// The same comparison, slice of rows by slice of rows, so that neither frame need be held whole:
+// the result of adding a frame's slices in order, top row of each following the last, is the
 // result of compare() on the whole frames, field for field. Keeps the statistics, the worst
 // pixels, the first coverage mismatches and a percent of each channel's errors (LargestValues),
 // not the frames. c must outlive it.
@@ -66,19 +66,19 @@ class Comparator {
   Comparator& operator=(const Comparator&) = delete;
   // Rows [y0, y0 + expected.frame.height) of both frames: `expected` and `gl` hold only them
   // (frames that wide and that high; pixel indices, Candidate::pixel included, within the
-  // band). y0 must be the row after the previous band's. Throws std::invalid_argument for bands
+  // slice). y0 must be the row after the previous slice's. Throws std::invalid_argument for slices
   // of another shape or out of order.
   void add_rows(const Expectation& expected, const Frame& gl, int y0);
-  // For a frame compared band by band, before its first band: the floors of each channel's
+  // For a frame compared slice by slice, before its first slice: the floors of each channel's
   // largest values guessed from a sample of its rows (as compare() guesses them from a sample of
-  // its whole frame), so that values below them are dropped from the first band on, not only
-  // once as many as a percent of the frame's have been kept. add_floor_sample() takes a band of
+  // its whole frame), so that values below them are dropped from the first slice on, not only
+  // once as many as a percent of the frame's have been kept. add_floor_sample() takes a slice of
   // rows from anywhere in the frame (as add_rows() takes one, its allowance deferred or not),
-  // keeping a sample of its values, not the band; guess_floors() then assumes floors from
-  // every band sampled (none where too little of the sample is plain runs of one primitive).
-  // The stream may not bear a guess out: then floors_held() is false after the last band, and
-  // finish() is not to be trusted: compare the bands again with a fresh Comparator without
-  // guessing. Throws std::logic_error after the first band, std::invalid_argument for a band of
+  // keeping a sample of its values, not the slice; guess_floors() then assumes floors from
+  // every slice sampled (none where too little of the sample is plain runs of one primitive).
+  // The stream may not bear a guess out: then floors_held() is false after the last slice, and
+  // finish() is not to be trusted: compare the slices again with a fresh Comparator without
+  // guessing. Throws std::logic_error after the first slice, std::invalid_argument for a slice of
   // another shape.
   void add_floor_sample(const Expectation& expected, const Frame& gl);
   void guess_floors();
@@ -111,22 +111,22 @@ class Comparator {
  private:
   // finish()'s judging of the pixels count_excused found, by `traces` (the rest untraced).
   void trace_excused(CoverageStats& cov, const TraceSource* traces);
-  // add_rows' first pass: the band's coverage, counted, and which of its pixels each channel's
+  // add_rows' first pass: the slice's coverage, counted, and which of its pixels each channel's
   // pass compares, and against what (coverage_pass.cpp).
   void add_coverage(const Expectation& expected, const Frame& gl, int y0);
-  // The values of channel k (kDepth or a component) in the band add_rows is comparing.
-  // `bounds`: for a component whose allowance is deferred, bounds of it over each of the band's
+  // The values of channel k (kDepth or a component) in the slice add_rows is comparing.
+  // `bounds`: for a component whose allowance is deferred, bounds of it over each of the slice's
   // plain runs (add_whole_channel), or none: every run's allowances are computed.
   void add_channel(const Expectation& expected, const Frame& gl, int y0, int k,
                    ChannelBounds* bounds = nullptr);
-  // add_channel(), for a frame compared whole (one band) after the floors of its largest
+  // add_channel(), for a frame compared whole (one slice) after the floors of its largest
   // values are guessed from a sample (LargestValues::assume_floor), and again without them
   // should the frame not bear them out.
   void add_whole_channel(const Expectation& expected, const Frame& gl, int k);
-  // add_channel() of a band of a frame compared band by band: with a deferred allowance, bounds
-  // of it over the band's plain runs, as add_whole_channel finds them; no floors guessed from
-  // the band (guess_floors guesses them from sample bands).
-  void add_band_channel(const Expectation& expected, const Frame& gl, int y0, int k);
+  // add_channel() of a slice of a frame compared slice by slice: with a deferred allowance, bounds
+  // of it over the slice's plain runs, as add_whole_channel finds them; no floors guessed from
+  // the slice (guess_floors guesses them from sample slices).
+  void add_slice_channel(const Expectation& expected, const Frame& gl, int y0, int k);
   struct State;
   class CoveragePass;  // add_coverage's loop
   class ChannelPass;   // add_channel's loop (channel_pass.cpp)

@@ -1,4 +1,4 @@
-// The coverage of a band (Comparator::add_rows' first pass): which primitive covers each pixel
+// The coverage of a slice (Comparator::add_rows' first pass): which primitive covers each pixel
 // in both frames, the mismatches labelled (coverage_label) and counted, and for every pixel
 // whether its values are compared, and against what, for the channel passes after it.
 #include <algorithm>
@@ -9,10 +9,10 @@
 
 namespace glrc::compare {
 
-// One pass over a band's pixels, on every thread: blocks of rows, each counted apart and added
+// One pass over a slice's pixels, on every thread: blocks of rows, each counted apart and added
 // in order, so that the counts are sums and the first mismatches kept are the first of the
 // blocks' own first ones, in order. Which pixels are compared is kept as one byte per pixel of
-// the band (State::judgement), with the band's plain and own runs (State::plain_runs,
+// the slice (State::judgement), with the slice's plain and own runs (State::plain_runs,
 // State::own_runs); a candidate is looked up again in each channel's pass (rare: only where
 // the depth test's order is free).
 class Comparator::CoveragePass {
@@ -56,7 +56,7 @@ class Comparator::CoveragePass {
     std::vector<State::Excused> excused;
   };
 
-  // Pixel (x, y) of the band: whether its values are compared, and against what; a mismatch
+  // Pixel (x, y) of the slice: whether its values are compared, and against what; a mismatch
   // labelled and counted.
   void judge(int x, int y, Block& block) {
     const size_t i = reference_.index(x, y);
@@ -144,7 +144,7 @@ class Comparator::CoveragePass {
   const RunGrid grid_;
   const PlainlyOwn plainly_own_;
   const bool counts_;  // both frames have fragment counts
-  // State::judgement's data, taken once it has the band's size: a store through the vector
+  // State::judgement's data, taken once it has the slice's size: a store through the vector
   // would load its data pointer again at every pixel.
   uint8_t* judgement_ = nullptr;
 };

@@ -110,7 +110,7 @@ void Comparator::add_floor_sample(const Expectation& expected, const Frame& gl) 
   State& st = *state_;
   const Frame& reference = expected.frame;
   if (st.next_row != 0)
-    throw std::logic_error("Comparator: a floor sample after the first band of " + st.c.name);
+    throw std::logic_error("Comparator: a floor sample after the first slice of " + st.c.name);
   if (reference.width != st.width || gl.width != st.width || gl.height != reference.height ||
       reference.height > st.height || gl.components.size() != reference.components.size() ||
       reference.components.size() != size_t(st.c.component_count()) ||
@@ -154,15 +154,15 @@ void Comparator::add_floor_sample(const Expectation& expected, const Frame& gl) 
 void Comparator::guess_floors() {
   State& st = *state_;
   if (st.next_row != 0)
-    throw std::logic_error("Comparator: floors guessed after the first band of " + st.c.name);
+    throw std::logic_error("Comparator: floors guessed after the first slice of " + st.c.name);
   if (st.sampled_rows > 0) {
     st.floors_guessed = true;
     // The frame's plain runs as the sample's share of them over its rows.
     const double plain = double(st.sampled_plain) * double(st.height) / double(st.sampled_rows);
     const double pixels = double(st.width) * double(st.height);
-    // Twice what a compaction keeps, not one and a half times: sample bands are a few places
+    // Twice what a compaction keeps, not one and a half times: sample slices are a few places
     // of the frame, not all of it, and where the largest errors gather in a few of its rows
-    // they may be over- or under-represented (the 4096x4096 scene's v6.w with 32 bands of four
+    // they may be over- or under-represented (the 4096x4096 scene's v6.w with 32 slices of four
     // rows: its shares' floor guessed too high, and the stream compared twice).
     constexpr double kMargin = 2;
     parallel_for(int(st.channels.size()), st.threads, [&](int slot) {

@@ -24,7 +24,7 @@ namespace glrc::compare {
 std::optional<double> floor_share(const ChannelAccumulator& acc, double plain, double pixels,
                                   size_t sampled, double margin = 1.5);
 
-// The order keys of a sample of a frame's (or a band's) ulps and shares of the allowance, for
+// The order keys of a sample of a frame's (or a slice's) ulps and shares of the allowance, for
 // guessing the floors of a channel's largest values: one pixel of each plain run (compared
 // against the reference's own fragment of one primitive, as add_run takes them), at an offset
 // that moves from run to run and row to row. With a deferred allowance, each sampled pixel's

@@ -70,19 +70,19 @@ struct Frame {
 
   size_t index(int x, int y) const { return size_t(y) * width + x; }
   size_t pixel_count() const { return size_t(width) * height; }
-  // Rows [y0, y0 + n) as a frame n rows high (its row 0 is row y0): one band of a frame checked
-  // band by band. Requires 0 <= y0, 0 <= n, y0 + n <= height.
+  // Rows [y0, y0 + n) as a frame n rows high (its row 0 is row y0): one slice of a frame checked
+  // slice by slice. Requires 0 <= y0, 0 <= n, y0 + n <= height.
   Frame rows(int y0, int n) const {
-    Frame band;
-    band.width = width, band.height = n;
+    Frame slice;
+    slice.width = width, slice.height = n;
     const auto a = ptrdiff_t(index(0, y0)), b = ptrdiff_t(index(0, y0 + n));
-    band.primitive.assign(primitive.begin() + a, primitive.begin() + b);
-    band.depth.assign(depth.begin() + a, depth.begin() + b);
+    slice.primitive.assign(primitive.begin() + a, primitive.begin() + b);
+    slice.depth.assign(depth.begin() + a, depth.begin() + b);
     if (fragments.size() == pixel_count())
-      band.fragments.assign(fragments.begin() + a, fragments.begin() + b);
+      slice.fragments.assign(fragments.begin() + a, fragments.begin() + b);
     for (const std::vector<float>& c : components)
-      band.components.emplace_back(c.begin() + a, c.begin() + b);
-    return band;
+      slice.components.emplace_back(c.begin() + a, c.begin() + b);
+    return slice;
   }
 
  private:
@@ -146,7 +146,7 @@ class DeferredAllowance {
   // has no primitive and no depth either. Only where the depth test needs no allowance while
   // drawing (DepthFunc::always: no fragment may win it instead of another).
   virtual bool depth() const { return false; }
-  // The window row of row 0 of the frame drawn with this: a band's first row
+  // The window row of row 0 of the frame drawn with this: a slice's first row
   // (ref::render_rows_deferred), 0 for a whole frame.
   virtual int first_row() const { return 0; }
   // Component k's allowances (or the depth's, k = kDepth) at pixels [first, first + n) of one

@@ -24,7 +24,7 @@ void advise_huge_pages(void* p, size_t bytes);
 void populate(void* p, size_t bytes);
 
 // Keeps per-pixel buffers of a few MiB in the process's heap when they are freed, for the next
-// band or case to reuse: glibc's malloc maps each with mmap and unmaps it when freed (or trims
+// slice or case to reuse: glibc's malloc maps each with mmap and unmaps it when freed (or trims
 // it from the heap's top), so every page of the next one faults in again and is zeroed by the
 // kernel (measured: two fifths of a streamed 2048x2048 case). With this, below 32 MiB they come
 // from the heap, and up to 512 MiB freed at its top is kept. glibc's settings only: where the

@@ -1,4 +1,4 @@
-// Work on several threads: the reference draws bands of rows at once (ref/tiles.hpp), the
+// Work on several threads: the reference draws tiles of rows at once (ref/tiles.hpp), the
 // comparator judges channels at once (compare/). Whatever runs in parallel here writes only its
 // own outputs, so results are the same bits for any number of threads.
 #pragma once

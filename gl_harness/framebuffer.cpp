@@ -119,14 +119,14 @@ void deinterleave(const float* rgba, size_t pixels, int size, float* const* out)
   }
 }
 
-// The rows of a staging band: about kStagingBytes of `bytes_per_pixel` pixels `width` wide, at
+// The rows of a staging block: about kStagingBytes of `bytes_per_pixel` pixels `width` wide, at
 // least one row, at most `height`. A readback converted on the CPU (de-interleaved, shifted,
-// clamped) goes through one band at a time: the band GL has just written is still in the
+// clamped) goes through one block at a time: the block GL has just written is still in the
 // core's cache when it is converted, where a whole frame's staging buffer (16 MB for one RGBA32F
 // attachment of 1024x1024) is read back from memory. Measured on the 1024x1024 quad of four vec4
 // (bench/, gl/: llvmpipe's draw and readback): 36-40 ms with the whole frame staged, 32.5-34 ms
-// with 32 or 64 rows; 2048x2048 with seven vec4: 271 -> 235 ms. A band is one glReadPixels
-// per attachment: far fewer than a row each (8 rows a band measured the same as 64).
+// with 32 or 64 rows; 2048x2048 with seven vec4: 271 -> 235 ms. A block is one glReadPixels
+// per attachment: far fewer than a row each (8 rows a block measured the same as 64).
 constexpr size_t kStagingBytes = size_t(1) << 20;
 
 int staging_rows(int width, int height, size_t bytes_per_pixel) {
@@ -135,14 +135,15 @@ int staging_rows(int width, int height, size_t bytes_per_pixel) {
 }
 
 // Rows [0, height) of a readback `width` wide, `per_pixel` values of T a pixel, through
-// `staging`, one band of staging_rows at a time: band(b, rows, data) for rows [b, b + rows) in
+// `staging`, one block of staging_rows at a time: block(b, rows, data) for rows [b, b + rows) in
 // turn, which reads them into data (every value, before any is used) and converts them.
-template <class T, class Band>
-void through_staging(std::vector<T>& staging, int width, int height, size_t per_pixel, Band band) {
+template <class T, class Block>
+void through_staging(std::vector<T>& staging, int width, int height, size_t per_pixel,
+                     Block block) {
   const int step = staging_rows(width, height, per_pixel * sizeof(T));
   resize_large(staging, size_t(std::max(width, 0)) * size_t(step) * per_pixel);
   for (int b = 0; b < height; b += step)
-    band(b, std::min(step, height - b), staging.data());
+    block(b, std::min(step, height - b), staging.data());
 }
 
 }  // namespace

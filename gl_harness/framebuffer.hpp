@@ -95,8 +95,8 @@ class Framebuffer {
   std::vector<GLuint> renderbuffers_;  // one per colour attachment, then depth
   int width_ = 0, height_ = 0;
   std::vector<GLenum> colour_formats_;
-  // Read back before they are converted into a Frame, a band of rows at a time (about a
-  // megabyte: still in cache when converted), kept to spare reallocations: a band of one colour
+  // Read back before they are converted into a Frame, a block of rows at a time (about a
+  // megabyte: still in cache when converted), kept to spare reallocations: a block of one colour
   // attachment as RGBA, of a 24-bit depth buffer, of the fragment counts.
   std::vector<float> rgba_;
   std::vector<GLuint> z_;

@@ -108,7 +108,7 @@ class Renderer {
     return render(c);
   }
   // read_rows(), read back into the buffers of `storage` where they are large enough: a
-  // streamed check reuses a band's memory for the band after next. Throws as read_rows(). This
+  // streamed check reuses a slice's memory for the slice after next. Throws as read_rows(). This
   // default (renderers that are no GL: tests) is read_rows().
   virtual Frame read_rows_reusing(const Case& c, int y0, int rows, Frame&& storage) {
     storage = Frame();

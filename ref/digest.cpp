@@ -90,7 +90,7 @@ FrameDigest::FrameDigest(int width, int height)
 FrameDigest::~FrameDigest() = default;
 
 void FrameDigest::add_rows(const Frame& f) {
-  if (f.width != width_) throw std::invalid_argument("FrameDigest: a band of another width");
+  if (f.width != width_) throw std::invalid_argument("FrameDigest: a slice of another width");
   // Per pixel, so that the layout of Frame's vectors is not part of the digest: primitive,
   // depth, every component, 4 bytes each: a row put together from each channel's row
   // (interleave_row), then hashed.

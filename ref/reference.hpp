@@ -60,14 +60,14 @@ Frame render_frame(const Case& c, const Model& m, int threads = 1);
 // Rows [y0, y0 + rows) of render()'s result, for a frame too large to hold whole (check.hpp's
 // streamed comparison): the same bits, in frames `rows` high whose row 0 is window row y0, the
 // edge bits and candidates' pixels indexed within them. Every triangle is set up and prepared
-// again for each call (per-triangle work times the number of bands). Throws
+// again for each call (per-triangle work times the number of slices). Throws
 // std::invalid_argument for rows outside the framebuffer.
 Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                       int y0, int rows);
 
 // render_rows() with the components' allowances deferred, as render_deferred() defers them
 // (and the depth's in a case without a depth test): bit for bit render_rows()' allowances where
-// a comparison of the band asks for them (its DeferredAllowance knows the band's first row), in
+// a comparison of the slice asks for them (its DeferredAllowance knows the slice's first row), in
 // the buffers of `storage` where given. Throws as render_rows().
 Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads, int y0,
                                int rows, Reference&& storage = {});
@@ -92,7 +92,7 @@ std::vector<FragmentChoices> fragment_choices(const Case& c, const Model& m, int
 // SHA-256 (hex) of the frame's bits: width, height, then per pixel primitive, depth and every
 // component, little-endian. Identical bits give identical digests on any machine.
 std::string digest(const Frame& f);
-// digest() of a frame fed band of rows by band of rows, in order: the same hex, without the
+// digest() of a frame fed slice of rows by slice of rows, in order: the same hex, without the
 // frame held whole.
 class FrameDigest {
  public:
@@ -100,8 +100,8 @@ class FrameDigest {
   ~FrameDigest();
   FrameDigest(const FrameDigest&) = delete;
   FrameDigest& operator=(const FrameDigest&) = delete;
-  void add_rows(const Frame& band);  // band.width must be the frame's
-  std::string hex();                 // once, after the last row
+  void add_rows(const Frame& slice);  // slice.width must be the frame's
+  std::string hex();                  // once, after the last row
  private:
   struct Context;
   std::unique_ptr<Context> context_;

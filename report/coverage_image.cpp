@@ -262,12 +262,12 @@ void CoverageCanvas::add_rows(const Expectation& expected, const Frame& gl, int 
                                 std::to_string(shrink_) + " rows of a " + std::to_string(width_) +
                                 " x " + std::to_string(height_) + " frame");
   // Frame row y0 + y lands on shown row (y0 + y) / shrink_, image block row shown_height_ - 1
-  // minus that: the band's shown rows are the blocks from shown_height_ - y0 / shrink_ - rows
+  // minus that: the slice's shown rows are the blocks from shown_height_ - y0 / shrink_ - rows
   // down.
   const int first = y0 / shrink_;
   const int rows = (reference.height + shrink_ - 1) / shrink_;
   const int top = kTitleHeight + (shown_height_ - first - rows) * factor_;
-  // The marks of the band's shown pixels, drawn once their pixels are painted.
+  // The marks of the slice's shown pixels, drawn once their pixels are painted.
   std::vector<std::pair<std::pair<int, int>, Rgb>> marks;
   paint_frame(canvas_, image_x_, top, factor_, shown_width_, rows, [&](int bx, int by) {
     int worst = -1, failing = 0;
@@ -294,7 +294,7 @@ void CoverageCanvas::add_rows(const Expectation& expected, const Frame& gl, int 
     if (mark && factor_ >= kMarkMinFactor) marks.push_back({{bx, by}, *mark});
     return colour;
   });
-  // paint_frame's block row by of the band is image block row rows - 1 - by from `top`.
+  // paint_frame's block row by of the slice is image block row rows - 1 - by from `top`.
   for (const auto& [at, mark] : marks)
     draw_mark(canvas_, image_x_ + at.first * factor_, top + (rows - 1 - at.second) * factor_,
               factor_, mark);

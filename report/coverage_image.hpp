@@ -51,12 +51,12 @@ std::vector<LegendEntry> coverage_legend(const CoverageStats& stats);
 Canvas render_coverage(const Expectation& expected, const Frame& gl, const CoverageStats& stats,
                        const std::optional<std::string>& font, bool explained_fail = false);
 
-// The same picture of a width x height frame, painted band of rows by band of rows (in any
-// order): render_coverage is one band of the whole frame. A frame of more than 2^20 pixels is
+// The same picture of a width x height frame, painted slice of rows by slice of rows (in any
+// order): render_coverage is one slice of the whole frame. A frame of more than 2^20 pixels is
 // shown shrunk by map_factor(width, height, 1) (channel_error.hpp), each pixel of the picture
 // the most severe of its block (a gap or double hit, then a fill-rule error, then an explained
 // mismatch that fails, then an allowed one, then an agreeing pixel in an edge band, then any; the
-// first in row order among equals), ringed when any pixel of the block fails; a band then starts
+// first in row order among equals), ringed when any pixel of the block fails; a slice then starts
 // on a row that is a multiple of that factor.
 class CoverageCanvas {
  public:

@@ -191,24 +191,24 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
 
 std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesystem::path& dir,
                                                               const Case& c, const CaseResult& r,
-                                                              int band_rows,
-                                                              const BandSource& band) {
+                                                              int slice_rows,
+                                                              const SliceSource& slice) {
   const int width = c.fb_width, height = c.fb_height;
   const bool large = map_factor(width, height, 1) > 1;
   if (!large) {
     // Full-resolution pictures need whole frames, and a small frame's are small: stacked.
-    std::pair<Expectation, Frame> whole = band(0, height);
+    std::pair<Expectation, Frame> whole = slice(0, height);
     return write_diff_images(dir, c, whole.first, whole.second, r);
   }
   std::filesystem::create_directories(dir);
   const auto font = find_font();
   const std::vector<Shown> channels = shown_channels(c, r, large);
   const int factor = map_factor(width, height, channels.size());
-  // Bands of whole blocks, so that each block of the maps lies in one band.
-  const int rows = std::max(1, band_rows / factor) * factor;
+  // Slices of whole blocks, so that each block of the maps lies in one slice.
+  const int rows = std::max(1, slice_rows / factor) * factor;
 
   // First pass: every channel's shrunk map (within kMapBytes together), its worst pixel, and
-  // coverage.png, band by band.
+  // coverage.png, slice by slice.
   struct Worst {
     long pixel = -1;
     std::array<double, 4> badness{};
@@ -216,7 +216,7 @@ std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesys
   std::vector<ChannelError> maps(channels.size());
   std::vector<Worst> worst(channels.size());
   CoverageCanvas coverage(width, height, r.coverage, font, explained_mismatches_fail(r.tolerance));
-  // Each map's storage taken once (growing it band by band would hold twice as much at times).
+  // Each map's storage taken once (growing it slice by slice would hold twice as much at times).
   const size_t map_pixels =
       size_t((width + factor - 1) / factor) * size_t((height + factor - 1) / factor);
   auto append = [&](ChannelError& to, const ChannelError& rows_of) {
@@ -234,7 +234,7 @@ std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesys
     to.non_finite += rows_of.non_finite;
   };
   for (int y0 = 0; y0 < height; y0 += rows) {
-    const auto [expected, gl] = band(y0, std::min(rows, height - y0));
+    const auto [expected, gl] = slice(y0, std::min(rows, height - y0));
     coverage.add_rows(expected, gl, y0);
     for (size_t k = 0; k < channels.size(); ++k) {
       const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
@@ -278,15 +278,15 @@ std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesys
   for (const auto& [first, last] : merged)
     for (int y0 = first; y0 < last; y0 += rows) {
       const int n = std::min(rows, last - y0);
-      const auto [expected, gl] = band(y0, n);
+      const auto [expected, gl] = slice(y0, n);
       for (size_t k = 0; k < channels.size(); ++k) {
         const Tile& t = tiles[k];
         const int from = std::max(y0, t.y0), to = std::min(y0 + n, t.y0 + t.height);
         if (worst[k].pixel < 0 || from >= to) continue;
         const ChannelError e = channel_error(c, expected, gl, channels[k].channel, r.tolerance);
         const Tile part{t.x0, from - y0, t.width, to - from};
-        auto add = [&](std::vector<float>& into, const std::vector<float>& from_band) {
-          const std::vector<float> piece = cut(from_band, e.width, part);
+        auto add = [&](std::vector<float>& into, const std::vector<float>& from_slice) {
+          const std::vector<float> piece = cut(from_slice, e.width, part);
           into.insert(into.end(), piece.begin(), piece.end());
         };
         add(values[k].signed_error, e.signed_error), add(values[k].allowed, e.allowed);

@@ -90,16 +90,16 @@ std::vector<std::filesystem::path> write_diff_images(const std::filesystem::path
 // channel's maps, EXRs and tiles, and coverage.png. A superset, known before anything is
 // written (`diff` refuses a folder holding a file of the user's by one of these names).
 std::vector<std::string> diff_image_names(const Case& c);
-// Rows [y0, y0 + rows) of a case's expectation and GL frame (check's streamed bands).
-using BandSource = std::function<std::pair<Expectation, Frame>(int y0, int rows)>;
-// The same files from a case checked band by band (check::Checked::streamed), which holds no
+// Rows [y0, y0 + rows) of a case's expectation and GL frame (check's streamed slices).
+using SliceSource = std::function<std::pair<Expectation, Frame>(int y0, int rows)>;
+// The same files from a case checked slice by slice (check::Checked::streamed), which holds no
 // whole frame: the very files write_diff_images writes from the whole frames (a frame of 2^20
-// pixels or fewer is stacked whole and given to it), about `band_rows` rows at a time. The
-// bands are read at most twice: once for every map, their worst pixels and coverage.png, once
+// pixels or fewer is stacked whole and given to it), about `slice_rows` rows at a time. The
+// slices are read at most twice: once for every map, their worst pixels and coverage.png, once
 // more for the rows of the tiles around the worst pixels.
 std::vector<std::filesystem::path> write_streamed_diff_images(const std::filesystem::path& dir,
                                                               const Case& c, const CaseResult& r,
-                                                              int band_rows,
-                                                              const BandSource& band);
+                                                              int slice_rows,
+                                                              const SliceSource& slice);
 
 }  // namespace glrc::report

@@ -73,7 +73,7 @@ Outcome check_one(const nlohmann::json& job, const check::CheckOptions& o, gl::R
 
 // A failing case's heatmaps, in <out>/cases/<case>/ for the HTML report and anyone triaging
 // the run. Returns why there are none, or "".
-// A case checked band by band holds no whole frame: its pictures are made band by band again,
+// A case checked slice by slice holds no whole frame: its pictures are made slice by slice again,
 // from the reference's rows and GL's, which still holds the case's drawing.
 std::string write_images(Outcome& done, const Options& o, const check::CheckOptions& judged,
                          gl::Renderer& renderer) {
@@ -82,7 +82,7 @@ std::string write_images(Outcome& done, const Options& o, const check::CheckOpti
     if (done.checked.streamed) {
       const int reported = renderer.info().subpixel_bits;
       report::write_streamed_diff_images(
-          dir, done.c, done.checked.result, check::band_rows(done.c, judged),
+          dir, done.c, done.checked.result, check::slice_rows(done.c, judged),
           [&](int y0, int rows) {
             return std::pair{check::expectation_rows(done.c, judged, reported, y0, rows),
                              renderer.read_rows(done.c, y0, rows)};

@@ -279,7 +279,7 @@ TEST(DeferredAllowance, AStreamedCheckWhoseFloorsDoNotHoldIsComparedAgain) {
   EXPECT_EQ(again.result.gl_digest, ref::digest(gl));
   // Each band read twice where the floors did not hold, once where they did (and the sample
   // bands once in both).
-  const int bands = (c.fb_height + band_rows(c, streamed) - 1) / band_rows(c, streamed);
+  const int bands = (c.fb_height + slice_rows(c, streamed) - 1) / slice_rows(c, streamed);
   EXPECT_GT(honest_reads, bands);
   EXPECT_EQ(misled.reads, honest_reads + bands);
 }

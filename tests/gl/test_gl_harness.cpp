@@ -814,7 +814,7 @@ TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
 
     check::CheckOptions streamed;
     streamed.whole_frame_bytes = 0;
-    streamed.band_bytes = 3 * check::frame_bytes(c) / size_t(c.fb_height);  // 3 rows a band
+    streamed.slice_bytes = 3 * check::frame_bytes(c) / size_t(c.fb_height);  // 3 rows a band
     for (const bool exact : {false, true}) {
       check::CheckOptions o;
       if (exact) o.tolerance = streamed.tolerance = ToleranceMode::exact;
@@ -847,7 +847,7 @@ TEST_F(Gl, StreamedChecksDeferTheAllowanceBandByBand) {
   check::CheckOptions streamed;
   streamed.deferred_allowance = true;
   streamed.whole_frame_bytes = 0;
-  streamed.band_bytes = 7 * check::frame_bytes(c) / size_t(c.fb_height);  // 7 rows a band
+  streamed.slice_bytes = 7 * check::frame_bytes(c) / size_t(c.fb_height);  // 7 rows a band
   const check::Checked b = check::check_with_frames(c, gl(), streamed);
   EXPECT_TRUE(b.streamed);
   EXPECT_GT(b.result.coverage.both, 10000u);
