@@ -153,14 +153,4 @@ std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, 
   return coverage_label(expected.edges[i], counts_checked(expected, gl), observe(expected, gl, i));
 }
 
-bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
-                   const std::optional<CoverageStats::Label>& label) {
-  return count_excused(expected.edges[i], counts_checked(expected, gl), label,
-                       observe(expected, gl, i).count);
-}
-
-CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i) {
-  return untraceable_label(expected.edges[i], observe(expected, gl, i).count);
-}
-
 }  // namespace glrc::compare

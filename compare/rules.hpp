@@ -172,12 +172,9 @@ bool counts_against(CoverageStats::Label l, const Tolerance& t);
 CoverageObservation observe(const Expectation& expected, const Frame& gl, size_t i);
 // Whether both frames have fragment counts (CoverageObservation::Count means something).
 bool counts_checked(const Expectation& expected, const Frame& gl);
-// coverage_label, count_excused and untraceable_label at pixel i of `gl`.
+// coverage_label at pixel i of `gl` (report/'s coverage picture, the tests).
 std::optional<CoverageStats::Label> coverage_label(const Expectation& expected, const Frame& gl,
                                                    size_t i);
-bool count_excused(const Expectation& expected, const Frame& gl, size_t i,
-                   const std::optional<CoverageStats::Label>& label);
-CoverageStats::Label untraceable_label(const Expectation& expected, const Frame& gl, size_t i);
 
 // Labels that the specification's freedom explains (exact tie, within snapping).
 inline bool explained(CoverageStats::Label l) {
