@@ -53,6 +53,24 @@ std::string differences(const std::map<std::string, std::string>& a,
   return text;
 }
 
+// Runs `command` (a glrefcheck command line with its --out) with its workers held before GL
+// (stalled before their hello; the first one's pid in `pidfile`), and sends `signal` to the
+// runner once that worker is up: a command stopped before it had GL.
+Outcome stopped_before_gl(const std::string& command, const fs::path& pidfile, int signal) {
+  fs::remove(pidfile);
+  Outcome o;
+  std::thread run([&] {
+    o = glrefcheck(command + proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
+  });
+  const pid_t proxy = wait_for_pid(pidfile);
+  EXPECT_GT(proxy, 0);
+  if (proxy > 0) {
+    EXPECT_EQ(kill(parent_of(proxy), signal), 0);
+  }
+  run.join();
+  return o;
+}
+
 class EarlierOutputs : public glrc::test::TempDirTest {
  protected:
   // A run of viewport_tiny and attr_tiny into `out`, its worker held before attr_tiny (its
@@ -105,17 +123,8 @@ TEST_F(EarlierOutputs, ARunKilledBeforeItHadGlLeavesTheEarlierResultsToTheNext) 
             0);
   const auto before = snapshot(out);
   const auto killed_before_gl = [&] {
-    fs::remove(pidfile);
-    std::thread run([&] {
-      glrefcheck("run cases/attr_tiny.json --jobs 1 --out '" + out.string() + "'" +
-                 proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
-    });
-    const pid_t proxy = wait_for_pid(pidfile);
-    EXPECT_GT(proxy, 0);
-    if (proxy > 0) {
-      EXPECT_EQ(kill(parent_of(proxy), SIGKILL), 0);
-    }
-    run.join();
+    stopped_before_gl("run cases/attr_tiny.json --jobs 1 --out '" + out.string() + "'", pidfile,
+                      SIGKILL);
     EXPECT_TRUE(fs::exists(out / ".glrefcheck-earlier"));
   };
   killed_before_gl();
@@ -319,31 +328,20 @@ TEST_F(EarlierOutputs, ASignalBeforeGlOrARefusalLeavesTheFolderAsItWas) {
         {std::string("fuzz --count 4 --jobs 1"), SIGTERM}}) {
     SCOPED_TRACE(command);
     // The command into `folder`, its workers held before GL, stopped by the signal.
-    const auto stopped_before_gl = [&, &command = command,
-                                    signal = signal](const fs::path& folder) {
-      fs::remove(pidfile);
-      Outcome o;
-      std::thread run([&] {
-        o = glrefcheck(command + " --out '" + folder.string() + "'" +
-                       proxied_workers("--stall-hello --pidfile '" + pidfile.string() + "'"));
-      });
-      const pid_t proxy = wait_for_pid(pidfile);
-      EXPECT_GT(proxy, 0);
-      if (proxy > 0) {
-        EXPECT_EQ(kill(parent_of(proxy), signal), 0);
-      }
-      run.join();
+    const auto stopped_into = [&, &command = command, signal = signal](const fs::path& folder) {
+      const Outcome o =
+          stopped_before_gl(command + " --out '" + folder.string() + "'", pidfile, signal);
       EXPECT_EQ(o.exit_code, 128 + signal) << o.out << o.err;
       return o;
     };
-    Outcome o = stopped_before_gl(out);
+    Outcome o = stopped_into(out);
     EXPECT_NE(o.out.find("before GL started: " + out.string() + " holds its earlier results"),
               std::string::npos)
         << o.out;
     EXPECT_EQ(snapshot(out), before) << differences(before, snapshot(out));
     // Into a new folder it held no earlier results (the tenth hostile campaign: it said it did).
     const fs::path fresh = dir_ / ("fresh" + std::to_string(signal));
-    o = stopped_before_gl(fresh);
+    o = stopped_into(fresh);
     EXPECT_NE(o.out.find("before GL started: " + fresh.string() +
                          " holds no results (it held none before)"),
               std::string::npos)
