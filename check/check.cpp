@@ -59,7 +59,7 @@ Expectation expectation_and_setup(const Case& c, const CheckOptions& o, int repo
                                   std::shared_ptr<const ref::CaseSetup>& setup) {
   const int bits = freedom_bits(o, reported_bits);
   if (o.driver_model) {
-    ref::Reference r = ref::render(c, o.model, bits, o.threads, std::move(storage));
+    Expectation r = ref::render(c, o.model, bits, o.threads, std::move(storage));
     // The driver model replaces the frame only: the edge bits still name ties and bands.
     r.frame = driver_models::render(c, *o.driver_model);
     return r;
@@ -254,13 +254,13 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
   const bool streamed = !o.driver_model && frame_bytes(c) > o.whole_frame_bytes;
   // The reference is drawn while GL draws: it needs no GL, and a driver's first draw of a case
   // spends most of its time compiling shaders on one core (llvmpipe's LLVM), not drawing.
-  std::future<Expectation> reference;
+  std::future<Expectation> expected;
   // The reference's set-up of the triangles, kept for the traces' choices (trace_source).
   std::shared_ptr<const ref::CaseSetup> setup;
   if (streamed)
     last = {};
   else
-    reference = std::async(std::launch::async, [&, storage = std::move(last.reference)]() mutable {
+    expected = std::async(std::launch::async, [&, storage = std::move(last.expected)]() mutable {
       return expectation_and_setup(c, o, reported, std::move(storage), setup);
     });
   try {
@@ -275,15 +275,15 @@ Checked check_with_frames(const Case& c, gl::Renderer& renderer, const CheckOpti
     // none needs another.
     std::future<std::string> gl_digest =
         std::async(std::launch::async, [&] { return ref::digest(out.gl); });
-    out.reference = reference.get();
+    out.expected = expected.get();
     const std::optional<compare::TraceSource> traces =
         trace_source(c, renderer, o, reported, std::move(setup));
-    out.result = compare::compare(c, out.reference, out.gl, tolerance_for(c, o, reported),
-                                  o.threads, traces ? &*traces : nullptr);
+    out.result = compare::compare(c, out.expected, out.gl, tolerance_for(c, o, reported), o.threads,
+                                  traces ? &*traces : nullptr);
     out.result.gl_digest = gl_digest.get();
   } catch (const gl::RenderError& e) {
     // The reference's own error comes first, as when it was drawn before GL.
-    if (reference.valid()) out.reference = reference.get();
+    if (expected.valid()) out.expected = expected.get();
     out.result.name = c.name;
     out.result.description = c.description;
     out.result.status = out.result.outcome = Status::error;

@@ -11,8 +11,8 @@
 
 #include "compare/compare.hpp"
 #include "core/case.hpp"
+#include "core/expectation.hpp"
 #include "core/fragment_trace.hpp"
-#include "core/frame.hpp"
 #include "core/model.hpp"
 #include "core/result.hpp"
 #include "driver_models/driver_models.hpp"
@@ -58,7 +58,7 @@ struct CheckOptions {
   size_t slice_bytes = size_t(16) << 20;
   // The reference's component allowances computed only where the comparison needs them
   // (ref::render_deferred), in a case where that pays (deferral_pays): the same verdict and
-  // statistics, bit for bit, in less time; Checked::reference then holds them deferred
+  // statistics, bit for bit, in less time; Checked::expected then holds them deferred
   // (complete_allowance fills them in for a heatmap). Not with a driver model. A streamed case
   // defers them slice by slice (ref::render_rows_deferred).
   bool deferred_allowance = false;
@@ -134,7 +134,7 @@ std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& ex
 // One case checked, with the frames a heatmap needs.
 struct Checked {
   CaseResult result;
-  Expectation reference;
+  Expectation expected;
   Frame gl;
   bool streamed = false;  // checked slice by slice: no frames kept
 };

@@ -49,7 +49,7 @@ int cmd_diff(const Options& o) {
   fmt::print("\n{}\n", report::stats_table(r));
   // Coverage first: a pixel covered by the wrong triangle has no value error to show.
   if (const std::string table =
-          report::coverage_failures_table(r, checked.reference.frame, checked.gl, 20);
+          report::coverage_failures_table(r, checked.expected.frame, checked.gl, 20);
       !table.empty())
     fmt::print("{}\n", table);
   if (const std::string table = report::worst_pixels_table(r, 10); !table.empty())
@@ -57,7 +57,7 @@ int cmd_diff(const Options& o) {
   // Each name is recorded before its file is written: a diff stopped halfway leaves none
   // unlisted.
   std::vector<std::pair<std::filesystem::path, std::string>> listed;
-  const auto files = report::write_diff_images(out, c, checked.reference, checked.gl, r,
+  const auto files = report::write_diff_images(out, c, checked.expected, checked.gl, r,
                                                [&](const std::filesystem::path& file) {
                                                  listed.emplace_back(file, "");
                                                  record_diff_images(out, listed);

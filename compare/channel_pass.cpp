@@ -9,31 +9,31 @@
 
 namespace glrc::compare {
 
-// One pass over channel k of a slice: what add_channel's loop reads, taken once, and the loop's
+// One pass over channel ch of a slice: what add_channel's loop reads, taken once, and the loop's
 // steps. Lives for one add_channel call; its tally is the channel's, copied in and back out.
 class Comparator::ChannelPass {
  public:
-  ChannelPass(State& st, const Expectation& expected, const Frame& gl, int y0, int k,
+  ChannelPass(State& st, const Expectation& expected, const Frame& gl, int y0, Channel ch,
               ChannelBounds* bounds)
       : st_(st),
         expected_(expected),
         reference_(expected.frame),
         y0_(y0),
-        k_(k),
+        channel_(ch),
         bounds_(bounds),
-        acc_(st.channels[size_t(k + 1)]),
+        acc_(st.channels[ch.slot()]),
         t_(acc_.tally),
-        allowance_(st.c, expected, st.r.tolerance, k),
+        allowance_(st.c, expected, st.r.tolerance, ch),
         gl_(gl),
-        gl_values_(channel_values(gl, k)),
-        own_values_(channel_values(reference_, k)),
+        gl_values_(gl.values(ch).data()),
+        own_values_(reference_.values(ch).data()),
         own_primitive_(reference_.primitive.data()),
         judged_as_(st.judgement.data()),
         own_allowed_(allowance_.per_pixel_values()),
         fixed_ulps_(allowance_.fixed_ulps()),
         deferred_(allowance_.deferred()),
         grid_{reference_.width, reference_.height} {
-    if (!allowance_.per_pixel()) st.fixed_ulps[size_t(k + 1)] = fixed_ulps_;
+    if (!allowance_.per_pixel()) st.fixed_ulps[ch.slot()] = fixed_ulps_;
   }
 
   void run() {
@@ -51,8 +51,8 @@ class Comparator::ChannelPass {
   void own_ulps(int32_t primitive) {
     if (primitive == ulp_primitive_) return;
     ulp_primitive_ = primitive;
-    own_ulp_ = st_.ulps.ulp(primitive, k_);
-    own_inverse_ulp_ = st_.ulps.inverse_ulp(primitive, k_);
+    own_ulp_ = st_.ulps.ulp(primitive, channel_);
+    own_inverse_ulp_ = st_.ulps.inverse_ulp(primitive, channel_);
   }
 
   // Every run of every row. Deferring: with a deferred allowance (its run's in run_allowed), so
@@ -106,13 +106,13 @@ class Comparator::ChannelPass {
     if (run_primitive >= 0 && bounds_) {
       own_ulps(run_primitive);
       RunBounds& b = bounds_->runs[run];
-      if (!b.computed) find_run_bounds(*deferred_, reference_, k_, run_primitive, x, row, b);
+      if (!b.computed) find_run_bounds(*deferred_, reference_, channel_, run_primitive, x, row, b);
       lanes = acc_.add_run_within(t_, own_values_ + first, gl_values_ + first, b.lo,
                                   bounds_->below_largest(b.hi, own_inverse_ulp_), own_ulp_,
                                   own_inverse_ulp_);
       if (lanes == 0) return true;
       if (lanes != ChannelAccumulator::kEveryLane) {
-        deferred_->at_lanes(reference_, k_, first, lanes, run_allowed);
+        deferred_->at_lanes(reference_, channel_, first, lanes, run_allowed);
         acc_.add_lanes(t_, x, y0_ + row, own_values_ + first, gl_values_ + first, lanes,
                        run_allowed, float_up(b.lo), own_ulp_, own_inverse_ulp_);
         return true;
@@ -146,10 +146,10 @@ class Comparator::ChannelPass {
       const Tolerance& tolerance = st_.r.tolerance;
       const Judged judged = judged_against(st_.c, expected_, gl_, i, tolerance);
       const int32_t primitive = judged.primitive(expected_, i);
-      ulp = st_.ulps.ulp(primitive, k_);
-      inverse_ulp = st_.ulps.inverse_ulp(primitive, k_);
-      allowed = judged.allowed(allowance_, i, ulp, k_);
-      value = judged.value(expected_, i, k_);
+      ulp = st_.ulps.ulp(primitive, channel_);
+      inverse_ulp = st_.ulps.inverse_ulp(primitive, channel_);
+      allowed = judged.allowed(allowance_, i, ulp, channel_);
+      value = judged.value(expected_, i, channel_);
     }
     // Not judged, and its unbounded allowance is not one the verdict applied. Where the value
     // is finite but the specification's allowance unbounded (a triangle reaching the eye
@@ -171,12 +171,12 @@ class Comparator::ChannelPass {
   // others hold a float from their lo up, which decides nothing: add_run_within).
   void deferred_lanes(size_t first, int n, uint64_t lanes, float* run_allowed) const {
     if (lanes == ChannelAccumulator::kEveryLane)
-      return deferred_->at(reference_, k_, first, n, run_allowed);
+      return deferred_->at(reference_, channel_, first, n, run_allowed);
     // The lanes needed only (some lanes are only returned for a whole run, segment_lanes'): the
     // deferred allowance computes a block of them as fast as one, wherever they are in the run
     // (a run's lanes needed are about one in seven, seldom next to each other: blocks of eight
     // neighbours computed three times as many as needed).
-    deferred_->at_lanes(reference_, k_, first, lanes, run_allowed);
+    deferred_->at_lanes(reference_, channel_, first, lanes, run_allowed);
   }
 
   // A whole run of several primitives (or with candidates, or pixels not compared): bounds of
@@ -202,8 +202,9 @@ class Comparator::ChannelPass {
       float lo, hi;
       std::array<double, 2> range{0.0, kInf};
       if (value_range(own_values_ + i, end - j, lo, hi))
-        range = deferred_->range(k_, p, x + j, x + end - 1, row, lo, hi);
-      const bool largest_known = bounds_->below_largest(range[1], st_.ulps.inverse_ulp(p, k_));
+        range = deferred_->range(channel_, p, x + j, x + end - 1, row, lo, hi);
+      const bool largest_known =
+          bounds_->below_largest(range[1], st_.ulps.inverse_ulp(p, channel_));
       const float substitute = float_up(range[0]);
       for (; j < end; ++j) {
         const size_t pixel = first + size_t(j);
@@ -221,17 +222,18 @@ class Comparator::ChannelPass {
   // Whether the kRun primitives from `primitive` (each drawn) have this channel's ulp of the
   // first.
   bool same_ulp(const int32_t* primitive) const {
-    const double ulp = st_.ulps.ulp(primitive[0], k_);
+    const double ulp = st_.ulps.ulp(primitive[0], channel_);
     bool same = true;
     for (int j = 1; j < kRun; ++j)
-      same = same && st_.ulps.ulp(primitive[j], k_) == ulp;
+      same = same && st_.ulps.ulp(primitive[j], channel_) == ulp;
     return same;
   }
 
   State& st_;
   const Expectation& expected_;
   const Frame& reference_;
-  const int y0_, k_;
+  const int y0_;
+  const Channel channel_;
   ChannelBounds* const bounds_;
   ChannelAccumulator& acc_;
   // The channel's tally, a copy: the loop's other stores could alias it.
@@ -255,9 +257,9 @@ class Comparator::ChannelPass {
   double own_ulp_ = 0, own_inverse_ulp_ = 0;
 };
 
-void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, int k,
+void Comparator::add_channel(const Expectation& expected, const Frame& gl, int y0, Channel ch,
                              ChannelBounds* bounds) {
-  ChannelPass(*state_, expected, gl, y0, k, bounds).run();
+  ChannelPass(*state_, expected, gl, y0, ch, bounds).run();
 }
 
 }  // namespace glrc::compare

@@ -33,10 +33,8 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
       reference.components.size() != size_t(c.component_count()) ||
       reference.components.size() != gl.components.size() ||
       expected.edges.size() != reference.pixel_count() ||
-      (spec && ((expected.allowed.components.size() != reference.components.size() &&
-                 !(expected.deferred && expected.allowed.components.empty())) ||
-                (expected.allowed.depth.size() != reference.pixel_count() &&
-                 !(expected.deferred && expected.deferred->depth())))))
+      (spec && (expected.allowance_state() == AllowanceState::none ||
+                !expected.allowance_shape_error().empty())))
     throw std::invalid_argument("compare: frames of different shape for case " + c.name);
   // A deferred allowance knows the first row of the frame it drew: it must be this slice's.
   if (expected.deferred && expected.deferred->first_row() != y0)
@@ -58,43 +56,44 @@ void Comparator::add_rows(const Expectation& expected, const Frame& gl, int y0) 
   const bool whole = y0 == 0 && reference.height == st.height && !st.floors_guessed;
   parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
     if (whole)
-      add_whole_channel(expected, gl, slot - 1);
+      add_whole_channel(expected, gl, Channel::at_slot(size_t(slot)));
     else
-      add_slice_channel(expected, gl, y0, slot - 1);
+      add_slice_channel(expected, gl, y0, Channel::at_slot(size_t(slot)));
   });
 }
 
-void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl, int k) {
+void Comparator::add_whole_channel(const Expectation& expected, const Frame& gl, Channel ch) {
   State& st = *state_;
-  ChannelAccumulator& acc = st.channels[size_t(k + 1)];
+  ChannelAccumulator& acc = st.channels[ch.slot()];
   const ChannelAccumulator before = acc;
   const Frame& reference = expected.frame;
-  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, ch);
   std::optional<ChannelBounds> bounds;
   if (const DeferredAllowance* deferred = allowance.deferred())
-    bounds = run_bounds(*deferred, st.plain_runs, st.ulps, reference, k);
+    bounds = run_bounds(*deferred, st.plain_runs, st.ulps, reference, ch);
   ChannelBounds* known = bounds ? &*bounds : nullptr;
-  assume_floors(acc, st.plain_runs, st.ulps, allowance, reference, channel_values(gl, k),
-                channel_values(reference, k), k, known);
-  add_channel(expected, gl, 0, k, known);
+  assume_floors(acc, st.plain_runs, st.ulps, allowance, reference, gl.values(ch).data(),
+                reference.values(ch).data(), ch, known);
+  add_channel(expected, gl, 0, ch, known);
   if (acc.ulps.complete() && acc.ratios.complete()) return;
   acc = before;
-  add_channel(expected, gl, 0, k, known);
+  add_channel(expected, gl, 0, ch, known);
 }
 
-void Comparator::add_slice_channel(const Expectation& expected, const Frame& gl, int y0, int k) {
+void Comparator::add_slice_channel(const Expectation& expected, const Frame& gl, int y0,
+                                   Channel ch) {
   State& st = *state_;
-  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+  const ChannelAllowance allowance(st.c, expected, st.r.tolerance, ch);
   const DeferredAllowance* deferred = allowance.deferred();
-  if (!deferred) return add_channel(expected, gl, y0, k);
+  if (!deferred) return add_channel(expected, gl, y0, ch);
   // The slice's bounds as a whole frame's (run_bounds); the largest allowance the channel
   // certainly has is also the largest of the slices before (the tally's: it only grows). Its
   // floors are not guessed from the slice: a slice cannot be compared again should they not hold
   // (the caller may guess them from sample slices first: guess_floors).
-  ChannelBounds bounds = run_bounds(*deferred, st.plain_runs, st.ulps, expected.frame, k);
+  ChannelBounds bounds = run_bounds(*deferred, st.plain_runs, st.ulps, expected.frame, ch);
   bounds.largest_lo =
-      std::max(bounds.largest_lo, st.channels[size_t(k + 1)].tally.largest_allowance_ulps);
-  add_channel(expected, gl, y0, k, &bounds);
+      std::max(bounds.largest_lo, st.channels[ch.slot()].tally.largest_allowance_ulps);
+  add_channel(expected, gl, y0, ch, &bounds);
 }
 
 void Comparator::trace_excused(CoverageStats& cov, const TraceSource* traces) {

@@ -25,10 +25,10 @@ struct Comparator::State {
     r.tolerance = t;
     r.coverage.fragments_checked = true;  // until a slice without counts says otherwise
     const std::vector<std::string> names = component_names(c);
-    for (int k = kDepth; k < int(names.size()); ++k) {
+    for (Channel ch : channels_of(int(names.size()))) {
       ChannelAccumulator& acc = channels.emplace_back(size_t(w) * size_t(std::max(h, 0)));
       acc.exact = t.mode == ToleranceMode::exact;
-      acc.stats.name = k == kDepth ? "depth" : names[size_t(k)];
+      acc.stats.name = ch.is_depth() ? "depth" : names[size_t(ch.component())];
     }
     fixed_ulps.assign(channels.size(), std::nullopt);
   }

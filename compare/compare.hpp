@@ -15,8 +15,8 @@
 #include "compare/rules.hpp"
 #include "compare/run_grid.hpp"
 #include "core/case.hpp"
+#include "core/expectation.hpp"
 #include "core/fragment_trace.hpp"
-#include "core/frame.hpp"
 #include "core/result.hpp"
 
 namespace glrc::compare {
@@ -114,19 +114,19 @@ class Comparator {
   // add_rows' first pass: the slice's coverage, counted, and which of its pixels each channel's
   // pass compares, and against what (coverage_pass.cpp).
   void add_coverage(const Expectation& expected, const Frame& gl, int y0);
-  // The values of channel k (kDepth or a component) in the slice add_rows is comparing.
+  // The values of channel ch in the slice add_rows is comparing.
   // `bounds`: for a component whose allowance is deferred, bounds of it over each of the slice's
   // plain runs (add_whole_channel), or none: every run's allowances are computed.
-  void add_channel(const Expectation& expected, const Frame& gl, int y0, int k,
+  void add_channel(const Expectation& expected, const Frame& gl, int y0, Channel ch,
                    ChannelBounds* bounds = nullptr);
   // add_channel(), for a frame compared whole (one slice) after the floors of its largest
   // values are guessed from a sample (LargestValues::assume_floor), and again without them
   // should the frame not bear them out.
-  void add_whole_channel(const Expectation& expected, const Frame& gl, int k);
+  void add_whole_channel(const Expectation& expected, const Frame& gl, Channel ch);
   // add_channel() of a slice of a frame compared slice by slice: with a deferred allowance, bounds
   // of it over the slice's plain runs, as add_whole_channel finds them; no floors guessed from
   // the slice (guess_floors guesses them from sample slices).
-  void add_slice_channel(const Expectation& expected, const Frame& gl, int y0, int k);
+  void add_slice_channel(const Expectation& expected, const Frame& gl, int y0, Channel ch);
   struct State;
   class CoveragePass;  // add_coverage's loop
   class ChannelPass;   // add_channel's loop (channel_pass.cpp)

@@ -22,7 +22,7 @@ std::optional<double> floor_share(const ChannelAccumulator& acc, double plain, d
 
 void sample_floor_keys(const std::vector<int32_t>& plain_runs, const UlpTable& table,
                        const ChannelAllowance& allowance, const Frame& reference,
-                       const float* gl_values, const float* own_values, int k,
+                       const float* gl_values, const float* own_values, Channel ch,
                        const Comparator::ChannelBounds* bounds, std::vector<uint32_t>& ulps,
                        std::vector<uint32_t>& ratios) {
   constexpr int kSampledRuns = 4;  // run_bounds' sample too: one plain run in four
@@ -64,10 +64,10 @@ void sample_floor_keys(const std::vector<int32_t>& plain_runs, const UlpTable& t
     for (size_t i = first; i < first + size_t(per_run); ++i) {
       const float g = gl_values[i], v = own_values[i];
       if (!std::isfinite(g) || !std::isfinite(v)) continue;
-      const double ulp = table.ulp(p, k);
+      const double ulp = table.ulp(p, ch);
       const double allowed = bounds ? bounds->runs[run].hi : allowance.at(i, ulp);
       const double abs_error = std::fabs(double(g) - double(v));
-      ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, k))));
+      ulps.push_back(order_key(float(abs_error * table.inverse_ulp(p, ch))));
       ratios.push_back(order_key(float(abs_error == 0 ? 0.0
                                        : allowed > 0  ? abs_error / allowed
                                                       : kInf)));
@@ -94,15 +94,15 @@ void assume_sampled_floors(ChannelAccumulator& acc, std::vector<uint32_t>& ulps,
 
 void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_runs,
                    const UlpTable& table, const ChannelAllowance& allowance, const Frame& reference,
-                   const float* gl_values, const float* own_values, int k,
+                   const float* gl_values, const float* own_values, Channel ch,
                    const Comparator::ChannelBounds* bounds) {
   const size_t plain =
       size_t(std::count_if(plain_runs.begin(), plain_runs.end(), [](int32_t p) { return p >= 0; }));
   const auto share = floor_share(acc, double(plain), double(reference.pixel_count()), plain);
   if (!share) return;
   std::vector<uint32_t> ulps, ratios;
-  sample_floor_keys(plain_runs, table, allowance, reference, gl_values, own_values, k, bounds, ulps,
-                    ratios);
+  sample_floor_keys(plain_runs, table, allowance, reference, gl_values, own_values, ch, bounds,
+                    ulps, ratios);
   assume_sampled_floors(acc, ulps, ratios, *share);
 }
 
@@ -140,13 +140,13 @@ void Comparator::add_floor_sample(const Expectation& expected, const Frame& gl) 
   st.sampled_ulps.resize(st.channels.size());
   st.sampled_ratios.resize(st.channels.size());
   parallel_for(int(st.channels.size()), st.threads, [&](int slot) {
-    const int k = slot - 1;
-    const ChannelAllowance allowance(st.c, expected, st.r.tolerance, k);
+    const Channel ch = Channel::at_slot(size_t(slot));
+    const ChannelAllowance allowance(st.c, expected, st.r.tolerance, ch);
     std::optional<ChannelBounds> bounds;
     if (const DeferredAllowance* deferred = allowance.deferred())
-      bounds = run_bounds(*deferred, plain, st.ulps, reference, k);
-    sample_floor_keys(plain, st.ulps, allowance, reference, channel_values(gl, k),
-                      channel_values(reference, k), k, bounds ? &*bounds : nullptr,
+      bounds = run_bounds(*deferred, plain, st.ulps, reference, ch);
+    sample_floor_keys(plain, st.ulps, allowance, reference, gl.values(ch).data(),
+                      reference.values(ch).data(), ch, bounds ? &*bounds : nullptr,
                       st.sampled_ulps[size_t(slot)], st.sampled_ratios[size_t(slot)]);
   });
 }

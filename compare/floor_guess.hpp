@@ -34,7 +34,7 @@ std::optional<double> floor_share(const ChannelAccumulator& acc, double plain, d
 // values are kept on the way). Appended to ulps and ratios.
 void sample_floor_keys(const std::vector<int32_t>& plain_runs, const UlpTable& table,
                        const ChannelAllowance& allowance, const Frame& reference,
-                       const float* gl_values, const float* own_values, int k,
+                       const float* gl_values, const float* own_values, Channel ch,
                        const Comparator::ChannelBounds* bounds, std::vector<uint32_t>& ulps,
                        std::vector<uint32_t>& ratios);
 
@@ -48,7 +48,7 @@ void assume_sampled_floors(ChannelAccumulator& acc, std::vector<uint32_t>& ulps,
 // (sample_floor_keys, floor_share).
 void assume_floors(ChannelAccumulator& acc, const std::vector<int32_t>& plain_runs,
                    const UlpTable& table, const ChannelAllowance& allowance, const Frame& reference,
-                   const float* gl_values, const float* own_values, int k,
+                   const float* gl_values, const float* own_values, Channel ch,
                    const Comparator::ChannelBounds* bounds);
 
 }  // namespace glrc::compare

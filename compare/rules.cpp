@@ -4,11 +4,11 @@
 
 namespace glrc::compare {
 
-double attribute_scale(const Case& c, int primitive, int component) {
-  if (component < 0) return 1.0;
+double attribute_scale(const Case& c, int primitive, Channel ch) {
+  if (ch.is_depth()) return 1.0;
   double scale = 0;
   for (uint32_t v : c.triangles.at(size_t(primitive)))
-    scale = std::max(scale, std::fabs(double(c.vertices.at(v).values.at(size_t(component)))));
+    scale = std::max(scale, std::fabs(double(c.vertices.at(v).values.at(size_t(ch.component())))));
   return scale;
 }
 
@@ -26,36 +26,35 @@ UlpTable::UlpTable(const Case& c)
   ulps_.reserve(c.triangles.size() * size_t(components_));
   for (size_t t = 0; t < c.triangles.size(); ++t)
     for (int k = 0; k < components_; ++k)
-      ulps_.push_back(ulp_of_scale(attribute_scale(c, int(t), k)));
+      ulps_.push_back(ulp_of_scale(attribute_scale(c, int(t), Channel::component(k))));
   inverses_.reserve(ulps_.size());
   for (double ulp : ulps_)
     inverses_.push_back(1 / ulp);
 }
 
 ChannelAllowance::ChannelAllowance(const Case& c, const Expectation& expected,
-                                   const Tolerance& tolerance, int channel) {
-  const bool depth = channel == kDepth;
+                                   const Tolerance& tolerance, Channel channel) {
   if (tolerance.mode == ToleranceMode::exact) return;
   // In spec mode the allowance covers every pixel (add_rows checks its shape): every channel,
   // depth included, is judged by it, also in a case without varyings, whose allowance has no
   // components (the fixed depth ULPs judged those until a campaign found it).
-  // A deferred allowance gives the components' allowances, and the depth's where it says so.
-  const bool deferred_depth = expected.deferred && expected.deferred->depth();
-  if (tolerance.mode == ToleranceMode::spec &&
-      (deferred_depth || expected.allowed.depth.size() == expected.frame.pixel_count())) {
-    static_assert(kDepth == DeferredAllowance::kDepth);
-    if (depth ? deferred_depth : expected.deferred && expected.allowed.components.empty()) {
+  const AllowanceState state = expected.allowance_state();
+  if (tolerance.mode == ToleranceMode::spec && state != AllowanceState::none) {
+    const bool deferred = channel.is_depth() ? state == AllowanceState::all_deferred
+                                             : state != AllowanceState::per_pixel;
+    if (deferred) {
       deferred_ = expected.deferred;
       frame_ = &expected.frame, channel_ = channel;
       return;
     }
-    per_pixel_ = depth ? &expected.allowed.depth : &expected.allowed.components.at(size_t(channel));
+    per_pixel_ = &expected.allowed.values(channel);
     return;
   }
   const bool flat =
-      !depth && c.varyings.at(size_t(component_varying(c).at(size_t(channel)))).interpolation ==
-                    Interpolation::flat;
-  fixed_ulps_ = depth ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
+      !channel.is_depth() &&
+      c.varyings.at(size_t(component_varying(c).at(size_t(channel.component())))).interpolation ==
+          Interpolation::flat;
+  fixed_ulps_ = channel.is_depth() ? tolerance.depth_ulps : flat ? 0.0 : tolerance.varying_ulps;
 }
 
 PixelError pixel_error(float reference, float gl, double ulp) {

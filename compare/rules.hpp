@@ -14,16 +14,15 @@
 #include <vector>
 
 #include "core/case.hpp"
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 #include "core/result.hpp"
 
 namespace glrc::compare {
 
-// The scale of component k at a pixel covered by triangle `primitive`: the largest |v_i| of
-// that triangle's three vertices. Depth is component kDepth, of scale 1.0. Errors are counted in
-// ULPs of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
-inline constexpr int kDepth = -1;
-double attribute_scale(const Case& c, int primitive, int component);
+// The scale of channel ch at a pixel covered by triangle `primitive`: for component k the
+// largest |v_i| of that triangle's three vertices; for the depth 1.0. Errors are counted in ULPs
+// of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
+double attribute_scale(const Case& c, int primitive, Channel ch);
 // ulp of a positive scale: 2^(floor(log2 scale) - 23); 2^-149 (the subnormal spacing) for 0.
 double ulp_of_scale(double scale);
 
@@ -32,31 +31,31 @@ double ulp_of_scale(double scale);
 class UlpTable {
  public:
   explicit UlpTable(const Case& c);
-  double ulp(int primitive, int component) const {  // component kDepth: 2^-23
-    return component == kDepth ? depth_ulp_
-                               : ulps_[size_t(primitive) * size_t(components_) + size_t(component)];
+  double ulp(int primitive, Channel ch) const {  // the depth's: 2^-23
+    return ch.is_depth() ? depth_ulp_ : ulps_[index(primitive, ch)];
   }
-  // 1 / ulp(primitive, component), exact: every ulp is a power of two.
-  double inverse_ulp(int primitive, int component) const {
-    return component == kDepth
-               ? depth_inverse_
-               : inverses_[size_t(primitive) * size_t(components_) + size_t(component)];
+  // 1 / ulp(primitive, ch), exact: every ulp is a power of two.
+  double inverse_ulp(int primitive, Channel ch) const {
+    return ch.is_depth() ? depth_inverse_ : inverses_[index(primitive, ch)];
   }
 
  private:
+  size_t index(int primitive, Channel ch) const {
+    return size_t(primitive) * size_t(components_) + size_t(ch.component());
+  }
   int components_;
   double depth_ulp_, depth_inverse_;
   std::vector<double> ulps_, inverses_;
 };
 
-// What the verdict accepts in one channel (compare::kDepth or a component): per pixel, the
+// What the verdict accepts in one channel (the depth or a component): per pixel, the
 // largest |gl - reference| in value units. The specification's allowance where the expectation
 // carries one and the tolerance is spec; a fixed number of ULPs of the attribute's scale in
 // ulps mode (0 for flat values: they are copied, never computed); 0 in exact mode.
 class ChannelAllowance {
  public:
   ChannelAllowance(const Case& c, const Expectation& expected, const Tolerance& tolerance,
-                   int channel);
+                   Channel channel);
   double at(size_t pixel, double ulp) const {
     if (deferred_) return double(deferred_->at(*frame_, channel_, pixel));
     return per_pixel_ ? double((*per_pixel_)[pixel]) : fixed_ulps_ * ulp;
@@ -74,7 +73,7 @@ class ChannelAllowance {
   const std::vector<float>* per_pixel_ = nullptr;
   std::shared_ptr<const DeferredAllowance> deferred_;
   const Frame* frame_ = nullptr;  // the expectation's, with deferred_
-  int channel_ = 0;
+  Channel channel_ = Channel::depth();
   double fixed_ulps_ = 0;
 };
 
@@ -106,15 +105,14 @@ struct Judged {
   int32_t primitive(const Expectation& e, size_t i) const {
     return candidate ? candidate->primitive : e.frame.primitive[i];
   }
-  // The expected value of channel (kDepth or a component) and the allowance there. Inline:
-  // once per compared pixel and channel.
-  float value(const Expectation& e, size_t i, int channel) const {
-    if (candidate) return channel == kDepth ? candidate->depth : candidate->values[size_t(channel)];
-    return channel == kDepth ? e.frame.depth[i] : e.frame.components[size_t(channel)][i];
+  // The expected value of channel ch and the allowance there. Inline: once per compared pixel
+  // and channel.
+  float value(const Expectation& e, size_t i, Channel ch) const {
+    return candidate ? candidate->value(ch) : e.frame.values(ch)[i];
   }
-  double allowed(const ChannelAllowance& a, size_t i, double ulp, int channel) const {
+  double allowed(const ChannelAllowance& a, size_t i, double ulp, Channel ch) const {
     if (!candidate || !a.per_pixel()) return a.at(i, ulp);
-    return channel == kDepth ? candidate->allowed_depth : candidate->allowed[size_t(channel)];
+    return candidate->allowance(ch);
   }
 };
 Judged judged_against(const Case& c, const Expectation& e, const Frame& gl, size_t i,

@@ -47,27 +47,22 @@ inline constexpr size_t kPrefetchAhead = 8;
   return true;
 }
 
-// Channel k's values in frame f: kDepth's or a component's.
-inline const float* channel_values(const Frame& f, int k) {
-  return k == kDepth ? f.depth.data() : f.components[size_t(k)].data();
-}
-
 // value_range of a whole run: a count the compiler sees, and an AVX2 copy.
 GLRC_VECTOR_CLONES bool run_range(const float* v, float& lo, float& hi);
 
-// One plain run's bounds (ChannelBounds), for component k's values there: none where one is
+// One plain run's bounds (ChannelBounds), for channel ch's values there: none where one is
 // NaN or Inf.
-void find_run_bounds(const DeferredAllowance& deferred, const Frame& reference, int k, int32_t p,
-                     int x, int row, Comparator::RunBounds& b);
+void find_run_bounds(const DeferredAllowance& deferred, const Frame& reference, Channel ch,
+                     int32_t p, int x, int row, Comparator::RunBounds& b);
 
-// The ChannelBounds of a frame compared whole, for component k's deferred allowance: the bounds
+// The ChannelBounds of a frame compared whole, for channel ch's deferred allowance: the bounds
 // of one plain run in four (the others are found as they are compared, their values then in
 // cache), and from them the largest allowance certainly in the channel: every plain run with
 // finite bounds has its allowances counted in the channel's largest (all finite: every pixel's
 // value is judged), so that is at least the largest lo of those.
 Comparator::ChannelBounds run_bounds(const DeferredAllowance& deferred,
                                      const std::vector<int32_t>& plain_runs, const UlpTable& table,
-                                     const Frame& reference, int k);
+                                     const Frame& reference, Channel ch);
 
 // The least float not below a bound lo >= 0: an allowance that is a float at least lo is at
 // least this one too.

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/channel.hpp"
 #include "core/names.hpp"
 
 namespace glrc {
@@ -198,6 +199,8 @@ struct Case {
 std::vector<int32_t> identical_triangles(const Case& c);
 // Channel names of a case's frame, in Frame::components order: "name.x", "name.y", ...
 std::vector<std::string> component_names(const Case& c);
+// The name of channel ch of a case's frame: "depth", or its component's (component_names).
+std::string channel_name(const Case& c, Channel ch);
 // The varying each component belongs to.
 std::vector<int> component_varying(const Case& c);
 

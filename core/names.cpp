@@ -13,6 +13,10 @@ std::vector<std::string> component_names(const Case& c) {
   return names;
 }
 
+std::string channel_name(const Case& c, Channel ch) {
+  return ch.is_depth() ? "depth" : component_names(c).at(size_t(ch.component()));
+}
+
 std::vector<int> component_varying(const Case& c) {
   std::vector<int> owner;
   for (size_t k = 0; k < c.varyings.size(); ++k)

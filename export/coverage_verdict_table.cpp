@@ -1,6 +1,6 @@
 #include "export/coverage_verdict_table.hpp"
 
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 
 namespace glrc::reproducer {
 

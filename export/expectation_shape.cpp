@@ -11,11 +11,10 @@ std::string expectation_shape_error(const Case& c, const Expectation& e, const T
     return "the expectation is not of this case's framebuffer and varyings";
   for (const std::vector<float>& values : f.components)
     if (values.size() != pixels) return "the expectation's components are not the frame's size";
-  if (t.mode == ToleranceMode::spec &&
-      (e.allowed.depth.size() != pixels || e.allowed.components.size() != components))
-    return "a spec tolerance needs the expectation's allowance";
-  for (const std::vector<float>& values : e.allowed.components)
-    if (values.size() != pixels) return "the allowance's components are not the frame's size";
+  if (const std::string why = e.allowance_shape_error(); !why.empty()) return why;
+  // The reproducers embed the allowance at every pixel (complete_allowance).
+  if (t.mode == ToleranceMode::spec && e.allowance_state() != AllowanceState::per_pixel)
+    return "a spec tolerance needs the expectation's allowance at every pixel";
   for (size_t k = 0; k < e.candidates.size(); ++k) {
     const Candidate& o = e.candidates[k];
     if (o.pixel >= pixels || o.primitive < 0 || size_t(o.primitive) >= c.triangles.size() ||

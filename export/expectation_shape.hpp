@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/case.hpp"
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 
 namespace glrc::reproducer {
 

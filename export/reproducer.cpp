@@ -425,9 +425,8 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   // The expectation.
   const compare::UlpTable ulps(c);
   std::vector<compare::ChannelAllowance> allowances;
-  for (int k = compare::kDepth; k < components; ++k)
-    allowances.emplace_back(c, expected, tolerance, k);
-  const bool per_pixel = allowances.front().per_pixel();
+  for (Channel ch : channels_of(components))
+    allowances.emplace_back(c, expected, tolerance, ch);
   out += kCVerdict;
   out += "\n/* ---- What the reference expects (glrefcheck's exact CPU rasterizer) ---- */\n";
   const bool counts = f.fragments.size() == pixels;
@@ -475,9 +474,9 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
         const std::string at = std::to_string(x) + ", " + std::to_string(y);
         v.line_comment(at);
         a.line_comment(at);
-        for (int k = compare::kDepth; k < components; ++k) {
-          v.item(hex_literal(k == compare::kDepth ? f.depth[i] : f.components[size_t(k)][i]));
-          a.item(hex_literal(allowances[size_t(k + 1)].at(i, ulps.ulp(p, k))));
+        for (Channel ch : channels_of(components)) {
+          v.item(hex_literal(f.values(ch)[i]));
+          a.item(hex_literal(allowances[ch.slot()].at(i, ulps.ulp(p, ch))));
         }
       }
     v.finish();
@@ -503,11 +502,12 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
     for (float v : o.values)
       out += ", " + hex_literal(v);
     out += "}, {";
-    for (int k = compare::kDepth; k < components; ++k) {
-      const double a = per_pixel
-                           ? double(k == compare::kDepth ? o.allowed_depth : o.allowed[size_t(k)])
-                           : allowances[size_t(k + 1)].at(o.pixel, ulps.ulp(o.primitive, k));
-      out += (k == compare::kDepth ? "" : ", ") + hex_literal(a);
+    // What the comparator allows GL's fragment there when it is this candidate's.
+    const compare::Judged as_candidate{true, &o};
+    for (Channel ch : channels_of(components)) {
+      const double a =
+          as_candidate.allowed(allowances[ch.slot()], o.pixel, ulps.ulp(o.primitive, ch), ch);
+      out += (ch.is_depth() ? "" : ", ") + hex_literal(a);
     }
     out += "}},\n";
   }

@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/expectation.hpp"
 #include "core/fragment_trace.hpp"
-#include "core/frame.hpp"
 #include "export/coverage_verdict_table.hpp"
 
 namespace glrc::reproducer {

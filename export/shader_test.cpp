@@ -376,17 +376,17 @@ std::optional<std::string> shader_test_refusal(const Case& c, const Expectation&
   }
   if (c.depth_func != DepthFunc::always) {
     const compare::UlpTable ulps(c);
-    const compare::ChannelAllowance depth(c, expected, tolerance, compare::kDepth);
+    const compare::ChannelAllowance depth(c, expected, tolerance, Channel::depth());
     const Frame& f = expected.frame;
     for (size_t i = 0; i < f.pixel_count() && i < f.primitive.size(); ++i) {
       const int32_t p = f.primitive[i];
       if (p == Frame::kNoPrimitive) continue;
-      if (depth.at(i, ulps.ulp(p, compare::kDepth)) < 0x1p-24) {
+      if (depth.at(i, ulps.ulp(p, Channel::depth())) < 0x1p-24) {
         std::string why = "depth_func ";
         why += name_of(c.depth_func);
         why += " with a depth allowance of ";
         char number[32];
-        std::snprintf(number, sizeof number, "%.3g", depth.at(i, ulps.ulp(p, compare::kDepth)));
+        std::snprintf(number, sizeof number, "%.3g", depth.at(i, ulps.ulp(p, Channel::depth())));
         why += number;
         why += cat(" at pixel (", std::to_string(i % size_t(f.width)), ", ",
                    std::to_string(i / size_t(f.width)), ")");
@@ -424,12 +424,8 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   // ---- Per pixel: what the probes decide, and where values are free of the reference ----
   const compare::UlpTable ulps(c);
   std::vector<compare::ChannelAllowance> allowances;
-  for (int k = compare::kDepth; k < components; ++k)
-    allowances.emplace_back(c, expected, tolerance, k);
-  const bool per_pixel = allowances.front().per_pixel();
-  auto reference_value = [&](size_t i, int k) {
-    return k == compare::kDepth ? f.depth[i] : f.components[size_t(k)][i];
-  };
+  for (Channel ch : channels_of(components))
+    allowances.emplace_back(c, expected, tolerance, ch);
 
   const CoverageVerdictTable verdicts(f.fragments.size() == pixels, tolerance);
   std::vector<Decided> decisions(pixels);
@@ -442,9 +438,9 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
     // number passes there, and NaN or Inf is not judged either).
     bool determined = true;
     if (const int32_t p = f.primitive[i]; p != Frame::kNoPrimitive)
-      for (int k = compare::kDepth; k < components; ++k)
-        if (!std::isfinite(reference_value(i, k)) ||
-            !std::isfinite(allowances[size_t(k + 1)].at(i, ulps.ulp(p, k))))
+      for (Channel ch : channels_of(components))
+        if (!std::isfinite(f.values(ch)[i]) ||
+            !std::isfinite(allowances[ch.slot()].at(i, ulps.ulp(p, ch))))
           determined = false;
     free[i] = !decisions[i].primitive || !determined;
   }
@@ -472,20 +468,21 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
       if (p != Frame::kNoPrimitive) {
         const int tier = free[i] ? 0 : clipped_triangle[size_t(p)] ? 1 : edge_pixel(i) ? 2 : 3;
         Pair r{i, p, {}, {}, tier};
-        for (int k = compare::kDepth; k < components; ++k) {
-          r.expected.push_back(reference_value(i, k));
-          r.allowed.push_back(allowances[size_t(k + 1)].at(i, ulps.ulp(p, k)));
+        for (Channel ch : channels_of(components)) {
+          r.expected.push_back(f.values(ch)[i]);
+          r.allowed.push_back(allowances[ch.slot()].at(i, ulps.ulp(p, ch)));
         }
         pairs.push_back(std::move(r));
       }
       for (; candidate != expected.candidates.end() && candidate->pixel == i; ++candidate) {
         const Candidate& o = *candidate;
         Pair r{i, o.primitive, {}, {}, 0};
-        for (int k = compare::kDepth; k < components; ++k) {
-          r.expected.push_back(k == compare::kDepth ? o.depth : o.values[size_t(k)]);
+        // What the comparator allows GL's fragment there when it is this candidate's.
+        const compare::Judged as_candidate{true, &o};
+        for (Channel ch : channels_of(components)) {
+          r.expected.push_back(o.value(ch));
           r.allowed.push_back(
-              per_pixel ? double(k == compare::kDepth ? o.allowed_depth : o.allowed[size_t(k)])
-                        : allowances[size_t(k + 1)].at(i, ulps.ulp(o.primitive, k)));
+              as_candidate.allowed(allowances[ch.slot()], i, ulps.ulp(o.primitive, ch), ch));
         }
         pairs.push_back(std::move(r));
       }

@@ -47,14 +47,15 @@ PlanesFinding identify_planes(const std::vector<Probe>& probes, int bits) {
     row.planes = planes;
     double sum = 0;
     for (const Probe& p : probes) {
-      const ref::Reference r = ref::render(p.c, m);
+      const Expectation r = ref::render(p.c, m);
       const compare::UlpTable ulps(p.c);
       for (size_t i = 0; i < p.gl.pixel_count(); ++i) {
         const int32_t prim = p.gl.primitive[i];
         if (!compare::same_primitive(p.c, r.frame.primitive[i], prim)) continue;
         for (size_t k = 0; k < r.frame.components.size(); ++k) {
-          const compare::PixelError e = compare::pixel_error(
-              r.frame.components[k][i], p.gl.components[k][i], ulps.ulp(prim, int(k)));
+          const compare::PixelError e =
+              compare::pixel_error(r.frame.components[k][i], p.gl.components[k][i],
+                                   ulps.ulp(prim, Channel::component(int(k))));
           ++row.compared;
           if (e.non_finite) {
             ++row.non_finite;

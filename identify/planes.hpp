@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/case.hpp"
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 #include "core/model.hpp"
 
 #include "identify/probes.hpp"

@@ -105,7 +105,7 @@ BitsFinding identify_bits(const std::vector<Probe>& probes, int reported) {
     BitsCandidate row;
     row.bits = bits;
     for (const Probe& p : probes) {
-      const ref::Reference r = ref::render(p.c, m);
+      const Expectation r = ref::render(p.c, m);
       for (size_t i = 0; i < p.gl.pixel_count(); ++i) {
         if (r.frame.primitive[i] == p.gl.primitive[i]) continue;
         // A centre exactly on an edge of this candidate is the tie rule's business.

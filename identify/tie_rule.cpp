@@ -133,7 +133,7 @@ TieFinding identify_ties(const std::vector<Probe>& probes, const std::vector<Tie
     m.subpixel_bits = bits;
     m.tie_break = rule;
     for (const Probe& p : probes) {
-      const ref::Reference r = ref::render(p.c, m);
+      const Expectation r = ref::render(p.c, m);
       for (size_t i = 0; i < p.gl.pixel_count(); ++i)
         row.mismatches += r.frame.primitive[i] != p.gl.primitive[i];
     }

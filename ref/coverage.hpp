@@ -10,7 +10,7 @@
 #include <optional>
 #include <utility>
 
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 #include "core/model.hpp"
 #include "ref/clipping.hpp"
 #include "ref/setup.hpp"

@@ -99,14 +99,14 @@ std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, f
 
 namespace {
 
-// Channel k's allowances (TriangleAllowance's component or depth) of `count` pixels of triangle
+// Channel ch's allowances (TriangleAllowance's component or depth) of `count` pixels of triangle
 // t (1 to kRowBlock) in row y, columns x0 + offset[l], whose values are values[offset[l]], into
 // allowed[l]: one block, its lanes past `count` repeating the last (each lane is computed on its
 // own, so any pixels of one triangle may share a block).
-void block_of(const TriangleAllowance& t, int k, int x0, int y, const float* values,
+void block_of(const TriangleAllowance& t, Channel ch, int x0, int y, const float* values,
               const int* offset, int count, float* allowed) {
   constexpr int m = kRowBlock;
-  const bool depth = k == DeferredAllowance::kDepth;
+  const bool depth = ch.is_depth();
   double px[m], py[m];
   float value[m], out[m];
   for (int l = 0; l < m; ++l) {
@@ -118,29 +118,29 @@ void block_of(const TriangleAllowance& t, int k, int x0, int y, const float* val
   if (depth)
     t.depth_at(block, value, out);
   else
-    t.component_at(block, size_t(k), value, out);
+    t.component_at(block, size_t(ch.component()), value, out);
   std::copy(out, out + count, allowed);
 }
 
 }  // namespace
 
-void TriangleAllowances::at(const Frame& frame, int k, size_t first, int n, float* out) const {
+void TriangleAllowances::at(const Frame& frame, Channel ch, size_t first, int n, float* out) const {
   // Every lane of each 64 pixels: at_lanes' blocks, bit for bit the same per lane however the
   // lanes are grouped.
   for (int j = 0; j < n; j += 64) {
     const int count = std::min(64, n - j);
-    at_lanes(frame, k, first + size_t(j), count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1,
+    at_lanes(frame, ch, first + size_t(j), count == 64 ? ~uint64_t(0) : (uint64_t(1) << count) - 1,
              out + j);
   }
 }
 
-void TriangleAllowances::at_lanes(const Frame& frame, int k, size_t first, uint64_t lanes,
+void TriangleAllowances::at_lanes(const Frame& frame, Channel ch, size_t first, uint64_t lanes,
                                   float* out) const {
   constexpr int m = kRowBlock;
   const int y = int(first / size_t(frame.width)) + row0_;
   const int x0 = int(first % size_t(frame.width));
-  const bool depth = k == kDepth;
-  const float* values = (depth ? frame.depth.data() : frame.components[size_t(k)].data()) + first;
+  const bool depth = ch.is_depth();
+  const float* values = frame.values(ch).data() + first;
   const int32_t* primitive = frame.primitive.data() + first;
   while (lanes != 0) {
     // The lanes of the primitive of the first lane left, a block at most.
@@ -156,7 +156,7 @@ void TriangleAllowances::at_lanes(const Frame& frame, int k, size_t first, uint6
       lanes &= ~(uint64_t(1) << lane[l]);
     float allowed[m];
     if (t)
-      block_of(*t, k, x0, y, values, lane, count, allowed);
+      block_of(*t, ch, x0, y, values, lane, count, allowed);
     else
       std::fill(allowed, allowed + count, depth ? 1.0f : 0.0f);  // nothing drawn (the clear value)
     for (int l = 0; l < count; ++l)
@@ -164,13 +164,13 @@ void TriangleAllowances::at_lanes(const Frame& frame, int k, size_t first, uint6
   }
 }
 
-std::array<double, 2> TriangleAllowances::range(int k, int32_t p, int x0, int x1, int y,
+std::array<double, 2> TriangleAllowances::range(Channel ch, int32_t p, int x0, int x1, int y,
                                                 float value_lo, float value_hi) const {
   const TriangleAllowance* t =
       p >= 0 && size_t(p) < triangles_.size() ? triangles_[size_t(p)].get() : nullptr;
   if (!t) return {0.0, INFINITY};
-  if (k == kDepth) return t->depth_range(x0, x1, y + row0_, value_lo, value_hi);
-  return t->component_range(size_t(k), x0, x1, y + row0_, value_lo, value_hi);
+  if (ch.is_depth()) return t->depth_range(x0, x1, y + row0_, value_lo, value_hi);
+  return t->component_range(size_t(ch.component()), x0, x1, y + row0_, value_lo, value_hi);
 }
 
 }  // namespace glrc::ref

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/case.hpp"
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 #include "ref/allowance.hpp"
 #include "ref/blocks.hpp"
 #include "ref/freedom.hpp"
@@ -74,22 +74,23 @@ class TriangleAllowance {
 
 // The DeferredAllowance of a frame whose row 0 is window row `row0`, from the triangles that
 // drew it, by primitive: each added (add()) before anything asks for its pixels. `depth`: the
-// depth's allowance deferred too (DeferredAllowance::depth).
+// depth's allowance deferred too (DeferredAllowance::defers_depth).
 class TriangleAllowances final : public DeferredAllowance {
  public:
   TriangleAllowances(size_t triangles, int row0, bool depth)
       : triangles_(triangles), row0_(row0), depth_(depth) {}
-  bool depth() const override { return depth_; }
+  bool defers_depth() const override { return depth_; }
   int first_row() const override { return row0_; }
   // Primitive p's allowances; not while another thread asks for any.
   void add(size_t p, std::shared_ptr<const TriangleAllowance> t) {
     triangles_.at(p) = std::move(t);
   }
   using DeferredAllowance::at;  // one pixel
-  void at(const Frame& frame, int k, size_t first, int n, float* out) const override;
+  void at(const Frame& frame, Channel ch, size_t first, int n, float* out) const override;
   // Up to kRowBlock lanes of one primitive in each block, wherever they are in the row.
-  void at_lanes(const Frame& frame, int k, size_t first, uint64_t lanes, float* out) const override;
-  std::array<double, 2> range(int k, int32_t p, int x0, int x1, int y, float value_lo,
+  void at_lanes(const Frame& frame, Channel ch, size_t first, uint64_t lanes,
+                float* out) const override;
+  std::array<double, 2> range(Channel ch, int32_t p, int x0, int x1, int y, float value_lo,
                               float value_hi) const override;
 
  private:

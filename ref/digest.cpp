@@ -121,7 +121,7 @@ std::string digest(const Frame& f) {
   return d.hex();
 }
 
-std::string expectation_digest(const Reference& r) {
+std::string expectation_digest(const Expectation& r) {
   return sha256([&](const auto& feed) {
     feed(digest(r.frame).data(), 64);
     feed(r.edges.data(), r.edges.size());

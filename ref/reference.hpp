@@ -11,14 +11,15 @@
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/expectation.hpp"
 #include "core/fragment_trace.hpp"
-#include "core/frame.hpp"
 #include "core/model.hpp"
 
 namespace glrc::ref {
 
-// The frame, its edge bits (core/frame.hpp edge::) and, when asked for, the allowance.
-using Reference = Expectation;
+// render()'s result is the Expectation (core/expectation.hpp): the frame, its edge bits and,
+// when asked for, the allowance. Its old name here, kept for the CMake package's users:
+using Reference [[deprecated("ref::Reference is glrc::Expectation")]] = Expectation;
 
 // Renders the case under model m. With `freedom_bits` (the GL_SUBPIXEL_BITS an implementation
 // reports, at least 4 taken), also the specification's allowance per pixel and channel
@@ -26,13 +27,13 @@ using Reference = Expectation;
 // bands one model subpixel step wide. Neither is part of the digest.
 // `threads`: how many threads draw it (ref/tiles.hpp), 0 for every core this process may use;
 // every bit of the result is the same for any number.
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt,
-                 int threads = 1);
-// The same bits, drawn in the buffers of `storage` (a Reference the caller is done with, of
+Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits = std::nullopt,
+                   int threads = 1);
+// The same bits, drawn in the buffers of `storage` (an Expectation the caller is done with, of
 // any case; left empty), where they are large enough: a caller checking case after case
 // reuses the memory of the last one (Frame::reset).
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                 Reference&& storage);
+Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                   Expectation&& storage);
 
 // render(c, m, freedom_bits, threads, storage) with the components' allowances deferred
 // (Expectation::deferred), and the depth's too in a case without a depth test
@@ -41,17 +42,17 @@ Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits,
 // pixel drawn; the result's allowed frame holds the depth's only, or nothing (and the
 // candidates their own, as render()'s), until complete_allowance (core/frame.hpp). Most pixels
 // of a frame compared need only a bound of their allowances over a run of pixels.
-Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
-                          Reference&& storage = {});
+Expectation render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                            Expectation&& storage = {});
 
 // A case's triangles as render() sets them up (ref/mesh.hpp).
 struct CaseSetup;
 // render() and render_deferred() that hand their set-up of c's triangles under m back in
 // `setup` (instead of freeing it), for fragment_choices() to reuse: the same bits.
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                 Reference&& storage, std::shared_ptr<const CaseSetup>& setup);
-Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
-                          Reference&& storage, std::shared_ptr<const CaseSetup>& setup);
+Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                   Expectation&& storage, std::shared_ptr<const CaseSetup>& setup);
+Expectation render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                            Expectation&& storage, std::shared_ptr<const CaseSetup>& setup);
 
 // render(c, m, std::nullopt, threads).frame, bit for bit, without the edge bits (which `digest`
 // does not hash): neither the edges triangles share nor the bands along them are looked for.
@@ -62,15 +63,15 @@ Frame render_frame(const Case& c, const Model& m, int threads = 1);
 // edge bits and candidates' pixels indexed within them. Every triangle is set up and prepared
 // again for each call (per-triangle work times the number of slices). Throws
 // std::invalid_argument for rows outside the framebuffer.
-Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                      int y0, int rows);
+Expectation render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                        int y0, int rows);
 
 // render_rows() with the components' allowances deferred, as render_deferred() defers them
 // (and the depth's in a case without a depth test): bit for bit render_rows()' allowances where
 // a comparison of the slice asks for them (its DeferredAllowance knows the slice's first row), in
 // the buffers of `storage` where given. Throws as render_rows().
-Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads, int y0,
-                               int rows, Reference&& storage = {});
+Expectation render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                                 int y0, int rows, Expectation&& storage = {});
 
 // What a conforming implementation may rasterize at each of `pixels` (window indices
 // x + y·fb_width, each inside the framebuffer), for judging a fragment trace
@@ -111,6 +112,6 @@ class FrameDigest {
 // and the allowance's primitive, depth and components (when computed), then every candidate
 // (pixel, primitive, depth, allowed depth, values, allowed values). A faster reference must keep
 // it (tests/expectation_digests.txt), not only the frame's.
-std::string expectation_digest(const Reference& r);
+std::string expectation_digest(const Expectation& r);
 
 }  // namespace glrc::ref

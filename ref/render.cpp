@@ -153,7 +153,7 @@ inline void copy_block(const float* from, float* to) {
 // other is free.
 class FragmentBlocks {
  public:
-  FragmentBlocks(const Settings& s, const Prepared& w, int p, Reference& r,
+  FragmentBlocks(const Settings& s, const Prepared& w, int p, Expectation& r,
                  CandidateMap& candidates)
       : s_(s),
         w_(w),
@@ -185,7 +185,7 @@ class FragmentBlocks {
     const Settings& s = s_;
     const Prepared& w = w_;
     const int p = p_;
-    Reference& r = r_;
+    Expectation& r = r_;
     CandidateMap& candidates = candidates_;
     const Case& c = s.c;
     Frame& f = r.frame;
@@ -266,7 +266,7 @@ class FragmentBlocks {
         Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
         for (size_t k = 0; k < planes.size(); ++k) {
           old.values.push_back(f.components[k][i]);
-          old.allowed.push_back(deferred ? s.deferred->at(f, int(k), i)
+          old.allowed.push_back(deferred ? s.deferred->at(f, Channel::component(int(k)), i)
                                          : r.allowed.components[k][i]);
         }
         candidates[i].push_back(std::move(old));
@@ -347,7 +347,7 @@ class FragmentBlocks {
   const Settings& s_;
   const Prepared& w_;
   const int p_;
-  Reference& r_;
+  Expectation& r_;
   CandidateMap& candidates_;
   int count_ = 0;
   int px_[kRowBlock]{}, py_[kRowBlock]{};
@@ -451,7 +451,7 @@ class FrameBlocks {
 // then the fragments it covers, depth-tested, with their allowances and the candidates. With an
 // AVX2 copy (core/vector_clones.hpp): the spans' ceil and floor are an instruction each there.
 GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, Tile tile,
-                                  Reference& r, CandidateMap& candidates) {
+                                  Expectation& r, CandidateMap& candidates) {
   const TriangleSetup& t = w.t;
   Frame& f = r.frame;
   auto delta_at = [&](int px, int py) {
@@ -547,7 +547,7 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, T
 
 }  // namespace
 
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads) {
+Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads) {
   return render_rows(c, m, freedom_bits, threads, 0, c.fb_height);
 }
 
@@ -565,7 +565,7 @@ void release(std::vector<T>& v, ThreadPool& pool) {
 // pixel no fragment was drawn at (no primitive): the frames were made with their components
 // uncleared (Frame::reset_uncleared_components), and a drawn fragment writes every component of
 // both. In chunks of pixels on the pool's threads, each finding its runs of undrawn pixels once.
-void clear_uncovered(Reference& r, ThreadPool& pool) {
+void clear_uncovered(Expectation& r, ThreadPool& pool) {
   const Frame& f = r.frame;
   const size_t n = f.pixel_count();
   constexpr size_t kChunk = size_t(1) << 16;
@@ -593,9 +593,9 @@ void clear_uncovered(Reference& r, ThreadPool& pool) {
 // the shared edges nor the bands are looked for. In `storage`'s buffers, where given.
 // `deferred`: with an allowance, its components computed where asked for (render_deferred).
 // `keep`: where given, the triangles' set-up is handed back there instead of freed.
-Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads, int y0,
-               int row_count, bool edges, Reference* storage = nullptr, bool deferred = false,
-               std::shared_ptr<const CaseSetup>* keep = nullptr) {
+Expectation draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                 int y0, int row_count, bool edges, Expectation* storage = nullptr,
+                 bool deferred = false, std::shared_ptr<const CaseSetup>* keep = nullptr) {
   if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
@@ -605,8 +605,8 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
   ThreadPool pool(threads);
   // The frames cleared on every thread, a buffer each: on a large frame of many channels,
   // filling them is otherwise a serial part of drawing it.
-  Reference r;
-  if (storage) r = std::exchange(*storage, Reference{});
+  Expectation r;
+  if (storage) r = std::exchange(*storage, Expectation{});
   const bool allowance = freedom_bits.has_value();
   deferred = deferred && allowance;
   // The components are cleared where nothing is drawn once everything is (clear_uncovered):
@@ -731,33 +731,33 @@ Reference draw(const Case& c, const Model& m, std::optional<int> freedom_bits, i
 
 }  // namespace
 
-Reference render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                      int y0, int row_count) {
+Expectation render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                        int y0, int row_count) {
   return draw(c, m, freedom_bits, threads, y0, row_count, true);
 }
 
-Reference render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads, int y0,
-                               int row_count, Reference&& storage) {
+Expectation render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                                 int y0, int row_count, Expectation&& storage) {
   return draw(c, m, freedom_bits, threads, y0, row_count, true, &storage, true);
 }
 
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                 Reference&& storage) {
+Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                   Expectation&& storage) {
   return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage);
 }
 
-Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
-                          Reference&& storage) {
+Expectation render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                            Expectation&& storage) {
   return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true);
 }
 
-Reference render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                 Reference&& storage, std::shared_ptr<const CaseSetup>& setup) {
+Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
+                   Expectation&& storage, std::shared_ptr<const CaseSetup>& setup) {
   return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, false, &setup);
 }
 
-Reference render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
-                          Reference&& storage, std::shared_ptr<const CaseSetup>& setup) {
+Expectation render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
+                            Expectation&& storage, std::shared_ptr<const CaseSetup>& setup) {
   return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true, &setup);
 }
 

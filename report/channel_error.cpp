@@ -9,17 +9,16 @@
 
 namespace glrc::report {
 
-ChannelError channel_error(const Case& c, const Expectation& expected, const Frame& gl, int channel,
-                           const Tolerance& tolerance) {
+ChannelError channel_error(const Case& c, const Expectation& expected, const Frame& gl,
+                           Channel channel, const Tolerance& tolerance) {
   const Frame& reference = expected.frame;
-  const bool depth = channel == compare::kDepth;
   const compare::ChannelAllowance allowance(c, expected, tolerance, channel);
   ChannelError e;
-  e.name = depth ? "depth" : component_names(c).at(size_t(channel));
+  e.name = channel_name(c, channel);
   e.width = reference.width;
   e.height = reference.height;
-  e.reference = depth ? reference.depth : reference.components.at(size_t(channel));
-  e.gl = depth ? gl.depth : gl.components.at(size_t(channel));
+  e.reference = reference.values(channel);
+  e.gl = gl.values(channel);
 
   const size_t n = reference.pixel_count();
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -34,18 +33,17 @@ ChannelError channel_error(const Case& c, const Expectation& expected, const Fra
     const compare::Judged judged = compare::judged_against(c, expected, gl, i, tolerance);
     if (!judged.compared) continue;
     // Where GL kept another fragment that may win the depth test, that is the expectation.
-    const int k = depth ? compare::kDepth : channel;
-    const float expectation = judged.value(expected, i, k);
+    const float expectation = judged.value(expected, i, channel);
     // Not judged where the specification determines no value, as compare counts it.
     if (!compare::value_determined(expectation, tolerance)) continue;
     e.compared[i] = true;
     e.reference[i] = expectation;
     // Both values are float32, so the difference is exact in double.
     e.signed_error[i] = float(double(e.gl[i]) - double(e.reference[i]));
-    const double ulp = ulp_table.ulp(judged.primitive(expected, i), k);
+    const double ulp = ulp_table.ulp(judged.primitive(expected, i), channel);
     const compare::PixelError pe = compare::pixel_error(e.reference[i], e.gl[i], ulp);
     e.ulps[i] = pe.ulps;
-    const double allowed = judged.allowed(allowance, i, ulp, k);
+    const double allowed = judged.allowed(allowance, i, ulp, channel);
     e.allowed[i] = float(allowed);
     e.allowed_ulps[i] = allowed / ulp;
     if (std::isfinite(pe.ulps))

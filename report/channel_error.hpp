@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/case.hpp"
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 
 namespace glrc::report {
 
@@ -35,10 +35,10 @@ struct ChannelError {
   bool judged = true;  // false for the allowance map: nothing in it is over or under a limit
 };
 
-// channel compare::kDepth is depth, of scale 1.0 (depth range [0, 1]); k >= 0 is
-// Frame::components[k]. Errors are compare::pixel_error at the pixels compare compares.
-ChannelError channel_error(const Case& c, const Expectation& expected, const Frame& gl, int channel,
-                           const Tolerance& tolerance);
+// The depth is of scale 1.0 (depth range [0, 1]); a component's is its triangle's largest
+// |v_i| (compare::attribute_scale). Errors are compare::pixel_error at the pixels compare compares.
+ChannelError channel_error(const Case& c, const Expectation& expected, const Frame& gl,
+                           Channel channel, const Tolerance& tolerance);
 
 // The allowance itself, in ULPs, as a map of its own.
 ChannelError as_allowance_map(const ChannelError& e);

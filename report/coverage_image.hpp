@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 #include "core/result.hpp"
 #include "report/canvas.hpp"
 

@@ -73,16 +73,15 @@ std::vector<T> cut(const std::vector<T>& v, int frame_width, const Tile& t) {
 // The channels a picture is made of, with the fixed tolerance marked on the legend (NaN for
 // the specification's, which varies per pixel): every one, or of a large frame the failing ones.
 struct Shown {
-  int channel;
+  Channel channel;
   std::string name;
   double tolerance;
 };
 std::vector<Shown> shown_channels(const Case& c, const CaseResult& r, bool large) {
   const bool fixed = r.tolerance.mode != ToleranceMode::spec;
   std::vector<Shown> out;
-  for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
-    const std::string name =
-        channel == compare::kDepth ? "depth" : component_names(c).at(size_t(channel));
+  for (Channel channel : channels_of(c.component_count())) {
+    const std::string name = channel_name(c, channel);
     double tolerance = NAN;
     bool passes = false;
     for (const auto& ch : r.channels)
@@ -129,9 +128,8 @@ void write_tile(const std::string& name, const TileValues& v, const Tile& t, lon
 
 std::vector<std::string> diff_image_names(const Case& c) {
   std::vector<std::string> names;
-  for (int channel = compare::kDepth; channel < c.component_count(); ++channel) {
-    const std::string stem =
-        file_stem(channel == compare::kDepth ? "depth" : component_names(c).at(size_t(channel)));
+  for (Channel channel : channels_of(c.component_count())) {
+    const std::string stem = file_stem(channel_name(c, channel));
     for (const char* suffix :
          {"_error.png", "_allowed.png", "_ratio.png", "_error.exr", "_allowed.exr", "_gl.exr",
           "_ref.exr", "_error_tile.exr", "_allowed_tile.exr", "_gl_tile.exr", "_ref_tile.exr"})

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/case.hpp"
-#include "core/frame.hpp"
+#include "core/expectation.hpp"
 #include "core/result.hpp"
 #include "report/stamp.hpp"
 

@@ -90,8 +90,8 @@ std::string write_images(Outcome& done, const Options& o, const check::CheckOpti
       return "";
     }
     // The heatmaps show every pixel's allowance.
-    complete_allowance(done.checked.reference, judged.threads);
-    report::write_diff_images(dir, done.c, done.checked.reference, done.checked.gl,
+    complete_allowance(done.checked.expected, judged.threads);
+    report::write_diff_images(dir, done.c, done.checked.expected, done.checked.gl,
                               done.checked.result);
     return "";
   } catch (const std::exception& e) {

@@ -102,7 +102,7 @@ void expect_same_results(const Case& c, const std::vector<Frame>& frames,
   EXPECT_TRUE(deferred.allowed.components.empty()) << c.name;
   // The depth's too, where no depth test needs it while drawing.
   const bool depth = c.depth_func == DepthFunc::always;
-  EXPECT_EQ(deferred.deferred->depth(), depth) << c.name;
+  EXPECT_EQ(deferred.deferred->defers_depth(), depth) << c.name;
   EXPECT_EQ(deferred.allowed.depth.empty(), depth) << c.name;
   const Tolerance t = tolerance_for(c, options, 8);
   for (size_t n = 0; n < frames.size(); ++n) {
@@ -293,12 +293,10 @@ size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
   if (!e.deferred) return 0;
   const Frame& f = e.frame;
   size_t runs = 0, tight = 0;
-  const int first = e.deferred->depth() ? DeferredAllowance::kDepth : 0;
-  for (int k = first; k < int(f.components.size()); ++k)
-    for (int y = 0; y < f.height; ++y)
+  for (const Channel k : channels_of(int(f.components.size())))
+    for (int y = 0; y < f.height && (e.deferred->defers_depth() || !k.is_depth()); ++y)
       for (int x0 = 0; x0 < f.width; x0 += length / 4) {
-        const std::vector<float>& values =
-            k == DeferredAllowance::kDepth ? f.depth : f.components[size_t(k)];
+        const std::vector<float>& values = f.values(k);
         const int x1 = std::min(f.width, x0 + length) - 1;
         const int32_t p = f.primitive[f.index(x0, y)];
         bool one = p >= 0;
@@ -315,8 +313,8 @@ size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
         e.deferred->at(f, k, f.index(x0, y), x1 - x0 + 1, allowed.data());
         ++runs;
         for (float a : allowed) {
-          EXPECT_LE(range[0], double(a)) << c.name << " component " << k << " row " << y;
-          EXPECT_LE(double(a), range[1]) << c.name << " component " << k << " row " << y;
+          EXPECT_LE(range[0], double(a)) << c.name << " channel " << k.slot() << " row " << y;
+          EXPECT_LE(double(a), range[1]) << c.name << " channel " << k.slot() << " row " << y;
         }
         tight += range[1] <= tightest_spread * range[0];
       }
@@ -371,9 +369,8 @@ void expect_lanes_give_the_runs_bits(const Case& c, std::mt19937& rng) {
   const Expectation e = ref::render_deferred(c, o.model, freedom_bits(o, 8), 2);
   if (!e.deferred) return;
   const Frame& f = e.frame;
-  const int first = e.deferred->depth() ? DeferredAllowance::kDepth : 0;
-  for (int k = first; k < int(f.components.size()); ++k)
-    for (int y = 0; y < f.height; ++y)
+  for (const Channel k : channels_of(int(f.components.size())))
+    for (int y = 0; y < f.height && (e.deferred->defers_depth() || !k.is_depth()); ++y)
       for (int x = 0; x + 64 <= f.width; x += 64) {
         const size_t start = f.index(x, y);
         float whole[64], lanes[64];
@@ -388,7 +385,7 @@ void expect_lanes_give_the_runs_bits(const Case& c, std::mt19937& rng) {
           for (int j = 0; j < 64; ++j)
             ASSERT_EQ(std::bit_cast<uint32_t>(lanes[j]),
                       std::bit_cast<uint32_t>((mask >> j) & 1 ? whole[j] : -7.0f))
-                << c.name << " channel " << k << " pixel " << x + j << ", " << y;
+                << c.name << " channel " << k.slot() << " pixel " << x + j << ", " << y;
         }
       }
 }

@@ -249,5 +249,29 @@ TEST(Comparator, BandsOutOfOrderAreRefused) {
   EXPECT_THROW(comparator.add_rows(rows_of(e, 4, 4), e.frame.rows(4, 5), 4), std::invalid_argument);
 }
 
+// Under the spec tolerance the comparator refuses an expectation without an allowance, or whose
+// allowance contradicts its state (Expectation::allowance_shape_error); under the exact
+// tolerance it reads none.
+TEST(Comparator, AMisshapenAllowanceIsRefusedUnderSpec) {
+  Case c;
+  c.name = "shape";
+  c.fb_width = 4, c.fb_height = 3;
+  c.varyings.push_back({"v", 2, Interpolation::smooth});
+  Expectation good;
+  good.frame = Frame(4, 3, 2);
+  good.edges.assign(12, 0);
+  good.allowed.depth.assign(12, 0.0f);
+  good.allowed.components.assign(2, std::vector<float>(12, 0.0f));
+  const Tolerance spec{ToleranceMode::spec}, exact{ToleranceMode::exact};
+  EXPECT_EQ(compare(c, good, good.frame, spec).status, Status::pass);
+  Expectation broken = good;
+  broken.allowed.components[0].pop_back();
+  EXPECT_THROW(compare(c, broken, broken.frame, spec), std::invalid_argument);
+  EXPECT_EQ(compare(c, broken, broken.frame, exact).status, Status::pass);
+  Expectation none = good;
+  none.allowed = Frame();
+  EXPECT_THROW(compare(c, none, none.frame, spec), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace glrc::compare

@@ -72,9 +72,9 @@ TEST(UlpOfScale, IsTheFloatSpacingAtTheScale) {
 
 TEST(AttributeScale, IsTheLargestMagnitudeAtTheTrianglesVertices) {
   const Case c = two_varyings_case();
-  EXPECT_EQ(attribute_scale(c, 0, 0), 1.0);
-  EXPECT_EQ(attribute_scale(c, 0, 1), 1000.0);
-  EXPECT_EQ(attribute_scale(c, 0, kDepth), 1.0);
+  EXPECT_EQ(attribute_scale(c, 0, Channel::component(0)), 1.0);
+  EXPECT_EQ(attribute_scale(c, 0, Channel::component(1)), 1000.0);
+  EXPECT_EQ(attribute_scale(c, 0, Channel::depth()), 1.0);
 }
 
 TEST(Compare, IdenticalFramesPassWithZeroError) {
@@ -514,16 +514,17 @@ void expect_runs_give_a_plain_count(float largest) {
   }
   const std::vector<uint8_t> edges(ref.pixel_count(), 0);
   const UlpTable table(c);
-  ASSERT_EQ(table.ulp(0, 0) == table.ulp(1, 0), largest < 4);
+  ASSERT_EQ(table.ulp(0, Channel::component(0)) == table.ulp(1, Channel::component(0)),
+            largest < 4);
   for (const ToleranceMode mode : {ToleranceMode::spec, ToleranceMode::ulps, ToleranceMode::exact})
-    for (int k : {kDepth, 0}) {
+    for (const Channel k : {Channel::depth(), Channel::component(0)}) {
       Tolerance tolerance;
       tolerance.mode = mode;
       tolerance.varying_ulps = 40, tolerance.depth_ulps = 3;
       const CaseResult r = compare(c, expect(ref, edges, allowed), gl, tolerance);
-      const std::vector<float>& rv = k == kDepth ? ref.depth : ref.components[0];
-      const std::vector<float>& gv = k == kDepth ? gl.depth : gl.components[0];
-      const std::vector<float>& av = k == kDepth ? allowed.depth : allowed.components[0];
+      const std::vector<float>& rv = ref.values(k);
+      const std::vector<float>& gv = gl.values(k);
+      const std::vector<float>& av = allowed.values(k);
       uint64_t compared = 0, differing = 0, over = 0;
       double sum = 0, sum_sq = 0, max_abs = 0, max_ulps = 0, max_ratio = 0, largest_allowance = 0;
       std::vector<float> ulps, ratios;
@@ -532,7 +533,7 @@ void expect_runs_give_a_plain_count(float largest) {
         if (!same_primitive(c, ref.primitive[i], gl.primitive[i])) continue;
         const double ulp = table.ulp(ref.primitive[i], k);
         const double abs_error = std::fabs(double(gv[i]) - double(rv[i]));
-        const double fixed = k == kDepth ? tolerance.depth_ulps : tolerance.varying_ulps;
+        const double fixed = k.is_depth() ? tolerance.depth_ulps : tolerance.varying_ulps;
         const double e_ulps = abs_error * (1 / ulp);
         const double allow = mode == ToleranceMode::spec   ? double(av[i])
                              : mode == ToleranceMode::ulps ? fixed * ulp
@@ -558,7 +559,7 @@ void expect_runs_give_a_plain_count(float largest) {
                    ratio};
         }
       }
-      const ChannelStats& ch = channel(r, k == kDepth ? "depth" : "v.x");
+      const ChannelStats& ch = channel(r, k.is_depth() ? "depth" : "v.x");
       ASSERT_GT(compared, 5000u);
       ASSERT_GT(over, 100u);  // some beyond their allowance
       if (mode != ToleranceMode::exact) {

@@ -33,7 +33,7 @@ const Model kModel{8, Planes::unsnapped, TieBreak::bottom_left};
 
 TEST(Undetermined, TheReferenceGivesNaNBeyondTheVanishingLineWithAnUnboundedAllowance) {
   const Case c = vanishing_line();
-  const ref::Reference r = ref::render(c, kModel, 8);
+  const Expectation r = ref::render(c, kModel, 8);
   const size_t corner = r.frame.index(12, 12);
   ASSERT_EQ(r.frame.primitive[corner], 0);
   EXPECT_TRUE(std::isnan(r.frame.components[0][corner]));
@@ -45,7 +45,7 @@ TEST(Undetermined, TheReferenceGivesNaNBeyondTheVanishingLineWithAnUnboundedAllo
 
 TEST(Undetermined, APixelWithoutADeterminedValueIsNotJudgedAndNaNThereIsNoPass) {
   const Case c = vanishing_line();
-  const ref::Reference r = ref::render(c, kModel, 8);
+  const Expectation r = ref::render(c, kModel, 8);
   const size_t corner = r.frame.index(12, 12);
   Tolerance t;
   t.subpixel_bits = 8;
@@ -107,7 +107,7 @@ Case near_the_eye() {
 
 TEST(Undetermined, ATriangleWithinRoundingOfTheEyeHasNoBoundOnItsValues) {
   const Case c = near_the_eye();
-  const ref::Reference r = ref::render(c, kModel, 8);
+  const Expectation r = ref::render(c, kModel, 8);
   const size_t at = r.frame.index(1, 0);
   ASSERT_EQ(r.frame.primitive[at], 0);
   EXPECT_EQ(r.frame.components[0][at], 0.0f);  // the value itself is determined: 0

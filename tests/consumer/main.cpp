@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
     // allowance around the exact reference, the case's tolerance.
     const glrc::check::CheckOptions options;
     const int reported_bits = 8;
-    const glrc::ref::Reference reference =
+    const glrc::Expectation reference =
         glrc::ref::render(c, options.model, glrc::check::freedom_bits(options, reported_bits));
     const glrc::Tolerance tolerance = glrc::check::tolerance_for(c, options, reported_bits);
 

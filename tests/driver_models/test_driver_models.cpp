@@ -148,7 +148,7 @@ TEST(DriverModelDeterminism, SameCaseSameBits) {
 // The largest share of the allowance any smooth value or depth of the driver's frame uses,
 // over the pixels both draw with the case's first triangle; `compared` counts them.
 double worst_share(const Case& c, Driver d, long& compared) {
-  const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
+  const Expectation r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
   const Frame f = render(c, d);
   double worst = 0;
   for (size_t i = 0; i < f.pixel_count(); ++i) {
@@ -267,7 +267,7 @@ TEST(DriverModelCoverage, AtTheNearAndFarPlanesOnlyMarkedPixelsDiffer) {
   for (Driver d : kDrivers) {
     long differ = 0;
     for (const Case& c : cases) {
-      const ref::Reference r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
+      const Expectation r = ref::render(c, Model{}, d == Driver::llvmpipe ? 8 : 4);
       const Frame f = render(c, d);
       for (size_t i = 0; i < f.pixel_count(); ++i)
         if (r.frame.primitive[i] != f.primitive[i]) {

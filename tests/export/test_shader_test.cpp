@@ -270,16 +270,15 @@ TEST(ShaderTest, FloatsRoundTripExactly) {
     ASSERT_EQ(std::sscanf(text.c_str() + id_at, "ivec3(%d, %d, %d)", &px, &py, &t), 3);
     const size_t i = x.expected.frame.index(px, py);
     ASSERT_EQ(x.expected.frame.primitive[i], t);
-    for (int k = compare::kDepth; k < c.component_count(); ++k) {
+    for (Channel ch : channels_of(c.component_count())) {
       at = text.find("vec2(", at + 5);
       const char* p = text.c_str() + at + 5;
       char* end = nullptr;
       const float lo = std::strtof(p, &end);
       const float hi = std::strtof(end + 1, nullptr);
-      const float e = k == compare::kDepth ? x.expected.frame.depth[i]
-                                           : x.expected.frame.components[size_t(k)][i];
+      const float e = x.expected.frame.values(ch)[i];
       const double a =
-          compare::ChannelAllowance(c, x.expected, x.tolerance, k).at(i, ulps.ulp(t, k));
+          compare::ChannelAllowance(c, x.expected, x.tolerance, ch).at(i, ulps.ulp(t, ch));
       if (!std::isfinite(e)) {
         EXPECT_GT(lo, hi);  // not judged
         continue;

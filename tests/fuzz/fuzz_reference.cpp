@@ -85,7 +85,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   const Model m{int(in.byte() % 2) * 8, Planes::unsnapped, TieBreak::bottom_left};
   (void)ref::render(c, m);  // no allowance: the path `digest` takes
-  const ref::Reference r = ref::render(c, m, 8);
+  const Expectation r = ref::render(c, m, 8);
   for (size_t i = 0; i < r.frame.pixel_count(); ++i) {
     if (r.frame.primitive[i] < 0) continue;
     if (!(r.allowed.depth[i] >= 0)) fail("depth allowance NaN or negative");

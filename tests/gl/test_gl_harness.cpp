@@ -257,7 +257,7 @@ TEST(FirstDraw, CaseCoversTheWholeFramebuffer) {
   ASSERT_EQ(c.varyings.size(), 1u);
   EXPECT_EQ(c.varyings[0].interpolation, Interpolation::flat);
   // The reference agrees with what the judge expects.
-  const ref::Reference r = ref::render(c, Model{}, 8);
+  const Expectation r = ref::render(c, Model{}, 8);
   EXPECT_TRUE(judge_first_draw(r.frame).right()) << judge_first_draw(r.frame).fault;
 }
 
@@ -807,8 +807,7 @@ TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
       const check::Checked reused = check::check_with_frames(
           c, gl(), check::CheckOptions{}, check::check_with_frames(other, gl(), {}));
       test::expect_same_result(reused.result, fresh.result);
-      EXPECT_EQ(ref::expectation_digest(reused.reference),
-                ref::expectation_digest(fresh.reference));
+      EXPECT_EQ(ref::expectation_digest(reused.expected), ref::expectation_digest(fresh.expected));
       EXPECT_EQ(ref::digest(reused.gl), ref::digest(fresh.gl));
     }
 
@@ -822,7 +821,7 @@ TEST_F(Gl, BandsReadBackAndStreamedChecksAreTheWholeOnes) {
       const check::Checked b = check::check_with_frames(c, gl(), streamed);
       EXPECT_FALSE(a.streamed);
       EXPECT_TRUE(b.streamed);
-      EXPECT_TRUE(b.gl.components.empty() && b.reference.frame.primitive.empty());
+      EXPECT_TRUE(b.gl.components.empty() && b.expected.frame.primitive.empty());
       test::expect_same_result(a.result, b.result);
     }
   }
@@ -856,7 +855,7 @@ TEST_F(Gl, StreamedChecksDeferTheAllowanceBandByBand) {
     o.deferred_allowance = deferred;
     const check::Checked a = check::check_with_frames(c, gl(), o);
     EXPECT_FALSE(a.streamed);
-    EXPECT_EQ(bool(a.reference.deferred), deferred);
+    EXPECT_EQ(bool(a.expected.deferred), deferred);
     test::expect_same_result(a.result, b.result);
   }
 }

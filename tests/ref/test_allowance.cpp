@@ -36,7 +36,7 @@ void move(Case& c, size_t v, double dx, double dy) {
 // largest |moved - reference| / allowed over pixels both cover with the same triangle, over
 // every channel.
 double worst_share_of_allowance(const Case& c, int bits, size_t n = 3) {
-  const Reference r = render(c, Model{}, bits);
+  const Expectation r = render(c, Model{}, bits);
   const double d = 0.9 * std::ldexp(1.0, -bits);
   double worst = 0;
   for (int corners = 0; corners < (1 << (2 * n)); ++corners) {
@@ -45,7 +45,7 @@ double worst_share_of_allowance(const Case& c, int bits, size_t n = 3) {
       const int k = (corners >> (2 * v)) & 3;
       move(moved, v, k & 1 ? d : -d, k & 2 ? d : -d);
     }
-    const Reference m = render(moved, Model{});
+    const Expectation m = render(moved, Model{});
     for (size_t i = 0; i < r.frame.pixel_count(); ++i) {
       if (r.frame.primitive[i] < 0 || m.frame.primitive[i] != r.frame.primitive[i]) continue;
       auto share = [&](float ref, float got, float allowed) {
@@ -100,12 +100,12 @@ TEST(Allowance, BoundsVertexMovesWhereTheDenominatorChangesFast) {
                 {{0.0f, 0.0f, 0.0f, -0x1p-19f}, {0.0f}}};
   c.triangles = {{0, 1, 2}};
   // The fuzz case itself: the second vertex moved by 0.00165 px down, at pixel (7, 7).
-  const Reference r = render(c, Model{}, 8);
+  const Expectation r = render(c, Model{}, 8);
   const size_t i = r.frame.index(7, 7);
   ASSERT_EQ(r.frame.primitive[i], 0);
   Case snapped = c;
   move(snapped, 1, 0.0, -0.00165);
-  const Reference s = render(snapped, Model{});
+  const Expectation s = render(snapped, Model{});
   ASSERT_EQ(s.frame.primitive[i], 0);
   const double moved_by = std::fabs(double(s.frame.components[0][i]) - r.frame.components[0][i]);
   EXPECT_GT(moved_by, 0.01);  // the value is that sensitive here
@@ -121,7 +121,7 @@ TEST(Allowance, BoundsVertexMovesWhereTheDenominatorChangesFast) {
         Case moved = c;
         const double d = twentieths / 20.0 * 0x1p-8;
         move(moved, v, in_y ? 0.0 : d, in_y ? d : 0.0);
-        const Reference m = render(moved, Model{});
+        const Expectation m = render(moved, Model{});
         for (size_t p = 0; p < r.frame.pixel_count(); ++p)
           if (r.frame.primitive[p] == 0 && m.frame.primitive[p] == 0)
             worst = std::max(worst, std::fabs(double(m.frame.components[0][p]) -
@@ -137,7 +137,7 @@ TEST(Allowance, FlatIsExactAndDepthIsPositive) {
   c.varyings = {{"f", 1, Interpolation::flat}};
   c.vertices = {{{-1, -1, 0, 1}, {1}}, {{1, -1, 0.5f, 1}, {2}}, {{-1, 1, -0.5f, 1}, {3}}};
   c.triangles = {{0, 1, 2}};
-  const Reference r = render(c, Model{}, 8);
+  const Expectation r = render(c, Model{}, 8);
   const size_t i = r.frame.index(2, 2);
   ASSERT_EQ(r.frame.primitive[i], 0);
   EXPECT_EQ(r.allowed.components[0][i], 0.0f);
@@ -216,7 +216,7 @@ TEST(Allowance, GrowsWithDistanceFromTheOrigin) {
   Case far = near;
   far.fb_width = 4096;
   far.viewport = {4080, 0, 16, 16};
-  const Reference a = render(near, Model{}, 16), b = render(far, Model{}, 16);
+  const Expectation a = render(near, Model{}, 16), b = render(far, Model{}, 16);
   // The same triangle, 4080 pixels further: float positions and planes lose precision there.
   EXPECT_GT(b.allowed.components[0][b.frame.index(4082, 2)],
             4 * a.allowed.components[0][a.frame.index(2, 2)]);
@@ -248,7 +248,7 @@ TEST(SharedEdges, AQuadsDiagonalIsSharedAnOverlapIsNot) {
 
   // Pixels along the diagonal are marked shared, not snapping; the outer edges snapping.
   c.triangles = {{0, 1, 2}, {0, 2, 3}};
-  const Reference r = render(c, Model{}, 8);
+  const Expectation r = render(c, Model{}, 8);
   EXPECT_EQ(r.edges[r.frame.index(7, 7)], edge::shared | edge::tie);  // centre on the diagonal
   EXPECT_EQ(r.edges[r.frame.index(8, 8)], edge::shared | edge::tie);
   EXPECT_EQ(r.edges[r.frame.index(5, 9)], 0);

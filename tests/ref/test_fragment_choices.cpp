@@ -203,7 +203,7 @@ TEST(FragmentChoices, EveryConformingRasterizationIsAdmitted) {
     // The same from render()'s own set-up of the triangles, as a check reuses it, at pixels of
     // one corner (so that the triangles kept are not all of them).
     std::shared_ptr<const CaseSetup> setup;
-    render(c, Model{}, 4, 2, Reference{}, setup);
+    render(c, Model{}, 4, 2, Expectation{}, setup);
     ASSERT_TRUE(setup);
     std::vector<size_t> corner;
     for (size_t i : pixels)

@@ -49,7 +49,7 @@ TEST(ConcaveEnvelope, IsTheLargestOverEveryTriangulation) {
 
 TEST(Freedom, AFarVertexClippedAwayLeavesTheAllowanceTight) {
   const Case c = far_vertex(0x1p-20f);
-  const Reference r = render(c, Model{}, 8);
+  const Expectation r = render(c, Model{}, 8);
   double largest = 0;
   int covered = 0;
   for (size_t i = 0; i < r.frame.pixel_count(); ++i) {
@@ -65,8 +65,8 @@ TEST(Freedom, AFarVertexClippedAwayLeavesTheAllowanceTight) {
 }
 
 TEST(Freedom, IsContinuousAcrossWZero) {
-  const Reference plus = render(far_vertex(0x1p-20f), Model{}, 8);
-  const Reference minus = render(far_vertex(-0x1p-20f), Model{}, 8);
+  const Expectation plus = render(far_vertex(0x1p-20f), Model{}, 8);
+  const Expectation minus = render(far_vertex(-0x1p-20f), Model{}, 8);
   int compared = 0;
   for (size_t i = 0; i < plus.frame.pixel_count(); ++i) {
     if (plus.frame.primitive[i] != 0 || minus.frame.primitive[i] != 0) continue;
@@ -101,7 +101,7 @@ TEST(Freedom, AFreedomBeyondIntRangeStillGetsItsEdgeBands) {
     c.viewport = {0, 0, 16, 16};
     EXPECT_GT(PositionFreedom(c, setup_triangle(c, Model{}, 0), 8).largest(),
               far == 1e16f ? 3e9 : 1e7);
-    const Reference r = render(c, Model{}, 8);
+    const Expectation r = render(c, Model{}, 8);
     size_t marked = 0;
     for (uint8_t bits : r.edges)
       marked += (bits & edge::snapping) != 0;
@@ -244,8 +244,8 @@ TEST(Freedom, AClippedTriangleIsJudgedAsTightlyAsItsClippedPolygon) {
     for (const Point& q : clipped)
       rewritten.vertices.push_back({{float(q.p[0]), float(q.p[1]), float(q.p[2]), float(q.p[3])},
                                     {float(q.v[0]), float(q.v[1])}});
-    const Reference a = render(c, Model{}, 8);
-    std::vector<Reference> fans;
+    const Expectation a = render(c, Model{}, 8);
+    std::vector<Expectation> fans;
     const auto n = uint32_t(clipped.size());
     for (uint32_t pivot = 0; pivot < n; ++pivot) {
       rewritten.triangles.clear();
@@ -259,7 +259,7 @@ TEST(Freedom, AClippedTriangleIsJudgedAsTightlyAsItsClippedPolygon) {
       // The polygon's allowance: the largest over the fans that draw the pixel.
       float depth = 0;
       std::array<float, 2> values{};
-      for (const Reference& b : fans) {
+      for (const Expectation& b : fans) {
         if (b.frame.primitive[i] < 0) continue;
         depth = std::max(depth, b.allowed.depth[i]);
         for (size_t k = 0; k < 2; ++k)

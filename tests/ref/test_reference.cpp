@@ -32,7 +32,7 @@ Case base_case(int w, int h) {
 //   smooth        (3/16·8/2) / (10/16 + 3/32 + 3/64) = (3/4) / (49/64) = 48/49
 //   noperspective 3/16·8 = 3/2
 //   depth         10/16·1/2 + 3/16·3/4 + 3/16·3/8 = 67/128
-TEST(Reference, PerspectiveTriangleByHand) {
+TEST(Expectation, PerspectiveTriangleByHand) {
   Case c = base_case(8, 8);
   c.varyings = {{"s", 1, Interpolation::smooth}, {"n", 1, Interpolation::noperspective}};
   c.vertices = {vtx(-1, -1, 0, 1, {0, 0}), vtx(2, -2, 1, 2, {8, 8}), vtx(-4, 4, -1, 4, {0, 0})};
@@ -42,7 +42,7 @@ TEST(Reference, PerspectiveTriangleByHand) {
     m.subpixel_bits = bits;  // all positions are on the grid: snapping changes nothing
     for (Planes planes : {Planes::unsnapped, Planes::snapped}) {
       m.planes = planes;
-      const Reference r = render(c, m);
+      const Expectation r = render(c, m);
       const size_t i = r.frame.index(1, 1);
       EXPECT_EQ(r.frame.primitive[i], 0);
       EXPECT_EQ(r.frame.components[0][i], 48.0f / 49.0f) << m.describe();
@@ -56,14 +56,14 @@ TEST(Reference, PerspectiveTriangleByHand) {
 
 // The quad tilted away from the eye, as two triangles: along their shared diagonal both must
 // give the same perspective-correct value (the seam a screen-linear interpolation would show).
-TEST(Reference, TiltedQuadHasNoSeam) {
+TEST(Expectation, TiltedQuadHasNoSeam) {
   Case c = base_case(32, 32);
   c.varyings = {{"uv", 2, Interpolation::smooth}};
   // Bottom edge near (w=1), top edge far (w=3): x_c, y_c scaled by w keep a trapezoid on screen.
   c.vertices = {vtx(-0.9f, -0.9f, 0, 1, {0, 0}), vtx(0.9f, -0.9f, 0, 1, {1, 0}),
                 vtx(1.2f, 2.4f, 0, 3, {1, 1}), vtx(-1.2f, 2.4f, 0, 3, {0, 1})};
   c.triangles = {{0, 1, 2}, {0, 2, 3}};
-  const Reference r = render(c, Model{});
+  const Expectation r = render(c, Model{});
   // The exact interpolant u is the same rational function over the whole quad; check that u
   // is monotone along each row across the seam (a screen-linear split would kink).
   int rows_checked = 0;
@@ -100,7 +100,7 @@ std::vector<int> coverage_counts(const Case& c, const Model& m) {
 
 // A fan around a pixel centre with spokes through pixel centres, horizontal, vertical and
 // diagonal (the tie cases): every pixel inside is covered exactly once, for every model.
-TEST(Reference, FanCoversEachPixelOnce) {
+TEST(Expectation, FanCoversEachPixelOnce) {
   Case c = base_case(32, 32);
   // Window position p -> clip (p/16 - 1) with w = 1 on a 32x32 viewport.
   auto at = [](float x_w, float y_w) { return vtx(x_w / 16 - 1, y_w / 16 - 1, 0, 1, {}); };
@@ -139,7 +139,7 @@ TEST(Reference, FanCoversEachPixelOnce) {
 }
 
 // A perspective grid mesh with irregular vertices: no pixel twice, no gap inside.
-TEST(Reference, PerspectiveGridIsWatertight) {
+TEST(Expectation, PerspectiveGridIsWatertight) {
   Case c = base_case(64, 64);
   const int n = 6;
   for (int j = 0; j <= n; ++j)
@@ -216,7 +216,7 @@ float nearest_float(const mpq_class& q) {
 
 // A triangle with a vertex behind the eye (w_c < 0) and one beyond the far plane: coverage and
 // values of every pixel against the independent solver (unsnapped, so no ties with the model).
-TEST(Reference, BehindTheEyeAndFarPlaneAgainstSolver) {
+TEST(Expectation, BehindTheEyeAndFarPlaneAgainstSolver) {
   Case c = base_case(48, 40);
   c.varyings = {{"a", 2, Interpolation::smooth}, {"f", 1, Interpolation::flat}};
   c.vertices = {vtx(-0.7f, -0.6f, 0.2f, 1.0f, {3.0f, -1.0f, 7}),
@@ -225,7 +225,7 @@ TEST(Reference, BehindTheEyeAndFarPlaneAgainstSolver) {
   c.triangles = {{0, 1, 2}};
   Model m;
   m.subpixel_bits = 0;
-  const Reference r = render(c, m);
+  const Expectation r = render(c, m);
   int covered = 0;
   for (int py = 0; py < 40; ++py)
     for (int px = 0; px < 48; ++px) {
@@ -254,7 +254,7 @@ TEST(Reference, BehindTheEyeAndFarPlaneAgainstSolver) {
   EXPECT_LT(covered, 48 * 40);
 }
 
-TEST(Reference, ProvokingVertexCullingAndDepthRange) {
+TEST(Expectation, ProvokingVertexCullingAndDepthRange) {
   Case c = base_case(16, 16);
   c.varyings = {{"f", 1, Interpolation::flat}};
   c.vertices = {vtx(-1, -1, 0.5f, 1, {1}), vtx(1, -1, 0.5f, 1, {2}), vtx(-1, 1, 0.5f, 1, {3})};
@@ -276,13 +276,13 @@ TEST(Reference, ProvokingVertexCullingAndDepthRange) {
   EXPECT_EQ(render(c, Model{}).frame.primitive[i], Frame::kNoPrimitive);
 }
 
-TEST(Reference, ViewportOffsetAndEdgeBand) {
+TEST(Expectation, ViewportOffsetAndEdgeBand) {
   Case c = base_case(40, 30);
   c.viewport = {10, 5, 20, 20};
   c.varyings = {};
   c.vertices = {vtx(-3, -3, 0, 1, {}), vtx(6, -3, 0, 1, {}), vtx(-3, 6, 0, 1, {})};
   c.triangles = {{0, 1, 2}};
-  const Reference r = render(c, Model{});
+  const Expectation r = render(c, Model{});
   // The triangle covers the whole viewport, nothing outside it.
   for (int y = 0; y < 30; ++y)
     for (int x = 0; x < 40; ++x) {
@@ -294,7 +294,7 @@ TEST(Reference, ViewportOffsetAndEdgeBand) {
   e.vertices = {vtx(-1.0f / 32, -0.5f, 0, 1, {}), vtx(0.5f, -0.5f, 0, 1, {}),
                 vtx(-1.0f / 32, 0.5f, 0, 1, {})};
   e.triangles = {{0, 1, 2}};
-  const Reference re = render(e, Model{});
+  const Expectation re = render(e, Model{});
   EXPECT_EQ(re.edges[re.frame.index(15, 16)], edge::snapping | edge::tie);
   EXPECT_EQ(re.edges[re.frame.index(17, 16)], 0);
   EXPECT_EQ(re.edges[re.frame.index(13, 16)], 0);
@@ -304,8 +304,8 @@ TEST(Reference, ViewportOffsetAndEdgeBand) {
 // make a sliver of it (llvmpipe does, in a campaign): the centres within the position freedom of
 // its segment are unstable, no others; one through the eye has a vertex of undefined position,
 // and every centre of the viewport is; culling both faces draws neither.
-TEST(Reference, AZeroAreaTriangleLeavesOnlyItsSliverUndecided) {
-  auto unstable = [](const Reference& r, int x, int y) {
+TEST(Expectation, AZeroAreaTriangleLeavesOnlyItsSliverUndecided) {
+  auto unstable = [](const Expectation& r, int x, int y) {
     return (r.edges[r.frame.index(x, y)] & edge::unstable) != 0;
   };
   // Collinear along the row of centres y_w = 10.5 of a 64x48 viewport, from x_w = 8.5 to 40.5,
@@ -316,7 +316,7 @@ TEST(Reference, AZeroAreaTriangleLeavesOnlyItsSliverUndecided) {
                 vtx(40.5f / 32 - 1, y_n, 0, 1, {})};
   c.triangles = {{0, 1, 2}};
   ASSERT_FALSE(setup_triangle(c, Model{}, 0).has_edges);
-  const Reference r = render(c, Model{}, 8);
+  const Expectation r = render(c, Model{}, 8);
   for (int x = 8; x <= 40; ++x)
     EXPECT_TRUE(unstable(r, x, 10)) << x;
   for (int x : {6, 7, 41, 42})
@@ -326,7 +326,7 @@ TEST(Reference, AZeroAreaTriangleLeavesOnlyItsSliverUndecided) {
   for (size_t i = 0; i < r.frame.pixel_count(); ++i)
     EXPECT_EQ(r.frame.primitive[i], Frame::kNoPrimitive);
   // Without an allowance (a driver model), nothing is undecided.
-  const Reference model = render(c, Model{});
+  const Expectation model = render(c, Model{});
   EXPECT_TRUE(
       std::all_of(model.edges.begin(), model.edges.end(), [](uint8_t e) { return e == 0; }));
 
@@ -336,12 +336,12 @@ TEST(Reference, AZeroAreaTriangleLeavesOnlyItsSliverUndecided) {
   eye.vertices = {vtx(-2 * 0.25f, -2 * -0.5625f, -2 * 0.125f, -2, {}),
                   vtx(0.25f, -0.5625f, 0.125f, 1, {}), vtx(-0.75f, -0.5625f, 0, 1, {})};
   eye.triangles = {{0, 1, 2}};
-  const Reference re = render(eye, Model{}, 8);
+  const Expectation re = render(eye, Model{}, 8);
   for (int y = 0; y < 48; ++y)
     for (int x = 0; x < 64; ++x)
       ASSERT_TRUE(unstable(re, x, y)) << x << "," << y;
   eye.cull = CullFace::front_and_back;
-  const Reference culled = render(eye, Model{}, 8);
+  const Expectation culled = render(eye, Model{}, 8);
   EXPECT_TRUE(
       std::all_of(culled.edges.begin(), culled.edges.end(), [](uint8_t e) { return e == 0; }));
   eye.cull = CullFace::back;  // its facing is either

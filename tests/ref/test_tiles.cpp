@@ -121,7 +121,7 @@ TEST(Tiles, OverlappingTrianglesGiveTheSameBitsOnAnyNumberOfThreads) {
   EXPECT_EQ(digest(render(c, Model{}, std::nullopt, 5).frame),
             digest(render(c, Model{}, std::nullopt, 1).frame));
   EXPECT_FALSE(render(c, Model{}, 8, 5).candidates.empty());  // the depth order was contested
-  // Drawn in the buffers of another case's Reference (larger, with more components, its
+  // Drawn in the buffers of another case's Expectation (larger, with more components, its
   // candidates and edge bits set; or one without an allowance): the same bits.
   Case other = c;
   other.fb_width = 120, other.fb_height = 70;
@@ -130,12 +130,12 @@ TEST(Tiles, OverlappingTrianglesGiveTheSameBitsOnAnyNumberOfThreads) {
   for (Vertex& v : other.vertices)
     v.values = {v.values[0], v.values[1], 0.5f, -1.0f, v.values[0]};
   for (const std::optional<int> bits : {std::optional<int>(8), std::optional<int>()}) {
-    Reference storage = render(other, Model{}, bits, 2);
+    Expectation storage = render(other, Model{}, bits, 2);
     ASSERT_FALSE(storage.edges.empty());
     EXPECT_EQ(expectation_digest(render(c, Model{}, 8, 2, std::move(storage))), one);
     EXPECT_TRUE(storage.frame.primitive.empty() && storage.allowed.depth.empty());
   }
-  Reference storage = render(other, Model{}, 8, 2);
+  Expectation storage = render(other, Model{}, 8, 2);
   EXPECT_EQ(expectation_digest(render(c, Model{}, std::nullopt, 2, std::move(storage))),
             expectation_digest(render(c, Model{}, std::nullopt, 2)));
 }
@@ -159,11 +159,11 @@ TEST(Tiles, PixelsNothingDrawsAreClearedInAnotherCasesBuffers) {
                     {{0.25f, -0.5f, 0, 1}, {4.0f, -5.0f, 6.0f}},
                     {{-0.5f, 0.25f, 0, 1}, {7.0f, 8.0f, -9.0f}}};
   for (const std::optional<int> bits : {std::optional<int>(8), std::optional<int>()}) {
-    Reference storage = render(full, Model{}, bits, 2);
+    Expectation storage = render(full, Model{}, bits, 2);
     for (const auto& component : storage.frame.components)
       ASSERT_EQ(std::count(component.begin(), component.end(), 0.0f), 0);
-    const Reference fresh = render(small, Model{}, bits, 2);
-    const Reference reused = render(small, Model{}, bits, 2, std::move(storage));
+    const Expectation fresh = render(small, Model{}, bits, 2);
+    const Expectation reused = render(small, Model{}, bits, 2, std::move(storage));
     EXPECT_EQ(expectation_digest(reused), expectation_digest(fresh));
     ASSERT_EQ(reused.frame.components.size(), 3u);
     size_t undrawn = 0;
@@ -182,10 +182,10 @@ TEST(Tiles, PixelsNothingDrawsAreClearedInAnotherCasesBuffers) {
   }
 }
 
-// render_rows' bands, one after another, as one Reference: what render() gives, if they are
+// render_rows' bands, one after another, as one Expectation: what render() gives, if they are
 // right.
-Reference stacked(const Case& c, std::optional<int> bits, int rows, int threads) {
-  Reference whole{Frame(c.fb_width, 0, c.component_count()), {}, Frame()};
+Expectation stacked(const Case& c, std::optional<int> bits, int rows, int threads) {
+  Expectation whole{Frame(c.fb_width, 0, c.component_count()), {}, Frame()};
   whole.frame.fragments.clear();
   if (bits) whole.allowed = Frame(c.fb_width, 0, c.component_count());
   auto append = [](Frame& to, const Frame& band) {
@@ -198,7 +198,7 @@ Reference stacked(const Case& c, std::optional<int> bits, int rows, int threads)
                               band.components[k].end());
   };
   for (int y0 = 0; y0 < c.fb_height; y0 += rows) {
-    const Reference band =
+    const Expectation band =
         render_rows(c, Model{}, bits, threads, y0, std::min(rows, c.fb_height - y0));
     const size_t before = whole.frame.pixel_count();
     append(whole.frame, band.frame);

@@ -615,14 +615,15 @@ TEST(ChannelError, APixelWonByAnotherFragmentIsJudgedByThatFragment) {
   Frame gl = e.frame;
   gl.primitive[i] = 1;
   gl.components[0][i] = 7.0f;
-  const ChannelError err = channel_error(c, e, gl, 0, Tolerance{ToleranceMode::ulps});
+  const ChannelError err =
+      channel_error(c, e, gl, Channel::component(0), Tolerance{ToleranceMode::ulps});
   EXPECT_TRUE(err.compared[i]);
   EXPECT_EQ(err.reference[i], 7.0f);
   EXPECT_EQ(err.signed_error[i], 0.0f);
   // Where GL names a triangle that is neither the winner nor a candidate, nothing is compared.
   gl.primitive[e.frame.index(0, 0)] = 1;
-  EXPECT_FALSE(
-      channel_error(c, e, gl, 0, Tolerance{ToleranceMode::ulps}).compared[e.frame.index(0, 0)]);
+  EXPECT_FALSE(channel_error(c, e, gl, Channel::component(0), Tolerance{ToleranceMode::ulps})
+                   .compared[e.frame.index(0, 0)]);
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     }
     for (const auto& file : glrc::casefile::collect(paths)) {
       const glrc::Case c = glrc::casefile::load(file);
-      const glrc::ref::Reference r = glrc::ref::render(c, glrc::Model{}, bits, threads);
+      const glrc::Expectation r = glrc::ref::render(c, glrc::Model{}, bits, threads);
       const std::string d = bits ? glrc::ref::expectation_digest(r) : glrc::ref::digest(r.frame);
       std::printf("%s  %s\n", d.c_str(), c.name.c_str());
     }
