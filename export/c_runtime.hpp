@@ -1,4 +1,4 @@
-// The C reproducer's runtime, embedded at build time by cmake/embed_c_runtime.cmake:
+// The C reproducer's runtime, embedded at build time by cmake/embed_text.cmake:
 // export/c_runtime/declarations.c (GL, EGL and OSMesa declared by hand, and the scene a draw
 // takes), export/c_runtime/verdict.c (a pixel's coverage label looked up in the verdict table a
 // reproducer embeds: export/coverage_verdict_table.hpp) and export/c_runtime/runtime.c (GL's

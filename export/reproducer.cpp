@@ -268,76 +268,13 @@ void check_inputs(const Case& c, const Expectation& e, const Tolerance& t,
     fail("the first draw is not the harness's (one flat float, one triangle)");
 }
 
-}  // namespace
-
-size_t reproducer_values(const Case& c) {
-  return size_t(std::max(c.fb_width, 0)) * size_t(std::max(c.fb_height, 0)) *
-         (3 + size_t(std::max(c.component_count(), 0)));
-}
-
-std::string c_compile_command(const std::string& file) {
-  std::string program = file;
-  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
-  return "cc -std=c99 -O2 -o " + shell_word(program) + " " + shell_word(file) + " -ldl -lm";
-}
-
-std::string c_run_command(const std::string& file) {
-  std::string program = file;
-  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
-  if (program.find('/') == std::string::npos) program = "./" + program;
-  return shell_word(program);
-}
-
-std::string c_verdict_table(const CoverageVerdictTable& table) {
-  using Observation = compare::CoverageObservation;
-  std::string out;
-  out +=
-      "/* The coverage verdict, computed by glrefcheck with its comparator's rules for every "
-      "value of the\n   edge bits (REF_EDGES): the label (enum label) by what GL kept (enum "
-      "kept), its fragment\n   count against the reference's (enum count) and whether its "
-      "fragment trace is admitted (0, 1). */\n";
-  out += "static const verdict_row COVERAGE_VERDICT[" +
-         std::to_string(CoverageVerdictTable::kEdgeBitValues) + "] = {\n";
-  for (int edges = 0; edges < CoverageVerdictTable::kEdgeBitValues; ++edges) {
-    out += "    {";
-    for (int kept = 0; kept < compare::kKeptKinds; ++kept) {
-      out += kept ? ", {" : "{";
-      for (int count = 0; count < compare::kCountKinds; ++count) {
-        const Observation seen{Observation::Kept(kept), Observation::Count(count)};
-        out += (count ? ", {" : "{") + std::to_string(table.label(uint8_t(edges), seen, false)) +
-               ", " + std::to_string(table.label(uint8_t(edges), seen, true)) + "}";
-      }
-      out += "}";
-    }
-    out += "}, /* " + std::to_string(edges) + " */\n";
-  }
-  out += "};\n";
-  out +=
-      "/* Whether a label fails this case (0: the specification's freedom explains it, and the "
-      "case allows\n   that). */\n";
-  out += "static const unsigned char LABEL_FAILS[] = {";
-  for (int code = 0; code < kLabelCodes; ++code)
-    out += (code ? ", " : "") + std::to_string(int(table.fails(uint8_t(code))));
-  out += "};\n";
-  return out;
-}
-
-std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
-                         const CReproducerSetup& setup) {
-  check_inputs(c, expected, tolerance, setup);
-  const Frame& f = expected.frame;
-  const size_t pixels = f.pixel_count();
-  const int components = c.component_count();
-  const std::vector<std::string> names = component_names(c);
+// The header comment: what the file is, how to build and run it, what it judges.
+void write_header(std::string& out, const Case& c, const Tolerance& tolerance,
+                  const CReproducerSetup& setup) {
   std::string file_name = setup.file_name.empty() ? c.name + ".c" : setup.file_name;
   if (const size_t slash = file_name.rfind('/'); slash != std::string::npos)
     file_name = file_name.substr(slash + 1);
   const std::string program = c_run_command(file_name);
-
-  std::string out;
-  out.reserve(pixels * 64 + 65536);
-
-  // The header: what this is and how to use it.
   out += std::string(kCReproducerSignature) + " of case " + comment_text(c.name) + ", in C99\n";
   out += " *\n";
   if (!c.description.empty()) out += comment_lines(c.description) + " *\n";
@@ -395,8 +332,12 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
       "context, OpenGL 3.3 core).");
   out += " */\n";
   out += kCDeclarations;
+}
 
-  // The case and the first draw, as the harness draws them.
+// The case and the harness's first draw, as the harness draws them.
+void write_case(std::string& out, const Case& c, const CReproducerSetup& setup) {
+  const int components = c.component_count();
+  const std::vector<std::string> names = component_names(c);
   out += "\n/* ---- The case ---- */\n";
   out += "static const char CASE_NAME[] = " + c_string(c.name) + ";\n";
   out += "#define FB_WIDTH " + std::to_string(c.fb_width) + "\n";
@@ -421,12 +362,17 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
       "primitive 0\n   and value 1 expected at every pixel. */\n";
   write_scene(out, setup.first_draw, setup.first_draw_shaders, "first_draw", "FIRST_DRAW",
               c_string(setup.first_draw.name));
+}
 
-  // The expectation.
-  const compare::UlpTable ulps(c);
-  std::vector<compare::ChannelAllowance> allowances;
-  for (Channel ch : channels_of(components))
-    allowances.emplace_back(c, expected, tolerance, ch);
+// The expectation: the coverage verdict table, the reference's primitive, fragment count and
+// edge bits per pixel, and its values and allowances where it covers.
+void write_expectation(std::string& out, const Case& c, const Expectation& expected,
+                       const Tolerance& tolerance,
+                       const std::vector<compare::ChannelAllowance>& allowances,
+                       const compare::UlpTable& ulps) {
+  const Frame& f = expected.frame;
+  const size_t pixels = f.pixel_count();
+  const int components = c.component_count();
   out += kCVerdict;
   out += "\n/* ---- What the reference expects (glrefcheck's exact CPU rasterizer) ---- */\n";
   const bool counts = f.fragments.size() == pixels;
@@ -490,7 +436,14 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   out +=
       "/* ...and the largest |GL - reference| a conforming implementation can produce there. */\n";
   out += "static const double REF_ALLOWED[] = {" + allowed + "};\n";
+}
 
+// The fragments that may win the depth test instead of the reference's, with what the
+// comparator allows each.
+void write_candidates(std::string& out, const Case& c, const Expectation& expected,
+                      const std::vector<compare::ChannelAllowance>& allowances,
+                      const compare::UlpTable& ulps) {
+  const int components = c.component_count();
   out +=
       "/* Where another fragment may win the depth test (EDGE_DEPTH_ORDER): its primitive, "
       "depth and\n   components, and their allowances; sorted by pixel (y * FB_WIDTH + x). */\n";
@@ -513,7 +466,10 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   }
   if (expected.candidates.empty()) out += "    {-1, -1, {0}, {0}} /* none */\n";
   out += "};\n";
-  // The traces a conforming implementation may give where the edge bits excuse a count.
+}
+
+// The traces a conforming implementation may give where the edge bits excuse a count.
+void write_traces(std::string& out, const CReproducerSetup& setup) {
   out +=
       "/* Where the edge bits excuse coverage (EDGE_SNAPPING, EDGE_UNSTABLE, EDGE_SHARED), the "
       "traces a\n   conforming implementation may give: fragments, the sum of p + 1 and the sum "
@@ -535,6 +491,76 @@ std::string c_reproducer(const Case& c, const Expectation& expected, const Toler
   out += "static const struct traced TRACED_PIXELS[] = {\n" + pixels_text + "};\n";
   out += "static const unsigned TRACES[][3] = {\n" + traces_text + "};\n";
   out += "static const struct trace_list TRACE_LIST = {TRACED_COUNT, TRACED_PIXELS, TRACES};\n";
+}
+
+}  // namespace
+
+size_t reproducer_values(const Case& c) {
+  return size_t(std::max(c.fb_width, 0)) * size_t(std::max(c.fb_height, 0)) *
+         (3 + size_t(std::max(c.component_count(), 0)));
+}
+
+std::string c_compile_command(const std::string& file) {
+  std::string program = file;
+  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
+  return "cc -std=c99 -O2 -o " + shell_word(program) + " " + shell_word(file) + " -ldl -lm";
+}
+
+std::string c_run_command(const std::string& file) {
+  std::string program = file;
+  if (program.size() > 2 && program.ends_with(".c")) program.resize(program.size() - 2);
+  if (program.find('/') == std::string::npos) program = "./" + program;
+  return shell_word(program);
+}
+
+std::string c_verdict_table(const CoverageVerdictTable& table) {
+  using Observation = compare::CoverageObservation;
+  std::string out;
+  out +=
+      "/* The coverage verdict, computed by glrefcheck with its comparator's rules for every "
+      "value of the\n   edge bits (REF_EDGES): the label (enum label) by what GL kept (enum "
+      "kept), its fragment\n   count against the reference's (enum count) and whether its "
+      "fragment trace is admitted (0, 1). */\n";
+  out += "static const verdict_row COVERAGE_VERDICT[" +
+         std::to_string(CoverageVerdictTable::kEdgeBitValues) + "] = {\n";
+  for (int edges = 0; edges < CoverageVerdictTable::kEdgeBitValues; ++edges) {
+    out += "    {";
+    for (int kept = 0; kept < compare::kKeptKinds; ++kept) {
+      out += kept ? ", {" : "{";
+      for (int count = 0; count < compare::kCountKinds; ++count) {
+        const Observation seen{Observation::Kept(kept), Observation::Count(count)};
+        out += (count ? ", {" : "{") + std::to_string(table.label(uint8_t(edges), seen, false)) +
+               ", " + std::to_string(table.label(uint8_t(edges), seen, true)) + "}";
+      }
+      out += "}";
+    }
+    out += "}, /* " + std::to_string(edges) + " */\n";
+  }
+  out += "};\n";
+  out +=
+      "/* Whether a label fails this case (0: the specification's freedom explains it, and the "
+      "case allows\n   that). */\n";
+  out += "static const unsigned char LABEL_FAILS[] = {";
+  for (int code = 0; code < kLabelCodes; ++code)
+    out += (code ? ", " : "") + std::to_string(int(table.fails(uint8_t(code))));
+  out += "};\n";
+  return out;
+}
+
+std::string c_reproducer(const Case& c, const Expectation& expected, const Tolerance& tolerance,
+                         const CReproducerSetup& setup) {
+  check_inputs(c, expected, tolerance, setup);
+  std::string out;
+  out.reserve(expected.frame.pixel_count() * 64 + 65536);
+  write_header(out, c, tolerance, setup);
+  write_case(out, c, setup);
+  const compare::UlpTable ulps(c);
+  std::vector<compare::ChannelAllowance> allowances;
+  for (Channel ch : channels_of(c.component_count()))
+    allowances.emplace_back(c, expected, tolerance, ch);
+  write_expectation(out, c, expected, tolerance, allowances, ulps);
+  write_candidates(out, c, expected, allowances, ulps);
+  write_traces(out, setup);
   const std::optional<std::string> outside = outside_specified_range(c);
   out += "/* Why the case asks for more than GL specifies, if it does. */\n";
   out += "static const char OUTSIDE_SPECIFIED_RANGE[] = " + c_string(outside.value_or("")) + ";\n";
