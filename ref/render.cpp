@@ -593,22 +593,39 @@ void clear_uncovered(Expectation& r, ThreadPool& pool) {
 // the shared edges nor the bands are looked for. In `storage`'s buffers, where given.
 // `deferred`: with an allowance, its components computed where asked for (render_deferred).
 // `keep`: where given, the triangles' set-up is handed back there instead of freed.
-Expectation draw(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
-                 int y0, int row_count, bool edges, Expectation* storage = nullptr,
-                 bool deferred = false, std::shared_ptr<const CaseSetup>* keep = nullptr) {
+// What one draw() of the reference makes: every public render function is one request.
+struct DrawRequest {
+  // With the allowance of an implementation of these GL_SUBPIXEL_BITS (at least 4 taken); none:
+  // no allowance, and edge bands one model subpixel step wide.
+  std::optional<int> freedom_bits;
+  // The components' allowances (and the depth's, without a depth test) deferred to a
+  // TriangleAllowances: only with freedom_bits.
+  bool deferred = false;
+  int threads = 1;  // thread_count's
+  int y0 = 0;       // rows [y0, y0 + rows) of the framebuffer
+  int rows = 0;
+  bool edges = true;  // the edge bits too (render_frame: only the frame)
+};
+
+// `storage`: an Expectation whose buffers are reused; `keep`: where the triangles' set-up is
+// handed back (render()'s overloads with a CaseSetup).
+Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
+                 Expectation* storage = nullptr, std::shared_ptr<const CaseSetup>* keep = nullptr) {
+  const int y0 = request.y0, row_count = request.rows;
+  const bool edges = request.edges;
   if (y0 < 0 || row_count < 0 || row_count > c.fb_height - y0)
     throw std::invalid_argument("render_rows: rows [" + std::to_string(y0) + ", " +
                                 std::to_string(int64_t(y0) + row_count) +
                                 ") outside a framebuffer " + std::to_string(c.fb_height) + " high");
-  threads = thread_count(threads);
+  const int threads = thread_count(request.threads);
   // One set of threads for every step below (core/parallel.hpp).
   ThreadPool pool(threads);
   // The frames cleared on every thread, a buffer each: on a large frame of many channels,
   // filling them is otherwise a serial part of drawing it.
   Expectation r;
   if (storage) r = std::exchange(*storage, Expectation{});
-  const bool allowance = freedom_bits.has_value();
-  deferred = deferred && allowance;
+  const bool allowance = request.freedom_bits.has_value();
+  const bool deferred = request.deferred && allowance;
   // The components are cleared where nothing is drawn once everything is (clear_uncovered):
   // every fragment drawn writes all of them, in the frame and in the allowance alike.
   r.frame.reset_uncleared_components(c.fb_width, row_count, c.component_count(), threads);
@@ -637,17 +654,18 @@ Expectation draw(const Case& c, const Model& m, std::optional<int> freedom_bits,
   });
   // Without an allowance, coverage may legally differ within one model subpixel step of an
   // edge (1/256 pixel when the model does not snap).
-  Settings s{c,
-             m,
-             allowance,
-             edges,
-             allowance ? std::max(*freedom_bits, 4) : 0,
-             std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8)),
-             viewport_box(c),
-             {},
-             y0,
-             kept.get(),
-             deferred_depth};
+  Settings s{.c = c,
+             .m = m,
+             .allowance = allowance,
+             .edges = edges,
+             .bits = allowance ? std::max(*request.freedom_bits, 4) : 0,
+             .model_step = std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8)),
+             .viewport = viewport_box(c),
+             .component_smooth = {},
+             .row0 = y0,
+             .deferred = kept.get(),
+             .deferred_depth = deferred_depth,
+             .twin = {}};
   // Only the rows asked for: what a triangle does elsewhere changes nothing in them.
   s.viewport.y0 = std::max(s.viewport.y0, y0);
   s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);
@@ -733,36 +751,51 @@ Expectation draw(const Case& c, const Model& m, std::optional<int> freedom_bits,
 
 Expectation render_rows(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                         int y0, int row_count) {
-  return draw(c, m, freedom_bits, threads, y0, row_count, true);
+  return draw(c, m,
+              {.freedom_bits = freedom_bits, .threads = threads, .y0 = y0, .rows = row_count});
 }
 
 Expectation render_rows_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
                                  int y0, int row_count, Expectation&& storage) {
-  return draw(c, m, freedom_bits, threads, y0, row_count, true, &storage, true);
+  return draw(c, m,
+              {.freedom_bits = freedom_bits,
+               .deferred = true,
+               .threads = threads,
+               .y0 = y0,
+               .rows = row_count},
+              &storage);
 }
 
 Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                    Expectation&& storage) {
-  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage);
+  return draw(c, m, {.freedom_bits = freedom_bits, .threads = threads, .rows = c.fb_height},
+              &storage);
 }
 
 Expectation render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
                             Expectation&& storage) {
-  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true);
+  return draw(
+      c, m,
+      {.freedom_bits = freedom_bits, .deferred = true, .threads = threads, .rows = c.fb_height},
+      &storage);
 }
 
 Expectation render(const Case& c, const Model& m, std::optional<int> freedom_bits, int threads,
                    Expectation&& storage, std::shared_ptr<const CaseSetup>& setup) {
-  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, false, &setup);
+  return draw(c, m, {.freedom_bits = freedom_bits, .threads = threads, .rows = c.fb_height},
+              &storage, &setup);
 }
 
 Expectation render_deferred(const Case& c, const Model& m, int freedom_bits, int threads,
                             Expectation&& storage, std::shared_ptr<const CaseSetup>& setup) {
-  return draw(c, m, freedom_bits, threads, 0, c.fb_height, true, &storage, true, &setup);
+  return draw(
+      c, m,
+      {.freedom_bits = freedom_bits, .deferred = true, .threads = threads, .rows = c.fb_height},
+      &storage, &setup);
 }
 
 Frame render_frame(const Case& c, const Model& m, int threads) {
-  return std::move(draw(c, m, std::nullopt, threads, 0, c.fb_height, false).frame);
+  return std::move(draw(c, m, {.threads = threads, .rows = c.fb_height, .edges = false}).frame);
 }
 
 }  // namespace glrc::ref
