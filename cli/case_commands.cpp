@@ -73,11 +73,11 @@ int cmd_diff(const Options& o) {
 // No GL here, so nothing to identify: --model identified (the default) and ideal both give the
 // fixed model of --subpixel-bits, --planes and --tie-break, which tests/digests.txt holds.
 int cmd_digest(const Options& o) {
-  const auto driver = driver_models::driver_from_string(o.model);
+  const auto driver = driver_models::driver_from_string(o.model.name);
   for (const Case& c : load_cases(o))
     fmt::print("{}  {}\n",
                ref::digest(driver ? driver_models::render(c, *driver)
-                                  : ref::render_frame(c, model_of(o), o.threads)),
+                                  : ref::render_frame(c, o.model.reference_model(), o.threads)),
                c.name);
   return 0;
 }

@@ -243,8 +243,8 @@ class FuzzCampaign {
     s_.images = [this](const Case& c) { return with_images_.count(c.name) > 0; };
     co_.batch = size_t(std::max(4 * s_.jobs, 8));
     co_.shrinking.batch = size_t(std::max(s_.jobs, 1));
-    info_.backend = gl::to_string(o_.backend), info_.driver = o_.driver, info_.jobs = s_.jobs;
-    info_.mesa_prefix = o_.mesa;
+    info_.backend = gl::to_string(o_.gl.backend), info_.driver = o_.gl.driver, info_.jobs = s_.jobs;
+    info_.mesa_prefix = o_.gl.mesa;
     info_.verdict_inputs = judging_.judged_by;
   }
 
@@ -271,7 +271,7 @@ class FuzzCampaign {
 
   void on_start(const gl::GlInfo& gl, const ModelChoice& model) {
     if (prefix_ && !from_prefix(*prefix_, gl.library))
-      throw InputError("--mesa " + o_.mesa + ": GL came from " +
+      throw InputError("--mesa " + o_.gl.mesa + ": GL came from " +
                        (gl.library.empty() ? "an unknown library" : gl.library) +
                        ", not from the prefix (GL_VERSION " + gl.version + ")");
     const RunInfo run = run_info(o_, gl, model);
@@ -429,7 +429,7 @@ int cmd_fuzz(const Options& given, const FuzzOptions& f) {
   if (!f.emit.empty()) return emit_replayed(f.emit, co);
   const CampaignJudging judging = read_campaign_judging(o, f);
   std::optional<MesaPrefix> prefix;
-  if (!o.mesa.empty()) prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
+  if (!o.gl.mesa.empty()) prefix = find_mesa_prefix(o.gl.mesa, gl::to_string(o.gl.backend));
   const int interrupt_fd = catch_interrupts();
   const OutputFolder folder = output_folder(o.out);
   if (!f.baseline.empty())

@@ -150,9 +150,9 @@ void print_depth(const DepthFinding& f) {
 
 std::unique_ptr<gl::Renderer> open_raw_renderer(const Options& o) {
   gl::Target t;
-  t.backend = o.backend;
-  t.driver = o.driver;
-  t.device_index = o.device;
+  t.backend = o.gl.backend;
+  t.driver = o.gl.driver;
+  t.device_index = o.gl.device;
   t.set_provoking_vertex = false;
   t.depth_format = gl::DepthFormat::unorm24;
   try {
@@ -165,7 +165,7 @@ std::unique_ptr<gl::Renderer> open_raw_renderer(const Options& o) {
 }  // namespace
 
 ModelChoice choose_model(const Options& o, gl::Renderer& renderer) {
-  return identify::choose_model(model_from_command_line(o), model_of(o), renderer);
+  return identify::choose_model(model_from_command_line(o), o.model.reference_model(), renderer);
 }
 
 int cmd_identify(const Options& o) {
@@ -177,7 +177,7 @@ int cmd_identify(const Options& o) {
   auto renderer = open_renderer(o);
   auto raw = open_raw_renderer(o);
   const gl::GlInfo& info = renderer->info();
-  fmt::print("glrefcheck identify: {} ({}), GL {}\n\n", info.renderer, gl::to_string(o.backend),
+  fmt::print("glrefcheck identify: {} ({}), GL {}\n\n", info.renderer, gl::to_string(o.gl.backend),
              info.version);
   std::fflush(stdout);
 
@@ -196,7 +196,7 @@ int cmd_identify(const Options& o) {
   fmt::print("{}\n", id.summary());
 
   nlohmann::json j = identification_json(id, info, raw->info().initial_provoking_vertex,
-                                         gl::to_string(o.backend), o.driver);
+                                         gl::to_string(o.gl.backend), o.gl.driver);
   j["seconds"] = seconds_since(start);
   const std::filesystem::path file = out / "identify.json";
   report::write_file_atomically(file, report::stamped_json("identify", j.dump(2) + "\n"));

@@ -32,7 +32,7 @@ json all_options_json(const Options& o) {
   j["baseline"] = o.baseline;
   j["flakes"] = o.flakes;
   j["skips"] = o.skips;
-  j["mesa"] = o.mesa;
+  j["mesa"] = o.gl.mesa;
   j["jobs"] = o.jobs;
   j["jobs_force"] = o.jobs_force;
   j["timeout"] = o.timeout;
@@ -55,7 +55,7 @@ Options all_options_from_json(const json& j, const std::string& where) {
   o.baseline = f::text(r, j, path, "baseline");
   o.flakes = f::text(r, j, path, "flakes");
   o.skips = f::text(r, j, path, "skips");
-  o.mesa = f::text(r, j, path, "mesa");
+  o.gl.mesa = f::text(r, j, path, "mesa");
   o.jobs = f::whole(r, j, path, "jobs", 0);
   o.jobs_force = f::flag(r, j, path, "jobs_force");
   o.timeout = f::number(r, j, path, "timeout", 0.001, 1e6);  // --timeout's own range

@@ -45,38 +45,14 @@ void add_case_options(CLI::App& app, Options& o) {
   app.add_option("--filter", o.filter, "only cases whose name matches this regular expression");
 }
 
+// --threads (how the reference is drawn) and the model's options (what judges).
 void add_model_options(CLI::App& app, Options& o) {
   app.add_option("--threads", o.threads,
                  "threads drawing the reference, the same bits for any number (default: every "
                  "core; run: the cores shared among its workers)")
       ->check(whole_number(1))
       ->check(CLI::Range(1, 4096));
-  app.add_option("--model", o.model,
-                 "identified: the exact reference with the subpixel bits, planes and tie rule "
-                 "`identify` finds for the implementation, cached (default); ideal: the exact "
-                 "reference with the fixed model subpixel_bits=8 planes=unsnapped "
-                 "tie=bottom-left, or what --subpixel-bits, --planes, --tie-break say; llvmpipe, "
-                 "softpipe: bit-exact models of those drivers, for --tolerance exact")
-      ->check(CLI::IsMember(model_choices()));
-  app.add_option("--subpixel-bits", o.subpixel_bits,
-                 "reference snapping: 0 (none) to 16; takes the model from the command line")
-      ->check(CLI::Range(0, 16));
-  add_enum_option(app, "--planes", o.planes,
-                  "attribute planes from snapped or unsnapped positions; takes the model from "
-                  "the command line");
-  add_enum_option(app, "--tie-break", o.tie_break,
-                  "pixel centres on an edge; takes the model from the command line");
-}
-
-// Whether the subcommand that ran was given any of the model's own options.
-bool model_options_given(const CLI::App& app) {
-  for (const CLI::App* sub : app.get_subcommands())
-    for (const char* name : {"--subpixel-bits", "--planes", "--tie-break"})
-      try {
-        if (sub->count(name) > 0) return true;
-      } catch (const CLI::OptionNotFound&) {
-      }
-  return false;
+  o.model.add_to(app);
 }
 
 // CLI11's own words where they do not say what was expected: an option given twice.
@@ -88,29 +64,11 @@ std::string plain_parse_error(const std::string& what) {
   return what;
 }
 
+// The GL and verdict groups, and --out.
 void add_gl_options(CLI::App& app, Options& o) {
-  add_enum_option(app, "--backend", o.backend, "osmesa, egl (Mesa surfaceless) or egl-device");
-  app.add_option(
-      "--driver", o.driver,
-      "Mesa gallium driver: llvmpipe, softpipe, zink (egl: GL on lavapipe); \"\" for a GPU");
-  app.add_option("--device", o.device, "egl-device: which EGL device")->check(whole_number(0));
-  app.add_option("--tolerance-ulps", o.varying_ulps,
-                 "varying tolerance in ULPs of the attribute's scale (overrides case files)")
-      ->check(finite_number(0, true));
-  app.add_option("--depth-tolerance-ulps", o.depth_ulps, "depth tolerance in ULPs of 1.0")
-      ->check(finite_number(0, true));
-  add_enum_option(app, "--tolerance", o.tolerance,
-                  "spec: what the GL specification allows (default); exact: zero differing bits",
-                  {"spec", "exact"});
-  app.add_option("--spec-subpixel-bits", o.spec_subpixel_bits,
-                 "position freedom of the spec tolerance (default: GL_SUBPIXEL_BITS as reported)")
-      ->check(CLI::Range(4, 16));
-  app.add_flag("--strict-coverage", o.strict_coverage,
-               "count coverage mismatches at edges (within a subpixel step) as failures");
+  o.gl.add_to(app);
+  o.verdict.add_to(app);
   app.add_option("--out", o.out, "output folder");
-  app.add_option("--mesa", o.mesa,
-                 "a Mesa install tree to run instead of the system's (scripts/mesa-fetch.sh "
-                 "VERSION unpacks one into .mesa/VERSION)");
 }
 
 void add_worker_wrapper_option(CLI::App& command, Options& o) {
@@ -155,10 +113,10 @@ void check_no_empty_paths(const CLI::App& app) {
 void check_device_with_its_backend(const CLI::App& app, const Options& o) {
   for (const CLI::App* sub : app.get_subcommands())
     if (const CLI::Option* device = sub->get_option_no_throw("--device");
-        device && device->count() > 0 && o.backend != gl::Backend::egl_device)
+        device && device->count() > 0 && o.gl.backend != gl::Backend::egl_device)
       throw InputError(std::string("--device: expected with --backend egl-device, whose EGL "
                                    "devices it picks among, got --backend ") +
-                       gl::to_string(o.backend));
+                       gl::to_string(o.gl.backend));
 }
 
 // `run --resume DIR` runs what DIR's journal recorded: any other option would be silently
@@ -179,7 +137,7 @@ void check_resume_alone(const CLI::App& run) {
 // Starts this program again with the prefix's environment, once (a marker variable says it is
 // done), so that the dynamic loader finds the prefix's libraries first.
 void reexec_with_mesa(const Options& o, char** argv) {
-  const MesaPrefix prefix = find_mesa_prefix(o.mesa, gl::to_string(o.backend));
+  const MesaPrefix prefix = find_mesa_prefix(o.gl.mesa, gl::to_string(o.gl.backend));
   const char* done = std::getenv("GLRC_MESA_PREFIX_APPLIED");
   if (done && prefix.root == done) return;
   for (const auto& [name, value] : mesa_environment(prefix, output_folder(o.out).path))
@@ -316,7 +274,7 @@ int dispatch(CLI::App& app, Commands& c, char** argv) {
     // GL from a Mesa prefix needs the loader's environment at process start: the commands that
     // render in this process start it again with that environment (`run` gives it to its
     // workers only).
-    if (!o.mesa.empty() && (*c.diff || *c.identify || *c.selftest)) reexec_with_mesa(o, argv);
+    if (!o.gl.mesa.empty() && (*c.diff || *c.identify || *c.selftest)) reexec_with_mesa(o, argv);
     if (*c.run) return cmd_run(o);
     if (*c.fuzz) {
       // Its own default folder: a campaign's results.json is not a run's.
@@ -367,7 +325,7 @@ int main_impl(int argc, char** argv) {
                printable(plain_parse_error(e.what()), 300));
     return 2;
   }
-  c.o.model_given = model_options_given(app);
+  c.o.model.given = ModelOptions::given_in(app);
   return dispatch(app, c, argv);
 }
 

@@ -238,11 +238,11 @@ class SuiteRun {
   // What the run knows before GL (enough when every case is skipped), and again once a worker
   // has told the GL strings.
   void run_fields(RunInfo& i) const {
-    i.backend = gl::to_string(o_.backend), i.driver = o_.driver;
+    i.backend = gl::to_string(o_.gl.backend), i.driver = o_.gl.driver;
     i.jobs = s_.jobs;
     i.fraction = o_.fraction, i.fraction_start = o_.fraction_start;
     i.total_cases = p_.all.size();
-    i.mesa_prefix = o_.mesa;  // as typed: results name the tree the way its user does
+    i.mesa_prefix = o_.gl.mesa;  // as typed: results name the tree the way its user does
     i.verdict_inputs = judging_.judged_by;
   }
 
@@ -285,7 +285,7 @@ class SuiteRun {
 
   void on_start(const gl::GlInfo& gl, const ModelChoice& model) {
     if (prefix_ && !from_prefix(*prefix_, gl.library))
-      throw InputError("--mesa " + o_.mesa + ": GL came from " +
+      throw InputError("--mesa " + o_.gl.mesa + ": GL came from " +
                        (gl.library.empty() ? "an unknown library" : gl.library) +
                        ", not from the prefix (GL_VERSION " + gl.version + ")");
     // Half a run on one GL and half on another would be one run on neither.
@@ -315,7 +315,7 @@ class SuiteRun {
         "glrefcheck run: {}{} on {} ({}), GL {} | model {} from {} | tolerance {} | {} "
         "worker{}\n",
         report::count_text(cases_.size(), "case", "cases"), shard, info_.gl_renderer,
-        gl::to_string(o_.backend), info_.gl_version, info_.model, info_.model_source,
+        gl::to_string(o_.gl.backend), info_.gl_version, info_.model, info_.model_source,
         info_.tolerance, workers, workers == 1 ? "" : "s");
     if (prefix_) fmt::print("Mesa from {}: {}\n", info_.mesa_prefix, shown_path(info_.gl_library));
     for (const std::string& w : info_.gl_warnings)
@@ -410,7 +410,8 @@ int cmd_run(const Options& given) {
   // Every input is read and checked before the output folder is touched.
   const Judging judging = read_judging(plan);
   std::optional<MesaPrefix> prefix;
-  if (!plan.o.mesa.empty()) prefix = find_mesa_prefix(plan.o.mesa, gl::to_string(plan.o.backend));
+  if (!plan.o.gl.mesa.empty())
+    prefix = find_mesa_prefix(plan.o.gl.mesa, gl::to_string(plan.o.gl.backend));
   const int interrupt_fd = catch_interrupts();
   Prepared prepared = prepare_folder(plan, judging);
   return SuiteRun(plan, judging, prepared, prefix, interrupt_fd).execute();

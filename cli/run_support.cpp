@@ -62,7 +62,7 @@ void check_paths_utf8(const Options& o) {
   for (const auto& [option, value] : {std::pair{"--baseline", &o.baseline},
                                       {"--flakes", &o.flakes},
                                       {"--skips", &o.skips},
-                                      {"--mesa", &o.mesa},
+                                      {"--mesa", &o.gl.mesa},
                                       {"--filter", &o.filter},
                                       {"--out", &o.out}})
     if (!is_utf8(*value))

@@ -23,7 +23,7 @@ int cmd_selftest(const Options& options) {
   const RunInfo info = run_info(options, renderer->info(), model);
   fmt::print("glrefcheck selftest: {} on {} ({}), GL {} | model {} from {} | tolerance {}\n",
              report::count_text(cases.size(), "case", "cases"), info.gl_renderer,
-             gl::to_string(options.backend), info.gl_version, info.model, info.model_source,
+             gl::to_string(options.gl.backend), info.gl_version, info.model, info.model_source,
              info.tolerance);
   for (const std::string& w : info.gl_warnings)
     fmt::print("warning: {}\n", w);

@@ -15,49 +15,28 @@
 
 namespace glrc::cli {
 
-Model model_of(const Options& o) {
-  Model m;
-  m.subpixel_bits = o.subpixel_bits;
-  m.planes = o.planes;
-  m.tie_break = o.tie_break;
-  return m;
-}
-
-void set_model(Options& o, const Model& m) {
-  o.subpixel_bits = m.subpixel_bits;
-  o.planes = m.planes;
-  o.tie_break = m.tie_break;
-}
-
 std::optional<ModelChoice> model_from_command_line(const Options& o) {
   // Any of the model's own options names the model outright: a developer testing a hypothesis
   // ("is it top-left?") gets exactly the model typed, the rest at the fixed defaults.
-  if (o.model_given) return ModelChoice{model_of(o), "command line"};
-  if (o.model == "identified") return std::nullopt;
-  if (o.model == "ideal") return ModelChoice{model_of(o), "default"};
-  return ModelChoice{model_of(o), "command line"};  // a driver model
-}
-
-std::vector<std::string> model_choices() {
-  std::vector<std::string> names = {"identified", "ideal"};
-  for (const std::string& d : names_of<driver_models::Driver>())
-    names.push_back(d);
-  return names;
+  if (o.model.given) return ModelChoice{o.model.reference_model(), "command line"};
+  if (o.model.name == "identified") return std::nullopt;
+  if (o.model.name == "ideal") return ModelChoice{o.model.reference_model(), "default"};
+  return ModelChoice{o.model.reference_model(), "command line"};  // a driver model
 }
 
 ModelChoice fallback_model(const Options& o, const std::string& why) {
-  return identify::fallback_model(model_of(o), why);
+  return identify::fallback_model(o.model.reference_model(), why);
 }
 
 check::CheckOptions check_options(const Options& o) {
   check::CheckOptions c;
-  c.model = model_of(o);
-  c.driver_model = driver_models::driver_from_string(o.model);
-  c.tolerance = o.tolerance;  // with the thresholds, check::mode_override decides the mode
-  c.varying_ulps = o.varying_ulps;
-  c.depth_ulps = o.depth_ulps;
-  c.spec_subpixel_bits = o.spec_subpixel_bits;
-  c.strict_coverage = o.strict_coverage;
+  c.model = o.model.reference_model();
+  c.driver_model = driver_models::driver_from_string(o.model.name);
+  c.tolerance = o.verdict.tolerance;  // with the thresholds, check::mode_override decides the mode
+  c.varying_ulps = o.verdict.varying_ulps;
+  c.depth_ulps = o.verdict.depth_ulps;
+  c.spec_subpixel_bits = o.verdict.spec_subpixel_bits;
+  c.strict_coverage = o.verdict.strict_coverage;
   c.threads = o.threads;
   return c;
 }
@@ -66,7 +45,7 @@ void check_judgeable(const Options& o) {
   const check::CheckOptions judged = check_options(o);
   if (const auto problem = check::judging_problem(judged))
     throw InputError(judged.driver_model && !check::mode_override(judged)
-                         ? "--model " + o.model + ": " + *problem +
+                         ? "--model " + o.model.name + ": " + *problem +
                                " (--tolerance exact, or --tolerance-ulps)"
                          : "--tolerance exact: " + *problem +
                                " (--tolerance-ulps/--depth-tolerance-ulps given)");
@@ -126,9 +105,9 @@ std::vector<Case> load_cases(const Options& o) {
 
 gl::Target target_of(const Options& o) {
   gl::Target t;
-  t.backend = o.backend;
-  t.driver = o.driver;
-  t.device_index = o.device;
+  t.backend = o.gl.backend;
+  t.driver = o.gl.driver;
+  t.device_index = o.gl.device;
   return t;
 }
 
@@ -142,8 +121,8 @@ std::unique_ptr<gl::Renderer> open_renderer(const Options& o) {
 
 RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& model) {
   RunInfo info;
-  info.backend = gl::to_string(o.backend);
-  info.driver = o.driver;
+  info.backend = gl::to_string(o.gl.backend);
+  info.driver = o.gl.driver;
   check::CheckOptions judged = check_options(o);
   judged.model = model.model;
   info.model = check::model_text(judged);
@@ -156,7 +135,7 @@ RunInfo run_info(const Options& o, const gl::GlInfo& gl, const ModelChoice& mode
   info.gl_library = gl.library;
   info.gl_warnings = gl.warnings;
   info.gl_primitive_id_from_geometry_shader = gl.primitive_id_from_geometry_shader;
-  info.mesa_prefix = o.mesa;
+  info.mesa_prefix = o.gl.mesa;
   return info;
 }
 
@@ -165,9 +144,9 @@ std::map<std::string, std::string> verdict_inputs(const Options& o) {
     return v ? fmt::format("{}", *v) : std::string();
   };
   std::map<std::string, std::string> inputs = {
-      {"strict_coverage", o.strict_coverage ? "true" : "false"},
-      {"varying_ulps", number(o.varying_ulps)},
-      {"depth_ulps", number(o.depth_ulps)}};
+      {"strict_coverage", o.verdict.strict_coverage ? "true" : "false"},
+      {"varying_ulps", number(o.verdict.varying_ulps)},
+      {"depth_ulps", number(o.verdict.depth_ulps)}};
   for (const auto& [name, file] :
        {std::pair{"baseline", &o.baseline}, {"flakes", &o.flakes}, {"skips", &o.skips}})
     if (!file->empty()) {
@@ -196,45 +175,22 @@ Baseline load_baseline(const Options& o) {
 }
 
 void to_json(nlohmann::json& j, const Options& o) {
-  j = {{"model", o.model},
-       {"subpixel_bits", o.subpixel_bits},
-       {"planes", to_string(o.planes)},
-       {"tie_break", to_string(o.tie_break)},
-       {"model_given", o.model_given},
-       {"backend", gl::to_string(o.backend)},
-       {"driver", o.driver},
-       {"device", o.device},
-       {"tolerance", to_string(o.tolerance)},
-       {"strict_coverage", o.strict_coverage},
-       {"out", o.out},
-       {"threads", o.threads}};
-  if (o.spec_subpixel_bits) j["spec_subpixel_bits"] = *o.spec_subpixel_bits;
-  if (o.varying_ulps) j["varying_ulps"] = *o.varying_ulps;
-  if (o.depth_ulps) j["depth_ulps"] = *o.depth_ulps;
+  j = nlohmann::json::object();
+  o.model.write(j);
+  o.gl.write(j);
+  o.verdict.write(j);
+  j["out"] = o.out;
+  j["threads"] = o.threads;
 }
 
 void read(const typed_json::Reader& r, const nlohmann::json& j, const std::string& path,
           Options& o) {
   namespace f = option_fields;
   f::object(r, j, path);
-  o.model = f::text(r, j, path, "model", model_choices());
-  o.subpixel_bits = f::whole(r, j, path, "subpixel_bits", 0, 16);
-  o.planes = f::named<Planes>(r, j, path, "planes");
-  o.tie_break = f::named<TieBreak>(r, j, path, "tie_break");
-  o.model_given = f::flag(r, j, path, "model_given");
-  o.backend = f::named<gl::Backend>(r, j, path, "backend");
-  o.driver = f::text(r, j, path, "driver");
-  o.device = f::whole(r, j, path, "device", 0);
-  o.tolerance = f::named<ToleranceMode>(r, j, path, "tolerance", {"spec", "exact"});
-  o.strict_coverage = f::flag(r, j, path, "strict_coverage");
+  o.model.read(r, j, path);
+  o.gl.read(r, j, path);
+  o.verdict.read(r, j, path);
   o.out = f::text(r, j, path, "out");
-  o.spec_subpixel_bits.reset();
-  o.varying_ulps.reset();
-  o.depth_ulps.reset();
-  if (j.contains("spec_subpixel_bits"))
-    o.spec_subpixel_bits = f::whole(r, j, path, "spec_subpixel_bits", 4, 16);
-  if (j.contains("varying_ulps")) o.varying_ulps = f::number(r, j, path, "varying_ulps", 0, 1e300);
-  if (j.contains("depth_ulps")) o.depth_ulps = f::number(r, j, path, "depth_ulps", 0, 1e300);
   // Absent from the journals of runs before --threads.
   o.threads = j.contains("threads") ? f::whole(r, j, path, "threads", 0, 4096) : 0;
 }

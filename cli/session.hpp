@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "check/check.hpp"
+#include "cli/option_groups.hpp"
 #include "core/case.hpp"
 #include "core/model.hpp"
 #include "core/result.hpp"
@@ -49,30 +50,13 @@ inline double seconds_since(Clock::time_point t) {
 struct Options {
   std::vector<std::string> paths;
   std::string filter;
-  // Model: "identified" (what `identify` finds for the implementation), "ideal" (the exact
-  // reference with the choices below), or a bit-exact model of one driver ("llvmpipe",
-  // "softpipe").
-  std::string model = "identified";
-  int subpixel_bits = 8;
-  Planes planes = Planes::unsnapped;
-  TieBreak tie_break = TieBreak::bottom_left;
-  // Whether --subpixel-bits, --planes or --tie-break was on the command line: then the
-  // reference's model is the command line's, whatever --model says.
-  bool model_given = false;
-  // GL
-  gl::Backend backend = gl::Backend::osmesa;
-  std::string driver = "llvmpipe";
-  int device = 0;
-  // Verdict
-  ToleranceMode tolerance = ToleranceMode::spec;  // spec or exact (ulps: the numbers below)
-  std::optional<int> spec_subpixel_bits;          // overrides GL_SUBPIXEL_BITS as reported
-  std::optional<double> varying_ulps, depth_ulps;
-  bool strict_coverage = false;
+  // What judges, on which GL, by which tolerance (cli/option_groups.hpp).
+  ModelOptions model;
+  GlOptions gl;
+  VerdictOptions verdict;
   std::string baseline, out = "out";
   // Mesa CI's expectations beyond the baseline: regular expressions, one per line.
   std::string flakes, skips;
-  // A Mesa install tree to run instead of the system's (scripts/mesa-fetch.sh makes one).
-  std::string mesa;
   // Worker processes: how many in parallel, and how long one case may take.
   int jobs = 0;  // 0: one per available core
   // More workers than cores only when asked: each holds a GL context (25 MB and up) and they
@@ -94,9 +78,8 @@ struct Options {
 };
 
 // What a worker process needs of the options, as JSON (the options travel on its stdin): the
-// model (model, subpixel_bits, planes, tie_break, model_given), GL (backend, driver, device),
-// the verdict (tolerance, strict_coverage, and spec_subpixel_bits, varying_ulps, depth_ulps
-// when set) and out; not the runner's own (paths, jobs, ...: cli/journal.cpp adds those).
+// groups' fields (ModelOptions, GlOptions, VerdictOptions: their write()), out and threads; not
+// the runner's own (paths, jobs, ...: cli/journal.cpp adds those).
 // nlohmann's ADL conversions; from_json checks each field as the command line checks it and
 // throws InputError ("options.subpixel_bits: expected a whole number from 0 to 16, got 99").
 void to_json(nlohmann::json& j, const Options& o);
@@ -109,14 +92,6 @@ void read(const typed_json::Reader& r, const nlohmann::json& j, const std::strin
 // json::parse_error; a bad field is InputError naming "the worker's options").
 std::string options_json(const Options& o);
 Options options_from_json(const std::string& text);
-
-// --model's choices: identified, ideal, and the driver models' names.
-std::vector<std::string> model_choices();
-
-// The exact reference's model from subpixel_bits, planes and tie_break.
-Model model_of(const Options& o);
-// Sets subpixel_bits, planes and tie_break to `m` (so that model_of(o) is m).
-void set_model(Options& o, const Model& m);
 
 // RunInfo::verdict_inputs of a run judged under `o`: strict coverage, the fixed ULPs, and the
 // --baseline, --flakes and --skips files as they read now (their SHA-256; on --resume, the
@@ -134,8 +109,9 @@ void check_judgeable(const Options& o);
 std::optional<ModelChoice> model_from_command_line(const Options& o);
 // The fixed default model (the command line's choices), when identification failed: `why`.
 ModelChoice fallback_model(const Options& o, const std::string& why);
-// How a case is judged, from the options: model_of(o) is the model (set_model sets the one that
-// judges), --model names a driver model, and the tolerance options.
+// How a case is judged, from the options: o.model.reference_model() is the model
+// (set_reference_model sets the one that judges), --model names a driver model, and the
+// tolerance options.
 check::CheckOptions check_options(const Options& o);
 // The cases named on the command line (default cases/), filtered; InputError when none.
 std::vector<Case> load_cases(const Options& o);

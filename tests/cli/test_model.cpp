@@ -194,7 +194,7 @@ TEST(ModelChoice, IdentifiedUnlessTheCommandLineSaysOtherwise) {
   EXPECT_FALSE(glrc::cli::model_from_command_line(o)) << "the default is to identify";
 
   Options ideal;
-  ideal.model = "ideal";
+  ideal.model.name = "ideal";
   const auto fixed = glrc::cli::model_from_command_line(ideal);
   ASSERT_TRUE(fixed);
   EXPECT_EQ(fixed->source, "default");
@@ -204,9 +204,9 @@ TEST(ModelChoice, IdentifiedUnlessTheCommandLineSaysOtherwise) {
   // --model identified or ideal, the options not given at their fixed defaults.
   for (const char* model : {"identified", "ideal"}) {
     Options typed;
-    typed.model = model;
-    typed.tie_break = TieBreak::top_left;
-    typed.model_given = true;
+    typed.model.name = model;
+    typed.model.tie_break = TieBreak::top_left;
+    typed.model.given = true;
     const auto chosen = glrc::cli::model_from_command_line(typed);
     ASSERT_TRUE(chosen) << model;
     EXPECT_EQ(chosen->source, "command line");
@@ -215,7 +215,7 @@ TEST(ModelChoice, IdentifiedUnlessTheCommandLineSaysOtherwise) {
 
   // A driver model is the command line's too.
   Options driver;
-  driver.model = "softpipe";
+  driver.model.name = "softpipe";
   ASSERT_TRUE(glrc::cli::model_from_command_line(driver));
   EXPECT_EQ(glrc::cli::model_from_command_line(driver)->source, "command line");
 
@@ -227,11 +227,11 @@ TEST(ModelChoice, IdentifiedUnlessTheCommandLineSaysOtherwise) {
 
 TEST(ModelChoice, SetModelIsWhatModelOfReads) {
   Options o;
-  glrc::cli::set_model(o, softpipe_model());
-  EXPECT_EQ(glrc::cli::model_of(o).describe(), softpipe_model().describe());
+  o.model.set_reference_model(softpipe_model());
+  EXPECT_EQ(o.model.reference_model().describe(), softpipe_model().describe());
   // The workers get the options as JSON: whether the model was typed travels with them.
-  o.model_given = true;
-  EXPECT_TRUE(glrc::cli::options_from_json(glrc::cli::options_json(o)).model_given);
+  o.model.given = true;
+  EXPECT_TRUE(glrc::cli::options_from_json(glrc::cli::options_json(o)).model.given);
 }
 
 // --- end to end --------------------------------------------------------------------------

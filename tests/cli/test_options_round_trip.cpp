@@ -11,20 +11,20 @@ namespace {
 
 Options every_worker_field_set() {
   Options o;
-  o.model = "softpipe";
-  o.subpixel_bits = 4;
-  o.planes = Planes::snapped;
-  o.tie_break = TieBreak::top_right;
-  o.model_given = true;
-  o.backend = gl::Backend::egl;
-  o.driver = "zink";
-  o.device = 2;
-  o.tolerance = ToleranceMode::exact;
-  o.strict_coverage = true;
+  o.model.name = "softpipe";
+  o.model.subpixel_bits = 4;
+  o.model.planes = Planes::snapped;
+  o.model.tie_break = TieBreak::top_right;
+  o.model.given = true;
+  o.gl.backend = gl::Backend::egl;
+  o.gl.driver = "zink";
+  o.gl.device = 2;
+  o.verdict.tolerance = ToleranceMode::exact;
+  o.verdict.strict_coverage = true;
   o.out = "out/ünï";
-  o.spec_subpixel_bits = 6;
-  o.varying_ulps = 12.5;
-  o.depth_ulps = 0.25;
+  o.verdict.spec_subpixel_bits = 6;
+  o.verdict.varying_ulps = 12.5;
+  o.verdict.depth_ulps = 0.25;
   o.threads = 3;
   return o;
 }
@@ -34,13 +34,13 @@ TEST(OptionsRoundTrip, EveryWorkerFieldThroughToJsonAndFromJson) {
   const nlohmann::json j = o;
   const Options back = j.get<Options>();
   EXPECT_EQ(nlohmann::json(back).dump(), j.dump());
-  EXPECT_EQ(back.model, "softpipe");
-  EXPECT_EQ(back.planes, Planes::snapped);
-  EXPECT_EQ(back.tie_break, TieBreak::top_right);
-  EXPECT_EQ(back.backend, gl::Backend::egl);
-  EXPECT_EQ(back.spec_subpixel_bits, 6);
-  EXPECT_EQ(back.varying_ulps, 12.5);
-  EXPECT_EQ(back.depth_ulps, 0.25);
+  EXPECT_EQ(back.model.name, "softpipe");
+  EXPECT_EQ(back.model.planes, Planes::snapped);
+  EXPECT_EQ(back.model.tie_break, TieBreak::top_right);
+  EXPECT_EQ(back.gl.backend, gl::Backend::egl);
+  EXPECT_EQ(back.verdict.spec_subpixel_bits, 6);
+  EXPECT_EQ(back.verdict.varying_ulps, 12.5);
+  EXPECT_EQ(back.verdict.depth_ulps, 0.25);
   EXPECT_EQ(back.threads, 3);
   // And as the worker gets them, one line of text.
   EXPECT_EQ(options_json(options_from_json(options_json(o))), options_json(o));
@@ -48,9 +48,9 @@ TEST(OptionsRoundTrip, EveryWorkerFieldThroughToJsonAndFromJson) {
 
 TEST(OptionsRoundTrip, UnsetOptionalFieldsStayUnset) {
   const Options back = nlohmann::json(Options()).get<Options>();
-  EXPECT_FALSE(back.spec_subpixel_bits);
-  EXPECT_FALSE(back.varying_ulps);
-  EXPECT_FALSE(back.depth_ulps);
+  EXPECT_FALSE(back.verdict.spec_subpixel_bits);
+  EXPECT_FALSE(back.verdict.varying_ulps);
+  EXPECT_FALSE(back.verdict.depth_ulps);
   EXPECT_EQ(nlohmann::json(back).dump(), nlohmann::json(Options()).dump());
 }
 

@@ -41,7 +41,7 @@ std::string run_worker(const std::string& input) {
 TEST(ParseOnce, TheWorkerChecksTheCaseItIsHandedNotTheFile) {
   Case c = casefile::load(GLRC_SOURCE_DIR "/cases/face_on.json");
   Options o;
-  o.model = "ideal";
+  o.model.name = "ideal";
   o.out =
       (fs::temp_directory_path() / ("glrc_parse_once_out_" + std::to_string(getpid()))).string();
   const nlohmann::json job = {{"index", 0},
@@ -49,7 +49,7 @@ TEST(ParseOnce, TheWorkerChecksTheCaseItIsHandedNotTheFile) {
                               {"case", casefile::to_wire(c)},
                               {"name", c.name},
                               {"images", false},
-                              {"model", identify::model_json(model_of(o))}};
+                              {"model", identify::model_json(o.model.reference_model())}};
   const std::string out = run_worker(options_json(o) + "\n" + job.dump() + "\n");
   const size_t at = out.find("{\"index\":0,\"result\":");
   ASSERT_NE(at, std::string::npos) << out;
