@@ -15,18 +15,18 @@
 
 namespace glrc::check {
 
-int freedom_bits(const CheckOptions& o, int reported_bits) {
+int freedom_bits(const Judging& o, int reported_bits) {
   return std::max(o.spec_subpixel_bits.value_or(reported_bits), 4);
 }
 
-std::optional<ToleranceMode> mode_override(const CheckOptions& o) {
+std::optional<ToleranceMode> mode_override(const Judging& o) {
   if (o.tolerance == ToleranceMode::exact) return ToleranceMode::exact;
   if (o.tolerance == ToleranceMode::ulps || o.varying_ulps || o.depth_ulps)
     return ToleranceMode::ulps;
   return std::nullopt;
 }
 
-std::optional<std::string> judging_problem(const CheckOptions& o) {
+std::optional<std::string> judging_problem(const Judging& o) {
   const bool thresholds = o.varying_ulps || o.depth_ulps;
   if (o.driver_model && !mode_override(o))
     return "a driver model is judged bit for bit (exact) or by fixed ULPs, not by the "
@@ -36,7 +36,7 @@ std::optional<std::string> judging_problem(const CheckOptions& o) {
   return std::nullopt;
 }
 
-Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits) {
+Tolerance tolerance_for(const Case& c, const Judging& o, int reported_bits) {
   Tolerance t = c.tolerance.applied_to(Tolerance{});
   t.subpixel_bits = freedom_bits(o, reported_bits);
   if (o.varying_ulps) t.varying_ulps = *o.varying_ulps;
@@ -110,12 +110,12 @@ std::vector<AdmittedTraces> admitted_traces(const Case& c, const Expectation& ex
   return out;
 }
 
-std::string tolerance_text(const CheckOptions& o, int reported_bits) {
+std::string tolerance_text(const Judging& o, int reported_bits) {
   if (const auto mode = mode_override(o)) return to_string(*mode);
   return "spec (subpixel bits " + std::to_string(freedom_bits(o, reported_bits)) + ")";
 }
 
-std::string model_text(const CheckOptions& o) {
+std::string model_text(const Judging& o) {
   if (o.driver_model)
     return std::string(driver_models::to_string(*o.driver_model)) +
            " (bit-exact model of Mesa 22.3.6's driver)";
@@ -127,7 +127,7 @@ size_t frame_bytes(const Case& c) {
          (3 + size_t(std::max(c.component_count(), 0))) * 4;
 }
 
-int slice_rows(const Case& c, const CheckOptions& o) {
+int slice_rows(const Case& c, const Execution& o) {
   const size_t row_bytes = std::max<size_t>(frame_bytes(c) / size_t(std::max(c.fb_height, 1)), 1);
   return int(std::clamp<size_t>(o.slice_bytes / row_bytes, 1, size_t(std::max(c.fb_height, 1))));
 }

@@ -24,9 +24,11 @@ struct CaseSetup;  // ref/mesh.hpp
 
 namespace glrc::check {
 
-// How a case is judged. The defaults judge by the specification's allowance for the exact
-// reference with the fixed default model.
-struct CheckOptions {
+// What a case is judged by: the model, a driver model, the tolerance and what changes it. Two
+// runs whose Judging differs may give different verdicts (cli/ records it with each result).
+// The defaults judge by the specification's allowance for the exact reference with the fixed
+// default model.
+struct Judging {
   // The reference's choices where GL leaves them to the implementation (subpixel bits, attribute
   // planes, tie rule): the model that judges the case, identified or given.
   Model model;
@@ -45,6 +47,10 @@ struct CheckOptions {
   std::optional<int> spec_subpixel_bits;
   // Coverage differences within the snapping band fail too (GL allows them).
   bool strict_coverage = false;
+};
+
+// How a case is checked: none of it changes a verdict or a statistic, bit for bit.
+struct Execution {
   // Threads drawing the reference (ref::render) and judging the channels (compare::compare); the
   // same bits for any number; 0: every core this process may use.
   int threads = 1;
@@ -64,6 +70,9 @@ struct CheckOptions {
   bool deferred_allowance = false;
 };
 
+// Both: what check() takes. Functions that need only one of them take that one.
+struct CheckOptions : Judging, Execution {};
+
 // Whether deferring case c's component allowances (CheckOptions::deferred_allowance) is likely
 // to save time: it has components, and its triangles are large, on average at least 4096
 // pixels of the framebuffer each. The comparison bounds the allowances over runs of 64 pixels
@@ -77,30 +86,30 @@ bool deferral_pays(const Case& c);
 size_t frame_bytes(const Case& c);
 // The rows of one slice of a streamed case: about o.slice_bytes of frame, at least 1, at most
 // the framebuffer's height.
-int slice_rows(const Case& c, const CheckOptions& o);
+int slice_rows(const Case& c, const Execution& o);
 // Rows [y0, y0 + rows) of expectation_for (no driver model): ref::render_rows.
 Expectation expectation_rows(const Case& c, const CheckOptions& o, int reported_bits, int y0,
                              int rows);
 
 // The subpixel bits of the position freedom: spec_subpixel_bits, else what the implementation
 // reports, never below the 4 GL requires (OpenGL 4.6 section 14.6.1's minimum).
-int freedom_bits(const CheckOptions& o, int reported_bits);
+int freedom_bits(const Judging& o, int reported_bits);
 
 // The mode the options set over any case file's, decided here only: exact when asked for; ulps
 // when asked for or when a threshold (varying_ulps, depth_ulps) is given; nullopt otherwise
 // (spec: each case is judged by its file's mode, the specification's allowance unless it says
 // otherwise).
-std::optional<ToleranceMode> mode_override(const CheckOptions& o);
+std::optional<ToleranceMode> mode_override(const Judging& o);
 
 // What in `o` cannot judge a case, in a few words, or nullopt: a driver model under the
 // specification's allowance (it would pass whatever the model gets wrong by less than the
 // allowance: the model is there to be matched bit for bit or by fixed ULPs); exact with ULP
 // thresholds. check() throws std::invalid_argument with it; cli/ says it before any work.
-std::optional<std::string> judging_problem(const CheckOptions& o);
+std::optional<std::string> judging_problem(const Judging& o);
 
 // The tolerance of case `c`: the defaults, then the case file's, then the options' (exact
 // wins; ULPs given turn to fixed thresholds; strict coverage drops the boundary allowance).
-Tolerance tolerance_for(const Case& c, const CheckOptions& o, int reported_bits);
+Tolerance tolerance_for(const Case& c, const Judging& o, int reported_bits);
 
 // What the case is compared against: the exact reference under o.model with the allowance for
 // an implementation reporting `reported_bits`, its frame replaced by the driver model's when
@@ -110,9 +119,9 @@ Expectation expectation_for(const Case& c, const CheckOptions& o, int reported_b
                             Expectation storage = {});
 
 // RunInfo's words for the tolerance: "exact", "ulps" or "spec (subpixel bits N)".
-std::string tolerance_text(const CheckOptions& o, int reported_bits);
+std::string tolerance_text(const Judging& o, int reported_bits);
 // RunInfo's words for the model: o.model.describe(), or the driver model's name.
-std::string model_text(const CheckOptions& o);
+std::string model_text(const Judging& o);
 
 // What judges the coverage the edge bits excuse (compare::TraceSource), for case c just drawn
 // by `renderer` (its traces are of the case it drew last): GL's traces from the renderer's

@@ -156,7 +156,7 @@ namespace {
 // The campaign asked for: generators, seed and count or time (or the one case of --replay),
 // shard, shrinking. InputError on options that do not go together.
 campaign::CampaignOptions plan_campaign(const Options& o, const FuzzOptions& f) {
-  check_judgeable(o);
+  judging(o);  // options that cannot judge a case: refused before any work
   campaign::CampaignOptions co;
   co.generators = chosen_generators(f);
   if (!f.emit.empty() && !f.replay)

@@ -28,33 +28,35 @@ ModelChoice fallback_model(const Options& o, const std::string& why) {
   return identify::fallback_model(o.model.reference_model(), why);
 }
 
-check::CheckOptions check_options(const Options& o) {
-  check::CheckOptions c;
-  c.model = o.model.reference_model();
-  c.driver_model = driver_models::driver_from_string(o.model.name);
-  c.tolerance = o.verdict.tolerance;  // with the thresholds, check::mode_override decides the mode
-  c.varying_ulps = o.verdict.varying_ulps;
-  c.depth_ulps = o.verdict.depth_ulps;
-  c.spec_subpixel_bits = o.verdict.spec_subpixel_bits;
-  c.strict_coverage = o.verdict.strict_coverage;
-  c.threads = o.threads;
-  return c;
-}
-
-void check_judgeable(const Options& o) {
-  const check::CheckOptions judged = check_options(o);
+check::Judging judging(const Options& o) {
+  check::Judging judged;
+  judged.model = o.model.reference_model();
+  judged.driver_model = driver_models::driver_from_string(o.model.name);
+  // With the thresholds, check::mode_override decides the mode.
+  judged.tolerance = o.verdict.tolerance;
+  judged.varying_ulps = o.verdict.varying_ulps;
+  judged.depth_ulps = o.verdict.depth_ulps;
+  judged.spec_subpixel_bits = o.verdict.spec_subpixel_bits;
+  judged.strict_coverage = o.verdict.strict_coverage;
   if (const auto problem = check::judging_problem(judged))
     throw InputError(judged.driver_model && !check::mode_override(judged)
                          ? "--model " + o.model.name + ": " + *problem +
                                " (--tolerance exact, or --tolerance-ulps)"
                          : "--tolerance exact: " + *problem +
                                " (--tolerance-ulps/--depth-tolerance-ulps given)");
+  return judged;
+}
+
+check::CheckOptions check_options(const Options& o) {
+  check::CheckOptions c{judging(o), {}};
+  c.threads = o.threads;
+  return c;
 }
 
 std::vector<Case> load_cases(const Options& o) {
   // Every command loads its cases first: options that cannot go together stop it here, before
   // any work.
-  check_judgeable(o);
+  judging(o);
   std::vector<std::string> paths = o.paths;
   if (paths.empty()) {
     if (!std::filesystem::is_directory("cases"))

@@ -98,10 +98,11 @@ Options options_from_json(const std::string& text);
 // copies the run began with). InputError when one cannot be read.
 std::map<std::string, std::string> verdict_inputs(const Options& o);
 
-// InputError naming the option when the options cannot judge a case (check::judging_problem:
-// a driver model under the specification's allowance, exact with ULP thresholds): before any
-// work, in every command that judges.
-void check_judgeable(const Options& o);
+// What the options judge by (model, driver model, tolerance), built and checked here only:
+// InputError naming the option when they cannot judge a case (check::judging_problem: a driver
+// model under the specification's allowance, exact with ULP thresholds). Every command that
+// judges calls it before any work.
+check::Judging judging(const Options& o);
 
 // The model when the command line decides it, nullopt when the implementation must be
 // identified (--model identified, the default, with no --subpixel-bits, --planes, --tie-break).
@@ -109,9 +110,8 @@ void check_judgeable(const Options& o);
 std::optional<ModelChoice> model_from_command_line(const Options& o);
 // The fixed default model (the command line's choices), when identification failed: `why`.
 ModelChoice fallback_model(const Options& o, const std::string& why);
-// How a case is judged, from the options: o.model.reference_model() is the model
-// (set_reference_model sets the one that judges), --model names a driver model, and the
-// tolerance options.
+// judging(o) and how a case is checked (--threads): o.model.reference_model() is the model
+// (set_reference_model sets the one that judges).
 check::CheckOptions check_options(const Options& o);
 // The cases named on the command line (default cases/), filtered; InputError when none.
 std::vector<Case> load_cases(const Options& o);
