@@ -59,6 +59,13 @@ class DeferredAllowance {
   // and no depth either (AllowanceState::all_deferred). Only where the depth test needs no
   // allowance while drawing (DepthFunc::always: no fragment may win it instead of another).
   virtual bool defers_depth() const { return false; }
+  // The channels it gives for a frame of `component_count` components, by slot: the depth's
+  // where it defers it, then every component's.
+  std::vector<Channel> channels(int component_count) const {
+    std::vector<Channel> out = channels_of(component_count);
+    if (!defers_depth()) out.erase(out.begin());
+    return out;
+  }
   // The window row of row 0 of the frame drawn with this: a slice's first row
   // (ref::render_rows_deferred), 0 for a whole frame.
   virtual int first_row() const { return 0; }
@@ -166,16 +173,14 @@ inline void complete_allowance(Expectation& e, int threads = 1) {
   if (!e.deferred) return;
   const Frame& f = e.frame;
   Frame& a = e.allowed;
-  const bool depth = e.deferred->defers_depth();
   a.components.assign(f.components.size(), {});
-  if (depth) {
+  if (e.deferred->defers_depth()) {
     a.width = f.width, a.height = f.height;
     a.primitive = f.primitive;  // each drawn fragment's primitive, as render() keeps it
   }
-  // The depth's (when deferred) first, then the components, by slot.
-  const size_t first = depth ? Channel::depth().slot() : Channel::component(0).slot();
-  parallel_for(int(a.components.size() + 1 - first), threads, [&](int item) {
-    const Channel ch = Channel::at_slot(first + size_t(item));
+  const std::vector<Channel> channels = e.deferred->channels(int(f.components.size()));
+  parallel_for(int(channels.size()), threads, [&](int item) {
+    const Channel ch = channels[size_t(item)];
     std::vector<float>& values = a.values(ch);
     resize_large(values, f.pixel_count());
     for (int y = 0; y < f.height; ++y)

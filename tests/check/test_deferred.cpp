@@ -293,8 +293,8 @@ size_t expect_ranges_hold(const Case& c, int length, double tightest_spread) {
   if (!e.deferred) return 0;
   const Frame& f = e.frame;
   size_t runs = 0, tight = 0;
-  for (const Channel k : channels_of(int(f.components.size())))
-    for (int y = 0; y < f.height && (e.deferred->defers_depth() || !k.is_depth()); ++y)
+  for (const Channel k : e.deferred->channels(int(f.components.size())))
+    for (int y = 0; y < f.height; ++y)
       for (int x0 = 0; x0 < f.width; x0 += length / 4) {
         const std::vector<float>& values = f.values(k);
         const int x1 = std::min(f.width, x0 + length) - 1;
@@ -369,8 +369,8 @@ void expect_lanes_give_the_runs_bits(const Case& c, std::mt19937& rng) {
   const Expectation e = ref::render_deferred(c, o.model, freedom_bits(o, 8), 2);
   if (!e.deferred) return;
   const Frame& f = e.frame;
-  for (const Channel k : channels_of(int(f.components.size())))
-    for (int y = 0; y < f.height && (e.deferred->defers_depth() || !k.is_depth()); ++y)
+  for (const Channel k : e.deferred->channels(int(f.components.size())))
+    for (int y = 0; y < f.height; ++y)
       for (int x = 0; x + 64 <= f.width; x += 64) {
         const size_t start = f.index(x, y);
         float whole[64], lanes[64];

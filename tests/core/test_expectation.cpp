@@ -107,6 +107,15 @@ TEST(Expectation, FieldsThatContradictTheStateAreNamed) {
   EXPECT_EQ(e.allowance_shape_error(), "an allowance of components without the depth's");
 }
 
+// A deferred allowance gives the components', and the depth's only where it defers it.
+TEST(Expectation, ADeferredAllowanceGivesItsChannels) {
+  EXPECT_EQ(Deferred(false).channels(2),
+            (std::vector<Channel>{Channel::component(0), Channel::component(1)}));
+  EXPECT_EQ(Deferred(true).channels(1),
+            (std::vector<Channel>{Channel::depth(), Channel::component(0)}));
+  EXPECT_TRUE(Deferred(false).channels(0).empty());
+}
+
 // complete_allowance makes either deferred state per pixel, with every channel's values.
 TEST(Expectation, CompletingADeferredAllowanceMakesItPerPixel) {
   for (const AllowanceState state :
