@@ -75,49 +75,33 @@ std::vector<size_t> spread(size_t n, size_t take) {
   return chosen;
 }
 
-// Per pixel, whether coverage is free there or the reference determines no value (a reference
-// that is NaN or Inf, or an unbounded allowance: any number passes there, and NaN or Inf is not
-// judged either).
-std::vector<bool> free_pixels(const Case& c, const Expectation& expected,
-                              const std::vector<Decided>& decided,
-                              const std::vector<compare::ChannelAllowance>& allowances,
-                              const compare::UlpTable& ulps) {
-  const Frame& f = expected.frame;
-  std::vector<bool> free(f.pixel_count(), false);
-  for (size_t i = 0; i < f.pixel_count(); ++i) {
-    bool determined = true;
-    if (const int32_t p = f.primitive[i]; p != Frame::kNoPrimitive)
-      for (Channel ch : channels_of(c.component_count()))
-        if (!std::isfinite(f.values(ch)[i]) ||
-            !std::isfinite(allowances[ch.slot()].at(i, ulps.ulp(p, ch))))
-          determined = false;
-    free[i] = !decided[i].primitive || !determined;
-  }
-  return free;
-}
-
-// Every (pixel, triangle) pair run judges, with its tier: 0 where coverage is free, 1 on a
-// clipped triangle, 2 at an edge, 3 elsewhere (candidates of the depth test: 0).
+// Every (pixel, triangle) pair run judges, by pixel: the reference's fragment, with its tier (0
+// where the pixel is free, 1 on a clipped triangle, 2 at an edge, 3 elsewhere), then the
+// candidates of the depth test (tier 0). `free` (per pixel) is set where coverage is free
+// (decided) or the reference's fragment has no determined value: a reference that is NaN or
+// Inf, or an unbounded allowance (any number passes there, and NaN or Inf is not judged either).
 std::vector<ValuePair> value_pairs(const Case& c, const Expectation& expected,
-                                   const std::vector<bool>& free,
+                                   const std::vector<Decided>& decided,
                                    const std::vector<compare::ChannelAllowance>& allowances,
-                                   const compare::UlpTable& ulps) {
+                                   const compare::UlpTable& ulps, std::vector<bool>& free) {
   const Frame& f = expected.frame;
   std::vector<bool> clipped_triangle(c.triangles.size());
   for (size_t t = 0; t < c.triangles.size(); ++t)
     clipped_triangle[t] = clipped(c, t);
   const std::vector<Channel> channels = channels_of(c.component_count());
+  free.assign(f.pixel_count(), false);
   std::vector<ValuePair> pairs;
   auto candidate = expected.candidates.begin();
   for (size_t i = 0; i < f.pixel_count(); ++i) {
-    const int32_t p = f.primitive[i];
-    if (p != Frame::kNoPrimitive) {
-      const int tier = free[i] ? 0 : clipped_triangle[size_t(p)] ? 1 : edge_pixel(f, i) ? 2 : 3;
-      ValuePair r{i, p, {}, {}, tier};
+    free[i] = !decided[i].primitive;
+    if (const int32_t p = f.primitive[i]; p != Frame::kNoPrimitive) {
+      ValuePair r{i, p, {}, {}, 0};
       for (Channel ch : channels) {
         r.expected.push_back(f.values(ch)[i]);
         r.allowed.push_back(allowances[ch.slot()].at(i, ulps.ulp(p, ch)));
+        if (!std::isfinite(r.expected.back()) || !std::isfinite(r.allowed.back())) free[i] = true;
       }
+      r.tier = free[i] ? 0 : clipped_triangle[size_t(p)] ? 1 : edge_pixel(f, i) ? 2 : 3;
       pairs.push_back(std::move(r));
     }
     for (; candidate != expected.candidates.end() && candidate->pixel == i; ++candidate) {
@@ -187,8 +171,8 @@ ShaderTestPlan plan_shader_test(const Case& c, const Expectation& expected,
   plan.decided.resize(pixels);
   for (size_t i = 0; i < pixels; ++i)
     plan.decided[i] = decided(expected, verdicts, c, i);
-  const std::vector<bool> free = free_pixels(c, expected, plan.decided, allowances, ulps);
-  plan.pairs = value_pairs(c, expected, free, allowances, ulps);
+  std::vector<bool> free;
+  plan.pairs = value_pairs(c, expected, plan.decided, allowances, ulps, free);
   plan.checks = chosen_checks(plan.pairs, c.component_count());
   for (size_t i = 0; i < pixels; ++i) {
     if (!free[i]) continue;
