@@ -12,6 +12,7 @@
 
 #include "campaign/random.hpp"
 #include "casefile/transform.hpp"
+#include "core/primitive_assembly.hpp"
 
 namespace glrc::campaign {
 namespace {
@@ -658,6 +659,73 @@ Case dense(Random& r) {
   return c;
 }
 
+// One random draw over vertices [base, base + n): a list, strip or fan; glDrawArrays or
+// glDrawElements of 8-, 16- or 32-bit indices, shuffled a little (repeats make degenerate
+// triangles), with primitive restart (the fixed index or glPrimitiveRestartIndex) cutting it
+// into several primitives now and then.
+Draw random_draw(Random& r, uint32_t base, uint32_t n) {
+  Draw d;
+  d.mode = PrimitiveMode(r.below(3));
+  if (r.chance(0.25)) {
+    d.first = base, d.count = n;
+    return d;
+  }
+  // 8-bit indices only while every vertex index is below 255, the fixed restart index.
+  d.index_type = base + n > 255 ? IndexType(2 + r.below(2)) : IndexType(1 + r.below(3));
+  for (uint32_t k = 0; k < n; ++k)
+    d.indices.push_back(base + (r.chance(0.1) ? uint32_t(r.below(n)) : k));
+  if (r.chance(0.5)) {
+    d.restart = r.chance(0.5) ? Restart::fixed_index : Restart::index;
+    if (d.restart == Restart::index)
+      d.restart_index = base + n + uint32_t(r.below(max_index(d.index_type) - base - n + 1));
+    const int cuts = r.between(1, 3);
+    for (int k = 0; k < cuts; ++k) {
+      const size_t at = size_t(r.below(d.indices.size() + 1));
+      d.indices.insert(d.indices.begin() + ptrdiff_t(at), d.restart_value());
+    }
+  }
+  return d;
+}
+
+// Strips, fans and lists in one to four draws: array and indexed draws with every index type,
+// primitive restart, degenerate triangles, both provoking-vertex conventions, culling, and
+// vertices beyond the x, y, near and far planes; flat varyings always (the provoking vertex),
+// smooth ones, and noperspective where nothing is clipped (clipped noperspective varyings hit a
+// known clipper bug, cases/known-failures.txt, which the clip generator already reaches).
+Case assembly(Random& r) {
+  Case c;
+  set_framebuffer_drawn(c, r, 16, 128, 16, 128);
+  c.provoking = ProvokingVertex(r.below(2));
+  c.cull = r.chance(0.3) ? CullFace(r.below(4)) : CullFace::none;
+  c.front_face = FrontFace(r.below(2));
+  const bool perspective = r.chance(0.6);
+  const double margin = r.chance(0.4) ? 0.4 : 0.0;  // beyond the x and y planes
+  const double depth = r.chance(0.3) ? 1.3 : 0.9;   // beyond the near and far planes
+  const int draws = r.between(1, 4);
+  for (int k = 0; k < draws; ++k) {
+    const uint32_t base = uint32_t(c.vertices.size()), n = uint32_t(r.between(3, 12));
+    for (uint32_t v = 0; v < n; ++v)
+      c.vertices.push_back({random_clip(c, r, margin, depth, perspective), {}});
+    c.draws.push_back(random_draw(r, base, n));
+  }
+  assemble_triangles(c);
+  if (c.triangles.empty()) {  // every primitive incomplete: one more strip makes sure
+    const uint32_t base = uint32_t(c.vertices.size());
+    for (uint32_t v = 0; v < 3; ++v)
+      c.vertices.push_back({random_clip(c, r, margin, depth, perspective), {}});
+    Draw strip;
+    strip.mode = PrimitiveMode::triangle_strip, strip.first = base, strip.count = 3;
+    c.draws.push_back(strip);
+    assemble_triangles(c);
+  }
+  const bool clipped = margin > 0 || depth > 1;
+  add_varying(c, 1, Interpolation::flat);
+  add_varying(c, r.between(1, 3),
+              clipped || r.chance(0.5) ? Interpolation::smooth : Interpolation::noperspective);
+  fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  return c;
+}
+
 // What casefile::load demands and a generator may not have ensured: noperspective only where
 // every vertex a triangle uses has w_c > 0 (cases/README.md); such varyings become smooth.
 void make_loadable(Case& c) {
@@ -692,6 +760,10 @@ const std::vector<Generator>& generators() {
        "hundreds of triangles with the depth test: coplanar and near-coplanar pairs under nearer "
        "triangles, identical copies, clipped ones, shared edges of every size",
        dense},
+      {"assembly",
+       "strips, fans and lists in several draws: 8-, 16- and 32-bit indices, primitive restart, "
+       "both provoking vertices, clipped primitives",
+       assembly},
   };
   return all;
 }

@@ -40,7 +40,11 @@ struct Generator {
 //               contests, issue 44); bitwise-identical copies of earlier triangles; clip-heavy
 //               triangles (x_c, y_c within ±3 w_c, z_c within ±1.2 w_c, w_c in [0.2, 3.2]);
 //               fans and strips sharing vertices by index, of sub-pixel, small (< 4 px), medium
-//               (16 to 64 px) and large (64 to 384 px) triangles.
+//               (16 to 64 px) and large (64 to 384 px) triangles;
+//   assembly    strips, fans and lists in one to four draws: glDrawArrays and glDrawElements
+//               with 8-, 16- and 32-bit indices, primitive restart (fixed index and
+//               glPrimitiveRestartIndex), repeated indices, both provoking vertices, culling,
+//               vertices beyond the clip planes.
 // New generators go last, and none is ever removed or reordered: a campaign of every generator
 // makes case I with generator I mod n, so adding one changes which case such a campaign's
 // `--replay S:I` names (a campaign of named generators, and `--generator G --replay S:I`,

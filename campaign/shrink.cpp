@@ -12,6 +12,7 @@
 
 #include "casefile/casefile.hpp"
 #include "casefile/write.hpp"
+#include "core/primitive_assembly.hpp"
 #include "selftest/faults.hpp"
 
 namespace glrc::campaign {
@@ -20,8 +21,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Vertices no triangle uses are dropped and the rest renumbered in their order: the same
-// drawing, a shorter file.
+// drawing, a shorter file. Not for a case with draws, whose array draws name vertex ranges
+// (Shrinker::draws first lowers such a case to its triangles where the failure allows).
 void drop_unused_vertices(Case& c) {
+  if (!c.draws.empty()) return;
   std::vector<int64_t> renumber(c.vertices.size(), -1);
   for (const auto& t : c.triangles)
     for (const uint32_t k : t)
@@ -119,8 +122,44 @@ class Shrinker {
     return false;
   }
 
+  // A case with draws (strips, fans, restarts, several draws): a draw left out; the whole case
+  // as the one GL_TRIANGLES list of its triangles (which the other passes then shrink, when
+  // the failure does not need the assembly); a draw's last vertex or index left out.
+  bool draws() {
+    bool progress = false;
+    for (bool kept = true; kept && !out.minimal.draws.empty() && budget_left();) {
+      const Case& m = out.minimal;
+      const size_t n = m.draws.size();
+      kept = first_failing(2 * n + 1, [&](size_t i) -> std::optional<Case> {
+        Case c = m;
+        if (i == n) {
+          c.draws.clear();  // c.triangles stay: the list GL assembled
+          drop_unused_vertices(c);
+          return c;
+        }
+        if (i < n) {
+          if (n == 1) return std::nullopt;
+          c.draws.erase(c.draws.begin() + ptrdiff_t(i));
+        } else if (Draw& d = c.draws[i - n - 1]; d.indexed()) {
+          if (d.indices.size() <= 1) return std::nullopt;
+          d.indices.pop_back();
+        } else {
+          if (d.count <= 1) return std::nullopt;
+          --d.count;
+        }
+        assemble_triangles(c);
+        if (c.triangles.empty()) return std::nullopt;
+        return c;
+      });
+      progress = progress || kept;
+    }
+    return progress;
+  }
+
   bool triangles() {
     bool progress = false;
+    // A case with draws shrinks by draws() (its triangles are the draws' assembly).
+    if (!out.minimal.draws.empty()) return false;
     size_t chunk = std::max<size_t>(out.minimal.triangles.size() / 2, 1);
     while (out.minimal.triangles.size() > 1 && budget_left()) {
       const Case& m = out.minimal;
@@ -182,6 +221,7 @@ class Shrinker {
             break;
           case 2:
             c.provoking = defaults.provoking;
+            assemble_triangles(c);  // strips and fans assemble by the convention
             break;
           case 3:
             c.depth_func = defaults.depth_func;
@@ -326,7 +366,8 @@ Shrunk shrink(const Case& failing, const CaseResult& failing_result, const Failu
   s.out.result = failing_result;
   drop_unused_vertices(s.out.minimal);
   for (bool progress = true; progress && s.budget_left();) {
-    progress = s.triangles();
+    progress = s.draws();
+    progress = s.triangles() || progress;
     progress = s.varyings() || progress;
     progress = s.states() || progress;
     progress = s.framebuffer() || progress;

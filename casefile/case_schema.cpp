@@ -204,9 +204,10 @@ Case Loader::load(const CaseJson& root) const {
   Case c;
   c.source_path = r_.source();
   if (!root.is_object()) r_.fail("", "a JSON object at the top level", Reader::describe(root));
-  r_.check_keys(root, "",
-                {"description", "framebuffer", "viewport", "depth_range", "state", "varyings",
-                 "transform", "vertices", "triangles", "tolerance", "work_arounds", "written_by"});
+  r_.check_keys(
+      root, "",
+      {"description", "framebuffer", "viewport", "depth_range", "state", "varyings", "transform",
+       "vertices", "triangles", "draws", "tolerance", "work_arounds", "written_by"});
   // What wrote the file, with its stamp (cli's fuzz; report/stamp.hpp): for whoever writes it
   // again, nothing the case draws.
   if (const CaseJson* w = Reader::find(root, "written_by"); w && !w->is_string())
@@ -229,7 +230,13 @@ Case Loader::load(const CaseJson& root) const {
   std::optional<Transform> transform;
   if (const CaseJson* t = Reader::find(root, "transform")) transform = load_transform(*t);
   load_vertices(r_.required(root, "", "vertices", "an array of vertices"), transform, c);
-  load_triangles(Reader::find(root, "triangles"), c);
+  if (const CaseJson* d = Reader::find(root, "draws")) {
+    if (Reader::find(root, "triangles"))
+      r_.fail("triangles", "either \"triangles\" or \"draws\", not both", "both");
+    load_draws(*d, c);
+  } else {
+    load_triangles(Reader::find(root, "triangles"), c);
+  }
   check_noperspective(c);
   if (const CaseJson* t = Reader::find(root, "tolerance")) load_tolerance(*t, c);
   if (const CaseJson* w = Reader::find(root, "work_arounds")) {
@@ -255,6 +262,7 @@ std::string expected_number_at(const std::string& path) {
     return "an integer in 0.." + std::to_string(kMaxSize - 1);
   if (path.rfind("varyings[", 0) == 0 && ends_with(".size")) return "an integer in 1..4";
   if (path.rfind("triangles[", 0) == 0) return "a vertex index (an integer)";
+  if (path.rfind("draws[", 0) == 0) return "an integer";
   if (path.rfind("tolerance.", 0) == 0) return "a finite number >= 0";
   return "a number within float32 range";
 }

@@ -49,6 +49,8 @@ class Loader {
   void load_vertices(const CaseJson& list, const std::optional<Transform>& transform,
                      Case& c) const;
   void load_triangles(const CaseJson* list, Case& c) const;
+  void load_draws(const CaseJson& list, Case& c) const;
+  Draw load_draw(const CaseJson& d, const std::string& path, const Case& c) const;
   void check_noperspective(const Case& c) const;
   void load_tolerance(const CaseJson& t, Case& c) const;
 

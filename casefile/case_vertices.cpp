@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "casefile/case_schema.hpp"
+#include "core/primitive_assembly.hpp"
 
 namespace glrc::casefile {
 namespace {
@@ -248,11 +249,21 @@ void Loader::check_noperspective(const Case& c) const {
     return v.interpolation == Interpolation::noperspective;
   });
   if (np == c.varyings.end()) return;
+  // Where a triangle came from, for the message: its entry of "triangles", or its draw.
+  const std::vector<uint32_t> first =
+      c.draws.empty() ? std::vector<uint32_t>() : assemble(c.draws, c.provoking).first_triangle;
+  auto where = [&](size_t t) {
+    if (first.empty()) return path_index("triangles", t);
+    size_t d = 0;
+    while (first[d + 1] <= t)
+      ++d;
+    return path_index("draws", d) + " (its triangle " + std::to_string(t - first[d]) + ")";
+  };
   for (size_t t = 0; t < c.triangles.size(); ++t) {
     for (uint32_t i : c.triangles[t]) {
       const float w = c.vertices[i].clip[3];
       if (w <= 0.0f)
-        r_.fail(path_index("triangles", t),
+        r_.fail(where(t),
                 "w_c > 0 at every vertex, because varying " + json_quoted(np->name) +
                     " is noperspective and GL leaves screen-linear interpolation undefined for "
                     "triangles reaching behind the eye",

@@ -64,25 +64,36 @@ json to_wire(const Case& c) {
   json varyings = json::array();
   for (const Varying& v : c.varyings)
     varyings.push_back({v.name, v.size, int(v.interpolation)});
+  // The draws (only a case that has them): the triangles above are their assembly.
+  json draws = json::array();
+  for (const Draw& d : c.draws) {
+    std::string indices;
+    for (uint32_t i : d.indices)
+      put(indices, i);
+    draws.push_back({int(d.mode), int(d.index_type), d.first, d.count, int(d.restart),
+                     d.restart_index, indices});
+  }
   json tolerance = json::object();
   if (c.tolerance.varying_ulps) tolerance["varying_ulps"] = *c.tolerance.varying_ulps;
   if (c.tolerance.depth_ulps) tolerance["depth_ulps"] = *c.tolerance.depth_ulps;
   if (c.tolerance.allow_boundary) tolerance["allow_boundary"] = *c.tolerance.allow_boundary;
-  return {{"name", c.name},
-          {"description", c.description},
-          {"source_path", c.source_path},
-          {"framebuffer", {c.fb_width, c.fb_height}},
-          {"viewport", {c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height}},
-          {"depth_range", scalars},
-          {"state",
-           {int(c.cull), int(c.front_face), int(c.provoking), int(c.depth_func),
-            std::bit_cast<uint32_t>(c.depth_clear), c.work_arounds}},
-          {"varyings", varyings},
-          {"vertices", c.vertices.size()},
-          {"clip", clip},
-          {"values", values},
-          {"triangles", triangles},
-          {"tolerance", tolerance}};
+  json out = {{"name", c.name},
+              {"description", c.description},
+              {"source_path", c.source_path},
+              {"framebuffer", {c.fb_width, c.fb_height}},
+              {"viewport", {c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height}},
+              {"depth_range", scalars},
+              {"state",
+               {int(c.cull), int(c.front_face), int(c.provoking), int(c.depth_func),
+                std::bit_cast<uint32_t>(c.depth_clear), c.work_arounds}},
+              {"varyings", varyings},
+              {"vertices", c.vertices.size()},
+              {"clip", clip},
+              {"values", values},
+              {"triangles", triangles},
+              {"tolerance", tolerance}};
+  if (!draws.empty()) out["draws"] = draws;
+  return out;
 }
 
 Case from_wire(const json& j) {
@@ -123,6 +134,21 @@ Case from_wire(const json& j) {
     while (!triangles.done())
       c.triangles.push_back({triangles.word(), triangles.word(), triangles.word()});
     if (!clip.done() || !values.done()) throw std::runtime_error("wire: words left over");
+    if (j.contains("draws")) {
+      for (const json& d : j.at("draws")) {
+        Draw draw;
+        draw.mode = PrimitiveMode(d.at(0).get<int>());
+        draw.index_type = IndexType(d.at(1).get<int>());
+        draw.first = d.at(2).get<uint32_t>();
+        draw.count = d.at(3).get<uint32_t>();
+        draw.restart = Restart(d.at(4).get<int>());
+        draw.restart_index = d.at(5).get<uint32_t>();
+        Words indices(d.at(6).get_ref<const std::string&>());
+        while (!indices.done())
+          draw.indices.push_back(indices.word());
+        c.draws.push_back(std::move(draw));
+      }
+    }
     const json& t = j.at("tolerance");
     if (t.contains("varying_ulps")) c.tolerance.varying_ulps = t["varying_ulps"].get<double>();
     if (t.contains("depth_ulps")) c.tolerance.depth_ulps = t["depth_ulps"].get<double>();

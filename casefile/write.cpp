@@ -126,6 +126,51 @@ std::string integer(long long i) {
   return std::to_string(i);
 }
 
+// Items packed a few to a line (at most 100 columns), each line indented by `indent`.
+std::string packed(const std::vector<std::string>& items, const std::string& indent) {
+  std::string out, line;
+  for (size_t k = 0; k < items.size(); ++k) {
+    std::string item;
+    add(item, items[k], k + 1 < items.size() ? "," : "");
+    if (!line.empty() && line.size() + 1 + item.size() > 100) {
+      add(out, "\n", line);
+      line.clear();
+    }
+    add(line, line.empty() ? indent : " ", item);
+  }
+  if (!line.empty()) add(out, "\n", line);
+  return out;
+}
+
+// "triangles": the case's own list, packed a few triples to a line.
+void write_triangles(std::string& out, const Case& c) {
+  std::vector<std::string> items;
+  for (const auto& tri : c.triangles) {
+    std::string item;
+    add(item, "[", integer(tri[0]), ", ", integer(tri[1]), ", ", integer(tri[2]), "]");
+    items.push_back(std::move(item));
+  }
+  add(out, ",\n  \"triangles\": [", packed(items, "    "), items.empty() ? "" : "\n  ", "]");
+}
+
+// One draw of "draws" as an object; its indices packed a few to a line.
+std::string draw_text(const Draw& d) {
+  std::string out;
+  add(out, "{\"mode\": ", name(d.mode));
+  if (!d.indexed()) {
+    add(out, ", \"first\": ", integer(d.first), ", \"count\": ", integer(d.count), "}");
+    return out;
+  }
+  add(out, ", \"index_type\": ", name(d.index_type));
+  if (d.restart != Restart::off) add(out, ", \"restart\": ", name(d.restart));
+  if (d.restart == Restart::index) add(out, ", \"restart_index\": ", integer(d.restart_index));
+  std::vector<std::string> items;
+  for (uint32_t i : d.indices)
+    items.push_back(integer(i));
+  add(out, ", \"indices\": [", packed(items, "      "), "]}");
+  return out;
+}
+
 }  // namespace
 
 std::string to_case_file(const Case& c) {
@@ -182,22 +227,14 @@ std::string to_case_file(const Case& c) {
   }
   out += "  ]";
 
-  // The triangles, packed a few to a line (at most 100 columns).
-  out += ",\n  \"triangles\": [";
-  std::string line;
-  for (size_t t = 0; t < c.triangles.size(); ++t) {
-    const auto& tri = c.triangles[t];
-    std::string item;
-    add(item, "[", integer(tri[0]), ", ", integer(tri[1]), ", ", integer(tri[2]), "]",
-        t + 1 < c.triangles.size() ? "," : "");
-    if (!line.empty() && line.size() + 1 + item.size() > 100) {
-      add(out, "\n", line);
-      line.clear();
-    }
-    add(line, line.empty() ? "    " : " ", item);
+  if (c.draws.empty()) {
+    write_triangles(out, c);
+  } else {
+    out += ",\n  \"draws\": [";
+    for (size_t d = 0; d < c.draws.size(); ++d)
+      add(out, "\n    ", draw_text(c.draws[d]), d + 1 < c.draws.size() ? "," : "\n  ");
+    out += "]";
   }
-  if (!line.empty()) add(out, "\n", line, "\n  ");
-  out += "]";
 
   const ToleranceOverride& t = c.tolerance;
   if (t.varying_ulps || t.depth_ulps || t.allow_boundary) {

@@ -184,7 +184,7 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   setup.count_vertex = gl::count_vertex_shader_source();
   setup.count_geometry = gl::count_geometry_shader_source();
   setup.count_fragment = gl::count_fragment_shader_source();
-  setup.trace_fragment = gl::trace_fragment_shader_source();
+  setup.trace_fragment = gl::trace_fragment_shader_source(several_draws(c));
   setup.admitted = check::admitted_traces(c, expected, options, reported_bits);
   setup.file_name = std::filesystem::path(out).filename().string();
   setup.exported_by = command_line(o, command);

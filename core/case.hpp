@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/channel.hpp"
+#include "core/draw.hpp"
 #include "core/names.hpp"
 
 namespace glrc {
@@ -173,7 +174,15 @@ struct Case {
 
   std::vector<Varying> varyings;
   std::vector<Vertex> vertices;
-  std::vector<std::array<uint32_t, 3>> triangles;  // indices into vertices; GL_TRIANGLES order
+  // The draw commands GL is given (core/draw.hpp), in order. Empty for a case that lists its
+  // triangles: it is drawn as one glDrawElements(GL_TRIANGLES, GL_UNSIGNED_INT) of them
+  // (draws_of, core/primitive_assembly.hpp).
+  std::vector<Draw> draws;
+  // The triangles GL rasterizes, indices into vertices, in drawing order: the case's own list,
+  // or the assembly of its draws (assemble_triangles), each in an order with its primitive's
+  // winding and its provoking vertex first or last as `provoking` says. Triangle t is the
+  // frame's primitive t: gl_PrimitiveID plus the number of triangles of the earlier draws.
+  std::vector<std::array<uint32_t, 3>> triangles;
 
   ToleranceOverride tolerance;
 
@@ -195,7 +204,9 @@ struct Case {
 // equal depths, whatever rounding either involves (the reference's depth test, ref/render.cpp;
 // selftest's fault of a copy that wins it). Only the same order counts: a copy with its
 // vertices rotated is another primitive to GL (its attribute planes may be anchored at another
-// vertex), and its depths may differ within the allowance.
+// vertex), and its depths may differ within the allowance. So does the kind of primitive: a
+// strip's odd triangle and a GL_TRIANGLES triangle with the same vertex order are not taken for
+// the same primitive, nor a fan's triangle and a strip's (AssembledTriangles::kind).
 std::vector<int32_t> identical_triangles(const Case& c);
 // Channel names of a case's frame, in Frame::components order: "name.x", "name.y", ...
 std::vector<std::string> component_names(const Case& c);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "compare/compare.hpp"
+#include "core/primitive_assembly.hpp"
 #include "core/text.hpp"
 #include "export/c_runtime.hpp"
 #include "export/coverage_verdict_table.hpp"
@@ -165,6 +166,45 @@ std::string gl_depth_func(DepthFunc f) {
 
 // The arrays and the struct scene `name` of case `c`, drawn with `shaders`; its arrays' names
 // start with `prefix`.
+// The case's draws (draws_of): each indexed draw's indices as an array of its own type, then
+// the struct draw of every draw, as the harness issues them (gl_harness/renderer.cpp).
+std::string draws_text(const Case& c, const std::string& prefix) {
+  static constexpr const char* kModes[] = {"GL_TRIANGLES", "GL_TRIANGLE_STRIP", "GL_TRIANGLE_FAN"};
+  static constexpr const char* kTypes[] = {"0", "GL_UNSIGNED_BYTE", "GL_UNSIGNED_SHORT",
+                                           "GL_UNSIGNED_INT"};
+  static constexpr const char* kCTypes[] = {"", "GLubyte", "GLushort", "GLuint"};
+  const std::vector<Draw> draws = draws_of(c);
+  const std::vector<uint32_t> first = assemble(draws, c.provoking).first_triangle;
+  std::string out, table;
+  for (size_t d = 0; d < draws.size(); ++d) {
+    const Draw& draw = draws[d];
+    const std::string array = prefix + "_indices_" + std::to_string(d);
+    const int type = int(draw.index_type);
+    if (draw.indexed()) {
+      out += "static const " + std::string(kCTypes[type]) + " " + array + "[] = {";
+      std::string list;
+      ListWriter w(list, "    ");
+      for (uint32_t i : draw.indices)
+        w.item(std::to_string(i) + (type == 3 ? "u" : ""));
+      w.finish();
+      out += list + "};\n";
+    }
+    const std::string restart = draw.restart == Restart::fixed_index
+                                    ? "GL_PRIMITIVE_RESTART_FIXED_INDEX"
+                                : draw.restart == Restart::index ? "GL_PRIMITIVE_RESTART"
+                                                                 : "0";
+    table += "    {" + std::string(kModes[int(draw.mode)]) + ", " + kTypes[type] + ", " +
+             std::to_string(draw.first) + ", " +
+             std::to_string(draw.indexed() ? draw.indices.size() : draw.count) + ", " +
+             (draw.indexed() ? array + ", sizeof " + array : "0, 0") + ", " + restart + ", " +
+             std::to_string(draw.restart_index) + "u, " + std::to_string(first[d]) + "},\n";
+  }
+  return out + "static const struct draw " + prefix +
+         "_draws[] = {\n    /* mode, index type, first, count, indices, their bytes, restart, "
+         "restart index, first triangle */\n" +
+         table + "};\n";
+}
+
 void write_scene(std::string& out, const Case& c, const ReproducerShaders& shaders,
                  const std::string& prefix, const std::string& name, const std::string& case_name) {
   out += "static const int " + prefix + "_varying_sizes[] = {";
@@ -194,17 +234,7 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
     out += list;
   }
   out += "};\n";
-  out += "static const GLuint " + prefix + "_indices[] = {";
-  {
-    std::string list;
-    ListWriter w(list, "    ");
-    for (const auto& t : c.triangles)
-      for (uint32_t i : t)
-        w.item(std::to_string(i));
-    w.finish();
-    out += list;
-  }
-  out += "};\n";
+  out += draws_text(c, prefix);
   const std::pair<const char*, const std::string*> sources[] = {
       {"vertex_shader", &shaders.vertex},
       {"geometry_shader", &shaders.geometry},
@@ -240,8 +270,8 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
   out += "    .component_count = " + std::to_string(c.component_count()) + ",\n";
   out += "    .vertex_count = " + std::to_string(c.vertices.size()) + ", .vertices = " + prefix +
          "_vertices,\n";
-  out += "    .index_count = " + std::to_string(c.triangles.size() * 3) + ", .indices = " + prefix +
-         "_indices,\n";
+  out += "    .draw_count = " + std::to_string(draws_of(c).size()) + ", .draws = " + prefix +
+         "_draws,\n";
   out += "    .vertex_shader = " + prefix + "_vertex_shader, .geometry_shader = " + prefix +
          "_geometry_shader,\n";
   out += "    .fragment_shader = " + prefix + "_fragment_shader,\n";

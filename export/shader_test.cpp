@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "compare/compare.hpp"
+#include "core/primitive_assembly.hpp"
 #include "core/text.hpp"
 #include "export/coverage_probes.hpp"
 #include "export/expectation_shape.hpp"
@@ -277,22 +278,65 @@ std::string fragment_shader(const Case& c, const ShaderTestPlan& plan) {
                         {"checks", !plan.checks.empty()}});
 }
 
-// [vertex data]: every triangle's three vertices, then the resolve draw's two triangles.
-std::string vertex_data(const Case& c) {
+// The rows of [vertex data] for the case's draws, and the `draw arrays` command of each. A
+// GL_TRIANGLES draw gives every triangle's three vertices (an indexed draw expanded, as
+// shader_runner has no index buffer), a_triangle its number. A strip or fan gives its vertex
+// stream as GL takes it (its indices expanded in order), so that GL assembles it; a_triangle,
+// flat, is read from each triangle's provoking vertex (table 13.2: strip triangle i's is v_i+2
+// under the last-vertex convention and v_i under the first, a fan's v_i+2 and v_i+1), so each
+// row holds the number of the triangle it provokes (-1 where none: the stream's first vertices).
+// A driver that takes another provoking vertex then judges pixels against another triangle,
+// which fails there as its flat values would.
+struct DrawRows {
+  std::vector<std::pair<uint32_t, int64_t>> rows;  // (vertex, a_triangle)
+  std::vector<std::string> commands;
+};
+
+DrawRows draw_rows(const Case& c) {
+  static constexpr const char* kModes[] = {"GL_TRIANGLES", "GL_TRIANGLE_STRIP", "GL_TRIANGLE_FAN"};
+  const std::vector<Draw> draws = draws_of(c);
+  const std::vector<uint32_t> first = assemble(draws, c.provoking).first_triangle;
+  const bool pv_first = c.provoking == ProvokingVertex::first;
+  DrawRows out;
+  for (size_t d = 0; d < draws.size(); ++d) {
+    const size_t start = out.rows.size();
+    if (draws[d].mode == PrimitiveMode::triangles) {
+      for (uint32_t t = first[d]; t < first[d + 1]; ++t)
+        for (uint32_t vi : c.triangles[t])
+          out.rows.emplace_back(vi, t);
+    } else {
+      const std::vector<uint32_t> e = draws[d].elements();
+      // The stream position whose vertex provokes triangle i is i + lag.
+      const int64_t lag = pv_first ? (draws[d].mode == PrimitiveMode::triangle_fan ? 1 : 0) : 2;
+      const int64_t triangles = int64_t(first[d + 1] - first[d]);
+      for (size_t j = 0; j < e.size(); ++j) {
+        const int64_t i = int64_t(j) - lag;
+        out.rows.emplace_back(e[j], i >= 0 && i < triangles ? int64_t(first[d]) + i : -1);
+      }
+    }
+    if (out.rows.size() > start)
+      out.commands.push_back(cat("draw arrays ", kModes[int(draws[d].mode)], " ",
+                                 std::to_string(start), " ",
+                                 std::to_string(out.rows.size() - start), "\n"));
+  }
+  return out;
+}
+
+// [vertex data]: the draws' rows (draw_rows), then the resolve draw's two triangles.
+std::string vertex_data(const Case& c, const DrawRows& draws) {
   std::string out = "\n[vertex data]\na_clip/float/vec4";
   for (size_t k = 0; k < c.varyings.size(); ++k)
     out += cat(" a", std::to_string(k), "/float/", glsl_type(c.varyings[k].size));
   out += " a_triangle/int/int\n";
-  for (size_t t = 0; t < c.triangles.size(); ++t)
-    for (uint32_t vi : c.triangles[t]) {
-      const Vertex& v = c.vertices[vi];
-      std::string row;
-      for (float x : v.clip)
-        row += cat(decimal(x), " ");
-      for (float x : v.values)
-        row += cat(" ", decimal(x));
-      out += cat(row, "  ", std::to_string(t), "\n");
-    }
+  for (const auto& [vi, t] : draws.rows) {
+    const Vertex& v = c.vertices[vi];
+    std::string row;
+    for (float x : v.clip)
+      row += cat(decimal(x), " ");
+    for (float x : v.values)
+      row += cat(" ", decimal(x));
+    out += cat(row, "  ", std::to_string(t), "\n");
+  }
   std::string zeros;
   for (int k = 0; k < c.component_count(); ++k)
     zeros += " 0";
@@ -302,8 +346,7 @@ std::string vertex_data(const Case& c) {
 }
 
 // [test]'s draws: the case's (with a depth test, after a count without it), then the resolve.
-std::string draws(const Case& c) {
-  const size_t triangles = c.triangles.size();
+std::string draws(const Case& c, const DrawRows& rows) {
   std::string out = "\n[test]\n";
   out += "# The case's states (the harness's depth test with GL_ALWAYS is no depth test here).\n";
   out += cat("ssbo 0 ", std::to_string(size_t(c.fb_width) * size_t(c.fb_height) * 8), "\n");
@@ -312,8 +355,9 @@ std::string draws(const Case& c) {
         cat("viewport indexed 0 ", std::to_string(c.viewport.x), " ", std::to_string(c.viewport.y),
             " ", std::to_string(c.viewport.width), " ", std::to_string(c.viewport.height), "\n");
   if (c.provoking == ProvokingVertex::first) out += "provoking vertex first\n";
-  const std::string draw_case =
-      triangles > 0 ? cat("draw arrays GL_TRIANGLES 0 ", std::to_string(triangles * 3), "\n") : "";
+  std::string draw_case;
+  for (const std::string& command : rows.commands)
+    draw_case += command;
   const bool depth_test = c.depth_func != DepthFunc::always;
   if (depth_test) {
     out +=
@@ -335,7 +379,7 @@ std::string draws(const Case& c) {
   if (viewport_set(c)) out += cat("viewport indexed 0 0 0 ", width, " ", height, "\n");
   out += cat("texture storage 0 2D GL_RGBA32F (1 ", width, " ", height, ")\n");
   out += "fb tex 2d 0\nuniform int resolve 1\n";
-  out += cat("draw arrays GL_TRIANGLES ", std::to_string(triangles * 3), " 6\n");
+  out += cat("draw arrays GL_TRIANGLES ", std::to_string(rows.rows.size()), " 6\n");
   out +=
       "\n# Values: the verdict (third) is 0 at every pixel: no NaN or Inf (1), nothing outside "
       "its range (2).\n";
@@ -357,6 +401,11 @@ std::string shader_runner_command(const std::string& file) {
 }
 
 std::optional<std::string> shader_test_state_refusal(const Case& c) {
+  for (size_t d = 0; d < c.draws.size(); ++d)
+    if (c.draws[d].restart != Restart::off)
+      return cat("draw ", std::to_string(d),
+                 "'s primitive restart cannot be expressed in a shader_test: shader_runner draws "
+                 "only arrays (`draw arrays`), with no index buffer to hold a restart index");
   if (c.depth_near != 0.0f || c.depth_far != 1.0f) {
     std::string why = "depth_range (near ";
     why += decimal(c.depth_near);
@@ -463,8 +512,9 @@ ShaderTest shader_test(const Case& c, const Expectation& expected, const Toleran
   result.text += require_section(c);
   result.text += cat("\n[vertex shader]\n", vertex_shader(c));
   result.text += cat("\n[fragment shader]\n", fragment_shader(c, plan));
-  result.text += vertex_data(c);
-  result.text += draws(c);
+  const DrawRows rows = draw_rows(c);
+  result.text += vertex_data(c, rows);
+  result.text += draws(c, rows);
   result.text += probes.text;
   return result;
 }

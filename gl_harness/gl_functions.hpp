@@ -67,6 +67,10 @@ class Context;
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)         \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray) \
   X(PFNGLDRAWELEMENTSPROC, DrawElements)                       \
+  X(PFNGLDRAWARRAYSPROC, DrawArrays)                           \
+  X(PFNGLPRIMITIVERESTARTINDEXPROC, PrimitiveRestartIndex)     \
+  X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)           \
+  X(PFNGLUNIFORM1IPROC, Uniform1i)                             \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
   X(PFNGLREADPIXELSPROC, ReadPixels)
 

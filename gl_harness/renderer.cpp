@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/primitive_assembly.hpp"
 #include "gl_harness/context.hpp"
 #include "gl_harness/first_draw.hpp"
 #include "gl_harness/framebuffer.hpp"
@@ -118,8 +119,10 @@ class GlRenderer final : public Renderer {
       context_->make_current();
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
-      if (count_program_) gl_.DeleteProgram(count_program_);
-      if (trace_program_) gl_.DeleteProgram(trace_program_);
+      for (GLuint program : count_program_)
+        if (program) gl_.DeleteProgram(program);
+      for (GLuint program : trace_program_)
+        if (program) gl_.DeleteProgram(program);
       framebuffer_.release();
       count_framebuffer_.release();
       trace_framebuffer_.release();
@@ -150,11 +153,12 @@ class GlRenderer final : public Renderer {
     const int w = c.fb_width, h = c.fb_height;
     CaseObjects objects(gl_);
 
-    gl_.UseProgram(program_for(c));
+    const GLuint program = program_for(c);
+    gl_.UseProgram(program);
     framebuffer_.bind(c.name, w, h, case_colour_formats(n));
     set_state(c);
     clear(c, n);
-    draw(c, objects);
+    draw(c, objects, program);
     check_error(c, "drawing");
     count_fragments(c);
     drawn_ = true;
@@ -230,14 +234,17 @@ class GlRenderer final : public Renderer {
 
   void count_fragments(const Case& c) {
     const bool traces = traces_in_count_pass();
-    if (!count_program_) {
+    const bool base = several_draws(c);
+    GLuint& program = count_program_[base];
+    if (!program) {
       const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
       const GLuint fs = compile(
           GL_FRAGMENT_SHADER,
-          traces ? count_and_trace_fragment_shader_source() : count_fragment_shader_source(), c);
-      count_program_ = link({vs, fs}, c);
+          traces ? count_and_trace_fragment_shader_source(base) : count_fragment_shader_source(),
+          c);
+      program = link({vs, fs}, c);
     }
-    gl_.UseProgram(count_program_);
+    gl_.UseProgram(program);
     if (traces)
       count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F, GL_RG32F});
     else
@@ -249,7 +256,7 @@ class GlRenderer final : public Renderer {
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
     gl_.BlendFunc(GL_ONE, GL_ONE);
-    gl_.DrawElements(GL_TRIANGLES, GLsizei(c.triangles.size() * 3), GL_UNSIGNED_INT, nullptr);
+    issue_draws(c, program);
     gl_.Disable(GL_BLEND);
     check_error(c, "counting fragments");
     traced_ = traces;
@@ -263,13 +270,14 @@ class GlRenderer final : public Renderer {
   // geometry shader whatever the case's work_arounds say: the pass is the harness's own
   // instrument, not the case's draw.
   void trace_fragments(const Case& c) {
-    GLuint& program = trace_program_;
+    const bool base = several_draws(c);
+    GLuint& program = trace_program_[base];
     if (!program) {
       std::vector<GLuint> shaders;
       try {
         shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c));
         shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
-        shaders.push_back(compile(GL_FRAGMENT_SHADER, trace_fragment_shader_source(), c));
+        shaders.push_back(compile(GL_FRAGMENT_SHADER, trace_fragment_shader_source(base), c));
       } catch (...) {
         for (GLuint shader : shaders)
           gl_.DeleteShader(shader);
@@ -286,7 +294,7 @@ class GlRenderer final : public Renderer {
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
     gl_.BlendFunc(GL_ONE, GL_ONE);
-    draw(c, objects);
+    draw(c, objects, program);
     gl_.Disable(GL_BLEND);
     check_error(c, "tracing fragments");
   }
@@ -334,6 +342,14 @@ class GlRenderer final : public Renderer {
         if (index >= c.vertices.size())
           fail("triangle index " + std::to_string(index) + " past the " +
                std::to_string(c.vertices.size()) + " vertices");
+    for (size_t d = 0; d < c.draws.size(); ++d)
+      for (uint32_t index : c.draws[d].elements())
+        if (index >= c.vertices.size() && !c.draws[d].restarts_at(index))
+          fail("draw " + std::to_string(d) + " index " + std::to_string(index) + " past the " +
+               std::to_string(c.vertices.size()) + " vertices");
+    // The reference draws c.triangles: they must be what GL assembles from the draws.
+    if (!c.draws.empty() && c.triangles != assemble(c.draws, c.provoking).triangles)
+      fail("its triangles are not the assembly of its draws (core/primitive_assembly.hpp)");
   }
 
   // softpipe (Mesa 22.3.6) drops every triangle when the fragment shader reads gl_PrimitiveID
@@ -375,8 +391,10 @@ class GlRenderer final : public Renderer {
       gl_.DeleteProgram(program);
     programs_.clear();
     // The count pass traces only where no geometry shader is needed (traces_in_count_pass).
-    if (count_program_) gl_.DeleteProgram(count_program_);
-    count_program_ = 0;
+    for (GLuint& program : count_program_) {
+      if (program) gl_.DeleteProgram(program);
+      program = 0;
+    }
     info_.primitive_id_from_geometry_shader = on;
   }
 
@@ -476,7 +494,8 @@ class GlRenderer final : public Renderer {
     gl_.ClearBufferfv(GL_DEPTH, 0, &c.depth_clear);
   }
 
-  void draw(const Case& c, CaseObjects& objects) {
+  // Gives GL the case's vertices and indices, then issues its draws (issue_draws).
+  void draw(const Case& c, CaseObjects& objects, GLuint program) {
     // Interleaved: clip (4 floats), then every varying's components in Case order.
     const size_t components = size_t(c.component_count());
     const size_t stride = 4 + components;
@@ -486,10 +505,7 @@ class GlRenderer final : public Renderer {
       if (components)
         std::memcpy(&data[i * stride + 4], c.vertices[i].values.data(), components * sizeof(float));
     }
-    std::vector<GLuint> indices;
-    indices.reserve(c.triangles.size() * 3);
-    for (const auto& t : c.triangles)
-      indices.insert(indices.end(), t.begin(), t.end());
+    const std::vector<unsigned char> indices = index_bytes_of(c);
 
     gl_.GenVertexArrays(1, &objects.vertex_array);
     gl_.BindVertexArray(objects.vertex_array);
@@ -499,8 +515,8 @@ class GlRenderer final : public Renderer {
                    GL_STATIC_DRAW);
     gl_.GenBuffers(1, &objects.index_buffer);
     gl_.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, objects.index_buffer);
-    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(GLuint)),
-                   indices.data(), GL_STATIC_DRAW);
+    gl_.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size()), indices.data(),
+                   GL_STATIC_DRAW);
 
     const GLsizei stride_bytes = GLsizei(stride * sizeof(float));
     auto attribute = [&](GLuint location, int size, size_t first_float) {
@@ -514,8 +530,59 @@ class GlRenderer final : public Renderer {
       attribute(GLuint(k + 1), c.varyings[k].size, offset);
       offset += size_t(c.varyings[k].size);
     }
-    if (!indices.empty())
-      gl_.DrawElements(GL_TRIANGLES, GLsizei(indices.size()), GL_UNSIGNED_INT, nullptr);
+    issue_draws(c, program);
+  }
+
+  // Every indexed draw's indices in its own type, one after another, each starting at a
+  // multiple of 4 bytes (GL wants an offset aligned to the type); sets draws_ and
+  // index_offsets_.
+  std::vector<unsigned char> index_bytes_of(const Case& c) {
+    draws_ = draws_of(c);
+    index_offsets_.assign(draws_.size(), 0);
+    std::vector<unsigned char> bytes;
+    for (size_t d = 0; d < draws_.size(); ++d) {
+      const Draw& draw = draws_[d];
+      if (!draw.indexed()) continue;
+      bytes.resize((bytes.size() + 3) / 4 * 4);
+      index_offsets_[d] = bytes.size();
+      const size_t size = size_t(index_bytes(draw.index_type));
+      for (uint32_t i : draw.indices) {
+        // Little-endian, as the machine's GL reads a GLushort or GLuint (both x86-64 and
+        // AArch64 Linux): the index's low bytes first.
+        for (size_t k = 0; k < size; ++k)
+          bytes.push_back(static_cast<unsigned char>(i >> (8 * k)));
+      }
+    }
+    return bytes;
+  }
+
+  // The case's draws as GL commands, in order, with the program in use: each with its
+  // primitive restart state and, for a case of several draws, `primitive_base` set to the
+  // draw's first triangle (gl_PrimitiveID counts from 0 again in every draw). Restart is off
+  // again afterwards, as set_state leaves it.
+  void issue_draws(const Case& c, GLuint program) {
+    static constexpr GLenum kModes[] = {GL_TRIANGLES, GL_TRIANGLE_STRIP, GL_TRIANGLE_FAN};
+    static constexpr GLenum kTypes[] = {0, GL_UNSIGNED_BYTE, GL_UNSIGNED_SHORT, GL_UNSIGNED_INT};
+    const GLint base = several_draws(c) ? gl_.GetUniformLocation(program, "primitive_base") : -1;
+    const std::vector<uint32_t> first = assemble(draws_, c.provoking).first_triangle;
+    for (size_t d = 0; d < draws_.size(); ++d) {
+      const Draw& draw = draws_[d];
+      if (base >= 0) gl_.Uniform1i(base, GLint(first[d]));
+      const GLenum mode = kModes[int(draw.mode)];
+      if (!draw.indexed()) {
+        gl_.DrawArrays(mode, GLint(draw.first), GLsizei(draw.count));
+        continue;
+      }
+      if (draw.restart == Restart::fixed_index) gl_.Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+      if (draw.restart == Restart::index) {
+        gl_.Enable(GL_PRIMITIVE_RESTART);
+        gl_.PrimitiveRestartIndex(draw.restart_index);
+      }
+      gl_.DrawElements(mode, GLsizei(draw.indices.size()), kTypes[int(draw.index_type)],
+                       reinterpret_cast<const void*>(index_offsets_[d]));
+      if (draw.restart == Restart::fixed_index) gl_.Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+      if (draw.restart == Restart::index) gl_.Disable(GL_PRIMITIVE_RESTART);
+    }
   }
 
   std::unique_ptr<Context> context_;  // first: destroyed last, after the programs
@@ -525,9 +592,14 @@ class GlRenderer final : public Renderer {
   // The case's (case_colour_formats) and the fragment-count pass's (R32F).
   Framebuffer framebuffer_, count_framebuffer_, trace_framebuffer_;
   bool drawn_ = false;  // both hold the last draw()'s case
-  GLuint count_program_ = 0;
+  // Each for a case of one draw [0] and of several [1] (the uniform primitive_base).
+  GLuint count_program_[2] = {0, 0};
   // The fragment-trace pass's program, through the pass-through geometry shader.
-  GLuint trace_program_ = 0;
+  GLuint trace_program_[2] = {0, 0};
+  // The case's draws (draws_of) and where each one's indices start in the index buffer, in
+  // bytes: set by draw(), used by every pass of the case.
+  std::vector<Draw> draws_;
+  std::vector<size_t> index_offsets_;
   bool traced_ = false;  // the trace pass drawn for the case drawn last
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};

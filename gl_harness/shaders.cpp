@@ -7,6 +7,8 @@
 
 namespace glrc::gl {
 
+const char* const kPrimitiveBase = "uniform int primitive_base;\n";
+
 const char* glsl_type(int size) {
   static const char* const kTypes[] = {"float", "vec2", "vec3", "vec4"};
   // The index below would read past the table; the renderer validates sizes first, but these
@@ -29,7 +31,7 @@ const char* glsl_qualifier(Interpolation i) {
 }
 
 std::string program_key(const Case& c) {
-  std::string key;
+  std::string key = several_draws(c) ? "base," : "";
   for (const Varying& v : c.varyings)
     key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
   return key;
@@ -88,14 +90,17 @@ std::string fragment_shader_source(const Case& c, bool after_geometry_shader) {
     s += "layout(location = " + n + ") out vec4 o" + n + ";\n";
   }
   s += "layout(location = " + std::to_string(c.varyings.size()) + ") out int o_primitive;\n";
+  if (several_draws(c)) s += kPrimitiveBase;
   s += "void main() {\n";
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     std::string n = std::to_string(k);
     s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
   }
   // Without a geometry shader gl_PrimitiveID counts the draw's triangles from 0: the
-  // reference's primitive id. The pass-through one forwards that same count.
-  s += "  o_primitive = gl_PrimitiveID;\n}\n";
+  // reference's primitive id. The pass-through one forwards that same count. With several
+  // draws each starts again at 0; the draw's first triangle added makes it the case's number.
+  s += several_draws(c) ? "  o_primitive = gl_PrimitiveID + primitive_base;\n}\n"
+                        : "  o_primitive = gl_PrimitiveID;\n}\n";
   return s;
 }
 
@@ -129,32 +134,41 @@ namespace {
 
 // fragment_hash (core/fragment_trace.hpp) in uint arithmetic, which wraps modulo 2^32, and the
 // trace's terms: both integers below 2^24, exact in float32.
-constexpr const char* kTraceTerms =
-    "vec2 trace_terms() {\n"
-    "  uint x = uint(gl_PrimitiveID);\n"
-    "  x ^= x >> 16u;\n"
-    "  x *= 0x7feb352du;\n"
-    "  x ^= x >> 15u;\n"
-    "  x *= 0x846ca68bu;\n"
-    "  x ^= x >> 16u;\n"
-    "  return vec2(float(gl_PrimitiveID + 1), float((x >> 20u) + 1u));\n"
-    "}\n";
+// p is gl_PrimitiveID, plus primitive_base where the case has several draws.
+std::string trace_terms(bool primitive_base) {
+  const std::string p = primitive_base ? "(gl_PrimitiveID + primitive_base)" : "gl_PrimitiveID";
+  return std::string(primitive_base ? kPrimitiveBase : "") +
+         "vec2 trace_terms() {\n"
+         "  uint x = uint(" +
+         p +
+         ");\n"
+         "  x ^= x >> 16u;\n"
+         "  x *= 0x7feb352du;\n"
+         "  x ^= x >> 15u;\n"
+         "  x *= 0x846ca68bu;\n"
+         "  x ^= x >> 16u;\n"
+         "  return vec2(float(" +
+         p +
+         " + 1), float((x >> 20u) + 1u));\n"
+         "}\n";
+}
 
 }  // namespace
 
-std::string trace_fragment_shader_source() {
+std::string trace_fragment_shader_source(bool primitive_base) {
   return std::string(
              "#version 330 core\n"
              "layout(location = 0) out vec2 o_trace;\n") +
-         kTraceTerms + "void main() { o_trace = trace_terms(); }\n";
+         trace_terms(primitive_base) + "void main() { o_trace = trace_terms(); }\n";
 }
 
-std::string count_and_trace_fragment_shader_source() {
+std::string count_and_trace_fragment_shader_source(bool primitive_base) {
   return std::string(
              "#version 330 core\n"
              "layout(location = 0) out float o_count;\n"
              "layout(location = 1) out vec2 o_trace;\n") +
-         kTraceTerms + "void main() {\n  o_count = 1.0;\n  o_trace = trace_terms();\n}\n";
+         trace_terms(primitive_base) +
+         "void main() {\n  o_count = 1.0;\n  o_trace = trace_terms();\n}\n";
 }
 
 }  // namespace glrc::gl

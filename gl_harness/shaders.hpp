@@ -17,6 +17,7 @@
 #include <string>
 
 #include "core/case.hpp"
+#include "core/primitive_assembly.hpp"
 
 namespace glrc::gl {
 
@@ -42,7 +43,11 @@ std::string vertex_shader_source(const Case& c);
 // Throws std::invalid_argument for a varying size outside 1..4.
 std::string geometry_shader_source(const Case& c);
 
-// The fragment shader: varying k to o<k>, gl_PrimitiveID to o_primitive. It reads g<k> when
+// The name of the uniform that holds the draw's first triangle (several_draws), declared.
+extern const char* const kPrimitiveBase;
+
+// The fragment shader: varying k to o<k>, gl_PrimitiveID to o_primitive (plus the uniform
+// `primitive_base` for a case of several draws, core/primitive_assembly.hpp). It reads g<k> when
 // `after_geometry_shader`, else v<k>. Throws std::invalid_argument for a varying size outside
 // 1..4.
 std::string fragment_shader_source(const Case& c, bool after_geometry_shader);
@@ -60,9 +65,11 @@ std::string count_fragment_shader_source();
 // geometry shader where a driver needs one for gl_PrimitiveID
 // (GlInfo::primitive_id_from_geometry_shader).
 std::string count_geometry_shader_source();
-std::string trace_fragment_shader_source();
+// With `primitive_base` (a case of several draws), p is gl_PrimitiveID + the uniform
+// `primitive_base`, the draw's first triangle, as in fragment_shader_source.
+std::string trace_fragment_shader_source(bool primitive_base = false);
 // Both at once: 1.0 to location 0 `o_count`, the trace's terms to location 1 `o_trace` (where a
 // driver needs no geometry shader for gl_PrimitiveID, the count pass sums both).
-std::string count_and_trace_fragment_shader_source();
+std::string count_and_trace_fragment_shader_source(bool primitive_base = false);
 
 }  // namespace glrc::gl

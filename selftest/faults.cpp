@@ -8,6 +8,9 @@
 #include <map>
 #include <utility>
 
+#include "core/primitive_assembly.hpp"
+#include "selftest/assembly_faults.hpp"
+
 namespace glrc::selftest {
 
 namespace {
@@ -151,6 +154,9 @@ std::vector<Fault> make_faults() {
                   [](Case& c) {
                     c.provoking = c.provoking == ProvokingVertex::last ? ProvokingVertex::first
                                                                        : ProvokingVertex::last;
+                    // GL assembles the draws under the flipped convention (what the harness
+                    // checks c.triangles against).
+                    assemble_triangles(c);
                   },
                   nullptr});
 
@@ -308,6 +314,7 @@ std::vector<Fault> make_faults() {
                     }
                     return any;
                   }});
+  add_assembly_faults(list);
   return list;
 }
 

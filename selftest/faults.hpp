@@ -27,7 +27,9 @@ struct Fault {
 // by 1e-3 relative; varyings kept to 11 mantissa bits; two varying components swapped; one pixel
 // dropped on a shared edge; every centre on a shared horizontal edge drawn by both triangles;
 // a centre beside an edge two thin triangles share drawn twice; one fragment of a hidden
-// triangle dropped; an identical copy winning the depth test.
+// triangle dropped; an identical copy winning the depth test; a strip's odd triangles provoked
+// by the wrong vertex under the first-vertex convention; a fan's hub kept across a restart
+// (assembly_faults.hpp).
 const std::vector<Fault>& faults();
 
 // x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).

@@ -15,6 +15,7 @@ typedef int GLint;
 typedef int GLsizei;
 typedef unsigned char GLboolean;
 typedef unsigned char GLubyte;
+typedef unsigned short GLushort;
 typedef char GLchar;
 typedef float GLfloat;
 typedef double GLdouble;
@@ -26,6 +27,8 @@ typedef void (*gl_proc)(void);
 #define GL_TRUE 1
 #define GL_ONE 1
 #define GL_TRIANGLES 0x0004
+#define GL_TRIANGLE_STRIP 0x0005
+#define GL_TRIANGLE_FAN 0x0006
 #define GL_NEVER 0x0200
 #define GL_LESS 0x0201
 #define GL_EQUAL 0x0202
@@ -54,6 +57,7 @@ typedef void (*gl_proc)(void);
 #define GL_MAX_VIEWPORT_DIMS 0x0D3A
 #define GL_SUBPIXEL_BITS 0x0D50
 #define GL_UNSIGNED_BYTE 0x1401
+#define GL_UNSIGNED_SHORT 0x1403
 #define GL_INT 0x1404
 #define GL_UNSIGNED_INT 0x1405
 #define GL_FLOAT 0x1406
@@ -100,6 +104,7 @@ typedef void (*gl_proc)(void);
 #define GL_FIRST_VERTEX_CONVENTION 0x8E4D
 #define GL_LAST_VERTEX_CONVENTION 0x8E4E
 #define GL_PRIMITIVE_RESTART 0x8F9D
+#define GL_PRIMITIVE_RESTART_FIXED_INDEX 0x8D69
 
 /* X(return type, name without "gl", parameters): every GL function this file calls. */
 #define GL_FUNCTIONS(X)                                                                          \
@@ -155,6 +160,10 @@ typedef void (*gl_proc)(void);
     (GLuint index, GLint size, GLenum type, GLboolean normalized, GLsizei stride, const void *offset)) \
   X(void, EnableVertexAttribArray, (GLuint index))                                               \
   X(void, DrawElements, (GLenum mode, GLsizei count, GLenum type, const void *offset))           \
+  X(void, DrawArrays, (GLenum mode, GLint first, GLsizei count))                                 \
+  X(void, PrimitiveRestartIndex, (GLuint index))                                                 \
+  X(GLint, GetUniformLocation, (GLuint program, const GLchar *name))                             \
+  X(void, Uniform1i, (GLint location, GLint value))                                              \
   X(void, PixelStorei, (GLenum name, GLint value))                                               \
   X(void, ReadPixels,                                                                            \
     (GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void *pixels))
@@ -196,6 +205,21 @@ typedef unsigned int EGLenum;
 #define OSMESA_CONTEXT_MINOR_VERSION 0x37
 
 /* ---- What one draw takes ---- */
+/* One draw command: glDrawArrays(mode, first, count) when index_type is 0, else
+   glDrawElements(mode, count, index_type, ...) of `indices` (index_bytes bytes), with primitive
+   restart `restart` enabled around it (0: none; GL_PRIMITIVE_RESTART with restart_index, or
+   GL_PRIMITIVE_RESTART_FIXED_INDEX). primitive_base: the number of triangles the earlier draws
+   assemble, which the fragment shader adds to gl_PrimitiveID (uniform primitive_base). */
+struct draw {
+  GLenum mode, index_type;
+  GLint first;
+  GLsizei count;
+  const void *indices;
+  GLsizeiptr index_bytes;
+  GLenum restart;
+  GLuint restart_index;
+  GLint primitive_base;
+};
 struct scene {
   const char *name;
   int width, height; /* the framebuffer */
@@ -210,8 +234,8 @@ struct scene {
   int component_count;      /* the sum of the sizes */
   int vertex_count;
   const float *vertices;    /* per vertex: clip x, y, z, w, then every varying's components */
-  int index_count;          /* 3 per triangle */
-  const GLuint *indices;
+  int draw_count;
+  const struct draw *draws;
   const char *vertex_shader, *geometry_shader, *fragment_shader, *fragment_after_geometry;
   /* The fragment-count pass, and the trace pass with its pass-through geometry shader for
      gl_PrimitiveID. */

@@ -283,6 +283,27 @@ static GLint gl_integer(GLenum name) {
   return value;
 }
 
+/* The scene's draws, in order, with `program` in use: each indexed one's indices given to the
+   bound element buffer, its primitive restart on around it, and the program's uniform
+   primitive_base (where it has one) set to the draw's first triangle. */
+static void draw_all(const struct scene *s, GLuint program) {
+  const GLint base = glGetUniformLocation(program, "primitive_base");
+  int d;
+  for (d = 0; d < s->draw_count; ++d) {
+    const struct draw *draw = &s->draws[d];
+    if (base >= 0) glUniform1i(base, draw->primitive_base);
+    if (!draw->index_type) {
+      glDrawArrays(draw->mode, draw->first, draw->count);
+      continue;
+    }
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, draw->index_bytes, draw->indices, GL_STATIC_DRAW);
+    if (draw->restart) glEnable(draw->restart);
+    if (draw->restart == GL_PRIMITIVE_RESTART) glPrimitiveRestartIndex(draw->restart_index);
+    glDrawElements(draw->mode, draw->count, draw->index_type, (const void *)0);
+    if (draw->restart) glDisable(draw->restart);
+  }
+}
+
 /* Draws scene `s` (with the pass-through geometry shader when `geometry_shader`), then counts
    its fragments, and reads both back into `f`. 0 with error_text set when GL refuses. */
 /* `count_geometry_shader`: the counting pass reads gl_PrimitiveID through the pass-through
@@ -365,8 +386,6 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(s->vertex_count * stride), s->vertices,
                GL_STATIC_DRAW);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(s->index_count * sizeof(GLuint)), s->indices,
-               GL_STATIC_DRAW);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, stride, (const void *)0);
   for (k = 0; k < n; ++k) {
@@ -375,7 +394,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
                           (const void *)(offset * sizeof(float)));
     offset += (size_t)s->varying_sizes[k];
   }
-  if (s->index_count > 0) glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
+  draw_all(s, program);
   if (!gl_ok("drawing")) goto done;
 
   /* The same triangles again, positions only, adding 1 per fragment rasterization produces,
@@ -403,7 +422,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
     const GLenum target = GL_COLOR_ATTACHMENT0 + k; /* each program's location 0 */
     glDrawBuffers(1, &target);
     glUseProgram(k == 0 ? count_program : trace_program);
-    glDrawElements(GL_TRIANGLES, s->index_count, GL_UNSIGNED_INT, (const void *)0);
+    draw_all(s, k == 0 ? count_program : trace_program);
   }
   glDisable(GL_BLEND);
   if (!gl_ok("counting fragments")) goto done;

@@ -137,10 +137,11 @@ TEST_F(CaseFileTest, NonUtf8ByteIsReportedWithItsOffset) {
 TEST_F(CaseFileTest, ControlCharactersInKeysAndValuesAreEscaped) {
   const std::string file = (dir_ / "case.json").string();
   const std::string msg = error_of(R"({"description": "d", "a\u0000b\u001fc": 1})");
-  EXPECT_EQ(msg, file +
-                     R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
-                     R"(viewport, depth_range, state, varyings, transform, vertices, triangles, )"
-                     R"(tolerance, work_arounds, written_by, got unknown key "a\u0000b\u001Fc")");
+  EXPECT_EQ(msg,
+            file +
+                R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
+                R"(viewport, depth_range, state, varyings, transform, vertices, triangles, )"
+                R"(draws, tolerance, work_arounds, written_by, got unknown key "a\u0000b\u001Fc")");
   EXPECT_EQ(error_of(R"({"description": "two\nlines\u0007"})"),
             file + R"(: description: expected a non-empty one-line string without control )"
                    R"(characters, got "two\nlines\u0007")");
@@ -218,11 +219,12 @@ TEST_F(CaseFileTest, LongKeysAndDeepPathsAreCutInMessages) {
   const std::string file = (dir_ / "case.json").string();
   const std::string key(10000, 'k');
   const std::string msg = error_of(R"({"description": "d", ")" + key + R"(": 1})");
-  EXPECT_EQ(msg, file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
-                     ": expected one of the keys description, framebuffer, viewport, "
-                     "depth_range, state, varyings, transform, vertices, triangles, tolerance, "
-                     "work_arounds, written_by, got unknown key \"" +
-                     std::string(60, 'k') + "...\"");
+  EXPECT_EQ(msg,
+            file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
+                ": expected one of the keys description, framebuffer, viewport, "
+                "depth_range, state, varyings, transform, vertices, triangles, draws, tolerance, "
+                "work_arounds, written_by, got unknown key \"" +
+                std::string(60, 'k') + "...\"");
   // 1e400 inside 100,000 nested arrays: the path is vertices[0][0]...[0].
   const std::string deep =
       error_of(R"({"description": "d", "vertices": )" + std::string(100000, '[') + "1e400");

@@ -43,6 +43,7 @@ void expect_same(const Case& a, const Case& b) {
       ASSERT_EQ(bits(a.vertices[i].values[k]), bits(b.vertices[i].values[k])) << i;
   }
   EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.draws, b.draws);
   EXPECT_EQ(a.tolerance.varying_ulps, b.tolerance.varying_ulps);
   EXPECT_EQ(a.tolerance.depth_ulps, b.tolerance.depth_ulps);
   EXPECT_EQ(a.tolerance.allow_boundary, b.tolerance.allow_boundary);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/primitive_assembly.hpp"
 #include "selftest/faults.hpp"
 
 namespace glrc::selftest {
@@ -14,14 +15,50 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, TwelveInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 12u);
+TEST(Faults, FourteenInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 14u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
   EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
   EXPECT_EQ(faults()[8].name, "shared-horizontal-edge-drawn-twice");
   EXPECT_EQ(faults()[9].name, "thin-shared-edge-drawn-twice");
   EXPECT_EQ(faults()[10].name, "hidden-fragment-dropped");
-  EXPECT_EQ(faults().back().name, "identical-copy-wins-depth-test");
+  EXPECT_EQ(faults()[11].name, "identical-copy-wins-depth-test");
+  EXPECT_EQ(faults()[12].name, "strip-provoking-first-wrong");
+  EXPECT_EQ(faults().back().name, "fan-hub-not-reset");
+}
+
+// The assembly faults change only what they name: a strip's odd triangles under the first
+// convention, a fan's hub after a restart; each case stays one draw list per draw.
+TEST(Faults, AssemblyFaultsChangeOnlyTheirTriangles) {
+  Case c;
+  c.provoking = ProvokingVertex::first;
+  for (int k = 0; k < 8; ++k)
+    c.vertices.push_back({{float(k), float(k % 2), 0, 1}, {}});
+  Draw strip;
+  strip.mode = PrimitiveMode::triangle_strip, strip.first = 0, strip.count = 4;
+  Draw fans;
+  fans.mode = PrimitiveMode::triangle_fan, fans.index_type = IndexType::unsigned_byte;
+  fans.indices = {4, 5, 6, 255, 7, 5, 6}, fans.restart = Restart::fixed_index;
+  c.draws = {strip, fans};
+  assemble_triangles(c);
+  Case g = c;
+  fault("strip-provoking-first-wrong").before(g);
+  ASSERT_EQ(g.draws.size(), 2u);
+  EXPECT_EQ(g.triangles[0], c.triangles[0]);
+  EXPECT_EQ(g.triangles[1], (std::array<uint32_t, 3>{2, 1, 3}));  // v_i+1 first: it provokes
+  EXPECT_EQ(g.triangles[2], c.triangles[2]);
+  Case h = c;
+  fault("fan-hub-not-reset").before(h);
+  EXPECT_EQ(h.triangles[2], c.triangles[2]);
+  EXPECT_EQ(h.triangles[3], (std::array<uint32_t, 3>{5, 6, 4}));  // hub 4 kept, not 7
+  EXPECT_EQ(h.draws[1].indices, (std::vector<uint32_t>{5, 6, 4, 5, 6, 4}));
+  // A case without strips or fans under the first convention is left alone.
+  Case plain = c;
+  plain.provoking = ProvokingVertex::last;
+  assemble_triangles(plain);
+  Case p = plain;
+  fault("strip-provoking-first-wrong").before(p);
+  EXPECT_EQ(p.draws, plain.draws);
 }
 
 TEST(Faults, KeepMantissaBitsRoundsToNearestEven) {
