@@ -11,6 +11,9 @@ quad_1024_4vec4  two perspective triangles (w from 1 to 4) filling 1024x1024 exa
                  vec4 varyings.
 random_10k_256   10,000 triangles in 256x256, each vertex within 2 to 24 pixels of a random
                  centre, random depth, depth test less, one smooth vec2.
+strips_512       64 triangle strips of 256 triangles each over 512x512 (16,384 triangles), jittered
+                 vertices with perspective w, in one glDrawElements of 32-bit indices joined by
+                 primitive restart, first-vertex convention, a smooth vec2 and a flat float.
 big_2048_7vec4   two triangles filling 2048x2048, seven smooth vec4 varyings (memory).
 big_4096_7vec4   the same at 4096x4096, only with --big (the GL frame alone is ~1.9 GB).
 """
@@ -72,6 +75,30 @@ def random_triangles(rng, count, size):
             "triangles": triangles}
 
 
+def strips(rng, size, rows, columns):
+    vertices, indices = [], []
+    for r in range(rows):
+        for k in range(columns + 1):
+            for side in (0, 1):
+                x = -1 + 2 * k / columns + rng.uniform(-0.3, 0.3) / columns
+                y = -1 + 2 * (r + side) / rows + rng.uniform(-0.3, 0.3) / rows
+                w = rng.uniform(1, 3)
+                indices.append(len(vertices))
+                vertices.append({"clip": [round(x * w, 6), round(y * w, 6), 0, round(w, 6)],
+                                 "c": [round(rng.uniform(0, 1), 5), round(rng.uniform(0, 1), 5)],
+                                 "f": r})
+        indices.append(4294967295)
+    return {"description": "Bench: %d triangle strips of %d triangles over %dx%d in one indexed "
+                           "draw joined by primitive restart." % (rows, 2 * columns, size, size),
+            "framebuffer": {"width": size, "height": size},
+            "state": {"provoking_vertex": "first"},
+            "varyings": [{"name": "c", "size": 2}, {"name": "f", "size": 1,
+                                                     "interpolation": "flat"}],
+            "vertices": vertices,
+            "draws": [{"mode": "triangle_strip", "index_type": "unsigned_int",
+                       "restart": "fixed_index", "indices": indices[:-1]}]}
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("outdir")
@@ -83,6 +110,7 @@ def main():
     write(args.outdir, "quad_1024_4vec4", quad(random.Random(args.seed + 1), 1024, 4))
     write(args.outdir, "random_10k_256", random_triangles(random.Random(args.seed + 2), 10000, 256))
     write(args.outdir, "big_2048_7vec4", quad(random.Random(args.seed + 3), 2048, 7))
+    write(args.outdir, "strips_512", strips(random.Random(args.seed + 5), 512, 64, 128))
     if args.big:
         write(args.outdir, "big_4096_7vec4", quad(random.Random(args.seed + 4), 4096, 7))
 

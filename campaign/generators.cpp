@@ -726,6 +726,49 @@ Case assembly(Random& r) {
   return c;
 }
 
+// The window beyond the framebuffer: viewports with negative origins, larger than the
+// framebuffer (up to 16384, the case format's limit), partly or wholly outside it, and the
+// scissor test with boxes inside, across and beyond the framebuffer (empty ones too); a few
+// triangles anywhere in the viewport and beyond its clip planes.
+Case window(Random& r) {
+  Case c;
+  set_framebuffer_drawn(c, r, 1, 96, 1, 96);
+  const int extent = r.chance(0.1) ? 16384 : r.between(1, 4 * std::max(c.fb_width, c.fb_height));
+  const int vh = r.chance(0.5) ? extent : r.between(1, extent);
+  const int vw = r.chance(0.5) ? extent : r.between(1, extent);
+  // Origins that put the framebuffer anywhere from the viewport's left edge to its right.
+  const int vy = c.fb_height / 2 - r.between(0, vh);
+  const int vx = c.fb_width / 2 - r.between(0, vw);
+  c.viewport = {vx, vy, vw, vh};
+  if (r.chance(0.6)) {
+    Scissor s;
+    s.height = r.between(0, c.fb_height + 8);
+    s.width = r.between(0, c.fb_width + 8);
+    s.y = r.between(-8, c.fb_height);
+    s.x = r.between(-8, c.fb_width);
+    c.scissor = s;
+  }
+  c.provoking = ProvokingVertex(r.below(2));
+  const bool perspective = r.chance(0.5);
+  const int count = r.between(1, 8);
+  for (int t = 0; t < count; ++t) {
+    std::array<std::array<float, 4>, 3> v;
+    for (auto& p : v) {
+      // Near the framebuffer's part of the viewport: window positions within 32 pixels of it.
+      const double w = some_w(r, perspective);
+      const double z = r.uniform(-1.1, 1.1);
+      const double y = r.uniform(-32, c.fb_height + 32);
+      const double x = r.uniform(-32, c.fb_width + 32);
+      p = clip_at(c, x, y, z, w);
+    }
+    add_triangle(c, v);
+  }
+  add_varying(c, 1, Interpolation::flat);
+  add_varying(c, 2, Interpolation::smooth);
+  fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  return c;
+}
+
 // What casefile::load demands and a generator may not have ensured: noperspective only where
 // every vertex a triangle uses has w_c > 0 (cases/README.md); such varyings become smooth.
 void make_loadable(Case& c) {
@@ -764,6 +807,10 @@ const std::vector<Generator>& generators() {
        "strips, fans and lists in several draws: 8-, 16- and 32-bit indices, primitive restart, "
        "both provoking vertices, clipped primitives",
        assembly},
+      {"window",
+       "viewports beyond the framebuffer (negative origins, up to 16384 wide), scissor boxes "
+       "inside, across and beyond it",
+       window},
   };
   return all;
 }

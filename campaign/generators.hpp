@@ -44,7 +44,10 @@ struct Generator {
 //   assembly    strips, fans and lists in one to four draws: glDrawArrays and glDrawElements
 //               with 8-, 16- and 32-bit indices, primitive restart (fixed index and
 //               glPrimitiveRestartIndex), repeated indices, both provoking vertices, culling,
-//               vertices beyond the clip planes.
+//               vertices beyond the clip planes;
+//   window      viewports with negative origins, larger than the framebuffer (up to 16384),
+//               partly or wholly outside it; scissor boxes inside, across and beyond it, empty
+//               ones too.
 // New generators go last, and none is ever removed or reordered: a campaign of every generator
 // makes case I with generator I mod n, so adding one changes which case such a campaign's
 // `--replay S:I` names (a campaign of named generators, and `--generator G --replay S:I`,

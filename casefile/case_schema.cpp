@@ -36,36 +36,47 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
     r_.object(*vp, "viewport");
     r_.check_keys(*vp, "viewport", {"x", "y", "width", "height"});
     Viewport v;
-    v.x = int_in(r_.required(*vp, "viewport", "x", "an integer in 0..4095"), "viewport.x", 0,
-                 kMaxSize - 1);
-    v.y = int_in(r_.required(*vp, "viewport", "y", "an integer in 0..4095"), "viewport.y", 0,
-                 kMaxSize - 1);
-    v.width = int_in(r_.required(*vp, "viewport", "width", "an integer in 1..4096"),
-                     "viewport.width", 1, kMaxSize);
-    v.height = int_in(r_.required(*vp, "viewport", "height", "an integer in 1..4096"),
-                      "viewport.height", 1, kMaxSize);
-    if (fb) {
-      if (v.x + v.width > c.fb_width)
-        r_.fail("viewport", "x + width <= framebuffer.width (" + std::to_string(c.fb_width) + ")",
-                std::to_string(v.x + v.width));
-      if (v.y + v.height > c.fb_height)
-        r_.fail("viewport",
-                "y + height <= framebuffer.height (" + std::to_string(c.fb_height) + ")",
-                std::to_string(v.y + v.height));
-    } else {
-      // The framebuffer defaults to the viewport's extent, which must itself be a legal size.
-      if (v.x + v.width > kMaxSize)
-        r_.fail("viewport", "x + width <= 4096 (the default framebuffer width)",
-                std::to_string(v.x + v.width));
-      if (v.y + v.height > kMaxSize)
-        r_.fail("viewport", "y + height <= 4096 (the default framebuffer height)",
-                std::to_string(v.y + v.height));
+    const std::string origin =
+        "an integer in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
+    const std::string extent = "an integer in 1.." + std::to_string(kMaxViewport);
+    v.x = int_in(r_.required(*vp, "viewport", "x", origin), "viewport.x", -kMaxViewport,
+                 kMaxViewport - 1);
+    v.y = int_in(r_.required(*vp, "viewport", "y", origin), "viewport.y", -kMaxViewport,
+                 kMaxViewport - 1);
+    v.width =
+        int_in(r_.required(*vp, "viewport", "width", extent), "viewport.width", 1, kMaxViewport);
+    v.height =
+        int_in(r_.required(*vp, "viewport", "height", extent), "viewport.height", 1, kMaxViewport);
+    // With a framebuffer the viewport may reach beyond it (only its pixels are drawn).
+    // Without one the framebuffer is the viewport's extent, which must itself be a legal size.
+    if (!fb) {
+      if (v.x < 0 || v.y < 0 || v.x + v.width > kMaxSize || v.y + v.height > kMaxSize)
+        r_.fail("framebuffer",
+                "a framebuffer, as the viewport reaches outside 0..4096 and cannot give its size",
+                "none");
       c.fb_width = v.x + v.width;
       c.fb_height = v.y + v.height;
     }
     c.viewport = v;
   } else {
     c.viewport = Viewport{0, 0, c.fb_width, c.fb_height};
+  }
+  if (const CaseJson* sc = Reader::find(root, "scissor")) {
+    r_.object(*sc, "scissor");
+    r_.check_keys(*sc, "scissor", {"x", "y", "width", "height"});
+    const std::string origin =
+        "an integer in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
+    const std::string extent = "an integer in 0.." + std::to_string(kMaxViewport);
+    Scissor b;
+    b.x = int_in(r_.required(*sc, "scissor", "x", origin), "scissor.x", -kMaxViewport,
+                 kMaxViewport - 1);
+    b.y = int_in(r_.required(*sc, "scissor", "y", origin), "scissor.y", -kMaxViewport,
+                 kMaxViewport - 1);
+    b.width =
+        int_in(r_.required(*sc, "scissor", "width", extent), "scissor.width", 0, kMaxViewport);
+    b.height =
+        int_in(r_.required(*sc, "scissor", "height", extent), "scissor.height", 0, kMaxViewport);
+    c.scissor = b;
   }
 
   if (const CaseJson* dr = Reader::find(root, "depth_range")) {
@@ -206,8 +217,8 @@ Case Loader::load(const CaseJson& root) const {
   if (!root.is_object()) r_.fail("", "a JSON object at the top level", Reader::describe(root));
   r_.check_keys(
       root, "",
-      {"description", "framebuffer", "viewport", "depth_range", "state", "varyings", "transform",
-       "vertices", "triangles", "draws", "tolerance", "work_arounds", "written_by"});
+      {"description", "framebuffer", "viewport", "scissor", "depth_range", "state", "varyings",
+       "transform", "vertices", "triangles", "draws", "tolerance", "work_arounds", "written_by"});
   // What wrote the file, with its stamp (cli's fuzz; report/stamp.hpp): for whoever writes it
   // again, nothing the case draws.
   if (const CaseJson* w = Reader::find(root, "written_by"); w && !w->is_string())
@@ -255,11 +266,15 @@ std::string expected_number_at(const std::string& path) {
     return path.size() >= tail.size() &&
            path.compare(path.size() - tail.size(), tail.size(), tail) == 0;
   };
-  if (path == "framebuffer.width" || path == "framebuffer.height" || path == "viewport.width" ||
-      path == "viewport.height")
+  if (path == "framebuffer.width" || path == "framebuffer.height")
     return "an integer in 1.." + std::to_string(kMaxSize);
-  if (path == "viewport.x" || path == "viewport.y")
-    return "an integer in 0.." + std::to_string(kMaxSize - 1);
+  if (path == "viewport.width" || path == "viewport.height")
+    return "an integer in 1.." + std::to_string(kMaxViewport);
+  if (path == "scissor.width" || path == "scissor.height")
+    return "an integer in 0.." + std::to_string(kMaxViewport);
+  if (path == "viewport.x" || path == "viewport.y" || path == "scissor.x" || path == "scissor.y")
+    return "an integer in " + std::to_string(-kMaxViewport) + ".." +
+           std::to_string(kMaxViewport - 1);
   if (path.rfind("varyings[", 0) == 0 && ends_with(".size")) return "an integer in 1..4";
   if (path.rfind("triangles[", 0) == 0) return "a vertex index (an integer)";
   if (path.rfind("draws[", 0) == 0) return "an integer";

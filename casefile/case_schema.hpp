@@ -20,7 +20,10 @@ namespace glrc::casefile {
 // millions of small containers.
 using CaseJson = typed_json::ArenaJson;
 
-inline constexpr int kMaxSize = 4096;      // framebuffer and viewport extent
+inline constexpr int kMaxSize = 4096;  // framebuffer extent
+// Viewport and scissor extent, and the bound of their origins (-16384..16383): GL_MAX_VIEWPORT_DIMS
+// of Mesa's software drivers, so a window position stays below 2^15 (ref/freedom.hpp's rounding).
+inline constexpr int kMaxViewport = 16384;
 inline constexpr size_t kMaxVaryings = 7;  // 8 color attachments, one holds gl_PrimitiveID
 
 // What the case field at `path` holds, for a number beyond double range there, which the

@@ -93,6 +93,7 @@ json to_wire(const Case& c) {
               {"triangles", triangles},
               {"tolerance", tolerance}};
   if (!draws.empty()) out["draws"] = draws;
+  if (c.scissor) out["scissor"] = {c.scissor->x, c.scissor->y, c.scissor->width, c.scissor->height};
   return out;
 }
 
@@ -134,6 +135,11 @@ Case from_wire(const json& j) {
     while (!triangles.done())
       c.triangles.push_back({triangles.word(), triangles.word(), triangles.word()});
     if (!clip.done() || !values.done()) throw std::runtime_error("wire: words left over");
+    if (j.contains("scissor")) {
+      const json& b = j.at("scissor");
+      c.scissor =
+          Scissor{b.at(0).get<int>(), b.at(1).get<int>(), b.at(2).get<int>(), b.at(3).get<int>()};
+    }
     if (j.contains("draws")) {
       for (const json& d : j.at("draws")) {
         Draw draw;

@@ -181,6 +181,10 @@ std::string to_case_file(const Case& c) {
   add(out, "  \"viewport\": {\"x\": ", integer(c.viewport.x), ", \"y\": ", integer(c.viewport.y),
       ", \"width\": ", integer(c.viewport.width), ", \"height\": ", integer(c.viewport.height),
       "},\n");
+  if (c.scissor)
+    add(out, "  \"scissor\": {\"x\": ", integer(c.scissor->x), ", \"y\": ", integer(c.scissor->y),
+        ", \"width\": ", integer(c.scissor->width), ", \"height\": ", integer(c.scissor->height),
+        "},\n");
 
   const Case defaults;
   if (std::bit_cast<uint32_t>(c.depth_near) != std::bit_cast<uint32_t>(defaults.depth_near) ||

@@ -104,8 +104,25 @@ struct Names<DepthFunc> {
   }};
 };
 
+// glViewport(x, y, width, height): x and y may be negative and the rectangle may reach beyond
+// the framebuffer (only the framebuffer's pixels are drawn).
 struct Viewport {
   int x = 0, y = 0, width = 0, height = 0;
+};
+
+// glScissor(x, y, width, height) with GL_SCISSOR_TEST enabled: only fragments of pixels
+// x <= x_w < x + width, y <= y_w < y + height are kept (OpenGL 4.6 section 14.9.2). x and y may
+// be negative, the box may reach beyond the framebuffer, a width or height of 0 keeps nothing.
+struct Scissor {
+  int x = 0, y = 0, width = 0, height = 0;
+  friend bool operator==(const Scissor&, const Scissor&) = default;
+};
+
+// A rectangle of pixels, bounds inclusive: pixel (px, py) is in it when x0 <= px <= x1 and
+// y0 <= py <= y1; empty when x0 > x1 or y0 > y1.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
+  bool empty() const { return x0 > x1 || y0 > y1; }
 };
 
 // How the verdict judges values and coverage.
@@ -158,6 +175,7 @@ struct Case {
 
   int fb_width = 64, fb_height = 64;
   Viewport viewport{0, 0, 64, 64};
+  std::optional<Scissor> scissor;             // none: GL_SCISSOR_TEST disabled
   float depth_near = 0.0f, depth_far = 1.0f;  // glDepthRangef; n > f allowed
 
   CullFace cull = CullFace::none;
@@ -208,6 +226,12 @@ struct Case {
 // strip's odd triangle and a GL_TRIANGLES triangle with the same vertex order are not taken for
 // the same primitive, nor a fan's triangle and a strip's (AssembledTriangles::kind).
 std::vector<int32_t> identical_triangles(const Case& c);
+// The pixels a fragment may be written to whatever the triangle: the framebuffer's, within the
+// scissor box when the case has one (pixel ownership and the scissor test, OpenGL 4.6 sections
+// 14.9.1 and 14.9.2). The viewport is not in it: clipping keeps fragments inside the viewport,
+// and an implementation that clips to a guard band instead scissors to the viewport as well
+// (ref/ rasterizes within scissor_region ∩ the viewport; the driver models clip).
+PixelRect scissor_region(const Case& c);
 // Channel names of a case's frame, in Frame::components order: "name.x", "name.y", ...
 std::vector<std::string> component_names(const Case& c);
 // The name of channel ch of a case's frame: "depth", or its component's (component_names).

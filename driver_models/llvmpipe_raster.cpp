@@ -168,7 +168,7 @@ class Raster64 {
 
 }  // namespace
 
-LlvmpipeEdges llvmpipe_edges(const LlvmpipeTriangle& t, int fb_width, int fb_height) {
+LlvmpipeEdges llvmpipe_edges(const LlvmpipeTriangle& t, const PixelRect& region) {
   LlvmpipeEdges e;
   // Edge i runs from vertex i to vertex i+1: dcdx = y_i - y_j, dcdy = x_i - x_j,
   // c = dcdx * x_i - dcdy * y_i.
@@ -190,29 +190,31 @@ LlvmpipeEdges llvmpipe_edges(const LlvmpipeTriangle& t, int fb_width, int fb_hei
   const int32_t max_x = std::max({t.x[0], t.x[1], t.x[2]});
   const int32_t min_y = std::min({t.y[0], t.y[1], t.y[2]});
   const int32_t max_y = std::max({t.y[0], t.y[1], t.y[2]});
-  e.x0 = std::max((min_x >> kLlvmpipeFixedOrder) - 1, 0);
-  e.x1 = std::min((max_x >> kLlvmpipeFixedOrder) + 1, fb_width - 1);
-  e.y0 = std::max((min_y >> kLlvmpipeFixedOrder) - 1, 0);
-  e.y1 = std::min((max_y >> kLlvmpipeFixedOrder) + 1, fb_height - 1);
+  e.x0 = std::max((min_x >> kLlvmpipeFixedOrder) - 1, region.x0);
+  e.x1 = std::min((max_x >> kLlvmpipeFixedOrder) + 1, region.x1);
+  e.y0 = std::max((min_y >> kLlvmpipeFixedOrder) - 1, region.y0);
+  e.y1 = std::min((max_y >> kLlvmpipeFixedOrder) + 1, region.y1);
   return e;
 }
 
 void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
-                       const std::function<void(int, int)>& covered) {
+                       const PixelRect& draw_region, const std::function<void(int, int)>& covered) {
   const auto [min_x, max_x] = std::minmax({t.x[0], t.x[1], t.x[2]});
   const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
   // do_triangle_ccw: x0, y0 inclusive, x1, y1 exclusive of the last subpixel (adj = 0 for
   // bottom_edge_rule 0).
   Rect bbox{min_x >> kLlvmpipeFixedOrder, min_y >> kLlvmpipeFixedOrder,
             sub32(max_x, 1) >> kLlvmpipeFixedOrder, sub32(max_y, 1) >> kLlvmpipeFixedOrder};
-  const Rect region{0, 0, fb_width - 1, fb_height - 1};  // draw_regions: no scissor
+  // draw_regions: the framebuffer, within the scissor box when the scissor test is on.
+  const Rect region{draw_region.x0, draw_region.y0, draw_region.x1, draw_region.y1};
+  if (region.x0 > region.x1 || region.y0 > region.y1) return;
   if (bbox.x1 < region.x0 || region.x1 < bbox.x0 || bbox.y1 < region.y0 || region.y1 < bbox.y0)
     return;
   const int32_t max_szorig = sub32(bbox.x1, bbox.x0 & ~3) | sub32(bbox.y1, bbox.y0 & ~3);
   if (max_szorig <= kMaxFixedLength32) {
     // The 32-bit rasterizers: a box this small wraps nothing, so their block tests give the
     // plain edge test.
-    const LlvmpipeEdges e = llvmpipe_edges(t, fb_width, fb_height);
+    const LlvmpipeEdges e = llvmpipe_edges(t, draw_region);
     for (int py = e.y0; py <= e.y1; ++py)
       for (int px = e.x0; px <= e.x1; ++px)
         if (llvmpipe_covers(e, px, py)) covered(px, py);
@@ -239,11 +241,18 @@ void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
     p.eo = uint32_t(sub32(dcdy < 0 ? 0 : p.dcdy, dcdx < 0 ? p.dcdx : 0));
     planes.push_back(p);
   }
-  // lp_setup_add_scissor_planes for the edges the box crosses (the box is clamped at 0, so
-  // only the right and top framebuffer edges).
+  // lp_setup_add_scissor_planes for the sides of the draw region the box crosses, in its order
+  // (left, right, bottom, top); without a scissor box only the right and top framebuffer
+  // edges, as the box is clamped at 0.
+  if (bbox.x0 < region.x0)
+    planes.push_back({-(int64_t(region.x0 - 1) << kLlvmpipeFixedOrder),
+                      shl32(-1, kLlvmpipeFixedOrder), 0, uint32_t(1 << kLlvmpipeFixedOrder)});
   if (bbox.x1 > region.x1)
     planes.push_back(
         {int64_t(region.x1 << kLlvmpipeFixedOrder) + 127, 1 << kLlvmpipeFixedOrder, 0, 0});
+  if (bbox.y0 < region.y0)
+    planes.push_back({-(int64_t(region.y0 - 1) << kLlvmpipeFixedOrder), 0, 1 << kLlvmpipeFixedOrder,
+                      uint32_t(1 << kLlvmpipeFixedOrder)});
   if (bbox.y1 > region.y1)
     planes.push_back(
         {int64_t(region.y1 << kLlvmpipeFixedOrder) + 127, 0, shl32(-1, kLlvmpipeFixedOrder), 0});
@@ -260,7 +269,8 @@ void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
   // Otherwise every tile of the box within the framebuffer is tested in 64 bits: rejected,
   // shaded whole, or rasterized with the planes it is not inside of; a row stops at the
   // first rejected tile after one that was not.
-  const Rect trimmed{bbox.x0, bbox.y0, std::min(bbox.x1, region.x1), std::min(bbox.y1, region.y1)};
+  const Rect trimmed{std::max(bbox.x0, region.x0), std::max(bbox.y0, region.y0),
+                     std::min(bbox.x1, region.x1), std::min(bbox.y1, region.y1)};
   const int ix0 = trimmed.x0 / kTileSize, iy0 = trimmed.y0 / kTileSize;
   const int ix1 = trimmed.x1 / kTileSize, iy1 = trimmed.y1 / kTileSize;
   const size_t n = planes.size();
@@ -313,7 +323,7 @@ void LlvmpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, co
   if (!llvmpipe_setup_triangle(case_, v0, v1, v2, t)) return;
   const LlvmpipeCoefficients k =
       llvmpipe_coefficients(t, interpolation_, case_.provoking == ProvokingVertex::first);
-  llvmpipe_coverage(t, case_.fb_width, case_.fb_height, [&](int px, int py) {
+  llvmpipe_coverage(t, case_.fb_width, case_.fb_height, scissor_region(case_), [&](int px, int py) {
     const float depth = llvmpipe_fragment(k, interpolation_, px, py, fma_, values_.data());
     writer_.fragment(px, py, primitive, depth, values_.data());
   });

@@ -23,7 +23,8 @@ struct LlvmpipeEdges {
   int x0 = 0, x1 = -1, y0 = 0, y1 = -1;   // inclusive
 };
 
-LlvmpipeEdges llvmpipe_edges(const LlvmpipeTriangle& t, int fb_width, int fb_height);
+// The edges, and the box of pixels they may accept within `region` (the draw region).
+LlvmpipeEdges llvmpipe_edges(const LlvmpipeTriangle& t, const PixelRect& region);
 
 // c + dcdy * py - dcdx * px - 1 >= 0 for all three edges (the "- 1" and the +1 bias on
 // left/bottom edges in llvmpipe_edges make the fill convention).
@@ -38,8 +39,10 @@ inline bool llvmpipe_covers(const LlvmpipeEdges& e, int px, int py) {
 // hierarchical tests of the rasterizer it picks. Wherever no 32-bit value wraps this is the
 // plain edge test of llvmpipe_covers; a vertex far outside (a NaN window position snaps to
 // INT32_MIN) wraps the edge steps and covers what the blocks' sign tests say.
+// `draw_region` is setup's draw region: the framebuffer, within the scissor box when the
+// scissor test is on (scissor_region), whose sides crossing the box become planes.
 void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
-                       const std::function<void(int, int)>& covered);
+                       const PixelRect& draw_region, const std::function<void(int, int)>& covered);
 
 // The fragment shader's inputs and depth at pixel (px, py) (lp_bld_interp.c,
 // attribs_update_simple; lp_state_fs.c, lp_build_depth_clamp): `values` gets one float per

@@ -59,20 +59,22 @@ Plane tri_linear_coeff(const Setup& s, float a0, float a1, float a2) {
 }
 
 // subtriangle: rows sy .. sy + lines - 1 between two edges, left-inclusive, right-exclusive,
-// each end truncated by (int).
-void subtriangle(Edge& eleft, Edge& eright, int lines, int fb_width, int fb_height,
+// each end truncated by (int), cut to the cliprect (the framebuffer, or the scissor box within
+// it: `clip`, bounds inclusive, which Mesa holds as exclusive maxima).
+void subtriangle(Edge& eleft, Edge& eright, int lines, const PixelRect& clip,
                  std::vector<Span>& spans) {
+  const int minx = clip.x0, miny = clip.y0, maxx = clip.x1 + 1, maxy = clip.y1 + 1;
   const int sy = cvt_trunc_i32(eleft.sy);
-  int start_y = sy < 0 ? 0 : sy;
+  int start_y = sy < miny ? miny : sy;
   int finish_y = sy + lines;
-  if (finish_y > fb_height) finish_y = fb_height;
+  if (finish_y > maxy) finish_y = maxy;
   start_y -= sy;
   finish_y -= sy;
   for (int y = start_y; y < finish_y; ++y) {
     int left = cvt_trunc_i32(eleft.sx + float(y) * eleft.dxdy);
     int right = cvt_trunc_i32(eright.sx + float(y) * eright.dxdy);
-    if (left < 0) left = 0;
-    if (right > fb_width) right = fb_width;
+    if (left < minx) left = minx;
+    if (right > maxx) right = maxx;
     if (left < right) spans.push_back(Span{sy + y, left, right});
   }
   // Saved so that emaj can be restarted for the upper half: a float accumulation.
@@ -151,13 +153,14 @@ bool softpipe_setup_triangle(const Case& c, const std::vector<Interpolation>& in
   edge(s.etop, vmid_x, vmid_y, vmax_y);
   edge(s.ebot, vmin_x, vmin_y, vmid_y);
 
-  const int w = c.fb_width, h = c.fb_height;
+  const PixelRect clip = scissor_region(c);
+  if (clip.empty()) return true;
   if (s.oneoverarea < 0.0f) {  // emaj on the left
-    subtriangle(s.emaj, s.ebot, s.ebot.lines, w, h, out.spans);
-    subtriangle(s.emaj, s.etop, s.etop.lines, w, h, out.spans);
+    subtriangle(s.emaj, s.ebot, s.ebot.lines, clip, out.spans);
+    subtriangle(s.emaj, s.etop, s.etop.lines, clip, out.spans);
   } else {
-    subtriangle(s.ebot, s.emaj, s.ebot.lines, w, h, out.spans);
-    subtriangle(s.etop, s.emaj, s.etop.lines, w, h, out.spans);
+    subtriangle(s.ebot, s.emaj, s.ebot.lines, clip, out.spans);
+    subtriangle(s.etop, s.emaj, s.etop.lines, clip, out.spans);
   }
   return true;
 }

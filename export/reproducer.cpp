@@ -250,6 +250,10 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
   out += "    .viewport = {" + std::to_string(c.viewport.x) + ", " + std::to_string(c.viewport.y) +
          ", " + std::to_string(c.viewport.width) + ", " + std::to_string(c.viewport.height) +
          "},\n";
+  if (c.scissor)
+    out += "    .scissor = {1, " + std::to_string(c.scissor->x) + ", " +
+           std::to_string(c.scissor->y) + ", " + std::to_string(c.scissor->width) + ", " +
+           std::to_string(c.scissor->height) + "},\n";
   out += "    .depth_near = " + hex_literal(c.depth_near) +
          ", .depth_far = " + hex_literal(c.depth_far) + ", /* " +
          comment_text(printable_number(c.depth_near) + ", " + printable_number(c.depth_far)) +

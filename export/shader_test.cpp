@@ -401,6 +401,10 @@ std::string shader_runner_command(const std::string& file) {
 }
 
 std::optional<std::string> shader_test_state_refusal(const Case& c) {
+  if (c.scissor)
+    return std::string(
+        "the scissor test cannot be expressed in a shader_test: shader_runner has no glScissor "
+        "command (its `enable GL_SCISSOR_TEST` would keep the whole window's box)");
   for (size_t d = 0; d < c.draws.size(); ++d)
     if (c.draws[d].restart != Restart::off)
       return cat("draw ", std::to_string(d),

@@ -71,6 +71,8 @@ class Context;
   X(PFNGLPRIMITIVERESTARTINDEXPROC, PrimitiveRestartIndex)     \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)           \
   X(PFNGLUNIFORM1IPROC, Uniform1i)                             \
+  X(PFNGLSCISSORPROC, Scissor)                                 \
+  X(PFNGLGETFLOATVPROC, GetFloatv)                             \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
   X(PFNGLREADPIXELSPROC, ReadPixels)
 

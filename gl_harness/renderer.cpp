@@ -109,6 +109,12 @@ class GlRenderer final : public Renderer {
     gl_.GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
     max_viewport_[0] = dims[0];
     max_viewport_[1] = dims[1];
+    if (major * 10 + minor >= 41) {
+      GLfloat range[2] = {0, 0};
+      gl_.GetFloatv(GL_VIEWPORT_BOUNDS_RANGE, range);
+      viewport_bounds_[0] = int(range[0]);
+      viewport_bounds_[1] = int(range[1]);
+    }
     if (GLenum e = gl_.GetError())
       throw Unavailable(std::string("querying GL limits failed: ") + gl_error_name(e));
     probe();
@@ -158,6 +164,7 @@ class GlRenderer final : public Renderer {
     framebuffer_.bind(c.name, w, h, case_colour_formats(n));
     set_state(c);
     clear(c, n);
+    scissor(c, true);  // after the clear, which the scissor test would cut
     draw(c, objects, program);
     check_error(c, "drawing");
     count_fragments(c);
@@ -250,8 +257,10 @@ class GlRenderer final : public Renderer {
     else
       count_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_R32F});
     const GLfloat zero[4] = {0, 0, 0, 0};
+    scissor(c, false);
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
     if (traces) gl_.ClearBufferfv(GL_COLOR, 1, zero);
+    scissor(c, true);
     gl_.Disable(GL_DEPTH_TEST);  // set_state enables it again for the next case
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
@@ -289,7 +298,9 @@ class GlRenderer final : public Renderer {
     gl_.UseProgram(program);
     trace_framebuffer_.bind(c.name, c.fb_width, c.fb_height, {GL_RG32F});
     const GLfloat zero[4] = {0, 0, 0, 0};
+    scissor(c, false);
     gl_.ClearBufferfv(GL_COLOR, 0, zero);
+    scissor(c, true);
     gl_.Disable(GL_DEPTH_TEST);
     gl_.Enable(GL_BLEND);
     gl_.BlendEquation(GL_FUNC_ADD);
@@ -332,6 +343,14 @@ class GlRenderer final : public Renderer {
       fail("viewport " + std::to_string(c.viewport.width) + "x" +
            std::to_string(c.viewport.height) + " outside GL_MAX_VIEWPORT_DIMS " +
            std::to_string(max_viewport_[0]) + "x" + std::to_string(max_viewport_[1]));
+    if (viewport_bounds_[0] < viewport_bounds_[1] &&
+        (c.viewport.x < viewport_bounds_[0] || c.viewport.y < viewport_bounds_[0] ||
+         c.viewport.x > viewport_bounds_[1] || c.viewport.y > viewport_bounds_[1]))
+      fail("viewport origin (" + std::to_string(c.viewport.x) + ", " +
+           std::to_string(c.viewport.y) + ") outside GL_VIEWPORT_BOUNDS_RANGE [" +
+           std::to_string(viewport_bounds_[0]) + ", " + std::to_string(viewport_bounds_[1]) + "]");
+    if (c.scissor && (c.scissor->width < 0 || c.scissor->height < 0))
+      fail("scissor box of negative size");
     const size_t components = size_t(c.component_count());
     for (size_t i = 0; i < c.vertices.size(); ++i)
       if (c.vertices[i].values.size() != components)
@@ -485,6 +504,18 @@ class GlRenderer final : public Renderer {
     gl_.ClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
   }
 
+  // The case's scissor test (Case::scissor), on or off: off around every clear, which it would
+  // cut, on for every pass that draws the case. set_state leaves it off.
+  void scissor(const Case& c, bool on) {
+    if (!c.scissor) return;
+    if (!on) {
+      gl_.Disable(GL_SCISSOR_TEST);
+      return;
+    }
+    gl_.Enable(GL_SCISSOR_TEST);
+    gl_.Scissor(c.scissor->x, c.scissor->y, c.scissor->width, c.scissor->height);
+  }
+
   void clear(const Case& c, int n) {
     const GLfloat zero[4] = {0, 0, 0, 0};
     for (int k = 0; k < n; ++k)
@@ -603,6 +634,8 @@ class GlRenderer final : public Renderer {
   bool traced_ = false;  // the trace pass drawn for the case drawn last
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
+  // GL_VIEWPORT_BOUNDS_RANGE (GL 4.1); {0, 0} where the context has no such limit to ask.
+  int viewport_bounds_[2] = {0, 0};
   bool set_provoking_vertex_ = true;  // Target::set_provoking_vertex
 };
 

@@ -85,11 +85,12 @@ bool culled(const Case& c, bool front_facing) {
 }  // namespace
 
 PixelBox viewport_box(const Case& c) {
+  const PixelRect r = scissor_region(c);
   PixelBox b;
-  b.x0 = std::max(c.viewport.x, 0);
-  b.y0 = std::max(c.viewport.y, 0);
-  b.x1 = std::min(c.viewport.x + c.viewport.width, c.fb_width) - 1;
-  b.y1 = std::min(c.viewport.y + c.viewport.height, c.fb_height) - 1;
+  b.x0 = std::max(c.viewport.x, r.x0);
+  b.y0 = std::max(c.viewport.y, r.y0);
+  b.x1 = std::min(c.viewport.x + c.viewport.width - 1, r.x1);
+  b.y1 = std::min(c.viewport.y + c.viewport.height - 1, r.y1);
   return b;
 }
 

@@ -117,7 +117,8 @@ std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const M
                                                           const std::vector<int>& primitives,
                                                           ThreadPool& pool);
 
-// The window-pixel region of the viewport inside the framebuffer.
+// The pixels the case may draw: the viewport within scissor_region (the framebuffer, and the
+// scissor box where the case has one). Empty (x0 > x1 or y0 > y1) when they do not meet.
 PixelBox viewport_box(const Case& c);
 
 }  // namespace glrc::ref

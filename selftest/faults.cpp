@@ -315,6 +315,14 @@ std::vector<Fault> make_faults() {
                     return any;
                   }});
   add_assembly_faults(list);
+
+  list.push_back({"scissor-box-one-pixel-wider",
+                  "the scissor box one pixel wider than glScissor asked (an inclusive right "
+                  "bound)",
+                  [](Case& c) {
+                    if (c.scissor) ++c.scissor->width;
+                  },
+                  nullptr});
   return list;
 }
 

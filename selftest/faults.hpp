@@ -29,7 +29,7 @@ struct Fault {
 // a centre beside an edge two thin triangles share drawn twice; one fragment of a hidden
 // triangle dropped; an identical copy winning the depth test; a strip's odd triangles provoked
 // by the wrong vertex under the first-vertex convention; a fan's hub kept across a restart
-// (assembly_faults.hpp).
+// (assembly_faults.hpp); the scissor box one pixel wider.
 const std::vector<Fault>& faults();
 
 // x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).

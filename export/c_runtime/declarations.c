@@ -164,6 +164,7 @@ typedef void (*gl_proc)(void);
   X(void, PrimitiveRestartIndex, (GLuint index))                                                 \
   X(GLint, GetUniformLocation, (GLuint program, const GLchar *name))                             \
   X(void, Uniform1i, (GLint location, GLint value))                                              \
+  X(void, Scissor, (GLint x, GLint y, GLsizei width, GLsizei height))                            \
   X(void, PixelStorei, (GLenum name, GLint value))                                               \
   X(void, ReadPixels,                                                                            \
     (GLint x, GLint y, GLsizei width, GLsizei height, GLenum format, GLenum type, void *pixels))
@@ -224,6 +225,7 @@ struct scene {
   const char *name;
   int width, height; /* the framebuffer */
   int viewport[4];   /* glViewport(x, y, width, height) */
+  int scissor[5];    /* enabled (0 or 1), then glScissor(x, y, width, height) */
   double depth_near, depth_far; /* glDepthRange */
   GLenum cull;       /* glCullFace's mode; 0: GL_CULL_FACE disabled */
   GLenum front_face, provoking_vertex, depth_func;

@@ -377,6 +377,11 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   for (k = 0; k < n; ++k) glClearBufferfv(GL_COLOR, k, zero);
   glClearBufferiv(GL_COLOR, n, no_primitive);
   glClearBufferfv(GL_DEPTH, 0, &s->depth_clear);
+  /* The scissor test after the clears, which it would cut. */
+  if (s->scissor[0]) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(s->scissor[1], s->scissor[2], s->scissor[3], s->scissor[4]);
+  }
 
   /* Interleaved: clip coordinates (attribute 0), then each varying (attribute k + 1). */
   glGenVertexArrays(1, &vertex_array);
@@ -412,8 +417,10 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   if (!trace_program) goto done;
   if (!(count_framebuffer = make_framebuffer(w, h, 2, count_formats, count_renderbuffers)))
     goto done;
+  if (s->scissor[0]) glDisable(GL_SCISSOR_TEST);
   glClearBufferfv(GL_COLOR, 0, zero);
   glClearBufferfv(GL_COLOR, 1, zero);
+  if (s->scissor[0]) glEnable(GL_SCISSOR_TEST);
   glDisable(GL_DEPTH_TEST);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);

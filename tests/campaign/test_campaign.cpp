@@ -60,8 +60,9 @@ TEST(Random, IsSplitMix64) {
 }
 
 TEST(Generators, EveryNameIsFoundAndNothingElse) {
-  EXPECT_EQ(generators().size(), 7u);
-  for (const char* name : {"sizes", "clip", "mesh", "attributes", "states", "dense", "assembly"})
+  EXPECT_EQ(generators().size(), 8u);
+  for (const char* name :
+       {"sizes", "clip", "mesh", "attributes", "states", "dense", "assembly", "window"})
     EXPECT_NE(find_generator(name), nullptr) << name;
   EXPECT_EQ(find_generator("Clip"), nullptr);
   EXPECT_EQ(find_generator(""), nullptr);

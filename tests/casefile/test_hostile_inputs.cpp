@@ -69,7 +69,7 @@ TEST_F(CaseFileTest, HugeNumberInAnIntegerFieldExpectsAnInteger) {
           R"({"description": "d", "viewport": {"x": -1e999, "y": 0, "width": 8, "height": 8}, )" +
           tri + "}"),
       file +
-          ": viewport.x: expected an integer in 0..4095, got -1e999 (beyond the range of a "
+          ": viewport.x: expected an integer in -16384..16383, got -1e999 (beyond the range of a "
           "double)");
   EXPECT_EQ(error_of(R"({"description": "d", )" + tri + R"(, "triangles": [[0, 1e400, 2]]})"),
             file +
@@ -140,7 +140,8 @@ TEST_F(CaseFileTest, ControlCharactersInKeysAndValuesAreEscaped) {
   EXPECT_EQ(msg,
             file +
                 R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
-                R"(viewport, depth_range, state, varyings, transform, vertices, triangles, )"
+                R"(viewport, scissor, depth_range, state, varyings, transform, vertices, )"
+                R"(triangles, )"
                 R"(draws, tolerance, work_arounds, written_by, got unknown key "a\u0000b\u001Fc")");
   EXPECT_EQ(error_of(R"({"description": "two\nlines\u0007"})"),
             file + R"(: description: expected a non-empty one-line string without control )"
@@ -221,7 +222,7 @@ TEST_F(CaseFileTest, LongKeysAndDeepPathsAreCutInMessages) {
   const std::string msg = error_of(R"({"description": "d", ")" + key + R"(": 1})");
   EXPECT_EQ(msg,
             file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
-                ": expected one of the keys description, framebuffer, viewport, "
+                ": expected one of the keys description, framebuffer, viewport, scissor, "
                 "depth_range, state, varyings, transform, vertices, triangles, draws, tolerance, "
                 "work_arounds, written_by, got unknown key \"" +
                 std::string(60, 'k') + "...\"");

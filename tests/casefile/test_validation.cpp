@@ -95,19 +95,34 @@ TEST_F(CaseFileTest, FramebufferAndViewport) {
   EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 64}, )" + kTri), "framebuffer.height");
   EXPECT_CASE_ERROR(with(R"("viewport": {"x": 0, "y": 0, "width": 0, "height": 8}, )" + kTri),
                     "viewport.width");
-  EXPECT_CASE_ERROR(with(R"("viewport": {"x": -1, "y": 0, "width": 8, "height": 8}, )" + kTri),
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": -16385, "y": 0, "width": 8, "height": 8}, )" + kTri),
                     "viewport.x");
-  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 96, "height": 64},
-                            "viewport": {"x": 50, "y": 7, "width": 48, "height": 40}, )" +
-                         kTri),
-                    "viewport");
-  EXPECT_CASE_ERROR(with(R"("framebuffer": {"width": 96, "height": 64},
-                            "viewport": {"x": 0, "y": 30, "width": 48, "height": 40}, )" +
-                         kTri),
-                    "viewport");
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": 0, "y": 0, "width": 16385, "height": 8}, )" + kTri),
+                    "viewport.width");
   // Without a framebuffer, the viewport's extent is the framebuffer and must be a legal size.
   EXPECT_CASE_ERROR(with(R"("viewport": {"x": 100, "y": 0, "width": 4000, "height": 8}, )" + kTri),
-                    "viewport");
+                    "framebuffer");
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": -1, "y": 0, "width": 8, "height": 8}, )" + kTri),
+                    "framebuffer");
+  // With one, the viewport may lie partly or wholly beyond it.
+  const Case beyond = load_text(with(R"("framebuffer": {"width": 96, "height": 64},
+                            "viewport": {"x": -50, "y": 30, "width": 480, "height": 40}, )" +
+                                     kTri));
+  EXPECT_EQ(beyond.viewport.x, -50);
+  EXPECT_EQ(beyond.viewport.width, 480);
+  // The scissor box: origins as the viewport's, sizes from 0.
+  EXPECT_CASE_ERROR(with(R"("scissor": {"x": 0, "y": 0, "width": -1, "height": 8}, )" + kTri),
+                    "scissor.width");
+  EXPECT_CASE_ERROR(with(R"("scissor": {"x": 0, "y": 0, "width": 8}, )" + kTri), "scissor.height");
+  EXPECT_CASE_ERROR(with(R"("scissor": {"x": 0, "y": -16385, "width": 8, "height": 8}, )" + kTri),
+                    "scissor.y");
+  EXPECT_CASE_ERROR(with(R"("scissor": [0, 0, 8, 8], )" + kTri), "scissor");
+  const Case boxed =
+      load_text(with(R"("scissor": {"x": -3, "y": 5, "width": 0, "height": 8}, )" + kTri));
+  ASSERT_TRUE(boxed.scissor.has_value());
+  EXPECT_EQ(boxed.scissor->x, -3);
+  EXPECT_EQ(boxed.scissor->width, 0);
+  EXPECT_TRUE(scissor_region(boxed).empty());
 }
 
 TEST_F(CaseFileTest, DepthRangeAndState) {

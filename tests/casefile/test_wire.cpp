@@ -44,6 +44,7 @@ void expect_same(const Case& a, const Case& b) {
   }
   EXPECT_EQ(a.triangles, b.triangles);
   EXPECT_EQ(a.draws, b.draws);
+  EXPECT_EQ(a.scissor, b.scissor);
   EXPECT_EQ(a.tolerance.varying_ulps, b.tolerance.varying_ulps);
   EXPECT_EQ(a.tolerance.depth_ulps, b.tolerance.depth_ulps);
   EXPECT_EQ(a.tolerance.allow_boundary, b.tolerance.allow_boundary);

@@ -409,7 +409,8 @@ TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
   };
   const std::pair<std::string, std::string> cases[] = {
       {"fuzz --generator bogus" + out,
-       "--generator: expected one of sizes, clip, mesh, attributes, states, dense, assembly, got "
+       "--generator: expected one of sizes, clip, mesh, attributes, states, dense, assembly, "
+       "window, got "
        "\"bogus\""},
       {"fuzz --replay 12" + out, "--replay: expected SEED:INDEX"},
       {"fuzz --replay 1:x" + out, "--replay: expected SEED:INDEX"},

@@ -26,7 +26,8 @@ using glrc::test::proxied_workers;
 using glrc::test::wait_for_pid;
 
 // Eight quick cases on llvmpipe through OSMesa.
-const std::string kCases = "--filter '^(viewport|attr)' --backend osmesa --driver llvmpipe";
+const std::string kCases =
+    "--filter '^(viewport_(guard|offset|tiny)|attr)' --backend osmesa --driver llvmpipe";
 
 std::string read(const fs::path& f) {
   std::ifstream in(f);
@@ -172,7 +173,7 @@ nlohmann::json comparable(nlohmann::json results) {
 
 TEST_F(Workers, MergedShardsEqualTheUnshardedRun) {
   const std::string cases =
-      "--filter '^(viewport|attr|clip_noperspective)' --baseline "
+      "--filter '^(viewport_(guard|offset|tiny)|attr|clip_noperspective)' --baseline "
       "cases/known-failures.txt --html";  // known failures get heatmaps too
   const fs::path whole = dir_ / "whole";
   ASSERT_EQ(glrefcheck("run " + cases + " --jobs 2 --out '" + whole.string() + "'").exit_code, 0);
@@ -228,7 +229,7 @@ TEST_F(Workers, MesaCiFilesAreReadAndWritten) {
   std::ofstream(dir_ / "llvmpipe-flakes.txt") << "# none known\n^viewport_tin.$\n";
   std::ofstream(dir_ / "llvmpipe-skips.txt") << "# too slow for this test\nattr_.*\n";
   const fs::path out = dir_ / "out";
-  const std::string cases = "--filter '^(viewport|attr|clip_noperspective_x)'";
+  const std::string cases = "--filter '^(viewport_(guard|offset|tiny)|attr|clip_noperspective_x)'";
   const Outcome o = glrefcheck("run " + cases + " --out '" + out.string() + "' --baseline '" +
                                (dir_ / "llvmpipe-fails.txt").string() + "' --flakes '" +
                                (dir_ / "llvmpipe-flakes.txt").string() + "' --skips '" +

@@ -40,7 +40,8 @@ TEST(SelftestLoop, APerfectImplementationCatchesEveryFaultAndFailsNothingClean) 
   const std::vector<Case> suite =
       cases({"face_on", "flat_provoking_last", "shared_centres_grid", "depth_range_partial",
              "noperspective_smooth", "fan_subpixel_rim_shared_edge", "depth_contest_hidden",
-             "invariance_copy_less", "strip_flat_provoking_first", "fan_restart_index_ushort"});
+             "invariance_copy_less", "strip_flat_provoking_first", "fan_restart_index_ushort",
+             "scissor_inside"});
   ReferenceRenderer r;
   size_t steps = 0;
   SelftestProgress progress;
