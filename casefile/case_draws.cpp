@@ -46,10 +46,10 @@ Draw Loader::load_draw(const CaseJson& d, const std::string& path, const Case& c
               "a value");
   out.index_type = IndexType::unsigned_int;
   if (const CaseJson* t = Reader::find(d, "index_type")) {
-    out.index_type = r_.name<IndexType>(*t, path_key(path, "index_type"));
-    if (out.index_type == IndexType::none)
-      r_.fail(path_key(path, "index_type"),
-              "\"unsigned_byte\", \"unsigned_short\" or \"unsigned_int\"", "\"none\"");
+    // "none" is no index type a file may name (it is a glDrawArrays draw, without "indices").
+    const std::string types = "\"unsigned_byte\", \"unsigned_short\" or \"unsigned_int\"";
+    out.index_type = r_.name<IndexType>(*t, path_key(path, "index_type"), types);
+    if (out.index_type == IndexType::none) r_.fail(path_key(path, "index_type"), types, "\"none\"");
   }
   if (const CaseJson* r = Reader::find(d, "restart"))
     out.restart = r_.name<Restart>(*r, path_key(path, "restart"));

@@ -230,9 +230,13 @@ long long Reader::integer(const J& v, const std::string& path, long long lo, lon
   // A number written with a fraction or an exponent is no integer, whatever its value: said so
   // where the value is whole, since "expected an integer in 0..2, got 2.0" reads as a
   // contradiction.
+  // An integer literal beyond 64 bits reaches here as a double too (the parser cannot hold it
+  // otherwise), so a whole value that large is not blamed on its spelling.
   if (v.is_number_float() && std::trunc(v.template get<double>()) == v.template get<double>())
     fail(path, what,
-         describe(v) + " (written with a decimal point or an exponent: not an integer)");
+         describe(v) + (std::fabs(v.template get<double>()) >= 0x1p63
+                            ? " (beyond 64-bit integers)"
+                            : " (written with a decimal point or an exponent: not an integer)"));
   if (!v.is_number_integer()) fail(path, what, got(v));
   bool in_range;
   if (v.is_number_unsigned()) {

@@ -41,6 +41,22 @@ TEST_F(CaseFileTest, DrawMistakesNameTheirField) {
       "triangles");
 }
 
+TEST_F(CaseFileTest, DrawMessagesSayWhatIsMeant) {
+  // "none" is no index type a file may name, so the choices leave it out.
+  const std::string type =
+      error_of(with_draws(R"([{"mode": "triangles", "index_type": "int", "indices": [0, 1, 2]}])"));
+  EXPECT_NE(type.find(R"(expected "unsigned_byte", "unsigned_short" or "unsigned_int", got "int")"),
+            std::string::npos)
+      << type;
+  // An integer beyond 64 bits is not blamed on a decimal point it does not have.
+  const std::string huge =
+      error_of(with_draws(R"([{"mode": "triangles", "count": 18446744073709551616}])"));
+  EXPECT_NE(huge.find("(beyond 64-bit integers)"), std::string::npos) << huge;
+  EXPECT_NE(error_of(with_draws(R"([{"mode": "triangles", "count": 3.0}])"))
+                .find("written with a decimal point"),
+            std::string::npos);
+}
+
 TEST_F(CaseFileTest, TheRestartIndexNeedNotBeAVertex) {
   const Case c = load_text(with_draws(
       R"([{"mode": "triangle_fan", "index_type": "unsigned_short", "restart": "index",
