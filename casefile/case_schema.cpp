@@ -21,6 +21,27 @@ constexpr double kMaxDouble = std::numeric_limits<double>::max();
 
 }  // namespace
 
+// The x, y, width, height of `name` (the viewport or the scissor box): origins within
+// ±kMaxViewport, sizes from min_extent to kMaxViewport.
+Viewport Loader::load_window_rect(const CaseJson& o, const std::string& name,
+                                  int min_extent) const {
+  r_.object(o, name);
+  r_.check_keys(o, name, {"x", "y", "width", "height"});
+  const std::string origin =
+      "an integer in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
+  const std::string extent =
+      "an integer in " + std::to_string(min_extent) + ".." + std::to_string(kMaxViewport);
+  auto field = [&](const char* key, const std::string& what, int lo, int hi) {
+    return int_in(r_.required(o, name, key, what), path_key(name, key), lo, hi);
+  };
+  Viewport r;
+  r.x = field("x", origin, -kMaxViewport, kMaxViewport - 1);
+  r.y = field("y", origin, -kMaxViewport, kMaxViewport - 1);
+  r.width = field("width", extent, min_extent, kMaxViewport);
+  r.height = field("height", extent, min_extent, kMaxViewport);
+  return r;
+}
+
 void Loader::load_geometry(const CaseJson& root, Case& c) const {
   const CaseJson* fb = Reader::find(root, "framebuffer");
   const CaseJson* vp = Reader::find(root, "viewport");
@@ -33,20 +54,7 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
                          "framebuffer.height", 1, kMaxSize);
   }
   if (vp) {
-    r_.object(*vp, "viewport");
-    r_.check_keys(*vp, "viewport", {"x", "y", "width", "height"});
-    Viewport v;
-    const std::string origin =
-        "an integer in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
-    const std::string extent = "an integer in 1.." + std::to_string(kMaxViewport);
-    v.x = int_in(r_.required(*vp, "viewport", "x", origin), "viewport.x", -kMaxViewport,
-                 kMaxViewport - 1);
-    v.y = int_in(r_.required(*vp, "viewport", "y", origin), "viewport.y", -kMaxViewport,
-                 kMaxViewport - 1);
-    v.width =
-        int_in(r_.required(*vp, "viewport", "width", extent), "viewport.width", 1, kMaxViewport);
-    v.height =
-        int_in(r_.required(*vp, "viewport", "height", extent), "viewport.height", 1, kMaxViewport);
+    const Viewport v = load_window_rect(*vp, "viewport", 1);
     // With a framebuffer the viewport may reach beyond it (only its pixels are drawn).
     // Without one the framebuffer is the viewport's extent, which must itself be a legal size.
     if (!fb) {
@@ -62,21 +70,8 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
     c.viewport = Viewport{0, 0, c.fb_width, c.fb_height};
   }
   if (const CaseJson* sc = Reader::find(root, "scissor")) {
-    r_.object(*sc, "scissor");
-    r_.check_keys(*sc, "scissor", {"x", "y", "width", "height"});
-    const std::string origin =
-        "an integer in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
-    const std::string extent = "an integer in 0.." + std::to_string(kMaxViewport);
-    Scissor b;
-    b.x = int_in(r_.required(*sc, "scissor", "x", origin), "scissor.x", -kMaxViewport,
-                 kMaxViewport - 1);
-    b.y = int_in(r_.required(*sc, "scissor", "y", origin), "scissor.y", -kMaxViewport,
-                 kMaxViewport - 1);
-    b.width =
-        int_in(r_.required(*sc, "scissor", "width", extent), "scissor.width", 0, kMaxViewport);
-    b.height =
-        int_in(r_.required(*sc, "scissor", "height", extent), "scissor.height", 0, kMaxViewport);
-    c.scissor = b;
+    const Viewport b = load_window_rect(*sc, "scissor", 0);
+    c.scissor = Scissor{b.x, b.y, b.width, b.height};
   }
 
   if (const CaseJson* dr = Reader::find(root, "depth_range")) {

@@ -45,6 +45,7 @@ class Loader {
 
   void load_geometry(const CaseJson& root, Case& c) const;
   void load_state(const CaseJson& state, Case& c) const;
+  Viewport load_window_rect(const CaseJson& o, const std::string& name, int min_extent) const;
   void load_varyings(const CaseJson& list, Case& c) const;
   std::optional<Transform> load_transform(const CaseJson& t) const;
   std::vector<TransformOp> load_ops(const CaseJson& list, const std::string& path) const;

@@ -566,9 +566,10 @@ class GlRenderer final : public Renderer {
 
   // Every indexed draw's indices in its own type, one after another, each starting at a
   // multiple of 4 bytes (GL wants an offset aligned to the type); sets draws_ and
-  // index_offsets_.
+  // index_offsets_ (and first_triangles_).
   std::vector<unsigned char> index_bytes_of(const Case& c) {
     draws_ = draws_of(c);
+    first_triangles_ = assemble(draws_, c.provoking).first_triangle;
     index_offsets_.assign(draws_.size(), 0);
     std::vector<unsigned char> bytes;
     for (size_t d = 0; d < draws_.size(); ++d) {
@@ -595,10 +596,9 @@ class GlRenderer final : public Renderer {
     static constexpr GLenum kModes[] = {GL_TRIANGLES, GL_TRIANGLE_STRIP, GL_TRIANGLE_FAN};
     static constexpr GLenum kTypes[] = {0, GL_UNSIGNED_BYTE, GL_UNSIGNED_SHORT, GL_UNSIGNED_INT};
     const GLint base = several_draws(c) ? gl_.GetUniformLocation(program, "primitive_base") : -1;
-    const std::vector<uint32_t> first = assemble(draws_, c.provoking).first_triangle;
     for (size_t d = 0; d < draws_.size(); ++d) {
       const Draw& draw = draws_[d];
-      if (base >= 0) gl_.Uniform1i(base, GLint(first[d]));
+      if (base >= 0) gl_.Uniform1i(base, GLint(first_triangles_[d]));
       const GLenum mode = kModes[int(draw.mode)];
       if (!draw.indexed()) {
         gl_.DrawArrays(mode, GLint(draw.first), GLsizei(draw.count));
@@ -630,6 +630,7 @@ class GlRenderer final : public Renderer {
   // The case's draws (draws_of) and where each one's indices start in the index buffer, in
   // bytes: set by draw(), used by every pass of the case.
   std::vector<Draw> draws_;
+  std::vector<uint32_t> first_triangles_;  // each draw's first triangle (AssembledTriangles)
   std::vector<size_t> index_offsets_;
   bool traced_ = false;  // the trace pass drawn for the case drawn last
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
