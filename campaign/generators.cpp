@@ -766,6 +766,17 @@ Case window(Random& r) {
   add_varying(c, 1, Interpolation::flat);
   add_varying(c, 2, Interpolation::smooth);
   fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  // glClipControl and the facing it decides, drawn last. Under GL_UPPER_LEFT every y_c is
+  // negated, exactly, which keeps each triangle's window image where it was chosen above and
+  // turns its winding there, so that culling checks the area's negated sign. Under
+  // GL_ZERO_TO_ONE the near plane at z_c = 0 cuts the triangles that reach z_n < 0.
+  c.clip_origin = ClipOrigin(r.below(2));
+  c.clip_depth = ClipDepth(r.below(2));
+  if (c.clip_origin == ClipOrigin::upper_left)
+    for (Vertex& v : c.vertices)
+      v.clip[1] = -v.clip[1];
+  c.cull = CullFace(r.below(3));  // none, front or back
+  c.front_face = FrontFace(r.below(2));
   return c;
 }
 
@@ -809,7 +820,7 @@ const std::vector<Generator>& generators() {
        assembly},
       {"window",
        "viewports beyond the framebuffer (negative origins, up to 16384 wide), scissor boxes "
-       "inside, across and beyond it",
+       "inside, across and beyond it, glClipControl's origins and depth modes with culling",
        window},
   };
   return all;

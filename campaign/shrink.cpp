@@ -209,10 +209,20 @@ class Shrinker {
     bool progress = false;
     for (bool kept = true; kept && budget_left();) {
       const Case& m = out.minimal;
-      kept = first_failing(5, [&](size_t i) -> std::optional<Case> {
+      kept = first_failing(7, [&](size_t i) -> std::optional<Case> {
         Case c = m;
         const Case defaults;
         switch (i) {
+          case 5:  // the same window image and facing under GL_LOWER_LEFT: y_c negated
+            if (c.clip_origin == defaults.clip_origin) break;
+            c.clip_origin = defaults.clip_origin;
+            for (Vertex& v : c.vertices)
+              v.clip[1] = -v.clip[1];
+            c.front_face = c.front_face == FrontFace::ccw ? FrontFace::cw : FrontFace::ccw;
+            break;
+          case 6:
+            c.clip_depth = defaults.clip_depth;
+            break;
           case 0:
             c.cull = defaults.cull;
             break;

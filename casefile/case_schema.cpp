@@ -93,12 +93,17 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
 void Loader::load_state(const CaseJson& state, Case& c) const {
   r_.object(state, "state");
   r_.check_keys(state, "state",
-                {"cull", "front_face", "provoking_vertex", "depth_func", "depth_clear"});
+                {"cull", "front_face", "provoking_vertex", "depth_func", "depth_clear",
+                 "clip_origin", "clip_depth"});
   if (const CaseJson* v = Reader::find(state, "cull")) c.cull = r_.name<CullFace>(*v, "state.cull");
   if (const CaseJson* v = Reader::find(state, "front_face"))
     c.front_face = r_.name<FrontFace>(*v, "state.front_face");
   if (const CaseJson* v = Reader::find(state, "provoking_vertex"))
     c.provoking = r_.name<ProvokingVertex>(*v, "state.provoking_vertex");
+  if (const CaseJson* v = Reader::find(state, "clip_origin"))
+    c.clip_origin = r_.name<ClipOrigin>(*v, "state.clip_origin");
+  if (const CaseJson* v = Reader::find(state, "clip_depth"))
+    c.clip_depth = r_.name<ClipDepth>(*v, "state.clip_depth");
   if (const CaseJson* v = Reader::find(state, "depth_func"))
     c.depth_func = r_.name<DepthFunc>(*v, "state.depth_func");
   if (const CaseJson* v = Reader::find(state, "depth_clear")) {

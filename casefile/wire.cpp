@@ -94,6 +94,8 @@ json to_wire(const Case& c) {
               {"tolerance", tolerance}};
   if (!draws.empty()) out["draws"] = draws;
   if (c.scissor) out["scissor"] = {c.scissor->x, c.scissor->y, c.scissor->width, c.scissor->height};
+  if (c.clip_origin != ClipOrigin::lower_left || c.clip_depth != ClipDepth::negative_one_to_one)
+    out["clip_control"] = {int(c.clip_origin), int(c.clip_depth)};
   return out;
 }
 
@@ -139,6 +141,13 @@ Case from_wire(const json& j) {
       const json& b = j.at("scissor");
       c.scissor =
           Scissor{b.at(0).get<int>(), b.at(1).get<int>(), b.at(2).get<int>(), b.at(3).get<int>()};
+    }
+    if (j.contains("clip_control")) {
+      const json& cc = j.at("clip_control");
+      const int origin = cc.at(0).get<int>(), mode = cc.at(1).get<int>();
+      if (origin < 0 || origin > 1 || mode < 0 || mode > 1)
+        throw std::runtime_error("wire: clip_control out of range");
+      c.clip_origin = ClipOrigin(origin), c.clip_depth = ClipDepth(mode);
     }
     if (j.contains("draws")) {
       for (const json& d : j.at("draws")) {

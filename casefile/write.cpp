@@ -193,11 +193,18 @@ std::string to_case_file(const Case& c) {
         ", \"far\": ", number(c.depth_far), "},\n");
   const bool clear_set =
       std::bit_cast<uint32_t>(c.depth_clear) != std::bit_cast<uint32_t>(defaults.depth_clear);
+  const bool clip_control_set =
+      c.clip_origin != defaults.clip_origin || c.clip_depth != defaults.clip_depth;
   if (c.cull != defaults.cull || c.front_face != defaults.front_face ||
-      c.provoking != defaults.provoking || c.depth_func != defaults.depth_func || clear_set)
+      c.provoking != defaults.provoking || c.depth_func != defaults.depth_func || clear_set ||
+      clip_control_set)
     add(out, "  \"state\": {\"cull\": ", name(c.cull), ", \"front_face\": ", name(c.front_face),
         ", \"provoking_vertex\": ", name(c.provoking), ", \"depth_func\": ", name(c.depth_func),
-        clear_set ? ", \"depth_clear\": " + number(c.depth_clear) : "", "},\n");
+        clear_set ? ", \"depth_clear\": " + number(c.depth_clear) : "",
+        clip_control_set ? ", \"clip_origin\": " + name(c.clip_origin) +
+                               ", \"clip_depth\": " + name(c.clip_depth)
+                         : "",
+        "},\n");
   if (c.work_arounds != defaults.work_arounds)
     add(out, "  \"work_arounds\": ", c.work_arounds ? "true" : "false", ",\n");
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -104,6 +105,29 @@ struct Names<DepthFunc> {
   }};
 };
 
+// glClipControl(origin, depth) (OpenGL 4.6 sections 13.7, 13.8.1 and 14.6.1; GL 4.5 or
+// ARB_clip_control). GL_UPPER_LEFT negates y_d in the viewport transform, and the sign of the
+// area that decides facing with it, so a triangle keeps its facing while its image turns upside
+// down inside the viewport. GL_ZERO_TO_ONE moves the near plane of the view volume from
+// z_c = -w_c to z_c = 0 and maps z_d = z_c / w_c to z_w = z_d·(f − n) + n instead of
+// z_d·(f − n)/2 + (n + f)/2.
+enum class ClipOrigin { lower_left, upper_left };
+enum class ClipDepth { negative_one_to_one, zero_to_one };
+template <>
+struct Names<ClipOrigin> {
+  static constexpr std::array<std::pair<ClipOrigin, std::string_view>, 2> table{{
+      {ClipOrigin::lower_left, "lower_left"},
+      {ClipOrigin::upper_left, "upper_left"},
+  }};
+};
+template <>
+struct Names<ClipDepth> {
+  static constexpr std::array<std::pair<ClipDepth, std::string_view>, 2> table{{
+      {ClipDepth::negative_one_to_one, "negative_one_to_one"},
+      {ClipDepth::zero_to_one, "zero_to_one"},
+  }};
+};
+
 // glViewport(x, y, width, height): x and y may be negative and the rectangle may reach beyond
 // the framebuffer (only the framebuffer's pixels are drawn).
 struct Viewport {
@@ -177,6 +201,8 @@ struct Case {
   Viewport viewport{0, 0, 64, 64};
   std::optional<Scissor> scissor;             // none: GL_SCISSOR_TEST disabled
   float depth_near = 0.0f, depth_far = 1.0f;  // glDepthRangef; n > f allowed
+  ClipOrigin clip_origin = ClipOrigin::lower_left;
+  ClipDepth clip_depth = ClipDepth::negative_one_to_one;
 
   CullFace cull = CullFace::none;
   FrontFace front_face = FrontFace::ccw;
@@ -232,6 +258,38 @@ std::vector<int32_t> identical_triangles(const Case& c);
 // and an implementation that clips to a guard band instead scissors to the viewport as well
 // (ref/ rasterizes within scissor_region ∩ the viewport; the driver models clip).
 PixelRect scissor_region(const Case& c);
+// The clip-space y the viewport transform reads (OpenGL 4.6 section 13.8.1): GL_UPPER_LEFT
+// negates y_d = y_c / w_c, which is y_c negated, exactly, in float and in the rationals. So a
+// case under GL_UPPER_LEFT draws what the same case under GL_LOWER_LEFT draws with every y_c
+// negated and the facing reversed (facing_reversed).
+inline double window_y_c(const Case& c, double y_c) {
+  return c.clip_origin == ClipOrigin::upper_left ? -y_c : y_c;
+}
+// Whether the sign of a triangle's window-space area is negated before glFrontFace reads it
+// (OpenGL 4.6 section 14.6.1, equation 14.8's note): under GL_UPPER_LEFT.
+inline bool facing_reversed(const Case& c) {
+  return c.clip_origin == ClipOrigin::upper_left;
+}
+// The distance of a clip-space point from the view volume's near plane, >= 0 inside (OpenGL
+// 4.6 section 13.7): z_c + w_c, or z_c under GL_ZERO_TO_ONE. Exact for the float inputs of a
+// case in double (a sum of two floats of exponents within the double's range is rounded at
+// most once, and its sign is exact).
+inline double near_distance(const Case& c, double z_c, double w_c) {
+  return c.clip_depth == ClipDepth::zero_to_one ? z_c : z_c + w_c;
+}
+// Whether a clip-space vertex lies inside the view volume (OpenGL 4.6 section 13.7), every
+// plane closed.
+inline bool inside_view_volume(const Case& c, const std::array<float, 4>& clip) {
+  const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
+  return w > 0 && std::fabs(x) <= w && std::fabs(y) <= w && near_distance(c, z, w) >= 0 && z <= w;
+}
+// How z_w changes per unit of z_d: (f − n)/2, or f − n under GL_ZERO_TO_ONE (section 13.8.1),
+// in double (an error bound's factor, never a value compared).
+inline double depth_range_scale(const Case& c) {
+  const double range = double(c.depth_far) - double(c.depth_near);
+  return c.clip_depth == ClipDepth::zero_to_one ? range : range / 2;
+}
+
 // Channel names of a case's frame, in Frame::components order: "name.x", "name.y", ...
 std::vector<std::string> component_names(const Case& c);
 // The name of channel ch of a case's frame: "depth", or its component's (component_names).

@@ -16,10 +16,11 @@ namespace {
 constexpr size_t kSegmentIndices = 1024;
 constexpr size_t kSplitTriangles = (kSegmentIndices - 1) / 3;
 
-DrawVertex shade_vertex(const Vertex& v, const ViewportXform& vp, const DrawConfig& config) {
+DrawVertex shade_vertex(const Vertex& v, const ViewportXform& vp, const DrawConfig& config,
+                        ClipDepth depth) {
   DrawVertex d;
   d.clip = v.clip;  // the vertex (and geometry) shader copies gl_Position unchanged
-  d.clipmask = clip_mask(v.clip);
+  d.clipmask = clip_mask(v.clip, depth);
   // llvmpipe transforms every vertex; the C path only unclipped ones, but a clipped vertex's
   // window position is never read (the clipper replaces it), so computing it does no harm.
   d.window = config.path == VertexPath::llvm ? window_position_llvm(v.clip, vp, config.fma)
@@ -42,12 +43,13 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
   ClipContext ctx;
   ctx.viewport = viewport_xform(c);
   ctx.flatshade_first = c.provoking == ProvokingVertex::first;
+  ctx.clip_depth = c.clip_depth;
   ctx.interpolation = component_interpolation(c);
 
   std::vector<DrawVertex> vertices;
   vertices.reserve(c.vertices.size());
   for (const Vertex& v : c.vertices)
-    vertices.push_back(shade_vertex(v, ctx.viewport, config));
+    vertices.push_back(shade_vertex(v, ctx.viewport, config, c.clip_depth));
 
   const size_t count = c.triangles.size();
   const size_t segment =

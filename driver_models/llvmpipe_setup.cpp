@@ -34,8 +34,9 @@ bool llvmpipe_setup_triangle(const Case& c, const DrawVertex& v0, const DrawVert
   if (sign == 0) return false;
 
   // The state tracker renders a user FBO y-up and flips front_ccw for it, so llvmpipe's
-  // "ccw" (area > 0) is clockwise as GL sees it and ccw_is_frontface = (front face is CW).
-  const bool ccw_is_frontface = c.front_face == FrontFace::cw;
+  // "ccw" (area > 0) is clockwise as GL sees it and ccw_is_frontface = (front face is CW);
+  // it flips front_ccw once more under GL_UPPER_LEFT (st_atom_rasterizer.c).
+  const bool ccw_is_frontface = (c.front_face == FrontFace::cw) != facing_reversed(c);
   bool draw_positive = true, draw_negative = true;  // triangle_both
   switch (c.cull) {
     case CullFace::none:

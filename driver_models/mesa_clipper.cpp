@@ -11,6 +11,10 @@ namespace {
 // is z >= -w, plane 5 is z <= w).
 constexpr float kPlanes[6][4] = {{-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1},
                                  {0, 1, 0, 1},  {0, 0, 1, 1}, {0, 0, -1, 1}};
+// Under clip_halfz (GL_ZERO_TO_ONE) the near plane is z >= 0. The draw_context.c read here
+// keeps (0, 0, 1, 1) in its table, yet llvmpipe and softpipe cut at z_c = 0: matched bit for bit
+// by this plane (cases/clip_control_zero_to_one_near.json under --model and --tolerance exact).
+constexpr float kHalfZNearPlane[4] = {0, 0, 1, 0};
 
 float dot4(const std::array<float, 4>& a, const float* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3];
@@ -68,15 +72,17 @@ void clip_triangle(const ClipContext& ctx, const TriangleRefs& tri, uint32_t cli
   while (clipmask && n >= 3) {
     const int plane = __builtin_ctz(clipmask);
     clipmask &= ~(1u << plane);
+    const float* coefficients =
+        plane == 4 && ctx.clip_depth == ClipDepth::zero_to_one ? kHalfZNearPlane : kPlanes[plane];
     const DrawVertex* vert_prev = inlist[0];
-    float dp_prev = dot4(vert_prev->clip, kPlanes[plane]);
+    float dp_prev = dot4(vert_prev->clip, coefficients);
     if (is_inf_or_nan(dp_prev)) return;  // discard NaN
     inlist.resize(n);
     inlist.push_back(inlist[0]);  // prevent rotation of vertices
     outlist.clear();
     for (size_t i = 1; i <= n; ++i) {
       const DrawVertex* vert = inlist[i];
-      const float dp = dot4(vert->clip, kPlanes[plane]);
+      const float dp = dot4(vert->clip, coefficients);
       if (is_inf_or_nan(dp)) return;
       bool different_sign;
       if (dp_prev >= 0.0f) {
@@ -144,7 +150,8 @@ bool cull_stage_passes(const Case& c, const TriangleRefs& tri) {
     // "det < 0 is ccw" and the state tracker's flipped front_ccw cancel out).
     // NaN takes the det > 0 branch, as Mesa's (det < 0) test does.
     const bool ccw = !(det < 0);
-    const bool front = ccw == (c.front_face == FrontFace::ccw);
+    // GL_UPPER_LEFT flips front_ccw once more (st_atom_rasterizer.c).
+    const bool front = (ccw != facing_reversed(c)) == (c.front_face == FrontFace::ccw);
     return !(front ? cull_front : cull_back);
   }
   return !cull_back;

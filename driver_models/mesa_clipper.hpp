@@ -14,8 +14,9 @@ namespace glrc::driver_models {
 
 struct ClipContext {
   ViewportXform viewport;
-  bool flatshade_first = false;              // glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)
-  std::vector<Interpolation> interpolation;  // per component
+  bool flatshade_first = false;  // glProvokingVertex(GL_FIRST_VERTEX_CONVENTION)
+  ClipDepth clip_depth = ClipDepth::negative_one_to_one;  // glClipControl: the near plane
+  std::vector<Interpolation> interpolation;               // per component
 };
 
 using TriangleRefs = std::array<const DrawVertex*, 3>;

@@ -110,8 +110,9 @@ bool softpipe_setup_triangle(const Case& c, const std::vector<Interpolation>& in
   if (is_inf_or_nan(s.oneoverarea)) return false;
 
   // facing = (det < 0) ^ front_ccw, with front_ccw flipped for a y-up FBO: back facing when
-  // the triangle is counter-clockwise in GL's sense and the front face is CW, or vice versa.
-  const bool front_ccw = c.front_face == FrontFace::cw;
+  // the triangle is counter-clockwise in GL's sense and the front face is CW, or vice versa;
+  // flipped once more under GL_UPPER_LEFT (st_atom_rasterizer.c).
+  const bool front_ccw = (c.front_face == FrontFace::cw) != facing_reversed(c);
   const bool back = (det < 0) != front_ccw;
   const bool cull_front = c.cull == CullFace::front || c.cull == CullFace::front_and_back;
   const bool cull_back = c.cull == CullFace::back || c.cull == CullFace::front_and_back;

@@ -9,11 +9,18 @@ ViewportXform viewport_xform(const Case& c) {
   const float x = float(c.viewport.x), y = float(c.viewport.y);
   const float half_width = 0.5f * float(c.viewport.width);
   const float half_height = 0.5f * float(c.viewport.height);
-  // glDepthRange clamps to [0, 1] and stores floats; GL_NEGATIVE_ONE_TO_ONE.
+  // glDepthRange clamps to [0, 1] and stores floats.
   auto clamp01 = [](float f) { return f < 0.0f ? 0.0f : f > 1.0f ? 1.0f : f; };
   const double n = clamp01(c.depth_near), f = clamp01(c.depth_far);
-  v.scale = {half_width, half_height, float(0.5 * (f - n))};
-  v.translate = {half_width + x, half_height + y, float(0.5 * (n + f))};
+  // GL_UPPER_LEFT: scale[1] = -half_height, translate[1] unchanged.
+  const float scale_y = c.clip_origin == ClipOrigin::upper_left ? -half_height : half_height;
+  if (c.clip_depth == ClipDepth::zero_to_one) {
+    v.scale = {half_width, scale_y, float(f - n)};
+    v.translate = {half_width + x, half_height + y, float(n)};
+  } else {
+    v.scale = {half_width, scale_y, float(0.5 * (f - n))};
+    v.translate = {half_width + x, half_height + y, float(0.5 * (n + f))};
+  }
   return v;
 }
 
@@ -36,14 +43,15 @@ std::array<float, 4> window_position_c(const std::array<float, 4>& clip, const V
   return w;
 }
 
-uint32_t clip_mask(const std::array<float, 4>& clip) {
+uint32_t clip_mask(const std::array<float, 4>& clip, ClipDepth depth) {
   const float x = clip[0], y = clip[1], z = clip[2], w = clip[3];
   uint32_t mask = 0;
   if (!(-x + w >= 0)) mask |= 1u << 0;
   if (!(x + w >= 0)) mask |= 1u << 1;
   if (!(-y + w >= 0)) mask |= 1u << 2;
   if (!(y + w >= 0)) mask |= 1u << 3;
-  if (!(z + w >= 0)) mask |= 1u << 4;
+  // clip_halfz (GL_ZERO_TO_ONE): plane 4 is z >= 0.
+  if (!((depth == ClipDepth::zero_to_one ? z : z + w) >= 0)) mask |= 1u << 4;
   if (!(-z + w >= 0)) mask |= 1u << 5;
   return mask;
 }

@@ -26,8 +26,9 @@ std::array<float, 4> window_position_llvm(const std::array<float, 4>& clip, cons
 std::array<float, 4> window_position_c(const std::array<float, 4>& clip, const ViewportXform& vp);
 
 // The six view-volume planes in draw_pipe_clip order (x <= w, -w <= x, y <= w, -w <= y,
-// -w <= z, z <= w): bit i set when the vertex is outside plane i. A NaN test counts as outside,
-// as in both the LLVM (unordered compares) and C (!(... >= 0)) versions.
-uint32_t clip_mask(const std::array<float, 4>& clip);
+// -w <= z (0 <= z under GL_ZERO_TO_ONE, clip_halfz), z <= w): bit i set when the vertex is
+// outside plane i. A NaN test counts as outside, as in both the LLVM (unordered compares) and
+// C (!(... >= 0)) versions.
+uint32_t clip_mask(const std::array<float, 4>& clip, ClipDepth depth);
 
 }  // namespace glrc::driver_models

@@ -254,6 +254,11 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
     out += "    .scissor = {1, " + std::to_string(c.scissor->x) + ", " +
            std::to_string(c.scissor->y) + ", " + std::to_string(c.scissor->width) + ", " +
            std::to_string(c.scissor->height) + "},\n";
+  if (c.clip_origin != ClipOrigin::lower_left || c.clip_depth != ClipDepth::negative_one_to_one)
+    out += std::string("    .clip_control = {") +
+           (c.clip_origin == ClipOrigin::upper_left ? "GL_UPPER_LEFT" : "GL_LOWER_LEFT") + ", " +
+           (c.clip_depth == ClipDepth::zero_to_one ? "GL_ZERO_TO_ONE" : "GL_NEGATIVE_ONE_TO_ONE") +
+           "},\n";
   out += "    .depth_near = " + hex_literal(c.depth_near) +
          ", .depth_far = " + hex_literal(c.depth_far) + ", /* " +
          comment_text(printable_number(c.depth_near) + ", " + printable_number(c.depth_far)) +

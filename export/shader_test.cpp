@@ -405,6 +405,12 @@ std::optional<std::string> shader_test_state_refusal(const Case& c) {
     return std::string(
         "the scissor test cannot be expressed in a shader_test: shader_runner has no glScissor "
         "command (its `enable GL_SCISSOR_TEST` would keep the whole window's box)");
+  if (c.clip_origin != ClipOrigin::lower_left || c.clip_depth != ClipDepth::negative_one_to_one)
+    return cat(
+        "glClipControl(",
+        c.clip_origin == ClipOrigin::upper_left ? "GL_UPPER_LEFT" : "GL_LOWER_LEFT", ", ",
+        c.clip_depth == ClipDepth::zero_to_one ? "GL_ZERO_TO_ONE" : "GL_NEGATIVE_ONE_TO_ONE",
+        ") cannot be expressed in a shader_test: shader_runner has no glClipControl command");
   // A restart that no index meets changes nothing: such a draw is expanded as any other.
   for (size_t d = 0; d < c.draws.size(); ++d)
     if (std::any_of(c.draws[d].indices.begin(), c.draws[d].indices.end(),

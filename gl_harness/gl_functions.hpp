@@ -74,9 +74,13 @@ class Context;
   X(PFNGLSCISSORPROC, Scissor)                                 \
   X(PFNGLGETFLOATVPROC, GetFloatv)                             \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
-  X(PFNGLREADPIXELSPROC, ReadPixels)
+  X(PFNGLREADPIXELSPROC, ReadPixels)                           \
+  X(PFNGLGETSTRINGIPROC, GetStringi)
 
 struct GlFunctions {
+  // Beyond 3.3 core, loaded where the context has it (GL 4.5 or GL_ARB_clip_control), else
+  // null: glClipControl.
+  PFNGLCLIPCONTROLPROC ClipControl = nullptr;
 #define GLRC_GL_FUNCTION_MEMBER(type, name) type name = nullptr;
   GLRC_GL_FUNCTIONS(GLRC_GL_FUNCTION_MEMBER)
 #undef GLRC_GL_FUNCTION_MEMBER

@@ -85,6 +85,12 @@ struct RenderError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A GL feature one case asks for that this implementation lacks (glClipControl without GL 4.5
+// or GL_ARB_clip_control): that case is skipped with what() as the reason, the run goes on.
+struct FeatureMissing : RenderError {
+  using RenderError::RenderError;
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;

@@ -115,6 +115,9 @@ class GlRenderer final : public Renderer {
       viewport_bounds_[0] = int(range[0]);
       viewport_bounds_[1] = int(range[1]);
     }
+    if (major * 10 + minor >= 45 || has_extension("GL_ARB_clip_control"))
+      gl_.ClipControl =
+          reinterpret_cast<PFNGLCLIPCONTROLPROC>(context_->proc_address("glClipControl"));
     if (GLenum e = gl_.GetError())
       throw Unavailable(std::string("querying GL limits failed: ") + gl_error_name(e));
     probe();
@@ -310,6 +313,16 @@ class GlRenderer final : public Renderer {
     check_error(c, "tracing fragments");
   }
 
+  // Whether the context lists the extension (glGetStringi, GL 3.0).
+  bool has_extension(std::string_view name) const {
+    const GLint n = integer(GL_NUM_EXTENSIONS);
+    for (GLint i = 0; i < n; ++i) {
+      const GLubyte* e = gl_.GetStringi(GL_EXTENSIONS, GLuint(i));
+      if (e && name == reinterpret_cast<const char*>(e)) return true;
+    }
+    return false;
+  }
+
   GLint integer(GLenum name) const {
     GLint v = 0;
     gl_.GetIntegerv(name, &v);
@@ -351,6 +364,12 @@ class GlRenderer final : public Renderer {
            std::to_string(viewport_bounds_[0]) + ", " + std::to_string(viewport_bounds_[1]) + "]");
     if (c.scissor && (c.scissor->width < 0 || c.scissor->height < 0))
       fail("scissor box of negative size");
+    if ((c.clip_origin != ClipOrigin::lower_left ||
+         c.clip_depth != ClipDepth::negative_one_to_one) &&
+        !gl_.ClipControl)
+      throw FeatureMissing("case '" + c.name + "': glClipControl needs OpenGL 4.5 or " +
+                           "GL_ARB_clip_control, which " + info_.renderer + " (" + info_.version +
+                           ") does not have");
     const size_t components = size_t(c.component_count());
     for (size_t i = 0; i < c.vertices.size(); ++i)
       if (c.vertices[i].values.size() != components)
@@ -480,6 +499,10 @@ class GlRenderer final : public Renderer {
   void set_state(const Case& c) {
     gl_.Viewport(c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height);
     gl_.DepthRange(double(c.depth_near), double(c.depth_far));  // exact: float ⊂ double
+    if (gl_.ClipControl)  // validate() refused a case that needs it where it is missing
+      gl_.ClipControl(
+          c.clip_origin == ClipOrigin::upper_left ? GL_UPPER_LEFT : GL_LOWER_LEFT,
+          c.clip_depth == ClipDepth::zero_to_one ? GL_ZERO_TO_ONE : GL_NEGATIVE_ONE_TO_ONE);
     gl_.Enable(GL_DEPTH_TEST);
     gl_.DepthFunc(gl_depth_func(c.depth_func));
     gl_.DepthMask(GL_TRUE);

@@ -1,7 +1,8 @@
 // Clipping against the view volume, without new vertices. x and y: -w_c <= x_c, y_c <= w_c is
 // the viewport rectangle, whose edges never pass through a pixel centre, so it is the pixel
 // range itself. w_c > 0: part of the homogeneous edge test (setup.hpp). What remains is the near
-// and far planes, -w_c <= z_c <= w_c, which are lines in window space: z_n is linear there.
+// and far planes, -w_c <= z_c <= w_c (0 <= z_c under glClipControl's GL_ZERO_TO_ONE,
+// TriangleSetup::clip_depth), which are lines in window space: z_n is linear there.
 #pragma once
 
 #include "ref/exact.hpp"

@@ -94,11 +94,9 @@ class Reach {
     std::array<std::array<double, 2>, 3> v{};
     for (size_t i = 0; i < 3; ++i) {
       const auto& clip = c.vertices[c.triangles[size_t(p)][i]].clip;
-      if (!(clip[3] > 0 && std::fabs(clip[0]) <= clip[3] && std::fabs(clip[1]) <= clip[3] &&
-            std::fabs(clip[2]) <= clip[3]))
-        return;
+      if (!inside_view_volume(c, clip)) return;
       v[i] = {vp.x + vp.width / 2.0 * (1 + double(clip[0]) / clip[3]),
-              vp.y + vp.height / 2.0 * (1 + double(clip[1]) / clip[3])};
+              vp.y + vp.height / 2.0 * (1 + window_y_c(c, clip[1]) / clip[3])};
       lo_[0] = std::min(lo_[0], v[i][0]), hi_[0] = std::max(hi_[0], v[i][0]);
       lo_[1] = std::min(lo_[1], v[i][1]), hi_[1] = std::max(hi_[1], v[i][1]);
     }

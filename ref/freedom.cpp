@@ -225,12 +225,14 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     ClipVertex v;
     for (int k = 0; k < 4; ++k)
       v.p[size_t(k)] = double(c.vertices[index].clip[size_t(k)]);
+    v.p[1] = window_y_c(c, v.p[1]);  // GL_UPPER_LEFT: the y planes are symmetric
     poly.push_back(v);
   }
   // Signed distances to the six planes of the view volume, >= 0 inside, in Mesa's order:
-  // x >= -w_c, x <= w_c, y likewise, then z.
+  // x >= -w_c, x <= w_c, y likewise, then z (the near plane as glClipControl puts it).
   auto distance = [&](const ClipVertex& v, int plane) {
     const double w = v.p[3];
+    if (plane == 4) return near_distance(c, v.p[2], w);
     const size_t axis = size_t(plane / 2);
     return plane % 2 == 0 ? w + v.p[axis] : w - v.p[axis];
   };
@@ -239,6 +241,8 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
       // The polygon the near and far planes cut: each vertex's z_c and w_c carry e_z and e_w,
       // so the sign of w_c ∓ z_c may differ from the exact one within (e_z + e_w)/w_c in z_n
       // (e_z + |z_n|·e_w would be the error of z_n itself; the sign is of the difference).
+      // Under GL_ZERO_TO_ONE the near plane's z_c alone is within e_z/w_c: the same bound
+      // holds it.
       const Viewport& vp = c.viewport;
       for (const ClipVertex& v : poly) {
         const double w = v.p[3];
@@ -291,8 +295,7 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     const double clip_x = half_w * (v.e[0] + std::fabs(xn) * v.e[3]) / w;
     const double clip_y = half_h * (v.e[1] + std::fabs(yn) * v.e[3]) / w;
     out.delta = snap_and_round(out.x_w, out.y_w, m, subpixel_bits) + std::max(clip_x, clip_y);
-    out.depth = std::fabs(double(c.depth_far) - double(c.depth_near)) / 2 *
-                (v.e[2] + std::fabs(zn) * v.e[3]) / w;
+    out.depth = std::fabs(depth_range_scale(c)) * (v.e[2] + std::fabs(zn) * v.e[3]) / w;
     out.weight = v.e[3] / w;
     out.w_c = w;
     // Within its rounding of the eye: the w_c an implementation computes may be 0 or negative.
@@ -310,15 +313,14 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   for (uint32_t index : t.index) {
     const auto& p = c.vertices[index].clip;
     const double w = p[3];
-    clipped =
-        clipped || !(w > 0) || std::fabs(p[0]) > w || std::fabs(p[1]) > w || std::fabs(p[2]) > w;
-    depth_clipped = depth_clipped || !(w > 0) || std::fabs(p[2]) > w;
+    clipped = clipped || !inside_view_volume(c, p);
+    depth_clipped = depth_clipped || !(w > 0) || near_distance(c, p[2], w) < 0 || p[2] > w;
     if (!(w > 0)) {
       in_guard_band = false;
       continue;
     }
     const double x_w = vp.x + vp.width / 2.0 * (1 + p[0] / w);
-    const double y_w = vp.y + vp.height / 2.0 * (1 + p[1] / w);
+    const double y_w = vp.y + vp.height / 2.0 * (1 + window_y_c(c, p[1]) / w);
     const double centre_distance = std::max(std::fabs(x_w - (vp.x + vp.width / 2.0)),
                                             std::fabs(y_w - (vp.y + vp.height / 2.0)));
     in_guard_band = in_guard_band && centre_distance <= kGuardBandPixels;
@@ -371,7 +373,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     const auto& v = c.vertices[t.index[j]].clip;
     if (!(v[3] > 0)) return;
     p[j] = {vp.x + vp.width / 2.0 * (1 + double(v[0]) / v[3]),
-            vp.y + vp.height / 2.0 * (1 + double(v[1]) / v[3])};
+            vp.y + vp.height / 2.0 * (1 + window_y_c(c, v[1]) / v[3])};
     rounding[j] =
         snap_and_round(p[j][0], p[j][1], m, subpixel_bits) - std::ldexp(1.0, -subpixel_bits);
   }

@@ -74,8 +74,9 @@ class WindowCorners {
 struct TriangleSetup {
   int primitive = 0;  // gl_PrimitiveID
   WindowCorners v;
-  std::array<uint32_t, 3> index{};  // into Case::vertices
-  bool drawn = false;               // false: zero area, or culled
+  std::array<uint32_t, 3> index{};                        // into Case::vertices
+  ClipDepth clip_depth = ClipDepth::negative_one_to_one;  // the case's: where the near plane is
+  bool drawn = false;                                     // false: zero area, or culled
   // The exact triangle has area: edges and box are set, even when it is not drawn (a
   // triangle culled or of zero snapped area may still be drawn by another implementation).
   bool has_edges = false;

@@ -65,20 +65,31 @@ WindowVertex to_window(const Vertex& v, const Case& c) {
     const mpq_class half_w = mpq_class(vp.width) / 2;
     out.x_h = x_c * half_w + w_c * (vp.x + half_w);
   }
-  if (!exact_half_sum(v.clip[1], double(vp.height), v.clip[3], 2.0 * vp.y + vp.height, out.y_h)) {
-    const mpq_class y_c(double(v.clip[1]));
+  // GL_UPPER_LEFT: y_c negated (window_y_c), exact in float.
+  const float y_c_window = float(window_y_c(c, v.clip[1]));
+  if (!exact_half_sum(y_c_window, double(vp.height), v.clip[3], 2.0 * vp.y + vp.height, out.y_h)) {
+    const mpq_class y_c{double(y_c_window)};
     const mpq_class half_h = mpq_class(vp.height) / 2;
     out.y_h = y_c * half_h + w_c * (vp.y + half_h);
   }
   const mpq_class& z_c = out.z_c;
   // w_c·z_w = (z_c·(f − n) + w_c·(n + f)) / 2, with f − n and n + f doubles that must be exact
-  // (TwoSum's error 0) and short.
+  // (TwoSum's error 0) and short. GL_ZERO_TO_ONE: z_c·(f − n) + w_c·n, the same half sum of
+  // 2(f − n) and 2n (doublings, exact).
   const double n = c.depth_near, f = c.depth_far;
+  const bool zero_to_one = c.clip_depth == ClipDepth::zero_to_one;
   double difference = 0, sum = 0;
-  const bool exact = exact_sum(f, -n, difference) && exact_sum(n, f, sum);
+  bool exact = exact_sum(f, -n, difference);
+  if (zero_to_one)
+    difference *= 2, sum = 2 * n;
+  else
+    exact = exact && exact_sum(n, f, sum);
   if (!exact || !exact_half_sum(v.clip[2], difference, v.clip[3], sum, out.wz_w)) {
     const mpq_class qn(n), qf(f);
-    out.wz_w = z_c * (qf - qn) / 2 + w_c * (qn + qf) / 2;
+    if (zero_to_one)
+      out.wz_w = z_c * (qf - qn) + w_c * qn;
+    else
+      out.wz_w = z_c * (qf - qn) / 2 + w_c * (qn + qf) / 2;
   }
   for (mpq_class* q : {&out.x_h, &out.y_h, &out.wz_w})
     q->canonicalize();

@@ -14,7 +14,8 @@ namespace glrc::ref {
 struct WindowVertex {
   mpq_class x_h, y_h;  // x_c·(w_v/2) + w_c·(x_v + w_v/2), likewise y: x_w = x_h / w_c
   mpq_class z_c, w_c;
-  // w_c·z_w = z_c·(f−n)/2 + w_c·(n+f)/2: glDepthRange applied to z_n = z_c/w_c, times w_c.
+  // w_c·z_w = z_c·(f−n)/2 + w_c·(n+f)/2: glDepthRange applied to z_n = z_c/w_c, times w_c
+  // (z_c·(f−n) + w_c·n under GL_ZERO_TO_ONE). y_h reads y_c negated under GL_UPPER_LEFT.
   mpq_class wz_w;
 };
 

@@ -34,7 +34,7 @@ long largest_covered(const Frame& f, int k) {
 std::array<double, 2> window_of(const Case& c, const std::array<float, 4>& clip) {
   const Viewport& vp = c.viewport;
   return {(double(clip[0]) / clip[3] + 1) * vp.width / 2 + vp.x,
-          (double(clip[1]) / clip[3] + 1) * vp.height / 2 + vp.y};
+          (window_y_c(c, clip[1]) / clip[3] + 1) * vp.height / 2 + vp.y};
 }
 
 // Whether GL draws triangle t at all: every w_c > 0 (the fault leaves clipped triangles alone),
@@ -49,7 +49,7 @@ bool drawn_unclipped(const Case& c, const std::array<uint32_t, 3>& t) {
   const double area =
       (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
   if (area == 0) return false;
-  const bool front = (area > 0) == (c.front_face == FrontFace::ccw);
+  const bool front = ((area > 0) != facing_reversed(c)) == (c.front_face == FrontFace::ccw);
   switch (c.cull) {
     case CullFace::none:
       return true;
@@ -110,7 +110,7 @@ std::vector<size_t> centres_on_shared_horizontal_edges(const Case& c, const Fram
   for (const auto& [ends, users] : by_edge) {
     const auto& [a, b] = ends;
     // Horizontal: y_a/w_a == y_b/w_b, exact as products of two floats in double.
-    if (users.size() < 2 || double(a[1]) * b[3] != double(b[1]) * a[3]) continue;
+    if (users.size() < 2 || double(a[1]) * b[3] != double(b[1]) * a[3]) continue;  // either origin
     // The third vertices of two of the users on opposite sides of the edge.
     const auto [ax, ay] = window_of(c, a);
     bool above = false, below = false;
@@ -123,7 +123,8 @@ std::vector<size_t> centres_on_shared_horizontal_edges(const Case& c, const Fram
     if (!above || !below) continue;
     // On a row of centres.
     const int py = int(std::floor(ay));
-    if (py < 0 || py >= f.height || centre_minus_vertex(py, vp.y, vp.height, a[1], a[3]) != 0)
+    if (py < 0 || py >= f.height ||
+        centre_minus_vertex(py, vp.y, vp.height, float(window_y_c(c, a[1])), a[3]) != 0)
       continue;
     const double bx = window_of(c, b)[0];
     const int x0 = std::max(0, int(std::floor(std::min(ax, bx))) - 1);
@@ -323,6 +324,19 @@ std::vector<Fault> make_faults() {
                     if (c.scissor) ++c.scissor->width;
                   },
                   nullptr});
+  list.push_back({"upper-left-facing-not-reversed",
+                  "under glClipControl(GL_UPPER_LEFT) the sign of the window-space area is not "
+                  "negated, so facing (and culling) follows the upside-down image",
+                  [](Case& c) {
+                    if (c.clip_origin == ClipOrigin::upper_left)
+                      c.front_face =
+                          c.front_face == FrontFace::ccw ? FrontFace::cw : FrontFace::ccw;
+                  },
+                  nullptr});
+  list.push_back({"zero-to-one-ignored",
+                  "glClipControl's GL_ZERO_TO_ONE ignored: the near plane stays at z_c = -w_c and "
+                  "z_w = z_d·(f - n)/2 + (n + f)/2",
+                  [](Case& c) { c.clip_depth = ClipDepth::negative_one_to_one; }, nullptr});
   return list;
 }
 

@@ -37,6 +37,10 @@ typedef void (*gl_proc)(void);
 #define GL_NOTEQUAL 0x0205
 #define GL_GEQUAL 0x0206
 #define GL_ALWAYS 0x0207
+#define GL_LOWER_LEFT 0x8CA1
+#define GL_UPPER_LEFT 0x8CA2
+#define GL_NEGATIVE_ONE_TO_ONE 0x935E
+#define GL_ZERO_TO_ONE 0x935F
 #define GL_FRONT 0x0404
 #define GL_BACK 0x0405
 #define GL_FRONT_AND_BACK 0x0408
@@ -173,6 +177,9 @@ typedef void (*gl_proc)(void);
   typedef type(*pfn_gl##name) parameters;           \
   static pfn_gl##name gl##name;
 GL_FUNCTIONS(DECLARE_GL_FUNCTION)
+/* GL 4.5 or GL_ARB_clip_control: looked up only for a scene that calls it. */
+typedef void (*pfn_glClipControl)(GLenum origin, GLenum depth);
+static pfn_glClipControl glClipControl;
 
 /* ---- EGL and OSMesa: what making a context needs ---- */
 typedef void *EGLDisplay;
@@ -226,6 +233,7 @@ struct scene {
   int width, height; /* the framebuffer */
   int viewport[4];   /* glViewport(x, y, width, height) */
   int scissor[5];    /* enabled (0 or 1), then glScissor(x, y, width, height) */
+  GLenum clip_control[2]; /* glClipControl(origin, depth); {0, 0}: never called */
   double depth_near, depth_far; /* glDepthRange */
   GLenum cull;       /* glCullFace's mode; 0: GL_CULL_FACE disabled */
   GLenum front_face, provoking_vertex, depth_func;

@@ -347,6 +347,11 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
               dims[0], dims[1]);
     return 0;
   }
+  if (s->clip_control[0] && !glClipControl &&
+      !(glClipControl = (pfn_glClipControl)get_proc_address("glClipControl"))) {
+    set_error("the GL context has no glClipControl (GL 4.5 or GL_ARB_clip_control)");
+    return 0;
+  }
 
   program = make_program(s->vertex_shader, geometry_shader ? s->geometry_shader : NULL,
                          geometry_shader ? s->fragment_after_geometry : s->fragment_shader);
@@ -360,6 +365,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   /* The state the case controls; nothing else may touch a value on its way to the readback. */
   glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
   glDepthRange(s->depth_near, s->depth_far);
+  if (s->clip_control[0]) glClipControl(s->clip_control[0], s->clip_control[1]);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(s->depth_func);
   glDepthMask(GL_TRUE);

@@ -133,6 +133,15 @@ TEST_F(CaseFileTest, DepthRangeAndState) {
   EXPECT_CASE_ERROR(with(R"("state": {"depth_func": "LEQUAL"}, )" + kTri), "state.depth_func");
   EXPECT_CASE_ERROR(with(R"("state": {"depth_func": "le"}, )" + kTri), "state.depth_func");
   EXPECT_CASE_ERROR(with(R"("state": {"depth_clear": 1.5}, )" + kTri), "state.depth_clear");
+  EXPECT_CASE_ERROR(with(R"("state": {"clip_origin": "GL_UPPER_LEFT"}, )" + kTri),
+                    "state.clip_origin");
+  EXPECT_CASE_ERROR(with(R"("state": {"clip_depth": "zero_to_1"}, )" + kTri), "state.clip_depth");
+  EXPECT_CASE_ERROR(with(R"("state": {"clip_depth": 0}, )" + kTri), "state.clip_depth");
+  const Case controlled = load_text(
+      with(R"("state": {"clip_origin": "upper_left", "clip_depth": "zero_to_one"}, )" + kTri));
+  EXPECT_EQ(controlled.clip_origin, ClipOrigin::upper_left);
+  EXPECT_EQ(controlled.clip_depth, ClipDepth::zero_to_one);
+  EXPECT_EQ(load_text(with(kTri)).clip_origin, ClipOrigin::lower_left);
   EXPECT_CASE_ERROR(with(R"("state": {"depth_clear": -0.25}, )" + kTri), "state.depth_clear");
   EXPECT_CASE_ERROR(with(R"("state": {"depth_clear": "nan"}, )" + kTri), "state.depth_clear");
   EXPECT_CASE_ERROR(with(R"("work_arounds": 0, )" + kTri), "work_arounds");

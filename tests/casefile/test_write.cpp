@@ -39,6 +39,8 @@ void expect_same(const Case& a, const Case& b) {
   EXPECT_EQ(bits(a.depth_far), bits(b.depth_far));
   EXPECT_EQ(a.cull, b.cull);
   EXPECT_EQ(a.front_face, b.front_face);
+  EXPECT_EQ(a.clip_origin, b.clip_origin);
+  EXPECT_EQ(a.clip_depth, b.clip_depth);
   EXPECT_EQ(a.provoking, b.provoking);
   EXPECT_EQ(a.depth_func, b.depth_func);
   EXPECT_EQ(std::bit_cast<uint32_t>(a.depth_clear), std::bit_cast<uint32_t>(b.depth_clear));

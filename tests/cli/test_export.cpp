@@ -123,6 +123,20 @@ TEST_F(Export, PassingCasesPassOnLlvmpipe) {
   }
 }
 
+// The reproducer calls glClipControl: without it the upper-left case would draw the triangles
+// its culling keeps upside down and cull the others, the zero-to-one case draw in front of
+// z_c = 0 with other depths.
+TEST_F(Export, ClipControlCasesPassOnLlvmpipe) {
+  if (!has_cc_) GTEST_SKIP() << "no C compiler (cc)";
+  for (const char* name : {"clip_control_upper_left_cull_back", "clip_control_zero_to_one_near"}) {
+    const std::string program = build(source("cases/") + name + ".json", name);
+    ASSERT_FALSE(program.empty()) << name;
+    const auto r = run(program, "llvmpipe", "egl");
+    EXPECT_EQ(r.exit_code, 0) << name << "\n" << r.out;
+    EXPECT_NE(r.out.find(std::string(name) + ": pass: "), std::string::npos) << r.out;
+  }
+}
+
 // softpipe leaves a pixel of a shared edge undrawn in one case and draws one twice in the other;
 // llvmpipe draws both right. glrefcheck itself says so first, so that the data stays evidence.
 TEST_F(Export, SoftpipeSharedEdgeFailuresOnSoftpipeOnly) {

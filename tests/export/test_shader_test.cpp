@@ -159,6 +159,14 @@ TEST(ShaderTest, RefusesWhatShaderRunnerCannotExpressInOneLine) {
                              0),
             0u);
   c = face_on;
+  c.clip_depth = ClipDepth::zero_to_one;
+  EXPECT_EQ(refusal(c),
+            "glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) cannot be expressed in a shader_test: "
+            "shader_runner has no glClipControl command");
+  c = face_on;
+  c.clip_origin = ClipOrigin::upper_left;
+  EXPECT_EQ(refusal(c).rfind("glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE)", 0), 0u);
+  c = face_on;
   c.triangles.assign(reproducer::kMaxShaderTestTriangles + 1, c.triangles.front());
   EXPECT_EQ(refusal(c),
             "4,097 triangles; a shader_test takes at most 4,096: shrink the case first (glrefcheck "

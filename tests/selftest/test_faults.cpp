@@ -15,8 +15,8 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, FifteenInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 15u);
+TEST(Faults, SeventeenInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 17u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
   EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
   EXPECT_EQ(faults()[8].name, "shared-horizontal-edge-drawn-twice");
@@ -25,7 +25,9 @@ TEST(Faults, FifteenInAFixedOrder) {
   EXPECT_EQ(faults()[11].name, "identical-copy-wins-depth-test");
   EXPECT_EQ(faults()[12].name, "strip-provoking-first-wrong");
   EXPECT_EQ(faults()[13].name, "fan-hub-not-reset");
-  EXPECT_EQ(faults().back().name, "scissor-box-one-pixel-wider");
+  EXPECT_EQ(faults()[14].name, "scissor-box-one-pixel-wider");
+  EXPECT_EQ(faults()[15].name, "upper-left-facing-not-reversed");
+  EXPECT_EQ(faults().back().name, "zero-to-one-ignored");
 }
 
 // The assembly faults change only what they name: a strip's odd triangles under the first
