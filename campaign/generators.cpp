@@ -780,6 +780,70 @@ Case window(Random& r) {
   return c;
 }
 
+// Clip and cull distances: 1 to 8 of them together, each clip distance a random plane through
+// the triangles' region (a·x_c + b·y_c + c·z_c + d·w_c, or values on and near 0 at the
+// vertices), some planes written but not enabled; cull distances negative at a random subset
+// of vertices (all three now and then, exactly 0 too); triangles near the window and beyond
+// its clip planes, strips and fans now and then; smooth, flat and noperspective varyings
+// (noperspective only where nothing is clipped, as in assembly: the known clipper bug).
+Case distances(Random& r) {
+  Case c;
+  set_framebuffer_drawn(c, r, 8, 96, 8, 96);
+  c.provoking = ProvokingVertex(r.below(2));
+  const bool perspective = r.chance(0.6);
+  const int count = r.between(1, 6);
+  for (int t = 0; t < count; ++t) {
+    std::array<std::array<float, 4>, 3> v;
+    for (auto& p : v) {
+      const double w = some_w(r, perspective);
+      const double z = r.chance(0.2) ? r.uniform(-1.3, 1.3) : r.uniform(-0.99, 0.99);
+      const double y = r.uniform(-0.3, 1.3) * c.fb_height;
+      const double x = r.uniform(-0.3, 1.3) * c.fb_width;
+      p = clip_at(c, x, y, z, w);
+    }
+    add_triangle(c, v);
+  }
+  if (r.chance(0.3)) {  // the same vertices as one strip or fan
+    Draw d;
+    d.mode = r.chance(0.5) ? PrimitiveMode::triangle_strip : PrimitiveMode::triangle_fan;
+    d.first = 0, d.count = uint32_t(c.vertices.size());
+    c.draws = {d};
+    assemble_triangles(c);
+  }
+  c.distances.clip = int(r.below(kMaxDistances + 1));
+  c.distances.cull = int(r.below(uint64_t(kMaxDistances - c.distances.clip) + 1));
+  if (!c.distances.any()) c.distances.clip = 1;
+  c.distances.enabled = uint32_t(r.below(uint64_t(1) << c.distances.clip));
+  if (r.chance(0.6)) c.distances.enabled = (1u << c.distances.clip) - 1u;  // all written
+  for (int k = 0; k < c.distances.clip; ++k) {
+    const bool plane = r.chance(0.8);
+    std::array<double, 4> coefficients{};
+    for (double& a : coefficients)
+      a = r.uniform(-1, 1);
+    for (Vertex& v : c.vertices) {
+      double d = 0;
+      if (plane) {
+        for (size_t i = 0; i < 4; ++i)
+          d += coefficients[i] * v.clip[i];
+      } else {
+        d = r.chance(0.3) ? 0.0 : r.uniform(-1, 1) * r.binades(-20, 0);
+      }
+      v.distances.push_back(float(d));
+    }
+  }
+  for (int k = 0; k < c.distances.cull; ++k)
+    for (Vertex& v : c.vertices)
+      v.distances.push_back(r.chance(0.1)   ? 0.0f
+                            : r.chance(0.5) ? -float(r.uniform(0, 2))
+                                            : float(r.uniform(0, 2)));
+  c.cull = r.chance(0.2) ? CullFace(r.below(3)) : CullFace::none;
+  add_varying(c, 2, Interpolation::smooth);
+  add_varying(c, 1, Interpolation::flat);
+  if (r.chance(0.5)) add_varying(c, 1, Interpolation::noperspective);
+  fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  return c;
+}
+
 // What casefile::load demands and a generator may not have ensured: noperspective only where
 // every vertex a triangle uses has w_c > 0 (cases/README.md); such varyings become smooth.
 void make_loadable(Case& c) {
@@ -822,6 +886,10 @@ const std::vector<Generator>& generators() {
        "viewports beyond the framebuffer (negative origins, up to 16384 wide), scissor boxes "
        "inside, across and beyond it, glClipControl's origins and depth modes with culling",
        window},
+      {"distances",
+       "gl_ClipDistance and gl_CullDistance: up to 8 together, planes through the triangles, "
+       "planes written but not enabled, cull distances negative at some or all vertices",
+       distances},
   };
   return all;
 }

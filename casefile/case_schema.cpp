@@ -181,9 +181,10 @@ void Loader::load_varyings(const CaseJson& list, Case& c) const {
               Reader::describe(name));
     if (glsl_reserved(n))
       r_.fail(path_key(path, "name"), "a name that is not a GLSL keyword", Reader::describe(name));
-    // A vertex object holds "clip"/"position" beside the varyings' names.
-    if (n == "clip" || n == "position")
-      r_.fail(path_key(path, "name"), "a name other than clip and position (vertex keys)",
+    // A vertex object holds "clip"/"position" and the distances beside the varyings' names.
+    if (n == "clip" || n == "position" || n == "clip_distance" || n == "cull_distance")
+      r_.fail(path_key(path, "name"),
+              "a name other than clip, position, clip_distance and cull_distance (vertex keys)",
               Reader::describe(name));
     if (!seen.insert(n).second)
       r_.fail(path_key(path, "name"), "a name not used by another varying", Reader::describe(name));
@@ -193,6 +194,24 @@ void Loader::load_varyings(const CaseJson& list, Case& c) const {
       var.interpolation = r_.name<Interpolation>(*interp, path_key(path, "interpolation"));
     c.varyings.push_back(var);
   }
+}
+
+void Loader::load_enabled_clip_distances(const CaseJson* list, Case& c) const {
+  const uint32_t all = c.distances.clip == 0 ? 0u : (1u << c.distances.clip) - 1u;
+  if (!list) {
+    c.distances.enabled = all;  // every distance written is enabled
+    return;
+  }
+  const std::string what =
+      "an array of clip plane numbers, each below the vertices' clip_distance count (" +
+      std::to_string(c.distances.clip) + ")";
+  if (!list->is_array()) r_.fail("enabled_clip_distances", what, Reader::describe(*list));
+  c.distances.enabled = 0;
+  for (size_t i = 0; i < list->size(); ++i)
+    c.distances.enabled |= 1u << int_in((*list)[i], path_index("enabled_clip_distances", i), 0,
+                                        std::max(c.distances.clip - 1, 0));
+  if (c.distances.clip == 0 && !list->empty())
+    r_.fail("enabled_clip_distances", what, "planes, but no vertex has a clip_distance");
 }
 
 void Loader::load_tolerance(const CaseJson& t, Case& c) const {
@@ -215,10 +234,10 @@ Case Loader::load(const CaseJson& root) const {
   Case c;
   c.source_path = r_.source();
   if (!root.is_object()) r_.fail("", "a JSON object at the top level", Reader::describe(root));
-  r_.check_keys(
-      root, "",
-      {"description", "framebuffer", "viewport", "scissor", "depth_range", "state", "varyings",
-       "transform", "vertices", "triangles", "draws", "tolerance", "work_arounds", "written_by"});
+  r_.check_keys(root, "",
+                {"description", "framebuffer", "viewport", "scissor", "depth_range", "state",
+                 "varyings", "enabled_clip_distances", "transform", "vertices", "triangles",
+                 "draws", "tolerance", "work_arounds", "written_by"});
   // What wrote the file, with its stamp (cli's fuzz; report/stamp.hpp): for whoever writes it
   // again, nothing the case draws.
   if (const CaseJson* w = Reader::find(root, "written_by"); w && !w->is_string())
@@ -249,6 +268,7 @@ Case Loader::load(const CaseJson& root) const {
     load_triangles(Reader::find(root, "triangles"), c);
   }
   check_noperspective(c);
+  load_enabled_clip_distances(Reader::find(root, "enabled_clip_distances"), c);
   if (const CaseJson* t = Reader::find(root, "tolerance")) load_tolerance(*t, c);
   if (const CaseJson* w = Reader::find(root, "work_arounds")) {
     if (!w->is_boolean())

@@ -50,6 +50,12 @@ class Loader {
   std::optional<Transform> load_transform(const CaseJson& t) const;
   std::vector<TransformOp> load_ops(const CaseJson& list, const std::string& path) const;
   Projection load_projection(const CaseJson& p, const std::string& path) const;
+  // "enabled_clip_distances" (null: absent, every written distance enabled), after the
+  // vertices have set how many there are.
+  void load_enabled_clip_distances(const CaseJson* list, Case& c) const;
+  // Vertex i's "clip_distance" and "cull_distance" into vertex.distances; vertex 0's set
+  // Case::distances' counts.
+  void load_distances(const CaseJson& v, size_t i, Vertex& vertex, Case& c) const;
   void load_vertices(const CaseJson& list, const std::optional<Transform>& transform,
                      Case& c) const;
   void load_triangles(const CaseJson* list, Case& c) const;

@@ -121,6 +121,42 @@ std::optional<Transform> Loader::load_transform(const CaseJson& t) const {
   return out;
 }
 
+void Loader::load_distances(const CaseJson& v, size_t i, Vertex& vertex, Case& c) const {
+  // The first vertex sets how many of each there are; every other must have as many.
+  std::vector<float> f;
+  for (const bool clip : {true, false}) {
+    const char* key = clip ? "clip_distance" : "cull_distance";
+    int& count = clip ? c.distances.clip : c.distances.cull;
+    const CaseJson* d = Reader::find(v, key);
+    const auto path = [&] { return path_key(path_index("vertices", i), key); };
+    if (i == 0) {
+      if (d) {
+        if (!d->is_array() || d->empty() || d->size() > size_t(kMaxDistances))
+          r_.fail(path(), "an array of 1 to 8 numbers", Reader::describe(*d));
+        count = int(d->size());
+      }
+    } else if (count == 0 ? d != nullptr
+                          : d == nullptr || !d->is_array() || d->size() != size_t(count)) {
+      r_.fail(path(),
+              count == 0 ? "nothing, as vertex 0 has no " + std::string(key)
+                         : std::to_string(count) + " numbers, as vertex 0 has",
+              d ? Reader::describe(*d) : "nothing");
+    }
+    if (!d) continue;
+    f.clear();
+    r_.float32s_into(*d, path, {size_t(count)}, f);
+    for (size_t k = 0; k < f.size(); ++k)
+      if (!std::isfinite(f[k]))
+        r_.fail(path_index(path(), k), "a finite number", Reader::describe((*d)[k]));
+    // The clip distances first (this loop's order), then the cull distances.
+    vertex.distances.insert(vertex.distances.end(), f.begin(), f.end());
+  }
+  if (i == 0 && c.distances.clip + c.distances.cull > kMaxDistances)
+    r_.fail(path_index("vertices", 0),
+            "at most 8 clip and cull distances together (GL_MAX_COMBINED_CLIP_AND_CULL_DISTANCES)",
+            std::to_string(c.distances.clip + c.distances.cull));
+}
+
 void Loader::load_vertices(const CaseJson& list, const std::optional<Transform>& transform,
                            Case& c) const {
   if (!list.is_array() || list.empty())
@@ -137,13 +173,14 @@ void Loader::load_vertices(const CaseJson& list, const std::optional<Transform>&
     if (!v.is_object()) r_.object(v, path());
     // Allowed keys: clip, position, and the varyings' names.
     for (const auto& [key, value] : v.items()) {
-      if (key == "clip" || key == "position") continue;
+      if (key == "clip" || key == "position" || key == "clip_distance" || key == "cull_distance")
+        continue;
       // A named reference: Clang before 16 cannot capture a structured binding.
       const std::string& name = key;
       const bool varying = std::any_of(c.varyings.begin(), c.varyings.end(),
                                        [&](const Varying& var) { return var.name == name; });
       if (!varying) {
-        std::string keys = "clip, position";
+        std::string keys = "clip, position, clip_distance, cull_distance";
         for (const auto& var : c.varyings)
           keys += ", " + var.name;
         r_.fail(path_key(path(), key), "one of the keys " + keys + " (varyings must be declared)",
@@ -190,6 +227,7 @@ void Loader::load_vertices(const CaseJson& list, const std::optional<Transform>&
         }
       }
     }
+    load_distances(v, i, vertex, c);
     c.vertices.push_back(std::move(vertex));
   }
   if (!positions.empty()) {

@@ -94,6 +94,13 @@ json to_wire(const Case& c) {
               {"tolerance", tolerance}};
   if (!draws.empty()) out["draws"] = draws;
   if (c.scissor) out["scissor"] = {c.scissor->x, c.scissor->y, c.scissor->width, c.scissor->height};
+  if (c.distances.any()) {
+    std::string distances;
+    for (const Vertex& v : c.vertices)
+      for (float f : v.distances)
+        put(distances, f);
+    out["distances"] = {c.distances.clip, c.distances.cull, c.distances.enabled, distances};
+  }
   if (c.clip_origin != ClipOrigin::lower_left || c.clip_depth != ClipDepth::negative_one_to_one)
     out["clip_control"] = {int(c.clip_origin), int(c.clip_depth)};
   return out;
@@ -141,6 +148,21 @@ Case from_wire(const json& j) {
       const json& b = j.at("scissor");
       c.scissor =
           Scissor{b.at(0).get<int>(), b.at(1).get<int>(), b.at(2).get<int>(), b.at(3).get<int>()};
+    }
+    if (j.contains("distances")) {
+      const json& d = j.at("distances");
+      c.distances.clip = d.at(0).get<int>(), c.distances.cull = d.at(1).get<int>();
+      c.distances.enabled = d.at(2).get<uint32_t>();
+      if (c.distances.clip < 0 || c.distances.cull < 0 ||
+          c.distances.clip + c.distances.cull > kMaxDistances)
+        throw std::runtime_error("wire: distances out of range");
+      Words words(d.at(3).get_ref<const std::string&>());
+      for (Vertex& v : c.vertices) {
+        v.distances.resize(size_t(c.distances.clip + c.distances.cull));
+        for (float& f : v.distances)
+          f = words.real();
+      }
+      if (!words.done()) throw std::runtime_error("wire: distance words left over");
     }
     if (j.contains("clip_control")) {
       const json& cc = j.at("clip_control");

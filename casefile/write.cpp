@@ -222,6 +222,14 @@ std::string to_case_file(const Case& c) {
   // One vertex per line: clip, then each varying's components in declaration order (a size-1
   // varying as a bare number). Values that do not match the varyings' sizes are written as far
   // as they go, for the loader to refuse.
+  // Every written distance enabled is the default; otherwise the planes that are.
+  const uint32_t all = c.distances.clip <= 0 ? 0u : (1u << std::min(c.distances.clip, 31)) - 1u;
+  if (c.distances.enabled != all) {
+    std::string planes;
+    for (int k = 0; k < 32; ++k)
+      if (c.distances.enabled >> k & 1u) add(planes, planes.empty() ? "" : ", ", integer(k));
+    add(out, "  \"enabled_clip_distances\": [", planes, "],\n");
+  }
   out += "  \"vertices\": [\n";
   for (size_t i = 0; i < c.vertices.size(); ++i) {
     const Vertex& v = c.vertices[i];
@@ -234,6 +242,11 @@ std::string to_case_file(const Case& c) {
           var.size == 1 && n == 1 ? number(v.values[at]) : numbers(v.values.data() + at, n));
       at += n;
     }
+    // Only as many as the case says (a hostile case may hold fewer: written as is).
+    const size_t clip = std::min(size_t(std::max(c.distances.clip, 0)), v.distances.size());
+    const size_t cull = std::min(size_t(std::max(c.distances.cull, 0)), v.distances.size() - clip);
+    if (clip) add(out, ", \"clip_distance\": ", numbers(v.distances.data(), clip));
+    if (cull) add(out, ", \"cull_distance\": ", numbers(v.distances.data() + clip, cull));
     add(out, "}", i + 1 < c.vertices.size() ? ",\n" : "\n");
   }
   out += "  ]";

@@ -21,8 +21,12 @@ namespace glrc::cli {
 namespace {
 
 reproducer::ReproducerShaders shaders_of(const Case& c) {
-  return {gl::vertex_shader_source(c), gl::geometry_shader_source(c),
-          gl::fragment_shader_source(c, false), gl::fragment_shader_source(c, true)};
+  return {gl::vertex_shader_source(c),
+          gl::geometry_shader_source(c),
+          gl::fragment_shader_source(c, false),
+          gl::fragment_shader_source(c, true),
+          gl::count_vertex_shader_source(c.distances),
+          gl::count_geometry_shader_source(c.distances)};
 }
 
 // The command that wrote the file, for its header: the options given, as given.
@@ -181,8 +185,6 @@ int cmd_export(const ExportOptions& o, const CLI::App& command) {
   setup.shaders = shaders_of(c);
   setup.first_draw = gl::first_draw_case();
   setup.first_draw_shaders = shaders_of(setup.first_draw);
-  setup.count_vertex = gl::count_vertex_shader_source();
-  setup.count_geometry = gl::count_geometry_shader_source();
   setup.count_fragment = gl::count_fragment_shader_source();
   setup.trace_fragment = gl::trace_fragment_shader_source(several_draws(c));
   setup.admitted = check::admitted_traces(c, expected, options, reported_bits);

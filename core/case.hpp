@@ -36,6 +36,24 @@ struct Vertex {
   std::array<float, 4> clip{};
   // All varyings' components, concatenated in the order of Case::varyings.
   std::vector<float> values;
+  // gl_ClipDistance[0 .. Distances::clip) then gl_CullDistance[0 .. Distances::cull), as the
+  // vertex shader writes them; empty for a case without (Case::distances).
+  std::vector<float> distances;
+};
+
+// The user clip and cull distances (OpenGL 4.6 section 13.7, GL_ARB_cull_distance): how many
+// of each the vertex shader writes, and which clip planes are enabled (bit i: GL_CLIP_DISTANCEi;
+// a distance written but not enabled clips nothing). A triangle keeps the points where every
+// enabled clip distance, linear in clip space like the view volume's planes, is >= 0; it is
+// discarded whole where one cull distance is negative at all three of its vertices. GL's limit
+// for both together, GL_MAX_COMBINED_CLIP_AND_CULL_DISTANCES, is at least 8: kMaxDistances.
+inline constexpr int kMaxDistances = 8;
+struct Distances {
+  int clip = 0, cull = 0;
+  uint32_t enabled = 0;
+  bool any() const { return clip + cull > 0; }
+  bool plane_enabled(int i) const { return i < clip && (enabled >> i & 1u); }
+  friend bool operator==(const Distances&, const Distances&) = default;
 };
 
 enum class CullFace { none, front, back, front_and_back };
@@ -217,6 +235,7 @@ struct Case {
   bool work_arounds = true;
 
   std::vector<Varying> varyings;
+  Distances distances;
   std::vector<Vertex> vertices;
   // The draw commands GL is given (core/draw.hpp), in order. Empty for a case that lists its
   // triangles: it is drawn as one glDrawElements(GL_TRIANGLES, GL_UNSIGNED_INT) of them
@@ -278,10 +297,28 @@ inline double near_distance(const Case& c, double z_c, double w_c) {
   return c.clip_depth == ClipDepth::zero_to_one ? z_c : z_c + w_c;
 }
 // Whether a clip-space vertex lies inside the view volume (OpenGL 4.6 section 13.7), every
-// plane closed.
+// plane closed. The user clip distances are not in it (outside_clip_distances).
 inline bool inside_view_volume(const Case& c, const std::array<float, 4>& clip) {
   const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
   return w > 0 && std::fabs(x) <= w && std::fabs(y) <= w && near_distance(c, z, w) >= 0 && z <= w;
+}
+// Whether a vertex is outside an enabled user clip plane: a clip distance below 0 (NaN too: no
+// implementation keeps it).
+inline bool outside_clip_distances(const Case& c, const Vertex& v) {
+  for (int i = 0; i < c.distances.clip; ++i)
+    if (c.distances.plane_enabled(i) && !(v.distances[size_t(i)] >= 0)) return true;
+  return false;
+}
+// Whether triangle t is discarded by a cull distance: one of them negative at all three
+// vertices (GL_ARB_cull_distance; decided on the primitive's own vertices, before clipping).
+inline bool culled_by_distance(const Case& c, const std::array<uint32_t, 3>& t) {
+  for (int k = c.distances.clip; k < c.distances.clip + c.distances.cull; ++k) {
+    bool all = true;
+    for (uint32_t i : t)
+      all = all && c.vertices[i].distances[size_t(k)] < 0;
+    if (all) return true;
+  }
+  return false;
 }
 // How z_w changes per unit of z_d: (f − n)/2, or f − n under GL_ZERO_TO_ONE (section 13.8.1),
 // in double (an error bound's factor, never a value compared).

@@ -21,6 +21,7 @@ DrawVertex shade_vertex(const Vertex& v, const ViewportXform& vp, const DrawConf
   DrawVertex d;
   d.clip = v.clip;  // the vertex (and geometry) shader copies gl_Position unchanged
   d.clipmask = clip_mask(v.clip, depth);
+  d.distances = v.distances;
   // llvmpipe transforms every vertex; the C path only unclipped ones, but a clipped vertex's
   // window position is never read (the clipper replaces it), so computing it does no harm.
   d.window = config.path == VertexPath::llvm ? window_position_llvm(v.clip, vp, config.fma)
@@ -48,8 +49,13 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
 
   std::vector<DrawVertex> vertices;
   vertices.reserve(c.vertices.size());
-  for (const Vertex& v : c.vertices)
+  for (const Vertex& v : c.vertices) {
     vertices.push_back(shade_vertex(v, ctx.viewport, config, c.clip_depth));
+    // The user planes: draw_cliptest_tmp.h's (clipdist < 0 || NaN) for each enabled one.
+    for (int i = 0; i < c.distances.clip; ++i)
+      if (c.distances.plane_enabled(i) && !(v.distances[size_t(i)] >= 0.0f))
+        vertices.back().clipmask |= 1u << (6 + i);
+  }
 
   const size_t count = c.triangles.size();
   const size_t segment =
@@ -58,7 +64,8 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
     const size_t last = std::min(count, first + segment);
     // Any clipped vertex in the segment sends the whole segment through the pipeline
     // ("clipped" from the vertex shader / post-VS); otherwise it is emitted as is.
-    bool pipeline = false;
+    // Cull distances send every triangle through the pipeline: its cull stage does them.
+    bool pipeline = c.distances.cull > 0;
     for (size_t t = first; t < last; ++t)
       for (uint32_t i : c.triangles[t])
         pipeline = pipeline || vertices[i].clipmask != 0;
@@ -71,6 +78,7 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
         sink.triangle(*tri[0], *tri[1], *tri[2], primitive);
         continue;
       }
+      if (c.distances.cull > 0 && !cull_distances_pass(c, tri)) continue;
       // clip_tri: untouched when no vertex is outside, dropped when all are outside one
       // plane, clipped otherwise.
       const uint32_t any = tri[0]->clipmask | tri[1]->clipmask | tri[2]->clipmask;

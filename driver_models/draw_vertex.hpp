@@ -16,6 +16,10 @@ struct DrawVertex {
   std::array<float, 4> window{};  // data[pos]: x_w, y_w, z_w, 1/w_c after the viewport
   uint32_t clipmask = 0;          // bit i: outside view-volume plane i (draw_pipe_clip order)
   std::vector<float> values;      // every varying component, in Case component order
+  // gl_ClipDistance then gl_CullDistance outputs (Vertex::distances): clip mask bit 6 + i is
+  // clip distance i below 0 (enabled planes only); the clipper interpolates them all as a
+  // perspective output.
+  std::vector<float> distances;
 };
 
 // The interpolation qualifier of each varying component, in Case component order.

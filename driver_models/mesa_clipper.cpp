@@ -32,6 +32,11 @@ DrawVertex interp(const ClipContext& ctx, float t, const DrawVertex& out, const 
     dst.clip[i] = linterp(t, out.clip[i], in.clip[i]);
   dst.window = window_position_c(dst.clip, ctx.viewport);
   dst.values.assign(out.values.size(), 0.0f);
+  // The clip and cull distance outputs: perspective attributes to the clipper (find_interp's
+  // default for an output no fragment shader input names).
+  dst.distances.resize(out.distances.size());
+  for (size_t k = 0; k < dst.distances.size(); ++k)
+    dst.distances[k] = linterp(t, out.distances[k], in.distances[k]);
 
   // noperspective: t recomputed from NDC x (or y when x is equal). When both endpoints lie on
   // an x = ±w plane with different w, in_coord == out_coord == ±1 and this is 0/0: NaN. Mesa's
@@ -72,17 +77,23 @@ void clip_triangle(const ClipContext& ctx, const TriangleRefs& tri, uint32_t cli
   while (clipmask && n >= 3) {
     const int plane = __builtin_ctz(clipmask);
     clipmask &= ~(1u << plane);
-    const float* coefficients =
-        plane == 4 && ctx.clip_depth == ClipDepth::zero_to_one ? kHalfZNearPlane : kPlanes[plane];
+    // getclipdist: a view-volume plane's dot4, or a user plane's gl_ClipDistance output.
+    const float* coefficients = plane >= 6 ? nullptr
+                                : plane == 4 && ctx.clip_depth == ClipDepth::zero_to_one
+                                    ? kHalfZNearPlane
+                                    : kPlanes[plane];
+    auto clip_distance = [&](const DrawVertex* v) {
+      return coefficients ? dot4(v->clip, coefficients) : v->distances[size_t(plane - 6)];
+    };
     const DrawVertex* vert_prev = inlist[0];
-    float dp_prev = dot4(vert_prev->clip, coefficients);
+    float dp_prev = clip_distance(vert_prev);
     if (is_inf_or_nan(dp_prev)) return;  // discard NaN
     inlist.resize(n);
     inlist.push_back(inlist[0]);  // prevent rotation of vertices
     outlist.clear();
     for (size_t i = 1; i <= n; ++i) {
       const DrawVertex* vert = inlist[i];
-      const float dp = dot4(vert->clip, coefficients);
+      const float dp = clip_distance(vert);
       if (is_inf_or_nan(dp)) return;
       bool different_sign;
       if (dp_prev >= 0.0f) {
@@ -134,6 +145,17 @@ void clip_triangle(const ClipContext& ctx, const TriangleRefs& tri, uint32_t cli
     else
       out.push_back({inlist[i - 1], inlist[i], inlist[0]});
   }
+}
+
+bool cull_distances_pass(const Case& c, const TriangleRefs& tri) {
+  for (int k = c.distances.clip; k < c.distances.clip + c.distances.cull; ++k) {
+    auto out = [&](const DrawVertex* v) {
+      const float d = v->distances[size_t(k)];
+      return d < 0.0f || is_inf_or_nan(d);
+    };
+    if (out(tri[0]) && out(tri[1]) && out(tri[2])) return false;
+  }
+  return true;
 }
 
 bool cull_stage_passes(const Case& c, const TriangleRefs& tri) {

@@ -27,8 +27,15 @@ using TriangleRefs = std::array<const DrawVertex*, 3>;
 void clip_triangle(const ClipContext& ctx, const TriangleRefs& tri, uint32_t clipmask,
                    std::deque<DrawVertex>& storage, std::vector<TriangleRefs>& out);
 
-// cull_tri: whether draw's cull stage passes the triangle. det = cross(v0 - v2, v1 - v2) from
-// float window positions; det == 0 counts as back facing.
+// cull_tri (draw_pipe_cull.c), its cull distances: whether no cull distance is out (below 0,
+// or Inf or NaN: cull_distance_is_out) at all three vertices. Judged on the primitive before
+// it is clipped: llvmpipe and softpipe draw a triangle whose clipped polygon has every
+// distance negative while one of its own vertices' is not (cases/cull_distance_clipped_triangle
+// .json, bit for bit), so the cull stage runs ahead of the clipper.
+bool cull_distances_pass(const Case& c, const TriangleRefs& tri);
+
+// cull_tri's face culling: whether draw's cull stage passes the triangle. det = cross(v0 - v2,
+// v1 - v2) from float window positions; det == 0 counts as back facing.
 bool cull_stage_passes(const Case& c, const TriangleRefs& tri);
 
 }  // namespace glrc::driver_models

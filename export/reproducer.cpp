@@ -218,6 +218,9 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
     components += ", " + n;
   out += "/* Per vertex: clip coordinates (x_c, y_c, z_c, w_c), exactly what gl_Position receives" +
          comment_text(components.empty() ? std::string() : ", then " + components.substr(2)) +
+         (c.distances.any() ? ", then gl_ClipDistance[" + std::to_string(c.distances.clip) +
+                                  "] and gl_CullDistance[" + std::to_string(c.distances.cull) + "]"
+                            : std::string()) +
          ". */\n";
   out += "static const float " + prefix + "_vertices[] = {";
   {
@@ -229,6 +232,8 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
         w.item(hex_literal(x));
       for (float x : c.vertices[v].values)
         w.item(hex_literal(x));
+      for (float x : c.vertices[v].distances)
+        w.item(hex_literal(x));
     }
     w.finish();
     out += list;
@@ -239,7 +244,9 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
       {"vertex_shader", &shaders.vertex},
       {"geometry_shader", &shaders.geometry},
       {"fragment_shader", &shaders.fragment},
-      {"fragment_after_geometry", &shaders.fragment_after_geometry}};
+      {"fragment_after_geometry", &shaders.fragment_after_geometry},
+      {"count_vertex_shader", &shaders.count_vertex},
+      {"count_geometry_shader", &shaders.count_geometry}};
   for (const auto& [field, text] : sources)
     out += "static const char " + prefix + "_" + field + "[] =\n    " + c_string(*text) + ";\n";
 
@@ -277,6 +284,8 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
   out += "    .varying_count = " + std::to_string(c.varyings.size()) +
          ", .varying_sizes = " + prefix + "_varying_sizes,\n";
   out += "    .component_count = " + std::to_string(c.component_count()) + ",\n";
+  out += "    .distance_count = " + std::to_string(c.distances.clip + c.distances.cull) +
+         ", .clip_planes = " + std::to_string(c.distances.enabled) + "u,\n";
   out += "    .vertex_count = " + std::to_string(c.vertices.size()) + ", .vertices = " + prefix +
          "_vertices,\n";
   out += "    .draw_count = " + std::to_string(draws_of(c).size()) + ", .draws = " + prefix +
@@ -285,8 +294,8 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
          "_geometry_shader,\n";
   out += "    .fragment_shader = " + prefix + "_fragment_shader,\n";
   out += "    .fragment_after_geometry = " + prefix + "_fragment_after_geometry,\n";
-  out += "    .count_vertex_shader = count_vertex_shader,\n";
-  out += "    .count_geometry_shader = count_geometry_shader,\n";
+  out += "    .count_vertex_shader = " + prefix + "_count_vertex_shader,\n";
+  out += "    .count_geometry_shader = " + prefix + "_count_geometry_shader,\n";
   out += "    .count_fragment_shader = count_fragment_shader,\n";
   out += "    .trace_fragment_shader = trace_fragment_shader};\n\n";
 }
@@ -388,9 +397,6 @@ void write_case(std::string& out, const Case& c, const CReproducerSetup& setup) 
   for (const std::string& n : names)
     out += ", " + c_string(n);
   out += "};\n";
-  out += "static const char count_vertex_shader[] =\n    " + c_string(setup.count_vertex) + ";\n";
-  out +=
-      "static const char count_geometry_shader[] =\n    " + c_string(setup.count_geometry) + ";\n";
   out +=
       "static const char count_fragment_shader[] =\n    " + c_string(setup.count_fragment) + ";\n";
   out +=

@@ -41,6 +41,9 @@ size_t reproducer_values(const Case& c);
 // pass-through geometry shader that supplies gl_PrimitiveID where a driver needs one.
 struct ReproducerShaders {
   std::string vertex, geometry, fragment, fragment_after_geometry;
+  // The fragment-count pass's vertex and pass-through geometry shaders: the scene's own, as
+  // they write its distances (gl::count_vertex_shader_source).
+  std::string count_vertex, count_geometry;
 };
 
 // What the C file needs besides the case and its expectation. The caller (cli/export.cpp) takes
@@ -54,8 +57,8 @@ struct CReproducerSetup {
   // chooses.
   Case first_draw;
   ReproducerShaders first_draw_shaders;
-  std::string count_vertex, count_geometry, count_fragment;  // the fragment-count pass's
-  std::string trace_fragment;                                // the fragment-trace pass's
+  std::string count_fragment;  // the fragment-count pass's
+  std::string trace_fragment;  // the fragment-trace pass's
   // Where the edge bits may excuse coverage, the traces a conforming implementation may give
   // (admitted() of ref::fragment_choices there), sorted by pixel: the C file judges GL's trace
   // against them as compare/ does (compare::TraceSource). A pixel not listed is not judged.

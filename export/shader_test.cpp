@@ -171,6 +171,7 @@ std::string require_section(const Case& c) {
   out += "GL_ARB_shader_storage_buffer_object\nGL_ARB_texture_storage\n";
   if (depth_test) out += "GL_ARB_shader_image_load_store\n";
   if (viewport_set(c)) out += "GL_ARB_viewport_array\n";
+  if (c.distances.cull) out += "GL_ARB_cull_distance\n";
   if (depth_test) out += "depthbuffer\n";
   return out + cat("SIZE ", std::to_string(c.fb_width), " ", std::to_string(c.fb_height), "\n");
 }
@@ -186,11 +187,26 @@ std::string vertex_shader(const Case& c) {
     attributes += cat(glsl_qualifier(v.interpolation), " out ", glsl_type(v.size), " v", n, ";\n");
     copies += cat("  v", n, " = a", n, ";\n");
   }
-  return fill_template(kShaderTestVertex,
-                       {{"ATTRIBUTES", attributes},
-                        {"TRIANGLE_LOCATION", std::to_string(c.varyings.size() + 1)},
-                        {"COPIES", copies}},
-                       {});
+  // The distances four to a vec4 attribute (a_distances<j>, component i % 4 of j = i / 4):
+  // with 7 varyings and 8 distances, one float attribute each would pass the 16 locations GL
+  // guarantees.
+  const Distances& d = c.distances;
+  for (int j = 0; j < (d.clip + d.cull + 3) / 4; ++j)
+    attributes += cat("in vec4 a_distances", std::to_string(j), ";\n");
+  if (d.clip) attributes += cat("out float gl_ClipDistance[", std::to_string(d.clip), "];\n");
+  if (d.cull) attributes += cat("out float gl_CullDistance[", std::to_string(d.cull), "];\n");
+  static constexpr const char* kComponent[] = {"x", "y", "z", "w"};
+  for (int i = 0; i < d.clip + d.cull; ++i)
+    copies += cat("  ", i < d.clip ? "gl_ClipDistance[" : "gl_CullDistance[",
+                  std::to_string(i < d.clip ? i : i - d.clip), "] = a_distances",
+                  std::to_string(i / 4), ".", kComponent[i % 4], ";\n");
+  return fill_template(
+      kShaderTestVertex,
+      {{"ATTRIBUTES", attributes},
+       {"TRIANGLE_LOCATION", std::to_string(c.varyings.size() + 1)},
+       {"COPIES", copies},
+       {"EXTENSIONS", d.cull ? "#extension GL_ARB_cull_distance : require\n" : ""}},
+      {});
 }
 
 // FREE's items: the free spans' starts and ends, lines of at most 96 characters after the
@@ -327,7 +343,11 @@ std::string vertex_data(const Case& c, const DrawRows& draws) {
   std::string out = "\n[vertex data]\na_clip/float/vec4";
   for (size_t k = 0; k < c.varyings.size(); ++k)
     out += cat(" a", std::to_string(k), "/float/", glsl_type(c.varyings[k].size));
-  out += " a_triangle/int/int\n";
+  out += " a_triangle/int/int";
+  const int distances = c.distances.clip + c.distances.cull, vec4s = (distances + 3) / 4;
+  for (int j = 0; j < vec4s; ++j)
+    out += cat(" a_distances", std::to_string(j), "/float/vec4");
+  out += "\n";
   for (const auto& [vi, t] : draws.rows) {
     const Vertex& v = c.vertices[vi];
     std::string row;
@@ -335,13 +355,20 @@ std::string vertex_data(const Case& c, const DrawRows& draws) {
       row += cat(decimal(x), " ");
     for (float x : v.values)
       row += cat(" ", decimal(x));
-    out += cat(row, "  ", std::to_string(t), "\n");
+    row += cat("  ", std::to_string(t));
+    for (int i = 0; i < 4 * vec4s; ++i)
+      row += cat(i % 4 == 0 ? "  " : " ", i < distances ? decimal(v.distances[size_t(i)]) : "0");
+    out += cat(row, "\n");
   }
   std::string zeros;
   for (int k = 0; k < c.component_count(); ++k)
     zeros += " 0";
+  // The resolve draw's distances 0: inside every clip plane, and not culled (0 is not negative).
+  std::string distance_zeros;
+  for (int i = 0; i < 4 * vec4s; ++i)
+    distance_zeros += i % 4 == 0 ? "  0" : " 0";
   for (const char* corner : {"-1 -1", "1 -1", "1 1", "-1 -1", "1 1", "-1 1"})
-    out += cat(corner, " 0 1 ", zeros, "  -1\n");
+    out += cat(corner, " 0 1 ", zeros, "  -1", distance_zeros, "\n");
   return out;
 }
 
@@ -355,6 +382,8 @@ std::string draws(const Case& c, const DrawRows& rows) {
         cat("viewport indexed 0 ", std::to_string(c.viewport.x), " ", std::to_string(c.viewport.y),
             " ", std::to_string(c.viewport.width), " ", std::to_string(c.viewport.height), "\n");
   if (c.provoking == ProvokingVertex::first) out += "provoking vertex first\n";
+  for (int i = 0; i < c.distances.clip; ++i)
+    if (c.distances.plane_enabled(i)) out += cat("enable GL_CLIP_PLANE", std::to_string(i), "\n");
   std::string draw_case;
   for (const std::string& command : rows.commands)
     draw_case += command;

@@ -115,6 +115,9 @@ class GlRenderer final : public Renderer {
       viewport_bounds_[0] = int(range[0]);
       viewport_bounds_[1] = int(range[1]);
     }
+    // GLSL's gl_CullDistance through the extension directive (shaders.cpp): listed by every
+    // GL 4.5 implementation, which must support it.
+    cull_distance_ = has_extension("GL_ARB_cull_distance");
     if (major * 10 + minor >= 45 || has_extension("GL_ARB_clip_control"))
       gl_.ClipControl =
           reinterpret_cast<PFNGLCLIPCONTROLPROC>(context_->proc_address("glClipControl"));
@@ -128,9 +131,9 @@ class GlRenderer final : public Renderer {
       context_->make_current();
       for (auto& [key, program] : programs_)
         gl_.DeleteProgram(program);
-      for (GLuint program : count_program_)
+      for (auto& [key, program] : count_programs_)
         if (program) gl_.DeleteProgram(program);
-      for (GLuint program : trace_program_)
+      for (auto& [key, program] : trace_programs_)
         if (program) gl_.DeleteProgram(program);
       framebuffer_.release();
       count_framebuffer_.release();
@@ -245,9 +248,10 @@ class GlRenderer final : public Renderer {
   void count_fragments(const Case& c) {
     const bool traces = traces_in_count_pass();
     const bool base = several_draws(c);
-    GLuint& program = count_program_[base];
+    GLuint& program =
+        count_programs_[std::string(base ? "base," : "") + distances_key(c.distances)];
     if (!program) {
-      const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c);
+      const GLuint vs = compile(GL_VERTEX_SHADER, count_vertex_shader_source(c.distances), c);
       const GLuint fs = compile(
           GL_FRAGMENT_SHADER,
           traces ? count_and_trace_fragment_shader_source(base) : count_fragment_shader_source(),
@@ -283,12 +287,14 @@ class GlRenderer final : public Renderer {
   // instrument, not the case's draw.
   void trace_fragments(const Case& c) {
     const bool base = several_draws(c);
-    GLuint& program = trace_program_[base];
+    GLuint& program =
+        trace_programs_[std::string(base ? "base," : "") + distances_key(c.distances)];
     if (!program) {
       std::vector<GLuint> shaders;
       try {
-        shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(), c));
-        shaders.push_back(compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(), c));
+        shaders.push_back(compile(GL_VERTEX_SHADER, count_vertex_shader_source(c.distances), c));
+        shaders.push_back(
+            compile(GL_GEOMETRY_SHADER, count_geometry_shader_source(c.distances), c));
         shaders.push_back(compile(GL_FRAGMENT_SHADER, trace_fragment_shader_source(base), c));
       } catch (...) {
         for (GLuint shader : shaders)
@@ -364,6 +370,14 @@ class GlRenderer final : public Renderer {
            std::to_string(viewport_bounds_[0]) + ", " + std::to_string(viewport_bounds_[1]) + "]");
     if (c.scissor && (c.scissor->width < 0 || c.scissor->height < 0))
       fail("scissor box of negative size");
+    if (c.distances.cull > 0 && !cull_distance_)
+      throw FeatureMissing("case '" + c.name + "': gl_CullDistance needs OpenGL 4.5 or " +
+                           "GL_ARB_cull_distance, which " + info_.renderer + " (" + info_.version +
+                           ") does not have");
+    for (const Vertex& v : c.vertices)
+      if (v.distances.size() != size_t(c.distances.clip + c.distances.cull))
+        fail("a vertex with " + std::to_string(v.distances.size()) + " distances, expected " +
+             std::to_string(c.distances.clip + c.distances.cull));
     if ((c.clip_origin != ClipOrigin::lower_left ||
          c.clip_depth != ClipDepth::negative_one_to_one) &&
         !gl_.ClipControl)
@@ -429,10 +443,9 @@ class GlRenderer final : public Renderer {
       gl_.DeleteProgram(program);
     programs_.clear();
     // The count pass traces only where no geometry shader is needed (traces_in_count_pass).
-    for (GLuint& program : count_program_) {
-      if (program) gl_.DeleteProgram(program);
-      program = 0;
-    }
+    for (auto& [key, program] : count_programs_)
+      gl_.DeleteProgram(program);
+    count_programs_.clear();
     info_.primitive_id_from_geometry_shader = on;
   }
 
@@ -499,6 +512,13 @@ class GlRenderer final : public Renderer {
   void set_state(const Case& c) {
     gl_.Viewport(c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height);
     gl_.DepthRange(double(c.depth_near), double(c.depth_far));  // exact: float ⊂ double
+    for (int i = 0; i < kMaxDistances; ++i) {  // GL_CLIP_DISTANCEi as the case enables them
+      const GLenum cap = GLenum(GL_CLIP_DISTANCE0 + i);
+      if (c.distances.plane_enabled(i))
+        gl_.Enable(cap);
+      else
+        gl_.Disable(cap);
+    }
     if (gl_.ClipControl)  // validate() refused a case that needs it where it is missing
       gl_.ClipControl(
           c.clip_origin == ClipOrigin::upper_left ? GL_UPPER_LEFT : GL_LOWER_LEFT,
@@ -550,14 +570,19 @@ class GlRenderer final : public Renderer {
 
   // Gives GL the case's vertices and indices, then issues its draws (issue_draws).
   void draw(const Case& c, CaseObjects& objects, GLuint program) {
-    // Interleaved: clip (4 floats), then every varying's components in Case order.
+    // Interleaved: clip (4 floats), then every varying's components in Case order, then the
+    // distances.
     const size_t components = size_t(c.component_count());
-    const size_t stride = 4 + components;
+    const size_t distances = size_t(c.distances.clip + c.distances.cull);
+    const size_t stride = 4 + components + distances;
     std::vector<float> data(c.vertices.size() * stride);
     for (size_t i = 0; i < c.vertices.size(); ++i) {
       std::memcpy(&data[i * stride], c.vertices[i].clip.data(), 4 * sizeof(float));
       if (components)
         std::memcpy(&data[i * stride + 4], c.vertices[i].values.data(), components * sizeof(float));
+      if (distances)
+        std::memcpy(&data[i * stride + 4 + components], c.vertices[i].distances.data(),
+                    distances * sizeof(float));
     }
     const std::vector<unsigned char> indices = index_bytes_of(c);
 
@@ -584,6 +609,8 @@ class GlRenderer final : public Renderer {
       attribute(GLuint(k + 1), c.varyings[k].size, offset);
       offset += size_t(c.varyings[k].size);
     }
+    for (size_t i = 0; i < distances; ++i)
+      attribute(GLuint(kDistanceLocation + int(i)), 1, offset + i);
     issue_draws(c, program);
   }
 
@@ -647,9 +674,10 @@ class GlRenderer final : public Renderer {
   Framebuffer framebuffer_, count_framebuffer_, trace_framebuffer_;
   bool drawn_ = false;  // both hold the last draw()'s case
   // Each for a case of one draw [0] and of several [1] (the uniform primitive_base).
-  GLuint count_program_[2] = {0, 0};
+  // By base (several draws) and distances (distances_key).
+  std::map<std::string, GLuint> count_programs_;
   // The fragment-trace pass's program, through the pass-through geometry shader.
-  GLuint trace_program_[2] = {0, 0};
+  std::map<std::string, GLuint> trace_programs_;
   // The case's draws (draws_of) and where each one's indices start in the index buffer, in
   // bytes: set by draw(), used by every pass of the case.
   std::vector<Draw> draws_;
@@ -658,6 +686,7 @@ class GlRenderer final : public Renderer {
   bool traced_ = false;  // the trace pass drawn for the case drawn last
   int max_draw_buffers_ = 8, max_renderbuffer_size_ = 0;
   int max_viewport_[2] = {0, 0};
+  bool cull_distance_ = false;  // GL_ARB_cull_distance
   // GL_VIEWPORT_BOUNDS_RANGE (GL 4.1); {0, 0} where the context has no such limit to ask.
   int viewport_bounds_[2] = {0, 0};
   bool set_provoking_vertex_ = true;  // Target::set_provoking_vertex

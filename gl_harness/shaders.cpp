@@ -34,13 +34,65 @@ std::string program_key(const Case& c) {
   std::string key = several_draws(c) ? "base," : "";
   for (const Varying& v : c.varyings)
     key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
-  return key;
+  return key + distances_key(c.distances);
 }
 
+std::string distances_key(const Distances& d) {
+  return d.any() ? "clip" + std::to_string(d.clip) + "cull" + std::to_string(d.cull) + "," : "";
+}
+
+namespace {
+
+// The version line, and the cull distance extension where the shader writes or reads
+// gl_CullDistance (a built-in of GLSL 4.50 only).
+std::string version_line(const Distances& d) {
+  return d.cull > 0 ? "#version 330 core\n#extension GL_ARB_cull_distance : require\n"
+                    : "#version 330 core\n";
+}
+
+// The vertex shader's distance inputs and their redeclared outputs, and the statements that
+// copy one to the other.
+std::string distance_declarations(const Distances& d) {
+  std::string s;
+  for (int i = 0; i < d.clip + d.cull; ++i)
+    s += "layout(location = " + std::to_string(kDistanceLocation + i) + ") in float a_distance" +
+         std::to_string(i) + ";\n";
+  if (d.clip) s += "out float gl_ClipDistance[" + std::to_string(d.clip) + "];\n";
+  if (d.cull) s += "out float gl_CullDistance[" + std::to_string(d.cull) + "];\n";
+  return s;
+}
+std::string distance_statements(const Distances& d) {
+  std::string s;
+  for (int i = 0; i < d.clip; ++i)
+    s += "  gl_ClipDistance[" + std::to_string(i) + "] = a_distance" + std::to_string(i) + ";\n";
+  for (int i = 0; i < d.cull; ++i)
+    s += "  gl_CullDistance[" + std::to_string(i) + "] = a_distance" + std::to_string(d.clip + i) +
+         ";\n";
+  return s;
+}
+// A geometry shader's: the redeclared outputs, and each vertex's copied from gl_in[i].
+std::string geometry_distance_declarations(const Distances& d) {
+  std::string s;
+  if (d.clip) s += "out float gl_ClipDistance[" + std::to_string(d.clip) + "];\n";
+  if (d.cull) s += "out float gl_CullDistance[" + std::to_string(d.cull) + "];\n";
+  return s;
+}
+std::string geometry_distance_statements(const Distances& d) {
+  std::string s;
+  for (int i = 0; i < d.clip; ++i)
+    s += "    gl_ClipDistance[" + std::to_string(i) + "] = gl_in[i].gl_ClipDistance[" +
+         std::to_string(i) + "];\n";
+  for (int i = 0; i < d.cull; ++i)
+    s += "    gl_CullDistance[" + std::to_string(i) + "] = gl_in[i].gl_CullDistance[" +
+         std::to_string(i) + "];\n";
+  return s;
+}
+
+}  // namespace
+
 std::string vertex_shader_source(const Case& c) {
-  std::string s =
-      "#version 330 core\n"
-      "layout(location = 0) in vec4 a_clip;\n";
+  std::string s = version_line(c.distances) + "layout(location = 0) in vec4 a_clip;\n" +
+                  distance_declarations(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
     std::string n = std::to_string(k);
@@ -50,7 +102,7 @@ std::string vertex_shader_source(const Case& c) {
          ";\n";
   }
   // Clip coordinates pass through untouched: the reference sees the very same bits.
-  s += "void main() {\n  gl_Position = a_clip;\n";
+  s += "void main() {\n  gl_Position = a_clip;\n" + distance_statements(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k)
     s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
   return s + "}\n";
@@ -59,10 +111,10 @@ std::string vertex_shader_source(const Case& c) {
 // One triangle in, the same triangle out, vertex order kept: the provoking vertex of a flat
 // varying stays the one the reference takes.
 std::string geometry_shader_source(const Case& c) {
-  std::string s =
-      "#version 330 core\n"
-      "layout(triangles) in;\n"
-      "layout(triangle_strip, max_vertices = 3) out;\n";
+  std::string s = version_line(c.distances) +
+                  "layout(triangles) in;\n"
+                  "layout(triangle_strip, max_vertices = 3) out;\n" +
+                  geometry_distance_declarations(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
     std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
@@ -71,7 +123,8 @@ std::string geometry_shader_source(const Case& c) {
     s += q + "out " + glsl_type(v.size) + " g" + n + ";\n";
   }
   s += "void main() {\n  for (int i = 0; i < 3; ++i) {\n";
-  s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n";
+  s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n" +
+       geometry_distance_statements(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k)
     s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
   return s + "    EmitVertex();\n  }\n  EndPrimitive();\n}\n";
@@ -104,20 +157,25 @@ std::string fragment_shader_source(const Case& c, bool after_geometry_shader) {
   return s;
 }
 
-std::string count_vertex_shader_source() {
-  return "#version 330 core\n"
-         "layout(location = 0) in vec4 a_clip;\n"
-         "void main() { gl_Position = a_clip; }\n";
+std::string count_vertex_shader_source(const Distances& d) {
+  if (!d.any())
+    return "#version 330 core\n"
+           "layout(location = 0) in vec4 a_clip;\n"
+           "void main() { gl_Position = a_clip; }\n";
+  return version_line(d) + "layout(location = 0) in vec4 a_clip;\n" + distance_declarations(d) +
+         "void main() {\n  gl_Position = a_clip;\n" + distance_statements(d) + "}\n";
 }
 
-std::string count_geometry_shader_source() {
-  return "#version 330 core\n"
+std::string count_geometry_shader_source(const Distances& d) {
+  return version_line(d) +
          "layout(triangles) in;\n"
-         "layout(triangle_strip, max_vertices = 3) out;\n"
+         "layout(triangle_strip, max_vertices = 3) out;\n" +
+         geometry_distance_declarations(d) +
          "void main() {\n"
          "  for (int i = 0; i < 3; ++i) {\n"
          "    gl_Position = gl_in[i].gl_Position;\n"
-         "    gl_PrimitiveID = gl_PrimitiveIDIn;\n"
+         "    gl_PrimitiveID = gl_PrimitiveIDIn;\n" +
+         geometry_distance_statements(d) +
          "    EmitVertex();\n"
          "  }\n"
          "  EndPrimitive();\n"

@@ -6,12 +6,16 @@
 // relies on:
 //   vertex inputs:    location 0 `a_clip` (vec4, the case's clip coordinates, passed to
 //                     gl_Position untouched); location k + 1 `a<k>`, varying k's components;
+//                     location kDistanceLocation + i `a_distance<i>` (float), the vertex's
+//                     distance i (Vertex::distances: the clip distances, then the cull
+//                     distances), copied to gl_ClipDistance / gl_CullDistance;
 //   varyings:         `v<k>` (vertex shader out), `g<k>` (geometry shader out), with varying
 //                     k's qualifier (smooth, flat, noperspective) and type (float .. vec4);
 //   fragment outputs: location k `o<k>` (vec4: varying k padded with zeros) for k < n, and
 //                     location n `o_primitive` (int: gl_PrimitiveID), n = varyings.size().
 // Names are generated rather than the case's: those are arbitrary strings and may collide
-// with GLSL keywords. Every shader is `#version 330 core`.
+// with GLSL keywords. Every shader is `#version 330 core` (with GL_ARB_cull_distance where the
+// case has cull distances).
 #pragma once
 
 #include <string>
@@ -20,6 +24,9 @@
 #include "core/primitive_assembly.hpp"
 
 namespace glrc::gl {
+
+// The first vertex input location of the distances: after the 7 varyings' (1..7).
+inline constexpr int kDistanceLocation = 8;
 
 // The GLSL type of a varying of `size` components: "float", "vec2", "vec3", "vec4". Throws
 // std::invalid_argument for a size outside 1..4 (the renderer rejects such a case first).
@@ -32,6 +39,8 @@ const char* glsl_qualifier(Interpolation i);
 // never on names or values, so a run of many cases compiles few programs. E.g. "4smooth,1flat,"
 // (every varying followed by a comma; "" for a case without varyings). Throws nothing.
 std::string program_key(const Case& c);
+// The part of a program key the distances make: "" without any, else e.g. "clip2cull1,".
+std::string distances_key(const Distances& d);
 
 // The vertex shader: a_clip to gl_Position, a<k> to v<k>. Throws std::invalid_argument for a
 // varying size outside 1..4.
@@ -52,10 +61,10 @@ extern const char* const kPrimitiveBase;
 // 1..4.
 std::string fragment_shader_source(const Case& c, bool after_geometry_shader);
 
-// The fragment-count pass's program, the same for every case: positions only (location 0
-// `a_clip`), and every fragment writes 1.0 to location 0 `o_count`, which additive blending
-// sums per pixel.
-std::string count_vertex_shader_source();
+// The fragment-count pass's program, the same for every case with the same distances:
+// positions (location 0 `a_clip`) and the distances (as vertex_shader_source has them), and
+// every fragment writes 1.0 to location 0 `o_count`, which additive blending sums per pixel.
+std::string count_vertex_shader_source(const Distances& d);
 std::string count_fragment_shader_source();
 // The fragment-trace pass's (drawn only where traces are asked, Renderer::fragment_traces, on a
 // driver that needs the geometry shader for gl_PrimitiveID): the
@@ -64,7 +73,7 @@ std::string count_fragment_shader_source();
 // which additive blending sums per pixel; through count_geometry_shader_source's pass-through
 // geometry shader where a driver needs one for gl_PrimitiveID
 // (GlInfo::primitive_id_from_geometry_shader).
-std::string count_geometry_shader_source();
+std::string count_geometry_shader_source(const Distances& d);
 // With `primitive_base` (a case of several draws), p is gl_PrimitiveID + the uniform
 // `primitive_base`, the draw's first triangle, as in fragment_shader_source.
 std::string trace_fragment_shader_source(bool primitive_base = false);

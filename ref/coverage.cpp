@@ -26,7 +26,7 @@ int sign128(int128 v) {
 }  // namespace
 
 CoverageTest::CoverageTest(const TriangleSetup& t, const Model& m, bool classifies)
-    : t_(t), clip_(depth_clip(t)), subpixel_bits_(m.subpixel_bits) {
+    : t_(t), clip_(clip_planes(t)), subpixel_bits_(m.subpixel_bits) {
   // The homogeneous path's coverage is the exact edges' signs: always made there.
   const bool exact_edges = classifies || t.path != CoveragePath::snapped;
   for (int i = 0; i < 3; ++i) {
@@ -52,8 +52,8 @@ bool CoverageTest::covers(int px, int py) const {
                                                    : edges_[i].sign(px, py);
     if (s < 0 || (s == 0 && !tie_inside_[i])) return false;
   }
-  if (clip_.crosses_near && clip_.near.sign(px, py) < 0) return false;
-  if (clip_.crosses_far && clip_.far.sign(px, py) < 0) return false;
+  for (const ClipPlane& p : clip_.planes)
+    if (p.sign.sign(px, py) < 0) return false;
   return true;
 }
 
@@ -88,8 +88,7 @@ std::optional<CoverageTest::CoveredRows> CoverageTest::covered_columns(int x0, i
 
 std::optional<CoverageTest::CoveredRows> CoverageTest::walk(bool columns, int l0, int l1, int s0,
                                                             int s1) const {
-  if (t_.path != CoveragePath::snapped || clip_.crosses_near || clip_.crosses_far)
-    return std::nullopt;
+  if (t_.path != CoveragePath::snapped || clip_.any()) return std::nullopt;
   // Every quotient the walk reaches is within lines·(|step_q| + 1) of its first one, and every
   // remainder below d: 64 bits hold them (negated too) when these bounds are below 2^62.
   constexpr int128 kFits = int128(1) << 62;
@@ -170,15 +169,16 @@ CoverageTest::Bands CoverageTest::bands(int px, int py, double freedom, double z
     band[i] = freedom * band_scale_[i];
     if (d[i] < -band[i]) return out;
   }
-  double near_d = INFINITY, far_d = INFINITY;
-  const double near_band = freedom + z_freedom * clip_.near_scale;
-  const double far_band = freedom + z_freedom * clip_.far_scale;
-  if (clip_.crosses_near && (near_d = clip_.near.distance(px, py)) < -near_band) return out;
-  if (clip_.crosses_far && (far_d = clip_.far.distance(px, py)) < -far_band) return out;
+  bool in_plane_band = false;
+  for (const ClipPlane& p : clip_.planes) {
+    const double plane_band = freedom + z_freedom * p.scale, plane_d = p.sign.distance(px, py);
+    if (plane_d < -plane_band) return out;
+    in_plane_band = in_plane_band || plane_d <= plane_band;
+  }
   out.reached = true;
   for (int i = 0; i < 3; ++i)
     if (d[i] <= band[i]) out.edges |= uint8_t(1u << i);
-  out.plane = near_d <= near_band || far_d <= far_band;
+  out.plane = in_plane_band;
   return out;
 }
 

@@ -115,7 +115,7 @@ class CoverageTest {
     int x0_ = 0, x1_ = -1;
   };
   // A CoveredRows for rows [y0, y1] and pixels [x0, x1] (y0 <= y1, x0 <= x1): on the snapped
-  // path, where no near or far plane is crossed (for_each_covered tests those per pixel), and
+  // path, where no clip plane cuts (for_each_covered tests those per pixel), and
   // where every number of the walk fits 64 bits (always, but for triangles reaching far into
   // the guard band); else nothing: for_each_covered.
   std::optional<CoveredRows> covered_rows(int y0, int y1, int x0, int x1) const;
@@ -132,7 +132,7 @@ class CoverageTest {
   // an edge then moves by at most freedom·(|n_x| + |n_y|) for its unit normal n, which is the
   // band around the exact (unsnapped) edge. snapping or shared: the centre is inside the
   // triangle grown by the bands, and within the band of an edge (shared: of an edge another
-  // triangle shares; snapping: of an outer edge, or of a near/far line, whose band is
+  // triangle shares; snapping: of an outer edge, or of a clip plane's line, whose band is
   // `freedom`). tie: the centre is exactly on an edge of this coverage test or of the exact
   // triangle, and not outside the others. unstable: the triangle's orientation is not decided
   // by the freedom; every centre inside it grown by the bands is marked edge::unstable.
@@ -140,7 +140,7 @@ class CoverageTest {
                    bool unstable = false, double z_freedom = 0) const;
   // The bands classify() tests, each apart: whether the centre of (px, py) is inside the
   // triangle grown by the bands (`reached`; outside, no conforming implementation covers it),
-  // and then which edges' bands (bit i: edge i) and whether a near or far plane's band hold it.
+  // and then which edges' bands (bit i: edge i) and whether a clip plane's band holds it.
   // Inside and in no band, every conforming implementation covers it.
   struct Bands {
     bool reached = false;
@@ -148,8 +148,8 @@ class CoverageTest {
     bool plane = false;
   };
   Bands bands(int px, int py, double freedom, double z_freedom = 0) const;
-  // (z_freedom: the z_n freedom at the pixel, PositionFreedom::z_clip_at, which widens the near
-  // and far planes' bands by z_freedom · DepthClip's scale pixels.)
+  // (z_freedom: the freedom of a clip plane's d/w_c at the pixel, PositionFreedom::z_clip_at,
+  // which widens each plane's band by z_freedom · ClipPlane::scale pixels.)
   // Whether classify(px, py, freedom, ...) is 0 for every freedom up to `largest` (the centre is
   // outside a band, or inside every band with nothing else to mark), so that the freedom at the
   // pixel need not be computed. False says nothing.
@@ -192,7 +192,7 @@ class CoverageTest {
   // covered_rows (lines l rows, s columns) or covered_columns (lines columns, s rows).
   std::optional<CoveredRows> walk(bool columns, int l0, int l1, int s0, int s1) const;
   const TriangleSetup& t_;
-  DepthClip clip_;
+  ClipPlanes clip_;
   int subpixel_bits_ = 0;               // the model's: t_.snapped's unit is 2^-subpixel_bits_ pixel
   std::array<SignEvaluator, 3> edges_;  // the exact (homogeneous) edges, on either path
   std::array<bool, 3> tie_inside_{};    // a centre exactly on edge i is covered
@@ -202,7 +202,7 @@ class CoverageTest {
 inline bool CoverageTest::classifies_nothing(int px, int py, double largest, bool unstable,
                                              double largest_z) const {
   // classify's own tests with the band of `largest`, which is the widest: a centre outside it
-  // is outside every narrower one; one inside every edge's and the near and far planes' bands
+  // is outside every narrower one; one inside every edge's and the clip planes' bands
   // from within is inside every narrower one too.
   bool inside = !unstable;
   for (int i = 0; i < 3; ++i) {
@@ -210,13 +210,8 @@ inline bool CoverageTest::classifies_nothing(int px, int py, double largest, boo
     if (d < -band) return true;
     inside = inside && d > band;
   }
-  if (clip_.crosses_near) {
-    const double d = clip_.near.distance(px, py), b = largest + largest_z * clip_.near_scale;
-    if (d < -b) return true;
-    inside = inside && d > b;
-  }
-  if (clip_.crosses_far) {
-    const double d = clip_.far.distance(px, py), b = largest + largest_z * clip_.far_scale;
+  for (const ClipPlane& p : clip_.planes) {
+    const double d = p.sign.distance(px, py), b = largest + largest_z * p.scale;
     if (d < -b) return true;
     inside = inside && d > b;
   }
@@ -238,9 +233,9 @@ void CoverageTest::for_each_covered(int py, int x0, int x1, F&& f) const {
   // x0 + k when e_i + a_i·k >= need_i (e > 0, or e >= 0 on a tie-inside edge: integers), so k
   // >= ceil((need - e)/a) for a > 0, k <= floor((e - need)/-a) for a < 0, and every k or none
   // for a = 0. Three 128-bit divisions per row, where stepping costs a few operations per pixel
-  // (a thin triangle's short rows keep stepping). The near and far planes are tested per pixel.
+  // (a thin triangle's short rows keep stepping). The clip planes are tested per pixel.
   constexpr int kWideRow = 32;
-  if (x1 - x0 >= kWideRow && !clip_.crosses_near && !clip_.crosses_far) {
+  if (x1 - x0 >= kWideRow && !clip_.any()) {
     // floor and ceiling of n/d for d > 0 (C++ division truncates toward zero).
     auto floor_div = [](int128 n, int128 d) { return n >= 0 ? n / d : -((-n + d - 1) / d); };
     auto ceil_div = [](int128 n, int128 d) { return n >= 0 ? (n + d - 1) / d : -(-n / d); };
@@ -264,8 +259,8 @@ void CoverageTest::for_each_covered(int py, int x0, int x1, F&& f) const {
       inside = inside && (e[i] > 0 || (e[i] == 0 && tie_inside_[i]));
       e[i] += t_.snapped_edges[i].a;
     }
-    if (inside && (!clip_.crosses_near || clip_.near.sign(px, py) >= 0) &&
-        (!clip_.crosses_far || clip_.far.sign(px, py) >= 0))
+    if (inside && std::all_of(clip_.planes.begin(), clip_.planes.end(),
+                              [&](const ClipPlane& p) { return p.sign.sign(px, py) >= 0; }))
       f(px);
   }
 }

@@ -119,7 +119,7 @@ class SignEvaluator {
 
  private:
   // Only in an evaluator built from a form: a default one (a CoverageTest's edges on the snapped
-  // path, a DepthClip's planes not crossed) allocates nothing, where a LinearForm's three
+  // path, no ClipPlanes to test) allocates nothing, where a LinearForm's three
   // rationals are three allocations (GMP's mpq_init makes the denominator's limb) and frees,
   // five evaluators for every triangle of a frame.
   std::optional<LinearForm> form_;

@@ -157,6 +157,7 @@ bool may_reach(const Reach& reach, const PixelIndex& pixels, const PixelBox& vie
 void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, int32_t p,
               const std::array<SharedEdge, 3>& shared, const Reach& near, const PixelIndex& pixels,
               const PixelBox& viewport, std::vector<Part>& out) {
+  if (t.discarded) return;  // by a cull distance: by every implementation
   const bool either_face = c.cull != CullFace::front_and_back;
   if (!t.has_edges) {
     // Zero area: drawn by no model, but a sliver of some implementation's (Sliver).

@@ -15,6 +15,8 @@ namespace {
 // A vertex in clip space with the absolute error bound of each component.
 struct ClipVertex {
   std::array<double, 4> p{}, e{};
+  // The enabled user clip planes' distances and their errors (empty for a case without).
+  std::vector<double> d, ed;
   int generation = 0;
 };
 
@@ -226,17 +228,37 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     for (int k = 0; k < 4; ++k)
       v.p[size_t(k)] = double(c.vertices[index].clip[size_t(k)]);
     v.p[1] = window_y_c(c, v.p[1]);  // GL_UPPER_LEFT: the y planes are symmetric
+    for (int k = 0; k < c.distances.clip; ++k)
+      if (c.distances.plane_enabled(k)) v.d.push_back(c.vertices[index].distances[size_t(k)]);
+    v.ed.assign(v.d.size(), 0.0);
     poly.push_back(v);
   }
+  const int planes = 6 + int(poly.front().d.size());
   // Signed distances to the six planes of the view volume, >= 0 inside, in Mesa's order:
-  // x >= -w_c, x <= w_c, y likewise, then z (the near plane as glClipControl puts it).
+  // x >= -w_c, x <= w_c, y likewise, then z (the near plane as glClipControl puts it), then
+  // the enabled user clip planes.
   auto distance = [&](const ClipVertex& v, int plane) {
     const double w = v.p[3];
+    if (plane >= 6) return v.d[size_t(plane - 6)];
     if (plane == 4) return near_distance(c, v.p[2], w);
     const size_t axis = size_t(plane / 2);
     return plane % 2 == 0 ? w + v.p[axis] : w - v.p[axis];
   };
-  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
+  for (int plane = 0; plane < planes && !poly.empty(); ++plane) {
+    if (plane == 6 && z_clip) {
+      // The polygon the user clip planes cut (after the view volume, as in Mesa's clipper):
+      // the sign of a distance d at a vertex may differ from the exact one within its error
+      // e_d, e_d/w_c in units of d/w_c, the largest over the planes. Added to the near and
+      // far planes' points below: the envelope over both bounds each.
+      const Viewport& vp = c.viewport;
+      for (const ClipVertex& v : poly) {
+        const double w = v.p[3];
+        if (!(w > 0)) continue;
+        const double e = *std::max_element(v.ed.begin(), v.ed.end());
+        z_clip->push_back({vp.x + vp.width / 2.0 * (1 + v.p[0] / w),
+                           vp.y + vp.height / 2.0 * (1 + v.p[1] / w), e / w});
+      }
+    }
     if (plane == 4 && z_clip) {
       // The polygon the near and far planes cut: each vertex's z_c and w_c carry e_z and e_w,
       // so the sign of w_c ∓ z_c may differ from the exact one within (e_z + e_w)/w_c in z_n
@@ -269,6 +291,14 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
           m.e[k] = (1 - s) * a.e[k] + s * b.e[k] +
                    kFloatUnitRoundoff *
                        (kClipRoundings * step * std::fabs(b.p[k] - a.p[k]) + std::fabs(m.p[k]));
+        }
+        // The clip distances are interpolated as the position is (Mesa: with the same t).
+        m.d.resize(a.d.size()), m.ed.resize(a.d.size());
+        for (size_t k = 0; k < a.d.size(); ++k) {
+          m.d[k] = a.d[k] + s * (b.d[k] - a.d[k]);
+          m.ed[k] = (1 - s) * a.ed[k] + s * b.ed[k] +
+                    kFloatUnitRoundoff *
+                        (kClipRoundings * step * std::fabs(b.d[k] - a.d[k]) + std::fabs(m.d[k]));
         }
         out.push_back(m);
       }
@@ -313,8 +343,11 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   for (uint32_t index : t.index) {
     const auto& p = c.vertices[index].clip;
     const double w = p[3];
-    clipped = clipped || !inside_view_volume(c, p);
-    depth_clipped = depth_clipped || !(w > 0) || near_distance(c, p[2], w) < 0 || p[2] > w;
+    // A user clip plane cuts as the near and far planes do (z_clip_at holds both's freedom).
+    const bool user_clipped = outside_clip_distances(c, c.vertices[index]);
+    clipped = clipped || !inside_view_volume(c, p) || user_clipped;
+    depth_clipped =
+        depth_clipped || !(w > 0) || near_distance(c, p[2], w) < 0 || p[2] > w || user_clipped;
     if (!(w > 0)) {
       in_guard_band = false;
       continue;

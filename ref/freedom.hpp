@@ -97,7 +97,9 @@ struct PolygonVertex {
 // and far), each vertex with its freedom for an implementation reporting `subpixel_bits`.
 // Empty when nothing of the triangle is left. With `z_clip`, also the vertices of the polygon
 // clipped against x and y only, as {x_w, y_w, (e_z + e_w)/w_c} (window pixels, z_n units; vertices
-// with w_c <= 0 left out): the freedom of the near and far planes' cut (PositionFreedom). With
+// with w_c <= 0 left out): the freedom of the near and far planes' cut (PositionFreedom); and,
+// where the case enables clip distances, the vertices of the polygon the view volume leaves, as
+// {x_w, y_w, max e_d/w_c} (units of d/w_c), the freedom of the user planes' cut. With
 // `reaches_eye`, whether the polygon left has a vertex at w_c <= 0 (then it is returned empty:
 // the triangle's plane holds the eye, its window image is a line, and that vertex's window
 // position, x_c/w_c with w_c = 0, is not defined), or one whose w_c is no larger than the

@@ -695,6 +695,7 @@ Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
       const TriangleSetup& t = *setups[size_t(p)];
       // Zero area: drawn by no model, but a sliver of some implementation's (Sliver). Its
       // facing is either, so only culling both faces rules it out.
+      if (t.discarded) return;  // by a cull distance: by every implementation
       if (allowance && !t.has_edges && c.cull != CullFace::front_and_back) {
         const PositionFreedom freedom(c, t, s.bits);
         if (freedom.reaches_eye() || !freedom.sliver_sources().empty())

@@ -238,7 +238,7 @@ void set_up(const Case& c, const Model& m, TriangleSetup& t) {
 
   if (facing_sign == 0) return;  // zero snapped area: this model draws nothing
   t.front_facing = ((facing_sign > 0) != facing_reversed(c)) == (c.front_face == FrontFace::ccw);
-  if (culled(c, t.front_facing)) return;
+  if (t.discarded || culled(c, t.front_facing)) return;
   t.drawn = true;
 }
 
@@ -254,6 +254,7 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
   t.primitive = primitive;
   t.index = c.triangles[size_t(primitive)];
   t.clip_depth = c.clip_depth;
+  t.discarded = c.distances.cull > 0 && culled_by_distance(c, t.index);
   std::array<WindowCorners::Pointer, 3> corners;
   for (size_t i = 0; i < 3; ++i) {
     const uint32_t k = t.index[i];

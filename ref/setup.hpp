@@ -77,6 +77,9 @@ struct TriangleSetup {
   std::array<uint32_t, 3> index{};                        // into Case::vertices
   ClipDepth clip_depth = ClipDepth::negative_one_to_one;  // the case's: where the near plane is
   bool drawn = false;                                     // false: zero area, or culled
+  // Discarded by a cull distance (culled_by_distance): drawn by no implementation, whatever
+  // its area or facing.
+  bool discarded = false;
   // The exact triangle has area: edges and box are set, even when it is not drawn (a
   // triangle culled or of zero snapped area may still be drawn by another implementation).
   bool has_edges = false;

@@ -93,6 +93,9 @@ WindowVertex to_window(const Vertex& v, const Case& c) {
   }
   for (mpq_class* q : {&out.x_h, &out.y_h, &out.wz_w})
     q->canonicalize();
+  for (int i = 0; i < c.distances.clip; ++i)
+    if (c.distances.plane_enabled(i))
+      out.clip_distances.emplace_back(double(v.distances[size_t(i)]));
   return out;
 }
 

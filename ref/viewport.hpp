@@ -6,6 +6,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <vector>
 
 #include "core/case.hpp"
 
@@ -17,6 +18,9 @@ struct WindowVertex {
   // w_c·z_w = z_c·(f−n)/2 + w_c·(n+f)/2: glDepthRange applied to z_n = z_c/w_c, times w_c
   // (z_c·(f−n) + w_c·n under GL_ZERO_TO_ONE). y_h reads y_c negated under GL_UPPER_LEFT.
   mpq_class wz_w;
+  // The enabled user clip planes' gl_ClipDistance (Distances::plane_enabled), in plane order;
+  // empty for a case without. Linear in clip space as x_h, y_h and w_c are.
+  std::vector<mpq_class> clip_distances;
 };
 
 WindowVertex to_window(const Vertex& v, const Case& c);

@@ -2,7 +2,7 @@
 # Installs, builds and runs the conformance suite on the system Mesa: llvmpipe and softpipe,
 # through OSMesa and through EGL, and zink (GL on Vulkan, on lavapipe) through EGL (OSMesa
 # cannot run zink), with the known driver bugs in cases/known-failures.txt (every driver) or
-# cases/known-failures-<driver>.txt where there is one (softpipe's own bugs, and those).
+# cases/known-failures-<driver>.txt where there is one (softpipe's and zink's own bugs, and those).
 # Results go to out/<backend>-<driver>/. Exit 1 if any run has an unexpected result.
 set -euo pipefail
 cd "$(dirname "$0")/.."

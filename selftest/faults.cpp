@@ -333,6 +333,15 @@ std::vector<Fault> make_faults() {
                           c.front_face == FrontFace::ccw ? FrontFace::cw : FrontFace::ccw;
                   },
                   nullptr});
+  list.push_back({"clip-distance-sign-flipped",
+                  "every gl_ClipDistance taken with the wrong sign: the part a user clip plane "
+                  "keeps is discarded and the part it discards drawn",
+                  [](Case& c) {
+                    for (Vertex& v : c.vertices)
+                      for (int i = 0; i < c.distances.clip && size_t(i) < v.distances.size(); ++i)
+                        v.distances[size_t(i)] = -v.distances[size_t(i)];
+                  },
+                  nullptr});
   list.push_back({"zero-to-one-ignored",
                   "glClipControl's GL_ZERO_TO_ONE ignored: the near plane stays at z_c = -w_c and "
                   "z_w = z_d·(f - n)/2 + (n + f)/2",

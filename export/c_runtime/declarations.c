@@ -37,6 +37,8 @@ typedef void (*gl_proc)(void);
 #define GL_NOTEQUAL 0x0205
 #define GL_GEQUAL 0x0206
 #define GL_ALWAYS 0x0207
+#define GL_CLIP_DISTANCE0 0x3000
+#define DISTANCE_LOCATION 8 /* gl_harness/shaders.hpp: kDistanceLocation */
 #define GL_LOWER_LEFT 0x8CA1
 #define GL_UPPER_LEFT 0x8CA2
 #define GL_NEGATIVE_ONE_TO_ONE 0x935E
@@ -242,8 +244,11 @@ struct scene {
   int varying_count;
   const int *varying_sizes; /* 1 to 4 components each */
   int component_count;      /* the sum of the sizes */
+  int distance_count;       /* gl_ClipDistance then gl_CullDistance values per vertex */
+  unsigned clip_planes;     /* bit i: GL_CLIP_DISTANCEi enabled */
   int vertex_count;
-  const float *vertices;    /* per vertex: clip x, y, z, w, then every varying's components */
+  const float *vertices;    /* per vertex: clip x, y, z, w, every varying's components, then
+                               the distances */
   int draw_count;
   const struct draw *draws;
   const char *vertex_shader, *geometry_shader, *fragment_shader, *fragment_after_geometry;

@@ -318,7 +318,8 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   static const GLint no_primitive[4] = {-1, 0, 0, 0};
   const int n = s->varying_count, w = s->width, h = s->height;
   const size_t pixels = (size_t)w * (size_t)h;
-  const GLsizei stride = (GLsizei)((4 + s->component_count) * sizeof(float));
+  const GLsizei stride =
+      (GLsizei)((4 + s->component_count + s->distance_count) * sizeof(float));
   GLenum formats[9], count_formats[2] = {GL_R32F, GL_RG32F};
   GLuint program = 0, count_program = 0, trace_program = 0, framebuffer = 0, count_framebuffer = 0;
   GLuint renderbuffers[10], count_renderbuffers[3], vertex_array = 0, buffers[2] = {0, 0};
@@ -376,6 +377,12 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
     glDisable(GL_CULL_FACE);
   }
   glFrontFace(s->front_face);
+  for (k = 0; k < 8; ++k) {
+    if (s->clip_planes >> k & 1u)
+      glEnable((GLenum)(GL_CLIP_DISTANCE0 + k));
+    else
+      glDisable((GLenum)(GL_CLIP_DISTANCE0 + k));
+  }
   glProvokingVertex(s->provoking_vertex);
   for (k = 0; k < (int)(sizeof caps_off / sizeof caps_off[0]); ++k) glDisable(caps_off[k]);
   glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
@@ -389,7 +396,8 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
     glScissor(s->scissor[1], s->scissor[2], s->scissor[3], s->scissor[4]);
   }
 
-  /* Interleaved: clip coordinates (attribute 0), then each varying (attribute k + 1). */
+  /* Interleaved: clip coordinates (attribute 0), each varying (attribute k + 1), then each
+     distance (attribute DISTANCE_LOCATION + k). */
   glGenVertexArrays(1, &vertex_array);
   glBindVertexArray(vertex_array);
   glGenBuffers(2, buffers);
@@ -404,6 +412,11 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
     glVertexAttribPointer((GLuint)(k + 1), s->varying_sizes[k], GL_FLOAT, GL_FALSE, stride,
                           (const void *)(offset * sizeof(float)));
     offset += (size_t)s->varying_sizes[k];
+  }
+  for (k = 0; k < s->distance_count; ++k) {
+    glEnableVertexAttribArray((GLuint)(DISTANCE_LOCATION + k));
+    glVertexAttribPointer((GLuint)(DISTANCE_LOCATION + k), 1, GL_FLOAT, GL_FALSE, stride,
+                          (const void *)((offset + (size_t)k) * sizeof(float)));
   }
   draw_all(s, program);
   if (!gl_ok("drawing")) goto done;

@@ -140,7 +140,8 @@ TEST_F(CaseFileTest, ControlCharactersInKeysAndValuesAreEscaped) {
   EXPECT_EQ(msg,
             file +
                 R"(: a\u0000b\u001Fc: expected one of the keys description, framebuffer, )"
-                R"(viewport, scissor, depth_range, state, varyings, transform, vertices, )"
+                R"(viewport, scissor, depth_range, state, varyings, enabled_clip_distances, )"
+                R"(transform, vertices, )"
                 R"(triangles, )"
                 R"(draws, tolerance, work_arounds, written_by, got unknown key "a\u0000b\u001Fc")");
   EXPECT_EQ(error_of(R"({"description": "two\nlines\u0007"})"),
@@ -220,12 +221,12 @@ TEST_F(CaseFileTest, LongKeysAndDeepPathsAreCutInMessages) {
   const std::string file = (dir_ / "case.json").string();
   const std::string key(10000, 'k');
   const std::string msg = error_of(R"({"description": "d", ")" + key + R"(": 1})");
-  EXPECT_EQ(msg,
-            file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
-                ": expected one of the keys description, framebuffer, viewport, scissor, "
-                "depth_range, state, varyings, transform, vertices, triangles, draws, tolerance, "
-                "work_arounds, written_by, got unknown key \"" +
-                std::string(60, 'k') + "...\"");
+  EXPECT_EQ(msg, file + ": " + std::string(100, 'k') + "..." + std::string(100, 'k') +
+                     ": expected one of the keys description, framebuffer, viewport, scissor, "
+                     "depth_range, state, varyings, enabled_clip_distances, transform, vertices, "
+                     "triangles, draws, tolerance, "
+                     "work_arounds, written_by, got unknown key \"" +
+                     std::string(60, 'k') + "...\"");
   // 1e400 inside 100,000 nested arrays: the path is vertices[0][0]...[0].
   const std::string deep =
       error_of(R"({"description": "d", "vertices": )" + std::string(100000, '[') + "1e400");

@@ -321,16 +321,19 @@ TEST(ExportLibrary, EmbedsTheHarnessShadersAndExactFloats) {
   const glrc::Expectation e = glrc::check::expectation_for(c, o, 8);
   const glrc::Tolerance t = glrc::check::tolerance_for(c, o, 8);
   glrc::reproducer::CReproducerSetup setup;
-  setup.shaders = {glrc::gl::vertex_shader_source(c), glrc::gl::geometry_shader_source(c),
+  setup.shaders = {glrc::gl::vertex_shader_source(c),
+                   glrc::gl::geometry_shader_source(c),
                    glrc::gl::fragment_shader_source(c, false),
-                   glrc::gl::fragment_shader_source(c, true)};
+                   glrc::gl::fragment_shader_source(c, true),
+                   glrc::gl::count_vertex_shader_source(c.distances),
+                   glrc::gl::count_geometry_shader_source(c.distances)};
   setup.first_draw = glrc::gl::first_draw_case();
   setup.first_draw_shaders = {glrc::gl::vertex_shader_source(setup.first_draw),
                               glrc::gl::geometry_shader_source(setup.first_draw),
                               glrc::gl::fragment_shader_source(setup.first_draw, false),
-                              glrc::gl::fragment_shader_source(setup.first_draw, true)};
-  setup.count_vertex = glrc::gl::count_vertex_shader_source();
-  setup.count_geometry = glrc::gl::count_geometry_shader_source();
+                              glrc::gl::fragment_shader_source(setup.first_draw, true),
+                              glrc::gl::count_vertex_shader_source(setup.first_draw.distances),
+                              glrc::gl::count_geometry_shader_source(setup.first_draw.distances)};
   setup.count_fragment = glrc::gl::count_fragment_shader_source();
   setup.trace_fragment = glrc::gl::trace_fragment_shader_source();
   setup.file_name = "repro.c";

@@ -44,7 +44,7 @@ TEST(Shaders, EveryShaderIsGlsl330Core) {
   const Case c = three_varyings();
   for (const std::string& s : {vertex_shader_source(c), geometry_shader_source(c),
                                fragment_shader_source(c, false), fragment_shader_source(c, true),
-                               count_vertex_shader_source(), count_geometry_shader_source(),
+                               count_vertex_shader_source({}), count_geometry_shader_source({}),
                                count_fragment_shader_source(), trace_fragment_shader_source()})
     EXPECT_EQ(s.rfind("#version 330 core\n", 0), 0u) << s;
 }
@@ -128,7 +128,7 @@ TEST(Shaders, CaseWithoutVaryingsWritesOnlyThePrimitiveIdAtLocationZero) {
 }
 
 TEST(Shaders, CountPassTakesPositionsAndWritesOnePerFragment) {
-  const std::string vs = count_vertex_shader_source(), fs = count_fragment_shader_source();
+  const std::string vs = count_vertex_shader_source({}), fs = count_fragment_shader_source();
   EXPECT_TRUE(has(vs, "layout(location = 0) in vec4 a_clip;\n")) << vs;
   EXPECT_TRUE(has(vs, "gl_Position = a_clip;")) << vs;
   EXPECT_TRUE(has(fs, "layout(location = 0) out float o_count;\n")) << fs;
@@ -137,8 +137,35 @@ TEST(Shaders, CountPassTakesPositionsAndWritesOnePerFragment) {
   const std::string trace = trace_fragment_shader_source();
   EXPECT_TRUE(has(trace, "layout(location = 0) out vec2 o_trace;\n")) << trace;
   EXPECT_TRUE(has(trace, "float(gl_PrimitiveID + 1)")) << trace;
-  const std::string gs = count_geometry_shader_source();
+  const std::string gs = count_geometry_shader_source({});
   EXPECT_TRUE(has(gs, "gl_PrimitiveID = gl_PrimitiveIDIn;")) << gs;
+}
+
+// The distances: inputs after the varyings', the redeclared built-ins, each copied; in the
+// case's program, the count pass's and both pass-through geometry shaders; the cull distance
+// extension only where the case has cull distances.
+TEST(Shaders, DistancesAreWrittenByEveryVertexStage) {
+  Case c = three_varyings();
+  c.distances = {2, 1, 1u};
+  const std::string vs = vertex_shader_source(c), count = count_vertex_shader_source(c.distances);
+  for (const std::string& s : {vs, count}) {
+    EXPECT_EQ(s.rfind("#version 330 core\n#extension GL_ARB_cull_distance : require\n", 0), 0u)
+        << s;
+    EXPECT_TRUE(has(s, "layout(location = 8) in float a_distance0;\n")) << s;
+    EXPECT_TRUE(has(s, "layout(location = 10) in float a_distance2;\n")) << s;
+    EXPECT_TRUE(has(s, "out float gl_ClipDistance[2];\n")) << s;
+    EXPECT_TRUE(has(s, "out float gl_CullDistance[1];\n")) << s;
+    EXPECT_TRUE(has(s, "  gl_ClipDistance[1] = a_distance1;\n")) << s;
+    EXPECT_TRUE(has(s, "  gl_CullDistance[0] = a_distance2;\n")) << s;
+  }
+  for (const std::string& gs :
+       {geometry_shader_source(c), count_geometry_shader_source(c.distances)}) {
+    EXPECT_TRUE(has(gs, "gl_ClipDistance[1] = gl_in[i].gl_ClipDistance[1];")) << gs;
+    EXPECT_TRUE(has(gs, "gl_CullDistance[0] = gl_in[i].gl_CullDistance[0];")) << gs;
+  }
+  EXPECT_NE(program_key(c), program_key(three_varyings()));
+  c.distances.cull = 0;
+  EXPECT_EQ(vertex_shader_source(c).find("#extension"), std::string::npos);
 }
 
 TEST(Shaders, GlslTypesAndQualifiers) {

@@ -49,8 +49,7 @@ size_t check_spans(const Case& c, const Model& m, double freedom, size_t& walked
   // other than 0, between columns 5 and 30).
   std::optional<CoverageTest::CoveredRows> walk = coverage.covered_rows(0, kSize - 1, 0, kSize - 1);
   std::optional<CoverageTest::CoveredRows> part_walk = coverage.covered_rows(7, kSize - 1, 5, 30);
-  EXPECT_EQ(walk.has_value(), t.path == CoveragePath::snapped && !depth_clip(t).crosses_near &&
-                                  !depth_clip(t).crosses_far);
+  EXPECT_EQ(walk.has_value(), t.path == CoveragePath::snapped && !clip_planes(t).any());
   walked += walk.has_value();
   if (left_out && walk) *left_out += size_t(3 - walk->edges()) + size_t(3 - part_walk->edges());
   // for_each_row gives the runs next() gives, row after row.

@@ -15,8 +15,8 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, SeventeenInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 17u);
+TEST(Faults, EighteenInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 18u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
   EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
   EXPECT_EQ(faults()[8].name, "shared-horizontal-edge-drawn-twice");
@@ -27,6 +27,7 @@ TEST(Faults, SeventeenInAFixedOrder) {
   EXPECT_EQ(faults()[13].name, "fan-hub-not-reset");
   EXPECT_EQ(faults()[14].name, "scissor-box-one-pixel-wider");
   EXPECT_EQ(faults()[15].name, "upper-left-facing-not-reversed");
+  EXPECT_EQ(faults()[16].name, "clip-distance-sign-flipped");
   EXPECT_EQ(faults().back().name, "zero-to-one-ignored");
 }
 

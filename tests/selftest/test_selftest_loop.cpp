@@ -37,11 +37,12 @@ class ReferenceRenderer : public gl::Renderer {
 };
 
 TEST(SelftestLoop, APerfectImplementationCatchesEveryFaultAndFailsNothingClean) {
-  const std::vector<Case> suite = cases(
-      {"face_on", "flat_provoking_last", "shared_centres_grid", "depth_range_partial",
-       "noperspective_smooth", "fan_subpixel_rim_shared_edge", "depth_contest_hidden",
-       "invariance_copy_less", "strip_flat_provoking_first", "fan_restart_index_ushort",
-       "scissor_inside", "clip_control_upper_left_cull_back", "clip_control_zero_to_one_near"});
+  const std::vector<Case> suite =
+      cases({"face_on", "flat_provoking_last", "shared_centres_grid", "depth_range_partial",
+             "noperspective_smooth", "fan_subpixel_rim_shared_edge", "depth_contest_hidden",
+             "invariance_copy_less", "strip_flat_provoking_first", "fan_restart_index_ushort",
+             "scissor_inside", "clip_control_upper_left_cull_back", "clip_control_zero_to_one_near",
+             "clip_distance_one_plane"});
   ReferenceRenderer r;
   size_t steps = 0;
   SelftestProgress progress;
