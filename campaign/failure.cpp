@@ -53,17 +53,9 @@ std::vector<Failure> failures_of(const Case& c, const CaseResult& r) {
   };
   for (const ChannelStats& ch : r.channels)
     if (ch.non_finite > 0) add(FailureClass::non_finite, channel_kind(c, ch.name));
-  // Coverage drawn wrong where the case writes a clip distance it does not enable is told
-  // apart: an implementation that clips by every written distance (zink on lavapipe,
-  // cases/known-failures-zink.txt) fails every such case, and a baseline naming that must not
-  // hide its other coverage failures.
-  const bool disabled =
-      c.distances.clip > 0 && c.distances.enabled != (1u << c.distances.clip) - 1u;
-  const std::string coverage_detail = disabled ? "disabled_clip_distance" : "";
-  if (r.coverage.gaps > 0) add(FailureClass::gap, coverage_detail);
-  if (r.coverage.double_hits > 0) add(FailureClass::double_hit, coverage_detail);
-  if (r.coverage.fill_rule > 0 && r.coverage.failures > 0)
-    add(FailureClass::fill_rule, coverage_detail);
+  if (r.coverage.gaps > 0) add(FailureClass::gap, "");
+  if (r.coverage.double_hits > 0) add(FailureClass::double_hit, "");
+  if (r.coverage.fill_rule > 0 && r.coverage.failures > 0) add(FailureClass::fill_rule, "");
   // Under strict coverage the boundary's mismatches fail too: their own class, not value/other.
   if (!r.tolerance.allow_boundary) {
     if (r.coverage.within_snapping > 0) add(FailureClass::boundary, "within_snapping");
@@ -96,14 +88,11 @@ std::optional<std::string> failure_name_problem(std::string_view name) {
       return std::nullopt;
     if (kind == FailureClass::boundary && (detail == "within_snapping" || detail == "exact_tie"))
       return std::nullopt;
-    const bool coverage = kind == FailureClass::gap || kind == FailureClass::double_hit ||
-                          kind == FailureClass::fill_rule;
-    if (coverage && detail == "disabled_clip_distance") return std::nullopt;
   }
   return std::string(
-      "a campaign failure's name: crash, timeout, error, gap, double_hit, fill_rule (each "
-      "alone or with _disabled_clip_distance), non_finite_<kind> or value_<kind> (kind: depth, "
-      "smooth, flat, noperspective, other), boundary_within_snapping or boundary_exact_tie");
+      "a campaign failure's name: crash, timeout, error, gap, double_hit, fill_rule, "
+      "non_finite_<kind> or value_<kind> (kind: depth, smooth, flat, "
+      "noperspective, other), boundary_within_snapping or boundary_exact_tie");
 }
 
 std::string describe(const Failure& f, const CaseResult& r) {

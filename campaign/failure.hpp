@@ -59,8 +59,7 @@ struct Failure {
   FailureClass kind = FailureClass::value;
   // What else tells this failure apart, independent of the case's size and names: for
   // non_finite and value the channel's kind ("depth", or the varying's qualifier: "smooth",
-  // "flat", "noperspective"); for gap, double_hit and fill_rule "disabled_clip_distance" where
-  // the case writes a clip distance it does not enable; empty for the others.
+  // "flat", "noperspective"); empty for the others.
   std::string detail;
   std::string signature() const;  // "non_finite/noperspective", "gap", "crash"
   bool operator==(const Failure&) const = default;

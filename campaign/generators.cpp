@@ -782,7 +782,10 @@ Case window(Random& r) {
 
 // Clip and cull distances: 1 to 8 of them together, each clip distance a random plane through
 // the triangles' region (a·x_c + b·y_c + c·z_c + d·w_c, or values on and near 0 at the
-// vertices), some planes written but not enabled; cull distances negative at a random subset
+// vertices), every written one enabled: a plane written but not enabled is left to the suite's
+// cases, as every Mesa driver here clips by it where none is enabled (and zink always), a known
+// bug (cases/known-failures.txt) that would drown what else a campaign finds; cull distances
+// negative at a random subset
 // of vertices (all three now and then, exactly 0 too); triangles near the window and beyond
 // its clip planes, strips and fans now and then; smooth, flat and noperspective varyings
 // (noperspective only where nothing is clipped, as in assembly: the known clipper bug).
@@ -813,8 +816,12 @@ Case distances(Random& r) {
   c.distances.clip = int(r.below(kMaxDistances + 1));
   c.distances.cull = int(r.below(uint64_t(kMaxDistances - c.distances.clip) + 1));
   if (!c.distances.any()) c.distances.clip = 1;
-  c.distances.enabled = uint32_t(r.below(uint64_t(1) << c.distances.clip));
-  if (r.chance(0.6)) c.distances.enabled = (1u << c.distances.clip) - 1u;  // all written
+  // Never cull distances running from the packed clip-and-cull array's first vec4 into its
+  // second (1 + 4, 2 + 3, 3 + 2 or more): zink draws nothing then, a known bug
+  // (cases/cull_distances_after_clip_distances.json) that would drown the rest of a campaign.
+  if (c.distances.clip > 0 && c.distances.clip < 4 && c.distances.clip + c.distances.cull > 4)
+    c.distances.cull = 4 - c.distances.clip;
+  c.distances.enabled = (1u << c.distances.clip) - 1u;
   for (int k = 0; k < c.distances.clip; ++k) {
     const bool plane = r.chance(0.8);
     std::array<double, 4> coefficients{};
@@ -888,7 +895,7 @@ const std::vector<Generator>& generators() {
        window},
       {"distances",
        "gl_ClipDistance and gl_CullDistance: up to 8 together, planes through the triangles, "
-       "planes written but not enabled, cull distances negative at some or all vertices",
+       "cull distances negative at some or all vertices",
        distances},
   };
   return all;

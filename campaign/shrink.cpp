@@ -209,7 +209,7 @@ class Shrinker {
     bool progress = false;
     for (bool kept = true; kept && budget_left();) {
       const Case& m = out.minimal;
-      kept = first_failing(9, [&](size_t i) -> std::optional<Case> {
+      kept = first_failing(8, [&](size_t i) -> std::optional<Case> {
         Case c = m;
         const Case defaults;
         switch (i) {
@@ -217,9 +217,6 @@ class Shrinker {
             c.distances = {};
             for (Vertex& v : c.vertices)
               v.distances.clear();
-            break;
-          case 8:  // every clip distance enabled
-            c.distances.enabled = c.distances.clip > 0 ? (1u << c.distances.clip) - 1u : 0u;
             break;
           case 5:  // the same window image and facing under GL_LOWER_LEFT: y_c negated
             if (c.clip_origin == defaults.clip_origin) break;

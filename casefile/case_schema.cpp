@@ -206,12 +206,16 @@ void Loader::load_enabled_clip_distances(const CaseJson* list, Case& c) const {
       "an array of clip plane numbers, each below the vertices' clip_distance count (" +
       std::to_string(c.distances.clip) + ")";
   if (!list->is_array()) r_.fail("enabled_clip_distances", what, Reader::describe(*list));
-  c.distances.enabled = 0;
-  for (size_t i = 0; i < list->size(); ++i)
-    c.distances.enabled |= 1u << int_in((*list)[i], path_index("enabled_clip_distances", i), 0,
-                                        std::max(c.distances.clip - 1, 0));
   if (c.distances.clip == 0 && !list->empty())
-    r_.fail("enabled_clip_distances", what, "planes, but no vertex has a clip_distance");
+    r_.fail("enabled_clip_distances", what, "plane numbers, but no vertex has a clip_distance");
+  c.distances.enabled = 0;
+  for (size_t i = 0; i < list->size(); ++i) {
+    const std::string path = path_index("enabled_clip_distances", i);
+    const int plane = int_in((*list)[i], path, 0, c.distances.clip - 1);
+    if (c.distances.enabled >> plane & 1u)
+      r_.fail(path, "a plane not listed before", "plane " + std::to_string(plane) + " again");
+    c.distances.enabled |= 1u << plane;
+  }
 }
 
 void Loader::load_tolerance(const CaseJson& t, Case& c) const {

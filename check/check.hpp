@@ -149,7 +149,8 @@ struct Checked {
 };
 
 // Renders `c` on the reference and on `renderer`, and compares them. A GL error drawing this
-// case (gl::RenderError) is the result Error with its message, not an exception; seconds
+// case (gl::RenderError) is the result Error with its message, not an exception, and a feature
+// the implementation lacks (gl::FeatureMissing) the result Skip with its reason; seconds
 // counts everything. Throws std::invalid_argument for a driver model under ToleranceMode::spec.
 // `last`: the previous case's Checked, whose frames' buffers this case's frames reuse where
 // they are large enough (Frame::reset), so that a caller checking case after case (a worker)

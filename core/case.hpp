@@ -335,9 +335,10 @@ std::string channel_name(const Case& c, Channel ch);
 std::vector<int> component_varying(const Case& c);
 
 // GL guarantees its floating-point arithmetic for magnitudes up to 2^32 only (OpenGL 4.6
-// section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate of a vertex a
-// triangle uses, or an interpolated (not flat) value, beyond that asks for something no
-// implementation promises; so does a denormal clip coordinate, which may be flushed to 0. The
+// section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate or a clip or
+// cull distance of a vertex a triangle uses, or an interpolated (not flat) value, beyond that
+// asks for something no implementation promises; so does a denormal clip coordinate or
+// distance, which may be flushed to 0. The
 // reason, naming the first such number, or nothing when every input computed on is within the
 // range.
 inline constexpr double kSpecifiedMagnitude = 0x1p32;

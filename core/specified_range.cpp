@@ -43,6 +43,22 @@ std::optional<std::string> outside_specified_range(const Case& c) {
       if (c.varyings[size_t(owner[k])].interpolation != Interpolation::flat &&
           !(std::fabs(vertex.values[k]) <= kSpecifiedMagnitude))
         return beyond(at + names[k], vertex.values[k]);
+    // The distances as the positions: interpolated by the clipper (a difference of two near
+    // FLT_MAX overflows), and compared with 0, which a flushed denormal is, whatever its sign
+    // (a cull distance of -2^-149 at every vertex culls, or not).
+    for (size_t k = 0; k < vertex.distances.size(); ++k) {
+      const bool clip = int(k) < c.distances.clip;
+      const std::string name = at + (clip ? "clip_distance[" : "cull_distance[") +
+                               std::to_string(clip ? k : k - size_t(c.distances.clip)) + "]";
+      const float x = vertex.distances[k];
+      if (!(std::fabs(x) <= kSpecifiedMagnitude)) return beyond(name, x);
+      if (x != 0 && std::fpclassify(x) == FP_SUBNORMAL) {
+        char number[32];
+        std::snprintf(number, sizeof number, "%g", double(x));
+        return name + " = " + number +
+               " is a denormal, which GLSL may flush to 0 (OpenGL 4.6 section 2.3.4.1)";
+      }
+    }
   }
   return std::nullopt;
 }

@@ -49,11 +49,16 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
 
   std::vector<DrawVertex> vertices;
   vertices.reserve(c.vertices.size());
+  // The user planes the draw module clips by: the enabled ones, but every written one where
+  // none is enabled (Direct3D's rule, which GL does not have: llvmpipe, softpipe and zink clip
+  // by every written distance then, cases/clip_distance_none_enabled.json, bit for bit).
+  const uint32_t written = c.distances.clip > 0 ? (1u << c.distances.clip) - 1u : 0u;
+  const uint32_t ucp = c.distances.enabled & written ? c.distances.enabled & written : written;
   for (const Vertex& v : c.vertices) {
     vertices.push_back(shade_vertex(v, ctx.viewport, config, c.clip_depth));
-    // The user planes: draw_cliptest_tmp.h's (clipdist < 0 || NaN) for each enabled one.
+    // draw_cliptest_tmp.h's (clipdist < 0 || NaN) for each of those planes.
     for (int i = 0; i < c.distances.clip; ++i)
-      if (c.distances.plane_enabled(i) && !(v.distances[size_t(i)] >= 0.0f))
+      if ((ucp >> i & 1u) && !(v.distances[size_t(i)] >= 0.0f))
         vertices.back().clipmask |= 1u << (6 + i);
   }
 

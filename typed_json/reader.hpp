@@ -297,7 +297,7 @@ void Reader::float32s_into(const J& v, const PathFn& path, std::initializer_list
     std::string w;
     for (size_t n : counts)
       w += (w.empty() ? "" : " or ") + std::to_string(n);
-    return w + " numbers";
+    return w + (counts.size() == 1 && *counts.begin() == 1 ? " number" : " numbers");
   };
   if (!v.is_array()) fail(path(), what(), got(v));
   bool count_ok = false;
