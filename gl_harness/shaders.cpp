@@ -50,16 +50,21 @@ std::string version_line(const Distances& d) {
                     : "#version 330 core\n";
 }
 
-// The vertex shader's distance inputs and their redeclared outputs, and the statements that
-// copy one to the other.
+// The redeclared gl_ClipDistance / gl_CullDistance outputs, sized as the case writes them.
+std::string distance_outputs(const Distances& d) {
+  std::string s;
+  if (d.clip) s += "out float gl_ClipDistance[" + std::to_string(d.clip) + "];\n";
+  if (d.cull) s += "out float gl_CullDistance[" + std::to_string(d.cull) + "];\n";
+  return s;
+}
+// The vertex shader's distance inputs and the outputs, and the statements that copy one to the
+// other.
 std::string distance_declarations(const Distances& d) {
   std::string s;
   for (int i = 0; i < d.clip + d.cull; ++i)
     s += "layout(location = " + std::to_string(kDistanceLocation + i) + ") in float a_distance" +
          std::to_string(i) + ";\n";
-  if (d.clip) s += "out float gl_ClipDistance[" + std::to_string(d.clip) + "];\n";
-  if (d.cull) s += "out float gl_CullDistance[" + std::to_string(d.cull) + "];\n";
-  return s;
+  return s + distance_outputs(d);
 }
 std::string distance_statements(const Distances& d) {
   std::string s;
@@ -70,13 +75,7 @@ std::string distance_statements(const Distances& d) {
          ";\n";
   return s;
 }
-// A geometry shader's: the redeclared outputs, and each vertex's copied from gl_in[i].
-std::string geometry_distance_declarations(const Distances& d) {
-  std::string s;
-  if (d.clip) s += "out float gl_ClipDistance[" + std::to_string(d.clip) + "];\n";
-  if (d.cull) s += "out float gl_CullDistance[" + std::to_string(d.cull) + "];\n";
-  return s;
-}
+// A geometry shader's: each vertex's distances copied from gl_in[i] to the outputs.
 std::string geometry_distance_statements(const Distances& d) {
   std::string s;
   for (int i = 0; i < d.clip; ++i)
@@ -114,7 +113,7 @@ std::string geometry_shader_source(const Case& c) {
   std::string s = version_line(c.distances) +
                   "layout(triangles) in;\n"
                   "layout(triangle_strip, max_vertices = 3) out;\n" +
-                  geometry_distance_declarations(c.distances);
+                  distance_outputs(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
     std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
@@ -170,7 +169,7 @@ std::string count_geometry_shader_source(const Distances& d) {
   return version_line(d) +
          "layout(triangles) in;\n"
          "layout(triangle_strip, max_vertices = 3) out;\n" +
-         geometry_distance_declarations(d) +
+         distance_outputs(d) +
          "void main() {\n"
          "  for (int i = 0; i < 3; ++i) {\n"
          "    gl_Position = gl_in[i].gl_Position;\n"
