@@ -90,13 +90,11 @@ class PixelIndex {
 class Reach {
  public:
   Reach(const Case& c, int p) {
-    const Viewport& vp = c.viewport;
     std::array<std::array<double, 2>, 3> v{};
     for (size_t i = 0; i < 3; ++i) {
       const auto& clip = c.vertices[c.triangles[size_t(p)][i]].clip;
       if (!inside_view_volume(c, clip)) return;
-      v[i] = {vp.x + vp.width / 2.0 * (1 + double(clip[0]) / clip[3]),
-              vp.y + vp.height / 2.0 * (1 + window_y_c(c, clip[1]) / clip[3])};
+      v[i] = approximate_window(c, clip);
       lo_[0] = std::min(lo_[0], v[i][0]), hi_[0] = std::max(hi_[0], v[i][0]);
       lo_[1] = std::min(lo_[1], v[i][1]), hi_[1] = std::max(hi_[1], v[i][1]);
     }

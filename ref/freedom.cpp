@@ -244,20 +244,23 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     const size_t axis = size_t(plane / 2);
     return plane % 2 == 0 ? w + v.p[axis] : w - v.p[axis];
   };
+  // A vertex of the polygon a plane cuts, with w_c > 0, into z_clip: its window position and
+  // the error of its distance to that plane (`error`, clip units) over w_c.
+  auto add_z_clip = [&](const ClipVertex& v, double error) {
+    const double w = v.p[3];
+    if (!(w > 0)) return;
+    const Viewport& vp = c.viewport;
+    z_clip->push_back({vp.x + vp.width / 2.0 * (1 + v.p[0] / w),
+                       vp.y + vp.height / 2.0 * (1 + v.p[1] / w), error / w});
+  };
   for (int plane = 0; plane < planes && !poly.empty(); ++plane) {
     if (plane == 6 && z_clip) {
       // The polygon the user clip planes cut (after the view volume, as in Mesa's clipper):
       // the sign of a distance d at a vertex may differ from the exact one within its error
       // e_d, e_d/w_c in units of d/w_c, the largest over the planes. Added to the near and
       // far planes' points below: the envelope over both bounds each.
-      const Viewport& vp = c.viewport;
-      for (const ClipVertex& v : poly) {
-        const double w = v.p[3];
-        if (!(w > 0)) continue;
-        const double e = *std::max_element(v.ed.begin(), v.ed.end());
-        z_clip->push_back({vp.x + vp.width / 2.0 * (1 + v.p[0] / w),
-                           vp.y + vp.height / 2.0 * (1 + v.p[1] / w), e / w});
-      }
+      for (const ClipVertex& v : poly)
+        add_z_clip(v, *std::max_element(v.ed.begin(), v.ed.end()));
     }
     if (plane == 4 && z_clip) {
       // The polygon the near and far planes cut: each vertex's z_c and w_c carry e_z and e_w,
@@ -265,13 +268,8 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
       // (e_z + |z_n|·e_w would be the error of z_n itself; the sign is of the difference).
       // Under GL_ZERO_TO_ONE the near plane's z_c alone is within e_z/w_c: the same bound
       // holds it.
-      const Viewport& vp = c.viewport;
-      for (const ClipVertex& v : poly) {
-        const double w = v.p[3];
-        if (!(w > 0)) continue;
-        z_clip->push_back({vp.x + vp.width / 2.0 * (1 + v.p[0] / w),
-                           vp.y + vp.height / 2.0 * (1 + v.p[1] / w), (v.e[2] + v.e[3]) / w});
-      }
+      for (const ClipVertex& v : poly)
+        add_z_clip(v, v.e[2] + v.e[3]);
     }
     std::vector<ClipVertex> out;
     for (size_t i = 0; i < poly.size(); ++i) {
@@ -352,8 +350,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
       in_guard_band = false;
       continue;
     }
-    const double x_w = vp.x + vp.width / 2.0 * (1 + p[0] / w);
-    const double y_w = vp.y + vp.height / 2.0 * (1 + window_y_c(c, p[1]) / w);
+    const auto [x_w, y_w] = approximate_window(c, p);
     const double centre_distance = std::max(std::fabs(x_w - (vp.x + vp.width / 2.0)),
                                             std::fabs(y_w - (vp.y + vp.height / 2.0)));
     in_guard_band = in_guard_band && centre_distance <= kGuardBandPixels;
@@ -405,8 +402,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   for (size_t j = 0; j < 3; ++j) {
     const auto& v = c.vertices[t.index[j]].clip;
     if (!(v[3] > 0)) return;
-    p[j] = {vp.x + vp.width / 2.0 * (1 + double(v[0]) / v[3]),
-            vp.y + vp.height / 2.0 * (1 + window_y_c(c, v[1]) / v[3])};
+    p[j] = approximate_window(c, v);
     rounding[j] =
         snap_and_round(p[j][0], p[j][1], m, subpixel_bits) - std::ldexp(1.0, -subpixel_bits);
   }

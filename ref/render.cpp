@@ -693,9 +693,9 @@ Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
     pool.parallel_for(n, [&](int k) {
       const int p = first + k;
       const TriangleSetup& t = *setups[size_t(p)];
+      if (t.discarded) return;  // by a cull distance: by every implementation
       // Zero area: drawn by no model, but a sliver of some implementation's (Sliver). Its
       // facing is either, so only culling both faces rules it out.
-      if (t.discarded) return;  // by a cull distance: by every implementation
       if (allowance && !t.has_edges && c.cull != CullFace::front_and_back) {
         const PositionFreedom freedom(c, t, s.bits);
         if (freedom.reaches_eye() || !freedom.sliver_sources().empty())

@@ -6,6 +6,7 @@
 #include <gmpxx.h>
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "core/case.hpp"
@@ -28,6 +29,14 @@ WindowVertex to_window(const Vertex& v, const Case& c);
 // z_w of a vertex with w_c > 0: the depth-range mapping of its z_n.
 inline mpq_class z_w(const WindowVertex& v) {
   return v.wz_w / v.w_c;
+}
+
+// A vertex's window position (x_w, y_w) in double, for w_c > 0 (GL_UPPER_LEFT's y_c negated):
+// it places bounds, bands and freedoms, never a bit of a value (exactly, x_w = x_h / w_c).
+inline std::array<double, 2> approximate_window(const Case& c, const std::array<float, 4>& clip) {
+  const Viewport& vp = c.viewport;
+  return {vp.x + vp.width / 2.0 * (1 + double(clip[0]) / clip[3]),
+          vp.y + vp.height / 2.0 * (1 + window_y_c(c, clip[1]) / clip[3])};
 }
 
 // How far the centre of pixel (px, py) is from the nearest side of the viewport, pixels.
