@@ -179,6 +179,16 @@ void parts_of(const Case& c, const Model& m, int bits, const TriangleSetup& t, i
   const PositionFreedom freedom(c, t, bits);
   const bool eye = freedom.reaches_eye();
   const bool unstable = eye || freedom.may_turn_over();
+  // The centres a piece of the clipped polygon that may turn over may cover (render.cpp's
+  // mark_sliver of Prepared::turning): any count there.
+  for (const TurningPiece& piece : freedom.turning_pieces()) {
+    const Sliver sliver(piece);
+    pixels.for_each_in_rows(viewport.y0, viewport.y1, [&](size_t k, int px, int py) {
+      if (px < viewport.x0 || px > viewport.x1) return;
+      const auto [first, last] = sliver.row_span(py, px, px);
+      if (first <= last) out.push_back({k, p, Part::Kind::anything, true, {}});
+    });
+  }
   if (!t.drawn && !unstable) return;
   // render.cpp's Prepared::reach: the box grown by the margin, in the viewport.
   const int margin = 1 + int(std::min(std::ceil(freedom.largest() * 1.5), 1e6));

@@ -333,6 +333,28 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
   return result;
 }
 
+std::vector<TurningPiece> turning_pieces(const std::vector<PolygonVertex>& polygon,
+                                        int subpixel_bits) {
+  std::vector<TurningPiece> out;
+  const size_t n = polygon.size();
+  const double snapping = std::ldexp(1.0, -subpixel_bits);
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      for (size_t k = j + 1; k < n; ++k) {
+        TurningPiece piece;
+        std::array<double, 3> rounding{};
+        const std::array<size_t, 3> corners{i, j, k};
+        for (size_t v = 0; v < 3; ++v) {
+          const PolygonVertex& q = polygon[corners[v]];
+          piece.p[v] = {q.x_w, q.y_w};
+          rounding[v] = q.delta - snapping;  // the freedom less the snapping it counts
+          piece.delta = std::max(piece.delta, q.delta);
+        }
+        if (orientation_may_change(piece.p, rounding, subpixel_bits)) out.push_back(piece);
+      }
+  return out;
+}
+
 PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subpixel_bits) {
   const Viewport& vp = c.viewport;
   const double m = viewport_magnitude(vp);
@@ -396,7 +418,9 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   }
 
   // Orientation: whether some conforming implementation's snapped vertices give a doubled
-  // area of the other sign, or 0 (orientation_may_change).
+  // area of the other sign, or 0 (orientation_may_change), for the triangle itself; and the
+  // pieces of its clipped polygon that may (turning_pieces).
+  if (generations_ > 0) turning_pieces_ = ref::turning_pieces(poly_vertices, subpixel_bits);
   std::array<std::array<double, 2>, 3> p{};
   std::array<double, 3> rounding{};
   for (size_t j = 0; j < 3; ++j) {

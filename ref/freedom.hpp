@@ -124,6 +124,24 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
 bool orientation_may_change(const std::array<std::array<double, 2>, 3>& p,
                             const std::array<double, 3>& rounding, int subpixel_bits);
 
+// A piece of a clipped polygon that may turn over or vanish: three of its vertices (window
+// pixels), each within `delta` of where an implementation puts it, in x and in y.
+struct TurningPiece {
+  std::array<std::array<double, 2>, 3> p{};
+  double delta = 0;
+};
+// The pieces of a clipped polygon (window positions in order, each vertex with its freedom
+// PolygonVertex::delta) that may turn over or vanish as some conforming implementation snaps
+// and rounds its vertices: any three of its vertices (every triangle of some fan of it: each
+// of a convex polygon's triangulations is an implementation's choice), each judged by
+// orientation_may_change. A clip plane that cuts within rounding of another vertex makes a
+// vertex beside it, and a sliver piece that, turned over, covers centres its neighbours cover
+// too (or, culled, leaves them): llvmpipe drew a shared edge's centre twice that way, found by
+// a `distances` campaign (tests/ref/test_freedom.cpp). The centres such a piece may cover
+// (Sliver) are free, not the rest of the triangle.
+std::vector<TurningPiece> turning_pieces(const std::vector<PolygonVertex>& polygon,
+                                         int subpixel_bits);
+
 // The freedom of one triangle, per pixel: the largest of the polygons' envelopes (see above).
 class PositionFreedom {
  public:
@@ -179,6 +197,9 @@ class PositionFreedom {
   // and the freedom as large as their rounding over that (a plane that holds it: zero area,
   // sliver_sources).
   bool may_turn_over() const { return may_turn_over_; }
+  // The pieces of the clipped polygon that may turn over (turning_pieces; none where no clip
+  // plane made a vertex): coverage near them, within Sliver's reach of each, is not decided.
+  const std::vector<TurningPiece>& turning_pieces() const { return turning_pieces_; }
   // For a triangle of zero area (det = 0 in setup_triangle: its window image is a segment, or a
   // point), which the exact rasterization never draws but an implementation's rounded vertices
   // may turn into a sliver: the window positions that sliver's vertices come from, each moved by
@@ -201,6 +222,7 @@ class PositionFreedom {
   std::array<ConcaveEnvelope, 2> delta_;
   ConcaveEnvelope depth_, weight_, inverse_w_, z_clip_;
   std::vector<std::array<double, 2>> polygon_, whole_, sliver_sources_;
+  std::vector<TurningPiece> turning_pieces_;
   int generations_ = 0;
   bool may_turn_over_ = false, reaches_eye_ = false;
 };

@@ -64,6 +64,9 @@ struct Prepared {
     // Reaching the eye (within rounding), the triangle may cover anything: unstable too.
     eye = s.allowance && allowance->eye();
     unstable = eye || (s.allowance && freedom().may_turn_over());
+    if (s.allowance)
+      for (const TurningPiece& piece : freedom().turning_pieces())
+        turning.emplace_back(piece);
     // The bands reach up to delta·sqrt(2) outside the covered pixels: look that much further
     // (the viewport bounds it anyway; the clamp keeps the conversion defined).
     largest = s.allowance ? freedom().largest() : s.model_step;
@@ -105,6 +108,9 @@ struct Prepared {
   // Shared: a deferred allowance keeps it after the triangle is drawn.
   std::shared_ptr<TriangleAllowance> allowance;
   bool unstable = false, clipped = false;
+  // With an allowance: the centres each piece of the clipped polygon that may turn over may
+  // cover (PositionFreedom::turning_pieces), edge::unstable.
+  std::vector<Sliver> turning;
   // PositionFreedom::reaches_eye: every centre of the viewport is unstable, and the smooth and
   // noperspective values and the depth it draws have no bound (an infinite allowance).
   bool eye = false;
@@ -469,6 +475,9 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, T
   if (w.eye)
     mark_unstable(s.viewport.x0, std::max(tile.y0, s.viewport.y0), s.viewport.x1,
                   std::min(tile.y1, s.viewport.y1), s.row0, f, r.edges);
+  for (const Sliver& piece : w.turning)
+    mark_sliver(piece, s.viewport.x0, std::max(tile.y0, s.viewport.y0), s.viewport.x1,
+                std::min(tile.y1, s.viewport.y1), s.row0, f, r.edges);
   // Rows [cy0, cy1]: those of the tile the triangle may cover.
   const bool draws = t.drawn && !t.box.empty();
   const int cy0 = std::max(tile.y0, t.box.y0), cy1 = std::min(tile.y1, t.box.y1);
@@ -706,7 +715,7 @@ Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
       // another implementation when its orientation is not decided by the freedom.
       if (!t.drawn && !(allowance && t.has_edges && c.cull != CullFace::front_and_back)) return;
       auto w = std::make_unique<const Prepared>(s, t, shared[size_t(p)]);
-      if (!t.drawn && !w->unstable) return;
+      if (!t.drawn && !w->unstable && w->turning.empty()) return;
       prepared[size_t(k)] = std::move(w);
     });
     if (kept)

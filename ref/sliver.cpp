@@ -18,6 +18,27 @@ Sliver::Sliver(const PositionFreedom& freedom) : anywhere(freedom.reaches_eye())
   delta = freedom.largest() + std::ldexp(1 + magnitude, -30);
 }
 
+Sliver::Sliver(const TurningPiece& piece) {
+  const auto& q = piece.p;
+  double farthest = -1, magnitude = 0;
+  size_t third = 0;
+  for (size_t i = 0; i < 3; ++i) {
+    magnitude = std::max({magnitude, std::fabs(q[i][0]), std::fabs(q[i][1])});
+    const size_t j = (i + 1) % 3;
+    const double d = std::hypot(q[j][0] - q[i][0], q[j][1] - q[i][1]);
+    if (d > farthest) farthest = d, a = q[i], b = q[j], third = (i + 2) % 3;
+  }
+  // The third vertex's distance from the segment is its distance from their line: the foot of
+  // the altitude onto a triangle's longest side lies on that side (both angles beside it are
+  // acute).
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const auto& r = q[third];
+  const double off = farthest > 0
+                         ? std::fabs(dx * (r[1] - a[1]) - dy * (r[0] - a[0])) / farthest
+                         : std::hypot(r[0] - a[0], r[1] - a[1]);
+  delta = piece.delta + off + std::ldexp(1 + magnitude, -30);
+}
+
 std::pair<int, int> Sliver::row_span(int py, int x0, int x1) const {
   const std::pair<int, int> none{x0, x0 - 1};
   if (anywhere) return {x0, x1};

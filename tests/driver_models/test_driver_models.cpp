@@ -325,5 +325,40 @@ TEST(DriverModelCoverage, AtTheNearAndFarPlanesOnlyMarkedPixelsDiffer) {
   }
 }
 
+
+// cases/clip_distance_sliver_piece: a user clip plane cuts the second triangle 0.002 px beside
+// the vertex it shares with the first, and llvmpipe's fan of the clipped polygon has a sliver
+// piece that, snapped to 1/256 px, turns over and covers the shared edge's centre (9, 15) the
+// first triangle covers too (found by a `distances` campaign). The reference leaves the count
+// there free (PositionFreedom::turning_pieces), and only near the piece; with the plane
+// moved 0.1 away from the vertex no piece may turn over, nothing is left free, and the model's
+// counts differ from the reference's only in the bands.
+TEST(DriverModelCoverage, AClippedPieceThatMayTurnOverIsFreeOnlyWhereItReaches) {
+  const Case sliver = load_case("clip_distance_sliver_piece");
+  const Frame f = render(sliver, Driver::llvmpipe);
+  const size_t centre = f.index(9, 15);
+  EXPECT_EQ(f.fragments[centre], 2);
+  const Expectation r = ref::render(sliver, Model{}, 8);
+  EXPECT_EQ(r.frame.fragments[centre], 1);
+  EXPECT_TRUE(r.edges[centre] & edge::unstable);
+  size_t free = 0, covered = 0;
+  for (size_t i = 0; i < r.edges.size(); ++i)
+    free += (r.edges[i] & edge::unstable) != 0, covered += r.frame.primitive[i] >= 0;
+  EXPECT_LE(free, 4u);  // the piece is a sliver: a few centres, not the triangles'
+  EXPECT_GT(covered, 50u);
+
+  Case apart = sliver;
+  for (uint32_t v : {1u, 3u})  // the plane's distances at the second triangle's own vertices
+    apart.vertices[v].distances[0] -= 0.1f;
+  const Expectation a = ref::render(apart, Model{}, 8);
+  for (size_t i = 0; i < a.edges.size(); ++i)
+    EXPECT_FALSE(a.edges[i] & edge::unstable) << "pixel " << i;
+  const Frame g = render(apart, Driver::llvmpipe);
+  for (size_t i = 0; i < g.pixel_count(); ++i)
+    if (g.fragments[i] != a.frame.fragments[i]) {
+      EXPECT_NE(a.edges[i], 0) << "pixel " << i;
+    }
+}
+
 }  // namespace
 }  // namespace glrc::driver_models
