@@ -777,6 +777,16 @@ Case window(Random& r) {
       v.clip[1] = -v.clip[1];
   c.cull = CullFace(r.below(3));  // none, front or back
   c.front_face = FrontFace(r.below(2));
+  // The built-ins, drawn after everything else: gl_FragCoord under a random layout and
+  // gl_FrontFacing, each half of the time, their components 0 in every vertex (core/case.hpp).
+  auto add_builtin = [&c](const Varying& v) {
+    c.varyings.push_back(v);
+    for (Vertex& vertex : c.vertices)
+      vertex.values.insert(vertex.values.end(), size_t(v.size), 0.0f);
+  };
+  if (r.chance(0.5))
+    add_builtin(builtin_varying(Builtin::frag_coord, {r.chance(0.5), r.chance(0.5)}));
+  if (r.chance(0.5)) add_builtin(builtin_varying(Builtin::front_facing));
   return c;
 }
 
@@ -891,7 +901,8 @@ const std::vector<Generator>& generators() {
        assembly},
       {"window",
        "viewports beyond the framebuffer (negative origins, up to 16384 wide), scissor boxes "
-       "inside, across and beyond it, glClipControl's origins and depth modes with culling",
+       "inside, across and beyond it, glClipControl's origins and depth modes with culling, "
+       "gl_FragCoord under its layouts and gl_FrontFacing",
        window},
       {"distances",
        "gl_ClipDistance and gl_CullDistance: up to 8 together, planes through the triangles, "

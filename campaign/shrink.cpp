@@ -196,8 +196,8 @@ class Shrinker {
       kept = first_failing(2 * m.varyings.size(), [&](size_t i) -> std::optional<Case> {
         const size_t v = i / 2;
         const int size = m.varyings[v].size;
-        if (size == 1) return std::nullopt;
-        return without_components(m, v, i % 2 == 0 ? size - 1 : 0, 1);  // the last, the first
+        if (size == 1 || m.varyings[v].is_builtin()) return std::nullopt;  // a built-in's is fixed
+        return without_components(m, v, i % 2 == 0 ? size - 1 : 0, 1);     // the last, the first
       });
       progress = progress || kept;
     }

@@ -157,6 +157,12 @@ void Loader::load_varyings(const CaseJson& list, Case& c) const {
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string path = path_index("varyings", i);
     const CaseJson& v = r_.object(list[i], path);
+    if (const CaseJson* b = Reader::find(v, "builtin")) {
+      c.varyings.push_back(load_builtin(v, *b, path));
+      if (!seen.insert(c.varyings.back().name).second)
+        r_.fail(path_key(path, "builtin"), "a built-in not listed before", Reader::describe(*b));
+      continue;
+    }
     r_.check_keys(v, path, {"name", "size", "interpolation"});
     Varying var;
     const CaseJson& name = r_.required(v, path, "name", "a GLSL identifier");
@@ -194,6 +200,22 @@ void Loader::load_varyings(const CaseJson& list, Case& c) const {
       var.interpolation = r_.name<Interpolation>(*interp, path_key(path, "interpolation"));
     c.varyings.push_back(var);
   }
+}
+
+Varying Loader::load_builtin(const CaseJson& v, const CaseJson& builtin,
+                             const std::string& path) const {
+  const Builtin b = r_.name<Builtin>(builtin, path_key(path, "builtin"));
+  if (b == Builtin::front_facing) {
+    r_.check_keys(v, path, {"builtin"});
+    return builtin_varying(b);
+  }
+  r_.check_keys(v, path, {"builtin", "origin_upper_left", "pixel_center_integer"});
+  FragCoordLayout layout;
+  if (const CaseJson* o = Reader::find(v, "origin_upper_left"))
+    layout.origin_upper_left = r_.boolean(*o, path_key(path, "origin_upper_left"));
+  if (const CaseJson* p = Reader::find(v, "pixel_center_integer"))
+    layout.pixel_center_integer = r_.boolean(*p, path_key(path, "pixel_center_integer"));
+  return builtin_varying(b, layout);
 }
 
 void Loader::load_enabled_clip_distances(const CaseJson* list, Case& c) const {

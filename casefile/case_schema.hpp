@@ -47,6 +47,8 @@ class Loader {
   void load_state(const CaseJson& state, Case& c) const;
   Viewport load_window_rect(const CaseJson& o, const std::string& name, int min_extent) const;
   void load_varyings(const CaseJson& list, Case& c) const;
+  // A varyings entry naming a built-in ({"builtin": "gl_FragCoord", ...}): its Varying.
+  Varying load_builtin(const CaseJson& v, const CaseJson& builtin, const std::string& path) const;
   std::optional<Transform> load_transform(const CaseJson& t) const;
   std::vector<TransformOp> load_ops(const CaseJson& list, const std::string& path) const;
   Projection load_projection(const CaseJson& p, const std::string& path) const;

@@ -177,12 +177,13 @@ void Loader::load_vertices(const CaseJson& list, const std::optional<Transform>&
         continue;
       // A named reference: Clang before 16 cannot capture a structured binding.
       const std::string& name = key;
-      const bool varying = std::any_of(c.varyings.begin(), c.varyings.end(),
-                                       [&](const Varying& var) { return var.name == name; });
+      const bool varying =
+          std::any_of(c.varyings.begin(), c.varyings.end(),
+                      [&](const Varying& var) { return var.name == name && !var.is_builtin(); });
       if (!varying) {
         std::string keys = "clip, position, clip_distance, cull_distance";
         for (const auto& var : c.varyings)
-          keys += ", " + var.name;
+          if (!var.is_builtin()) keys += ", " + var.name;
         r_.fail(path_key(path(), key), "one of the keys " + keys + " (varyings must be declared)",
                 "unknown key " + json_quoted(key));
       }
@@ -208,6 +209,10 @@ void Loader::load_vertices(const CaseJson& list, const std::optional<Transform>&
     }
     vertex.values.reserve(components);
     for (const auto& var : c.varyings) {
+      if (var.is_builtin()) {  // no value per vertex (core/case.hpp)
+        vertex.values.insert(vertex.values.end(), size_t(var.size), 0.0f);
+        continue;
+      }
       const auto vp = [&] { return path_key(path(), var.name); };
       const auto what = [&] {
         return var.size == 1 ? "a number (varying " + var.name + ")"
@@ -282,9 +287,11 @@ void Loader::load_triangles(const CaseJson* list, Case& c) const {
 // GL specifies noperspective interpolation in window coordinates, which a triangle reaching
 // behind the eye (w_c <= 0 at a vertex) does not have: the projected triangle is not the visible
 // region, and the spec leaves the result undefined. Such a case could not have a reference.
+// gl_FragCoord is not interpolated from vertex values: its z_w and 1/w_c are the fragment's own,
+// defined wherever a fragment is, behind-the-eye triangles included (as the depth is).
 void Loader::check_noperspective(const Case& c) const {
   auto np = std::find_if(c.varyings.begin(), c.varyings.end(), [](const Varying& v) {
-    return v.interpolation == Interpolation::noperspective;
+    return v.interpolation == Interpolation::noperspective && !v.is_builtin();
   });
   if (np == c.varyings.end()) return;
   // Where a triangle came from, for the message: its entry of "triangles", or its draw.

@@ -63,7 +63,8 @@ json to_wire(const Case& c) {
   put(scalars, c.depth_far);
   json varyings = json::array();
   for (const Varying& v : c.varyings)
-    varyings.push_back({v.name, v.size, int(v.interpolation)});
+    varyings.push_back({v.name, v.size, int(v.interpolation), int(v.builtin),
+                        v.layout.origin_upper_left, v.layout.pixel_center_integer});
   // The draws (only a case that has them): the triangles above are their assembly.
   json draws = json::array();
   for (const Draw& d : c.draws) {
@@ -127,8 +128,11 @@ Case from_wire(const json& j) {
     c.depth_clear = std::bit_cast<float>(st.at(4).get<uint32_t>());
     c.work_arounds = st.at(5).get<bool>();
     for (const json& v : j.at("varyings"))
-      c.varyings.push_back(
-          {v.at(0).get<std::string>(), v.at(1).get<int>(), Interpolation(v.at(2).get<int>())});
+      c.varyings.push_back({v.at(0).get<std::string>(),
+                            v.at(1).get<int>(),
+                            Interpolation(v.at(2).get<int>()),
+                            Builtin(v.at(3).get<int>()),
+                            {v.at(4).get<bool>(), v.at(5).get<bool>()}});
     const size_t n = j.at("vertices").get<size_t>(), components = size_t(c.component_count());
     Words clip(j.at("clip").get_ref<const std::string&>());
     Words values(j.at("values").get_ref<const std::string&>());

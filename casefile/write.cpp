@@ -212,9 +212,15 @@ std::string to_case_file(const Case& c) {
     out += "  \"varyings\": [\n";
     for (size_t i = 0; i < c.varyings.size(); ++i) {
       const Varying& v = c.varyings[i];
-      add(out, "    {\"name\": ", quoted(v.name), ", \"size\": ", integer(v.size),
-          ", \"interpolation\": ", name(v.interpolation), "}",
-          i + 1 < c.varyings.size() ? ",\n" : "\n");
+      if (v.is_builtin())
+        add(out, "    {\"builtin\": ", name(v.builtin),
+            v.layout.origin_upper_left ? ", \"origin_upper_left\": true" : "",
+            v.layout.pixel_center_integer ? ", \"pixel_center_integer\": true" : "", "}",
+            i + 1 < c.varyings.size() ? ",\n" : "\n");
+      else
+        add(out, "    {\"name\": ", quoted(v.name), ", \"size\": ", integer(v.size),
+            ", \"interpolation\": ", name(v.interpolation), "}",
+            i + 1 < c.varyings.size() ? ",\n" : "\n");
     }
     out += "  ],\n";
   }
@@ -238,8 +244,9 @@ std::string to_case_file(const Case& c) {
     for (const Varying& var : c.varyings) {
       const size_t want = var.size > 0 ? size_t(var.size) : 0;
       const size_t n = std::min(want, v.values.size() - std::min(at, v.values.size()));
-      add(out, ", ", quoted(var.name), ": ",
-          var.size == 1 && n == 1 ? number(v.values[at]) : numbers(v.values.data() + at, n));
+      if (!var.is_builtin())  // no value per vertex
+        add(out, ", ", quoted(var.name), ": ",
+            var.size == 1 && n == 1 ? number(v.values[at]) : numbers(v.values.data() + at, n));
       at += n;
     }
     // Only as many as the case says (a hostile case may hold fewer: written as is).

@@ -6,6 +6,17 @@ namespace glrc::compare {
 
 double attribute_scale(const Case& c, int primitive, Channel ch) {
   if (ch.is_depth()) return 1.0;
+  const std::vector<int> owner = component_varying(c);
+  const size_t k = size_t(ch.component());
+  if (const Varying& v = c.varyings.at(size_t(owner.at(k))); v.is_builtin()) {
+    const int i = component_within_varying(c, int(k));
+    if (v.builtin == Builtin::front_facing || i == 2) return 1.0;
+    if (i < 2) return i == 0 ? c.fb_width : c.fb_height;
+    double scale = 0;
+    for (uint32_t index : c.triangles.at(size_t(primitive)))
+      scale = std::max(scale, 1 / std::fabs(double(c.vertices.at(index).clip[3])));
+    return scale;
+  }
   double scale = 0;
   for (uint32_t v : c.triangles.at(size_t(primitive)))
     scale = std::max(scale, std::fabs(double(c.vertices.at(v).values.at(size_t(ch.component())))));

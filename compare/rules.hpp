@@ -20,8 +20,10 @@
 namespace glrc::compare {
 
 // The scale of channel ch at a pixel covered by triangle `primitive`: for component k the
-// largest |v_i| of that triangle's three vertices; for the depth 1.0. Errors are counted in ULPs
-// of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
+// largest |v_i| of that triangle's three vertices; for the depth 1.0. A built-in's component
+// has no vertex values: gl_FragCoord.x and .y the framebuffer's width and height, .z 1.0 as the
+// depth, .w the largest 1/|w_c| of the three vertices, gl_FrontFacing 1.0. Errors are counted
+// in ULPs of the scale. Flat components are held to 0 ULPs: they are copied, never computed.
 double attribute_scale(const Case& c, int primitive, Channel ch);
 // ulp of a positive scale: 2^(floor(log2 scale) - 23); 2^-149 (the subnormal spacing) for 0.
 double ulp_of_scale(double scale);

@@ -25,11 +25,46 @@ struct Names<Interpolation> {
   }};
 };
 
-struct Varying {
-  std::string name;
-  int size = 4;  // 1..4 components
-  Interpolation interpolation = Interpolation::smooth;
+// A built-in input of the fragment shader written out in place of an interpolated varying
+// (GLSL 4.60 section 7.1.2, OpenGL 4.6 sections 14.6.1 and 15.2.2), to a colour attachment of
+// its own and judged like one:
+//   gl_FragCoord   the fragment's window position (x_w, y_w) (the pixel centre, under
+//                  FragCoordLayout), z_w and 1/w_c: 4 components, each a linear function of
+//                  the window position (noperspective);
+//   gl_FrontFacing whether the primitive is front-facing (glFrontFace, glClipControl's origin):
+//                  1.0 or 0.0, one value for the whole primitive (flat).
+// It has no value per vertex: its components hold 0 in every Vertex::values, so that component
+// k of a frame is component k of every vertex.
+enum class Builtin { none, frag_coord, front_facing };
+template <>
+struct Names<Builtin> {
+  static constexpr std::array<std::pair<Builtin, std::string_view>, 2> table{{
+      {Builtin::frag_coord, "gl_FragCoord"},
+      {Builtin::front_facing, "gl_FrontFacing"},
+  }};
 };
+// gl_FragCoord's layout qualifiers (GLSL 4.60 section 4.4.1.3): origin_upper_left gives
+// y = H − y_w (H the framebuffer's height) instead of y_w; pixel_center_integer gives the
+// centre of pixel (px, py) as (px, py) instead of (px + 1/2, py + 1/2).
+struct FragCoordLayout {
+  bool origin_upper_left = false;
+  bool pixel_center_integer = false;
+  friend bool operator==(const FragCoordLayout&, const FragCoordLayout&) = default;
+};
+
+struct Varying {
+  std::string name;  // a built-in's is its GLSL name
+  int size = 4;      // 1..4 components
+  Interpolation interpolation = Interpolation::smooth;
+  Builtin builtin = Builtin::none;
+  FragCoordLayout layout;  // gl_FragCoord's only
+  bool is_builtin() const { return builtin != Builtin::none; }
+};
+// A built-in as a Varying: its name, size and the qualifier that says how it varies.
+inline Varying builtin_varying(Builtin b, const FragCoordLayout& layout = {}) {
+  if (b == Builtin::front_facing) return {"gl_FrontFacing", 1, Interpolation::flat, b, {}};
+  return {"gl_FragCoord", 4, Interpolation::noperspective, b, layout};
+}
 
 struct Vertex {
   // Clip coordinates (x_c, y_c, z_c, w_c), float32: exactly what gl_Position receives.
@@ -333,6 +368,8 @@ std::vector<std::string> component_names(const Case& c);
 std::string channel_name(const Case& c, Channel ch);
 // The varying each component belongs to.
 std::vector<int> component_varying(const Case& c);
+// Which of its varying's components component k is (0 for x .. 3 for w).
+int component_within_varying(const Case& c, int k);
 
 // GL guarantees its floating-point arithmetic for magnitudes up to 2^32 only (OpenGL 4.6
 // section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate or a clip or

@@ -25,6 +25,14 @@ std::vector<int> component_varying(const Case& c) {
   return owner;
 }
 
+int component_within_varying(const Case& c, int k) {
+  for (const Varying& v : c.varyings) {
+    if (k < v.size) return k;
+    k -= v.size;
+  }
+  return k;
+}
+
 // The tables' names are string literals, so their data() ends in a NUL.
 const char* to_string(TieBreak t) {
   return name_of(t).data();

@@ -11,6 +11,14 @@
 
 namespace glrc::driver_models {
 
+// The built-ins' components of one fragment of pixel (px, py) into values (Case component
+// order; varyings' components untouched): gl_FragCoord's x and y the pixel's centre under its
+// layout, exact in float as both drivers compute it (softpipe's setup_fragcoord_coeff, llvmpipe's
+// pixel offsets), z and w the driver's own planes of window z and 1/w_c at the pixel (`z`,
+// `w`); gl_FrontFacing the driver's facing of the triangle it set up.
+void write_builtins(const Case& c, int px, int py, float z, float w, bool front_facing,
+                    float* values);
+
 class FrameWriter {
  public:
   FrameWriter(Frame& frame, DepthFunc func) : frame_(frame), func_(func) {}

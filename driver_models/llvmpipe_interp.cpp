@@ -19,7 +19,7 @@ float evaluate(const Plane& p, float x, float y, bool fma) {
 }  // namespace
 
 float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpolation>& interp,
-                        int px, int py, bool fma, float* values) {
+                        int px, int py, bool fma, float* values, float* position) {
   // pixoffx/pixoffy: the integer pixel position (the half-pixel offset is in a0).
   const float x = float(px), y = float(py);
   bool have_oow = false;
@@ -45,6 +45,10 @@ float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpo
   // z + polygon offset (0 here), then lp_build_clamp(z, 0, 1) (gallivm/lp_bld_arit.c): min
   // with 1 first, then max with 0. minps/maxps return the second operand for NaN, so a NaN
   // depth (a triangle set up from a NaN window position) becomes 1.
+  // The fragment shader's position input: the z and 1/w planes themselves (gl_FragCoord's z
+  // is not clamped; its w is the plane of 1/w_c, not its reciprocal).
+  position[0] = evaluate(k.z, x, y, fma);
+  position[1] = evaluate(k.w, x, y, fma);
   float z = ftz(evaluate(k.z, x, y, fma) + 0.0f);
   z = z < 1.0f ? z : 1.0f;
   z = z > 0.0f ? z : 0.0f;

@@ -46,9 +46,10 @@ void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
 
 // The fragment shader's inputs and depth at pixel (px, py) (lp_bld_interp.c,
 // attribs_update_simple; lp_state_fs.c, lp_build_depth_clamp): `values` gets one float per
-// component; returns the depth as tested and written.
+// component; `position` the position input's z and w (gl_FragCoord.zw: the planes of window z
+// and 1/w_c, as evaluated); returns the depth as tested and written.
 float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpolation>& interp,
-                        int px, int py, bool fma, float* values);
+                        int px, int py, bool fma, float* values, float* position);
 
 class LlvmpipeRasterizer final : public TriangleSink {
  public:
@@ -62,6 +63,7 @@ class LlvmpipeRasterizer final : public TriangleSink {
   FrameWriter& writer_;
   std::vector<Interpolation> interpolation_;
   std::vector<float> values_;
+  bool builtins_;  // the case writes a built-in (write_builtins)
 };
 
 }  // namespace glrc::driver_models

@@ -52,6 +52,7 @@ bool llvmpipe_setup_triangle(const Case& c, const DrawVertex& v0, const DrawVert
     case CullFace::front_and_back:  // triangle_noop
       return false;
   }
+  out.front_facing = (sign > 0) == ccw_is_frontface;
   if (sign > 0) return draw_positive;
   if (!draw_negative) return false;
   // Make it counter-clockwise (llvmpipe's sense) keeping the provoking vertex in place:

@@ -19,6 +19,7 @@ constexpr int kLlvmpipeFixedOrder = 8;
 struct LlvmpipeTriangle {
   std::array<const DrawVertex*, 3> v{};
   std::array<int32_t, 3> x{}, y{};  // snapped: round_half_even((x_w - 0.5) * 256)
+  bool front_facing = true;         // as GL sees it: the fragment shader's gl_FrontFacing
 };
 
 // triangle_both / triangle_ccw / triangle_cw for the case's cull state. False: dropped (zero

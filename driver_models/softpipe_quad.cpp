@@ -4,6 +4,8 @@
 // sp_quad_depth_test.c interpolate_quad_depth (not clamped: depth clip is on).
 #include "driver_models/softpipe_quad.hpp"
 
+#include <algorithm>
+
 namespace glrc::driver_models {
 namespace {
 
@@ -20,7 +22,7 @@ float quad_value(const Plane& p, float qx, float qy, bool right, bool top) {
 }  // namespace
 
 float softpipe_fragment(const SoftpipeTriangle& t, const std::vector<Interpolation>& interp, int px,
-                        int py, float* values) {
+                        int py, float* values, float* position) {
   const float qx = float(px & ~1), qy = float(py & ~1);
   const bool right = px & 1, top = py & 1;
   const float w = quad_value(t.w, qx, qy, right, top);
@@ -37,14 +39,18 @@ float softpipe_fragment(const SoftpipeTriangle& t, const std::vector<Interpolati
         break;
     }
   }
-  return quad_value(t.z, qx, qy, right, top);
+  const float z = quad_value(t.z, qx, qy, right, top);
+  position[0] = z, position[1] = w;  // setup_fragcoord_coeff: posCoef's z and w
+  return z;
 }
 
 SoftpipeRasterizer::SoftpipeRasterizer(const Case& c, FrameWriter& writer)
     : case_(c),
       writer_(writer),
       interpolation_(component_interpolation(c)),
-      values_(interpolation_.size()) {}
+      values_(interpolation_.size()),
+      builtins_(std::any_of(c.varyings.begin(), c.varyings.end(),
+                            [](const Varying& v) { return v.is_builtin(); })) {}
 
 void SoftpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, const DrawVertex& v2,
                                   int32_t primitive) {
@@ -52,7 +58,10 @@ void SoftpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, co
   if (!softpipe_setup_triangle(case_, interpolation_, v0, v1, v2, t)) return;
   for (const Span& s : t.spans)
     for (int x = s.left; x < s.right; ++x) {
-      const float depth = softpipe_fragment(t, interpolation_, x, s.y, values_.data());
+      float position[2];
+      const float depth = softpipe_fragment(t, interpolation_, x, s.y, values_.data(), position);
+      if (builtins_)
+        write_builtins(case_, x, s.y, position[0], position[1], t.front_facing, values_.data());
       writer_.fragment(x, s.y, primitive, depth, values_.data());
     }
 }

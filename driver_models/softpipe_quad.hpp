@@ -13,9 +13,10 @@ namespace glrc::driver_models {
 
 // Values of pixel (px, py): evaluated at its 2x2 quad's top-left (even) pixel as
 // a0 + dadx * x + dady * y, then dadx and dady added for the other three pixels; perspective
-// inputs divided by the W plane evaluated the same way. Returns the (unclamped) depth.
+// inputs divided by the W plane evaluated the same way; `position` gets the z and W planes'
+// values (gl_FragCoord.zw, setup_fragcoord_coeff). Returns the (unclamped) depth.
 float softpipe_fragment(const SoftpipeTriangle& t, const std::vector<Interpolation>& interp, int px,
-                        int py, float* values);
+                        int py, float* values, float* position);
 
 class SoftpipeRasterizer final : public TriangleSink {
  public:
@@ -28,6 +29,7 @@ class SoftpipeRasterizer final : public TriangleSink {
   FrameWriter& writer_;
   std::vector<Interpolation> interpolation_;
   std::vector<float> values_;
+  bool builtins_;  // the case writes a built-in (write_builtins)
 };
 
 }  // namespace glrc::driver_models

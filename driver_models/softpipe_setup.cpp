@@ -117,6 +117,7 @@ bool softpipe_setup_triangle(const Case& c, const std::vector<Interpolation>& in
   const bool cull_front = c.cull == CullFace::front || c.cull == CullFace::front_and_back;
   const bool cull_back = c.cull == CullFace::back || c.cull == CullFace::front_and_back;
   if (back ? cull_back : cull_front) return false;
+  out.front_facing = !back;
 
   // setup_tri_coefficients
   out.z = tri_linear_coeff(s, pmin[2], pmid[2], pmax[2]);

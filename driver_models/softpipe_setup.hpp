@@ -20,6 +20,7 @@ struct SoftpipeTriangle {
   Plane z, w;                 // posCoef[2], posCoef[3]: window z and 1/w_c, linear
   std::vector<Plane> values;  // per component; flat: a0 only; smooth: planes of v/w
   std::vector<Span> spans;
+  bool front_facing = true;  // the fragment shader's gl_FrontFacing
 };
 
 // sp_setup_tri up to the spans. False: dropped (1/area not finite, or culled).

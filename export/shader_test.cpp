@@ -430,6 +430,12 @@ std::string shader_runner_command(const std::string& file) {
 }
 
 std::optional<std::string> shader_test_state_refusal(const Case& c) {
+  for (const Varying& v : c.varyings)
+    if (v.is_builtin())
+      return cat(name_of(v.builtin),
+                 " is not written by this export yet: its checking shader reads every channel "
+                 "from a varying (and uses gl_FragCoord itself to find its pixel); the C "
+                 "reproducer (--format c) writes it");
   if (c.scissor)
     return std::string(
         "the scissor test cannot be expressed in a shader_test: shader_runner has no glScissor "

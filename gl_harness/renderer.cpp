@@ -606,7 +606,8 @@ class GlRenderer final : public Renderer {
     attribute(0, 4, 0);
     size_t offset = 4;
     for (size_t k = 0; k < c.varyings.size(); ++k) {
-      attribute(GLuint(k + 1), c.varyings[k].size, offset);
+      // A built-in's zeros (core/case.hpp) are in the buffer, read by no attribute.
+      if (!c.varyings[k].is_builtin()) attribute(GLuint(k + 1), c.varyings[k].size, offset);
       offset += size_t(c.varyings[k].size);
     }
     for (size_t i = 0; i < distances; ++i)

@@ -33,8 +33,25 @@ const char* glsl_qualifier(Interpolation i) {
 std::string program_key(const Case& c) {
   std::string key = several_draws(c) ? "base," : "";
   for (const Varying& v : c.varyings)
-    key += std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
+    key += v.is_builtin() ? std::string(name_of(v.builtin)) + builtin_declaration(v) + ","
+                          : std::to_string(v.size) + glsl_qualifier(v.interpolation) + ",";
   return key + distances_key(c.distances);
+}
+
+std::string builtin_declaration(const Varying& v) {
+  if (v.builtin != Builtin::frag_coord) return "";
+  const FragCoordLayout& l = v.layout;
+  if (!l.origin_upper_left && !l.pixel_center_integer) return "";
+  std::string s = "layout(";
+  if (l.origin_upper_left) s += "origin_upper_left";
+  if (l.pixel_center_integer)
+    s += l.origin_upper_left ? ", pixel_center_integer" : "pixel_center_integer";
+  return s + ") in vec4 gl_FragCoord;\n";
+}
+
+std::string builtin_value(const Varying& v) {
+  return v.builtin == Builtin::frag_coord ? "gl_FragCoord"
+                                          : "vec4(gl_FrontFacing ? 1.0 : 0.0, 0.0, 0.0, 0.0)";
 }
 
 std::string distances_key(const Distances& d) {
@@ -94,6 +111,7 @@ std::string vertex_shader_source(const Case& c) {
                   distance_declarations(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
+    if (v.is_builtin()) continue;  // the fragment shader's own input
     std::string n = std::to_string(k);
     s += "layout(location = " + std::to_string(k + 1) + ") in " + glsl_type(v.size) + " a" + n +
          ";\n";
@@ -103,7 +121,8 @@ std::string vertex_shader_source(const Case& c) {
   // Clip coordinates pass through untouched: the reference sees the very same bits.
   s += "void main() {\n  gl_Position = a_clip;\n" + distance_statements(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k)
-    s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
+    if (!c.varyings[k].is_builtin())
+      s += "  v" + std::to_string(k) + " = a" + std::to_string(k) + ";\n";
   return s + "}\n";
 }
 
@@ -116,6 +135,7 @@ std::string geometry_shader_source(const Case& c) {
                   distance_outputs(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
+    if (v.is_builtin()) continue;
     std::string q = std::string(glsl_qualifier(v.interpolation)) + " ";
     std::string n = std::to_string(k);
     s += q + "in " + glsl_type(v.size) + " v" + n + "[];\n";
@@ -125,7 +145,8 @@ std::string geometry_shader_source(const Case& c) {
   s += "    gl_Position = gl_in[i].gl_Position;\n    gl_PrimitiveID = gl_PrimitiveIDIn;\n" +
        geometry_distance_statements(c.distances);
   for (size_t k = 0; k < c.varyings.size(); ++k)
-    s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
+    if (!c.varyings[k].is_builtin())
+      s += "    g" + std::to_string(k) + " = v" + std::to_string(k) + "[i];\n";
   return s + "    EmitVertex();\n  }\n  EndPrimitive();\n}\n";
 }
 
@@ -137,8 +158,11 @@ std::string fragment_shader_source(const Case& c, bool after_geometry_shader) {
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
     std::string n = std::to_string(k);
-    s += std::string(glsl_qualifier(v.interpolation)) + " in " + glsl_type(v.size) + " " + input +
-         n + ";\n";
+    if (v.is_builtin())
+      s += builtin_declaration(v);
+    else
+      s += std::string(glsl_qualifier(v.interpolation)) + " in " + glsl_type(v.size) + " " + input +
+           n + ";\n";
     s += "layout(location = " + n + ") out vec4 o" + n + ";\n";
   }
   s += "layout(location = " + std::to_string(c.varyings.size()) + ") out int o_primitive;\n";
@@ -146,7 +170,10 @@ std::string fragment_shader_source(const Case& c, bool after_geometry_shader) {
   s += "void main() {\n";
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     std::string n = std::to_string(k);
-    s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
+    if (c.varyings[k].is_builtin())
+      s += "  o" + n + " = " + builtin_value(c.varyings[k]) + ";\n";
+    else
+      s += "  o" + n + " = vec4(" + input + n + kPad[c.varyings[k].size - 1] + ");\n";
   }
   // Without a geometry shader gl_PrimitiveID counts the draw's triangles from 0: the
   // reference's primitive id. The pass-through one forwards that same count. With several

@@ -35,6 +35,12 @@ const char* glsl_type(int size);
 // The GLSL interpolation qualifier: "smooth", "flat" or "noperspective".
 const char* glsl_qualifier(Interpolation i);
 
+// A built-in's redeclaration in the fragment shader (gl_FragCoord with its layout qualifiers,
+// where it has any; else nothing), and the vec4 it writes to its attachment (gl_FragCoord;
+// gl_FrontFacing as 1.0 or 0.0 in x).
+std::string builtin_declaration(const Varying& v);
+std::string builtin_value(const Varying& v);
+
 // The key of the program cache: programs depend only on the varyings' sizes and qualifiers,
 // never on names or values, so a run of many cases compiles few programs. E.g. "4smooth,1flat,"
 // (every varying followed by a comma; "" for a case without varyings). Throws nothing.

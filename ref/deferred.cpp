@@ -21,11 +21,30 @@ void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
   const PositionReach reach = PositionReach::of(freedom_.slope(), freedom_.largest());
   components_.clear();
   components_.reserve(planes.size());
+  // gl_FrontFacing: the triangle's own facing unless some implementation's vertices may turn
+  // it, or a piece of its clipped polygon (an implementation that sets up each piece takes
+  // each piece's facing: llvmpipe), over: then either.
+  const float facing = freedom_.may_turn_over() || !freedom_.turning_pieces().empty() ? 1.0f : 0.0f;
   for (const ComponentPlane& cp : planes) {
+    Kind kind = cp.flat ? Kind::fixed : Kind::interpolated;
+    float fixed = 0;
+    if (cp.builtin == Builtin::front_facing) {
+      fixed = facing;
+    } else if (cp.builtin == Builtin::frag_coord) {
+      // x and y are the pixel's centre, exact; z is the depth; w = 1/w_c.
+      kind = cp.component < 2 ? Kind::fixed : cp.component == 2 ? Kind::depth : Kind::inverse_w;
+    }
+    // gl_FragCoord.w's values are the 1/w_c of the polygon's vertices, rounded each: as large
+    // as the largest of them (PositionFreedom::largest_inverse_w), which a clip-made vertex
+    // near the eye may make larger than any of the triangle's.
+    const double scale =
+        kind == Kind::inverse_w ? std::max(cp.scale, freedom_.largest_inverse_w()) : cp.scale;
     components_.emplace_back(cp.plane.numerator, cp.plane.denominator, cp.spread,
-                             value_freedom(c, t, cp.scale, generations), anchors_, reach);
+                             value_freedom(c, t, scale, generations), anchors_, reach);
     spread_.push_back(cp.spread);
-    flat_.push_back(cp.flat);
+    kind_.push_back(kind);
+    fixed_.push_back(fixed);
+    depth_component_ = depth_component_ || kind == Kind::depth;
   }
   smooth_.assign(smooth.begin(), smooth.end());
   const double n = c.depth_near, f = c.depth_far;
@@ -47,7 +66,7 @@ void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bo
     freedom_.weight_at(b.x, b.y, b.weight);
   else
     std::fill(std::begin(b.weight), std::end(b.weight), 0.0);
-  if (depth) freedom_.depth_at(b.x, b.y, b.depth_extra);
+  if (depth || depth_component_) freedom_.depth_at(b.x, b.y, b.depth_extra);
   anchors_.distances(b.x, b.y, b.distances);
 }
 
@@ -58,22 +77,40 @@ void TriangleAllowance::depth_at(const Block& b, const float* z, float* out) con
 
 void TriangleAllowance::component_at(const Block& b, size_t k, const float* value,
                                      float* out) const {
-  if (flat_[k] || eye_) return (void)std::fill(out, out + kRowBlock, flat_[k] ? 0.0f : INFINITY);
-  // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp).
+  const Kind kind = kind_[k];
+  if (kind == Kind::fixed) return (void)std::fill(out, out + kRowBlock, fixed_[k]);
+  if (eye_) return (void)std::fill(out, out + kRowBlock, INFINITY);
+  if (kind == Kind::depth) return depth_at(b, value, out);
+  // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp). Of 1/w_c itself,
+  // noperspective Σ λ_j/w_j, the errors ρ_j/w_j of the clip-made vertices move it by
+  // Σ λ_j ρ_j/w_j, which weight_at bounds as a share of 1/w_c (its envelope over the
+  // envelope of 1/w_j, exact for a value linear over the polygon): weight·|value|, and 2^-20
+  // of it more for the value's rounding and the envelopes'.
   double extra[kRowBlock];
   for (int j = 0; j < kRowBlock; ++j)
-    extra[j] = smooth_[k] ? b.weight[j] * spread_[k] : 0.0;
+    extra[j] = kind == Kind::inverse_w ? b.weight[j] * std::fabs(double(value[j])) * (1 + 0x1p-20)
+               : smooth_[k]            ? b.weight[j] * spread_[k]
+                                       : 0.0;
   components_[k].at_rounded_up(b.x, b.y, value, b.delta, extra, b.condition, b.distances, out);
 }
 
 std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int px1, int py,
                                                          float value_lo, float value_hi) const {
-  if (flat_[k]) return {0.0, 0.0};
+  const Kind kind = kind_[k];
+  if (kind == Kind::fixed) return {fixed_[k], fixed_[k]};
   if (eye_) return {0.0, INFINITY};
+  if (kind == Kind::depth) return depth_range(px0, px1, py, value_lo, value_hi);
   const auto delta = freedom_.range(px0, px1, py);
   const auto condition = fan_.condition_range(px0 + 0.5, px1 + 0.5, py + 0.5);
   std::array<double, 2> extra{0.0, 0.0};
-  if (smooth_[k] && clipped_) {
+  if (kind == Kind::inverse_w && clipped_) {
+    // component_at's weight·|value|·(1 + 2^-20), monotone in each factor >= 0.
+    const auto weight = freedom_.weight_range(px0, px1, py);
+    const double lo = std::fabs(value_lo) < std::fabs(value_hi) ? value_lo : value_hi;
+    const double most = std::max(std::fabs(double(value_lo)), std::fabs(double(value_hi)));
+    const double least = value_lo <= 0 && value_hi >= 0 ? 0.0 : std::fabs(lo);
+    extra = {std::max(weight[0], 0.0) * least * (1 + 0x1p-20), weight[1] * most * (1 + 0x1p-20)};
+  } else if (smooth_[k] && clipped_) {
     const auto weight = freedom_.weight_range(px0, px1, py);
     // weight·spread, monotone in the weight for a spread >= 0.
     if (!(spread_[k] >= 0)) return {0.0, INFINITY};

@@ -50,7 +50,8 @@ class TriangleAllowance {
   // `depth`: depth_extra too (depth_at needs it; component_at does not).
   void prepare(const double* px, const double* py, Block& b, bool depth = true) const;
   // The depth's allowance and component k's, the block's values z[j] and value[j], rounded up
-  // to floats (Allowance::at_rounded_up): infinite through the eye, 0 for a flat component.
+  // to floats (Allowance::at_rounded_up): infinite through the eye, 0 for a flat component
+  // (its Kind below).
   void depth_at(const Block& b, const float* z, float* out) const;
   void component_at(const Block& b, size_t k, const float* value, float* out) const;
   // Bounds {lo, hi} of component_at() at pixels px0..px1 of row py whose values lie in
@@ -68,8 +69,16 @@ class TriangleAllowance {
   Anchors anchors_;  // the allowances point to it
   std::vector<Allowance> components_;
   Allowance depth_;
-  std::vector<double> spread_;          // per component: what a re-weighting moves
-  std::vector<uint8_t> flat_, smooth_;  // per component
+  std::vector<double> spread_;   // per component: what a re-weighting moves
+  std::vector<uint8_t> smooth_;  // per component
+  // How each component's allowance is had (component_at): its Allowance; a fixed one
+  // (`fixed_`: 0 for a flat value and gl_FragCoord.xy, 0 or 1 for gl_FrontFacing); the depth's
+  // (gl_FragCoord.z); or its Allowance with the clip-made vertices' 1/w_c errors
+  // (gl_FragCoord.w).
+  enum class Kind : uint8_t { interpolated, fixed, depth, inverse_w };
+  std::vector<Kind> kind_;
+  std::vector<float> fixed_;
+  bool depth_component_ = false;  // some component is Kind::depth: prepare() needs depth_extra
 };
 
 // The DeferredAllowance of a frame whose row 0 is window row `row0`, from the triangles that

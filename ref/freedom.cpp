@@ -334,7 +334,7 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
 }
 
 std::vector<TurningPiece> turning_pieces(const std::vector<PolygonVertex>& polygon,
-                                        int subpixel_bits) {
+                                         int subpixel_bits) {
   std::vector<TurningPiece> out;
   const size_t n = polygon.size();
   const double snapping = std::ldexp(1.0, -subpixel_bits);
@@ -391,6 +391,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
       depth.push_back({v.x_w, v.y_w, v.depth});
       weight.push_back({v.x_w, v.y_w, v.weight / v.w_c});
       inverse_w.push_back({v.x_w, v.y_w, 1 / v.w_c});
+      largest_inverse_w_ = std::max(largest_inverse_w_, 1 / v.w_c);
       generations_ = std::max(generations_, v.generation);
     }
     delta_[0] = ConcaveEnvelope(delta);

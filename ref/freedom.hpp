@@ -177,6 +177,8 @@ class PositionFreedom {
   // weights μ_j = λ_j (1/w_j) / (1/w), and re-weighting vertex j by 1 + ρ_j moves it by at most
   // Σ μ_j ρ_j·spread = (Σ λ_j ρ_j/w_j)·w at the pixel, the sum taken as an envelope again.
   double weight_at(int px, int py) const;
+  // The largest 1/w_c of the clipped polygon's vertices (0 when nothing is left).
+  double largest_inverse_w() const { return largest_inverse_w_; }
   // How many clip planes made the polygon's newest vertex (0 when nothing is clipped).
   int generations() const { return generations_; }
   // The largest δ of any vertex: how far any edge can move.
@@ -224,6 +226,7 @@ class PositionFreedom {
   std::vector<std::array<double, 2>> polygon_, whole_, sliver_sources_;
   std::vector<TurningPiece> turning_pieces_;
   int generations_ = 0;
+  double largest_inverse_w_ = 0;
   bool may_turn_over_ = false, reaches_eye_ = false;
 };
 

@@ -56,15 +56,71 @@ Plane plane(const Barycentrics& b, const std::array<mpq_class, 3>& alpha,
   return {sum(b, alpha), sum(b, beta)};
 }
 
+namespace {
+
+// Built-in component `i` of varying v on triangle t (component_planes).
+ComponentPlane builtin_plane(const Case& c, const Varying& v, int i, const TriangleSetup& t,
+                             const Barycentrics& b, const Plane& depth) {
+  ComponentPlane p;
+  p.builtin = v.builtin;
+  p.component = i;
+  if (v.builtin == Builtin::front_facing) {
+    p.flat = true;
+    p.flat_value = t.front_facing ? 1.0f : 0.0f;
+    return p;
+  }
+  const mpq_class half = v.layout.pixel_center_integer ? mpq_class(0) : mpq_class(1, 2);
+  const LinearForm one{0, 0, 1};
+  if (i == 0) {
+    p.plane = {{1, 0, half}, one};
+  } else if (i == 1) {
+    p.plane = v.layout.origin_upper_left ? Plane{{0, -1, mpq_class(c.fb_height) - (1 - half)}, one}
+                                         : Plane{{0, 1, half}, one};
+  } else if (i == 2) {
+    p.plane = depth;
+  } else {
+    std::array<mpq_class, 3> alpha, beta;
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t j = 0; j < 3; ++j) {
+      const mpq_class& w = t.v[j].w_c;
+      if (b.screen_space) {
+        mpq_inv(alpha[j].get_mpq_t(), w.get_mpq_t());
+        beta[j] = 1;
+      } else {
+        alpha[j] = 1;
+        beta[j] = w;
+      }
+      const double inverse = 1 / double(c.vertices[t.index[j]].clip[3]);
+      lo = std::min(lo, inverse), hi = std::max(hi, inverse);
+      p.scale = std::max(p.scale, std::fabs(inverse));
+    }
+    // Every value is Σ λ_i/w_i over the drawn polygon, within [lo, hi] where every w_i > 0 (its
+    // clip-made vertices' w_c are convex combinations of the w_i); 1/w_i in double is within
+    // 2^-53 of its own, so 2^-50 of the magnitudes more holds the exact spread. Behind the eye
+    // no bound.
+    p.spread = lo > 0 ? (hi - lo) + 0x1p-50 * hi : INFINITY;
+    p.plane = plane(b, alpha, beta);
+  }
+  p.ratio = p.plane.evaluator();
+  return p;
+}
+
+}  // namespace
+
 std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
-                                             const Barycentrics& b) {
+                                             const Barycentrics& b, const Plane& depth) {
   std::vector<ComponentPlane> planes;
   std::optional<LinearForm> denominators[2];  // noperspective, smooth
   const int provoking = c.provoking == ProvokingVertex::last ? 2 : 0;
   const auto owner = component_varying(c);
   for (size_t k = 0; k < owner.size(); ++k) {
+    const Varying& v = c.varyings[size_t(owner[k])];
+    if (v.is_builtin()) {
+      planes.push_back(builtin_plane(c, v, component_within_varying(c, int(k)), t, b, depth));
+      continue;
+    }
     ComponentPlane p;
-    const Interpolation q = c.varyings[owner[k]].interpolation;
+    const Interpolation q = v.interpolation;
     if (q == Interpolation::flat) {
       p.flat = true;
       p.flat_value = c.vertices[t.index[provoking]].values[k];

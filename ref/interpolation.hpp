@@ -55,10 +55,23 @@ struct ComponentPlane {
   Plane plane;
   RatioEvaluator ratio;
   double spread = 0, scale = 0;  // max v_i - min v_i and max |v_i| over the three vertices
+  // A built-in's component (Varying::builtin; `component` 0..3 of gl_FragCoord), whose
+  // allowance is its own (deferred.hpp).
+  Builtin builtin = Builtin::none;
+  int component = 0;
 };
 
+// Each component's plane on triangle t. A built-in's (core/case.hpp), exactly:
+//   gl_FragCoord.x  px + 1/2 (px under pixel_center_integer)
+//   gl_FragCoord.y  py + 1/2, or H − (py + 1/2) under origin_upper_left (H the framebuffer's
+//                   height; 1/2 less each under pixel_center_integer)
+//   gl_FragCoord.z  z_w: `depth`, the depth's plane
+//   gl_FragCoord.w  1/w_c, linear in window coordinates: Σ λ_i/w_i, the noperspective plane of
+//                   the values 1/w_i (alpha = 1, beta = w_i unsnapped; alpha = 1/w_i, beta = 1
+//                   snapped), exact though no 1/w_i is a float
+//   gl_FrontFacing  1 or 0 (TriangleSetup::front_facing), flat.
 std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup& t,
-                                             const Barycentrics& b);
+                                             const Barycentrics& b, const Plane& depth);
 
 // Every component's value at a pixel at once, as ComponentPlane gives them, each the float
 // nearest its exact ratio. Components that share a denominator (every smooth one: sum L_i over

@@ -93,7 +93,7 @@ struct Prepared {
     barycentrics(t, s.m, b);
     const Plane depth_forms = depth_plane(t, b);
     depth = depth_forms.evaluator();
-    planes = component_planes(c, t, b);
+    planes = component_planes(c, t, b, depth_forms);
     values = ComponentValues(planes);
     if (s.allowance) allowance->set(c, t, planes, depth_forms, s.component_smooth);
   }

@@ -33,9 +33,8 @@ Sliver::Sliver(const TurningPiece& piece) {
   // acute).
   const double dx = b[0] - a[0], dy = b[1] - a[1];
   const auto& r = q[third];
-  const double off = farthest > 0
-                         ? std::fabs(dx * (r[1] - a[1]) - dy * (r[0] - a[0])) / farthest
-                         : std::hypot(r[0] - a[0], r[1] - a[1]);
+  const double off = farthest > 0 ? std::fabs(dx * (r[1] - a[1]) - dy * (r[0] - a[0])) / farthest
+                                  : std::hypot(r[0] - a[0], r[1] - a[1]);
   delta = piece.delta + off + std::ldexp(1 + magnitude, -30);
 }
 

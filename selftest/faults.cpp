@@ -138,6 +138,25 @@ std::vector<size_t> centres_on_shared_horizontal_edges(const Case& c, const Fram
   return pixels;
 }
 
+// Changes built-in b's components in every covered pixel of f: change(i, value) for its
+// component i. Whether the case writes b (and anything was covered).
+bool change_builtin(const Case& c, Frame& f, Builtin b,
+                    const std::function<void(int, float&)>& change) {
+  bool any = false;
+  size_t first = 0;
+  for (const Varying& v : c.varyings) {
+    if (v.builtin == b)
+      for (int i = 0; i < v.size; ++i)
+        for (size_t p = 0; p < f.pixel_count(); ++p)
+          if (f.primitive[p] >= 0) {
+            change(i, f.components[first + size_t(i)][p]);
+            any = true;
+          }
+    first += size_t(v.size);
+  }
+  return any;
+}
+
 std::vector<Fault> make_faults() {
   std::vector<Fault> list;
 
@@ -342,6 +361,29 @@ std::vector<Fault> make_faults() {
                         v.distances[size_t(i)] = -v.distances[size_t(i)];
                   },
                   nullptr});
+  list.push_back({"frag-coord-half-pixel-off",
+                  "gl_FragCoord.xy without the half-pixel centre offset: (px, py) where the "
+                  "layout asks for (px + 0.5, py + 0.5), and likewise under its qualifiers",
+                  nullptr, [](const Case& c, const Expectation&, Frame& f) {
+                    return change_builtin(c, f, Builtin::frag_coord, [](int i, float& v) {
+                      if (i < 2) v -= 0.5f;
+                    });
+                  }});
+  list.push_back({"frag-coord-w-not-inverted",
+                  "gl_FragCoord.w holding the interpolated w_c instead of 1/w_c", nullptr,
+                  [](const Case& c, const Expectation&, Frame& f) {
+                    return change_builtin(c, f, Builtin::frag_coord, [](int i, float& v) {
+                      if (i == 3) v = 1 / v;
+                    });
+                  }});
+  list.push_back({"front-facing-inverted-under-cw",
+                  "gl_FrontFacing ignoring glFrontFace(GL_CW): true on the counter-clockwise "
+                  "triangles, which GL_CW makes back-facing",
+                  nullptr, [](const Case& c, const Expectation&, Frame& f) {
+                    if (c.front_face != FrontFace::cw) return false;
+                    return change_builtin(c, f, Builtin::front_facing,
+                                          [](int, float& v) { v = 1 - v; });
+                  }});
   list.push_back({"zero-to-one-ignored",
                   "glClipControl's GL_ZERO_TO_ONE ignored: the near plane stays at z_c = -w_c and "
                   "z_w = z_d·(f - n)/2 + (n + f)/2",

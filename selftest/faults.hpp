@@ -29,7 +29,9 @@ struct Fault {
 // a centre beside an edge two thin triangles share drawn twice; one fragment of a hidden
 // triangle dropped; an identical copy winning the depth test; a strip's odd triangles provoked
 // by the wrong vertex under the first-vertex convention; a fan's hub kept across a restart
-// (assembly_faults.hpp); the scissor box one pixel wider.
+// (assembly_faults.hpp); the scissor box one pixel wider; upper-left facing not reversed; clip
+// distances' signs flipped; gl_FragCoord.xy half a pixel off; gl_FragCoord.w not inverted;
+// gl_FrontFacing ignoring glFrontFace(GL_CW); GL_ZERO_TO_ONE ignored.
 const std::vector<Fault>& faults();
 
 // x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).

@@ -325,7 +325,6 @@ TEST(DriverModelCoverage, AtTheNearAndFarPlanesOnlyMarkedPixelsDiffer) {
   }
 }
 
-
 // cases/clip_distance_sliver_piece: a user clip plane cuts the second triangle 0.002 px beside
 // the vertex it shares with the first, and llvmpipe's fan of the clipped polygon has a sliver
 // piece that, snapped to 1/256 px, turns over and covers the shared edge's centre (9, 15) the

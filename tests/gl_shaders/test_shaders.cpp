@@ -262,5 +262,29 @@ TEST(FramebufferStatus, NamesAreTheSpecsEnumNames) {
   EXPECT_STREQ(framebuffer_status_name(0), "unknown framebuffer status");
 }
 
+// A built-in in place of a varying: the fragment shader writes gl_FragCoord (redeclared with its
+// layout qualifiers where it has any) or gl_FrontFacing to the varying's output; the vertex and
+// geometry shaders pass nothing for it. Cases that differ only in which built-in, or in its
+// layout, must not share a program (two front-facing cases once drew with gl_FragCoord's).
+TEST(Shaders, BuiltinsAreWrittenByTheFragmentShaderAndKeyTheirProgram) {
+  Case c = three_varyings();
+  c.varyings[2] = builtin_varying(Builtin::frag_coord, {true, false});
+  const std::string fs = fragment_shader_source(c, false);
+  EXPECT_NE(fs.find("layout(origin_upper_left) in vec4 gl_FragCoord;"), std::string::npos) << fs;
+  EXPECT_NE(fs.find("o2 = gl_FragCoord;"), std::string::npos) << fs;
+  EXPECT_EQ(vertex_shader_source(c).find("v2"), std::string::npos);
+  EXPECT_EQ(geometry_shader_source(c).find("g2"), std::string::npos);
+  Case facing = c;
+  facing.varyings[2] = builtin_varying(Builtin::front_facing);
+  EXPECT_NE(fragment_shader_source(facing, false).find("o2 = vec4(gl_FrontFacing ? 1.0 : 0.0"),
+            std::string::npos);
+  Case plain = c;
+  plain.varyings[2] = builtin_varying(Builtin::frag_coord);
+  EXPECT_EQ(fragment_shader_source(plain, false).find("layout(origin"), std::string::npos);
+  EXPECT_NE(program_key(c), program_key(facing));
+  EXPECT_NE(program_key(c), program_key(plain));
+  EXPECT_NE(program_key(plain), program_key(facing));
+}
+
 }  // namespace
 }  // namespace glrc::gl

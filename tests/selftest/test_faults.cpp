@@ -15,8 +15,8 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, EighteenInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 18u);
+TEST(Faults, TwentyOneInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 21u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
   EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
   EXPECT_EQ(faults()[8].name, "shared-horizontal-edge-drawn-twice");
@@ -28,7 +28,42 @@ TEST(Faults, EighteenInAFixedOrder) {
   EXPECT_EQ(faults()[14].name, "scissor-box-one-pixel-wider");
   EXPECT_EQ(faults()[15].name, "upper-left-facing-not-reversed");
   EXPECT_EQ(faults()[16].name, "clip-distance-sign-flipped");
+  EXPECT_EQ(faults()[17].name, "frag-coord-half-pixel-off");
+  EXPECT_EQ(faults()[18].name, "frag-coord-w-not-inverted");
+  EXPECT_EQ(faults()[19].name, "front-facing-inverted-under-cw");
   EXPECT_EQ(faults().back().name, "zero-to-one-ignored");
+}
+
+// The built-in faults change only their built-in's components, at covered pixels; the facing
+// one only under glFrontFace(GL_CW).
+TEST(Faults, BuiltinFaultsChangeOnlyTheirBuiltin) {
+  Case c;
+  c.fb_width = 2, c.fb_height = 1;
+  c.varyings = {{"v", 1, Interpolation::smooth},
+                builtin_varying(Builtin::frag_coord),
+                builtin_varying(Builtin::front_facing)};
+  Frame f(2, 1, 6);
+  f.primitive = {0, Frame::kNoPrimitive};
+  for (int k = 0; k < 6; ++k)
+    f.components[size_t(k)] = {float(k + 1), float(k + 1)};
+  const Expectation e;
+  Frame half = f;
+  ASSERT_TRUE(fault("frag-coord-half-pixel-off").after(c, e, half));
+  EXPECT_EQ(half.components[0][0], 1.0f);
+  EXPECT_EQ(half.components[1][0], 1.5f);
+  EXPECT_EQ(half.components[2][0], 2.5f);
+  EXPECT_EQ(half.components[3][0], 4.0f);
+  EXPECT_EQ(half.components[1][1], 2.0f);  // not covered
+  Frame w = f;
+  ASSERT_TRUE(fault("frag-coord-w-not-inverted").after(c, e, w));
+  EXPECT_EQ(w.components[4][0], 0.2f);
+  EXPECT_EQ(w.components[3][0], 4.0f);
+  Frame facing = f;
+  EXPECT_FALSE(fault("front-facing-inverted-under-cw").after(c, e, facing));
+  c.front_face = FrontFace::cw;
+  ASSERT_TRUE(fault("front-facing-inverted-under-cw").after(c, e, facing));
+  EXPECT_EQ(facing.components[5][0], -5.0f);
+  EXPECT_EQ(facing.components[4][0], 5.0f);
 }
 
 // The assembly faults change only what they name: a strip's odd triangles under the first

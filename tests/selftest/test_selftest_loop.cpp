@@ -42,7 +42,7 @@ TEST(SelftestLoop, APerfectImplementationCatchesEveryFaultAndFailsNothingClean) 
              "noperspective_smooth", "fan_subpixel_rim_shared_edge", "depth_contest_hidden",
              "invariance_copy_less", "strip_flat_provoking_first", "fan_restart_index_ushort",
              "scissor_inside", "clip_control_upper_left_cull_back", "clip_control_zero_to_one_near",
-             "clip_distance_one_plane"});
+             "clip_distance_one_plane", "frag_coord_lower_left", "front_facing_cw"});
   ReferenceRenderer r;
   size_t steps = 0;
   SelftestProgress progress;
