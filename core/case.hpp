@@ -51,6 +51,15 @@ struct FragCoordLayout {
   bool pixel_center_integer = false;
   friend bool operator==(const FragCoordLayout&, const FragCoordLayout&) = default;
 };
+// The fragment shader's redeclaration of gl_FragCoord with the layout's qualifiers, a line of
+// GLSL; "" for the default layout, which needs none. Shared by the harness and the exports.
+inline std::string frag_coord_redeclaration(const FragCoordLayout& l) {
+  if (!l.origin_upper_left && !l.pixel_center_integer) return "";
+  const char* qualifiers = !l.pixel_center_integer ? "origin_upper_left"
+                           : !l.origin_upper_left  ? "pixel_center_integer"
+                                                   : "origin_upper_left, pixel_center_integer";
+  return std::string("layout(") + qualifiers + ") in vec4 gl_FragCoord;\n";
+}
 
 struct Varying {
   std::string name;  // a built-in's is its GLSL name

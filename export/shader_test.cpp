@@ -181,6 +181,7 @@ std::string vertex_shader(const Case& c) {
   std::string attributes, copies;
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
+    if (v.is_builtin()) continue;  // the fragment shader's own input
     const std::string n = std::to_string(k);
     attributes += cat("layout(location = ", std::to_string(k + 1), ") in ", glsl_type(v.size), " a",
                       n, ";\n");
@@ -255,8 +256,25 @@ std::pair<std::string, std::string> check_lists(const ShaderTestPlan& plan, int 
 // export/glsl/fragment.glsl for the case and its plan.
 std::string fragment_shader(const Case& c, const ShaderTestPlan& plan) {
   std::string varyings, names, values;
+  // The pixel, from gl_FragCoord: under its layout qualifiers (a built-in written out) the
+  // pixel centre (px + 1/2 or px; y from the top under origin_upper_left) truncated back to
+  // the pixel's numbers.
+  std::string pixel = "ivec2(gl_FragCoord.xy)";
   for (size_t k = 0; k < c.varyings.size(); ++k) {
     const Varying& v = c.varyings[k];
+    if (v.builtin == Builtin::front_facing) {
+      values += ", (gl_FrontFacing ? 1.0 : 0.0)";
+      continue;
+    }
+    if (v.builtin == Builtin::frag_coord) {
+      varyings += frag_coord_redeclaration(v.layout);
+      for (int j = 0; j < 4; ++j)
+        values += cat(", gl_FragCoord.", std::string(1, "xyzw"[j]));
+      if (v.layout.origin_upper_left)
+        pixel = cat("ivec2(int(gl_FragCoord.x), ", std::to_string(c.fb_height - 1),
+                    " - int(gl_FragCoord.y))");
+      continue;
+    }
     varyings += cat(glsl_qualifier(v.interpolation), " in ", glsl_type(v.size), " v",
                     std::to_string(k), ";  // ", glsl_comment(v.name), "\n");
     for (int j = 0; j < v.size; ++j)
@@ -284,6 +302,7 @@ std::string fragment_shader(const Case& c, const ShaderTestPlan& plan) {
                         {"CHECK_AT", check_at},
                         {"RANGES", ranges},
                         {"CHANNEL_VALUES", values},
+                        {"PIXEL", pixel},
                         {"CULL", std::string(name_of(c.cull))},
                         {"FRONT_FACE", std::string(name_of(c.front_face))},
                         {"CULLED_KIND", kind},
@@ -342,7 +361,8 @@ DrawRows draw_rows(const Case& c) {
 std::string vertex_data(const Case& c, const DrawRows& draws) {
   std::string out = "\n[vertex data]\na_clip/float/vec4";
   for (size_t k = 0; k < c.varyings.size(); ++k)
-    out += cat(" a", std::to_string(k), "/float/", glsl_type(c.varyings[k].size));
+    if (!c.varyings[k].is_builtin())
+      out += cat(" a", std::to_string(k), "/float/", glsl_type(c.varyings[k].size));
   out += " a_triangle/int/int";
   const int distances = c.distances.clip + c.distances.cull, vec4s = (distances + 3) / 4;
   for (int j = 0; j < vec4s; ++j)
@@ -353,16 +373,19 @@ std::string vertex_data(const Case& c, const DrawRows& draws) {
     std::string row;
     for (float x : v.clip)
       row += cat(decimal(x), " ");
-    for (float x : v.values)
-      row += cat(" ", decimal(x));
+    size_t at = 0;
+    for (const Varying& var : c.varyings)  // a built-in's zeros are not vertex data
+      for (int j = 0; j < var.size; ++j, ++at)
+        if (!var.is_builtin()) row += cat(" ", decimal(v.values[at]));
     row += cat("  ", std::to_string(t));
     for (int i = 0; i < 4 * vec4s; ++i)
       row += cat(i % 4 == 0 ? "  " : " ", i < distances ? decimal(v.distances[size_t(i)]) : "0");
     out += cat(row, "\n");
   }
   std::string zeros;
-  for (int k = 0; k < c.component_count(); ++k)
-    zeros += " 0";
+  for (const Varying& var : c.varyings)
+    for (int j = 0; j < var.size && !var.is_builtin(); ++j)
+      zeros += " 0";
   // The resolve draw's distances 0: inside every clip plane, and not culled (0 is not negative).
   std::string distance_zeros;
   for (int i = 0; i < 4 * vec4s; ++i)
@@ -430,12 +453,13 @@ std::string shader_runner_command(const std::string& file) {
 }
 
 std::optional<std::string> shader_test_state_refusal(const Case& c) {
-  for (const Varying& v : c.varyings)
-    if (v.is_builtin())
-      return cat(name_of(v.builtin),
-                 " is not written by this export yet: its checking shader reads every channel "
-                 "from a varying (and uses gl_FragCoord itself to find its pixel); the C "
-                 "reproducer (--format c) writes it");
+  if (c.front_face == FrontFace::cw &&
+      std::any_of(c.varyings.begin(), c.varyings.end(),
+                  [](const Varying& v) { return v.builtin == Builtin::front_facing; }))
+    return std::string(
+        "gl_FrontFacing under glFrontFace(GL_CW) cannot be expressed in a shader_test: "
+        "shader_runner has no glFrontFace command (culling is emulated in its shader, the facing "
+        "GL reports is not)");
   if (c.scissor)
     return std::string(
         "the scissor test cannot be expressed in a shader_test: shader_runner has no glScissor "

@@ -39,14 +39,7 @@ std::string program_key(const Case& c) {
 }
 
 std::string builtin_declaration(const Varying& v) {
-  if (v.builtin != Builtin::frag_coord) return "";
-  const FragCoordLayout& l = v.layout;
-  if (!l.origin_upper_left && !l.pixel_center_integer) return "";
-  std::string s = "layout(";
-  if (l.origin_upper_left) s += "origin_upper_left";
-  if (l.pixel_center_integer)
-    s += l.origin_upper_left ? ", pixel_center_integer" : "pixel_center_integer";
-  return s + ") in vec4 gl_FragCoord;\n";
+  return v.builtin == Builtin::frag_coord ? frag_coord_redeclaration(v.layout) : "";
 }
 
 std::string builtin_value(const Varying& v) {

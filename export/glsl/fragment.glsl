@@ -50,7 +50,7 @@ const vec2 RANGE[CHECKS * CHANNELS] = vec2[](@RANGES@
 //@end
 bool non_finite(float v) { return isnan(v) || isinf(v); }
 void main() {
-  ivec2 at = ivec2(gl_FragCoord.xy);
+  ivec2 at = @PIXEL@;
   int i = at.y * WIDTH + at.x;
   if (resolve == 1) {
     colour = vec4(float(fragments[i]), float(int(kept[i] / 4u) - 1), float(kept[i] % 4u), 1.0);

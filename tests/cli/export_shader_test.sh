@@ -87,6 +87,19 @@ for name in face_on grid_mesh shared_centres_grid viewport_offset flat_provoking
   expect "$name" llvmpipe pass
 done
 
+# Built-ins: gl_FragCoord under both layout qualifiers and gl_FrontFacing pass; the same
+# files with the fragment coordinate's y half a pixel off, and the facing inverted, fail.
+for name in frag_coord_upper_left_integer front_facing_ccw; do
+  export_case "$name" "$source/cases/$name.json" llvmpipe
+  expect "$name" llvmpipe pass
+done
+sed 's/, gl_FragCoord\.y,/, gl_FragCoord.y + 0.5,/' "$work/frag_coord_upper_left_integer.shader_test" \
+  >"$work/frag_coord_off.shader_test"
+expect frag_coord_off llvmpipe fail
+sed 's/(gl_FrontFacing ? 1\.0 : 0\.0)/(gl_FrontFacing ? 0.0 : 1.0)/' \
+  "$work/front_facing_ccw.shader_test" >"$work/front_facing_inverted.shader_test"
+expect front_facing_inverted llvmpipe fail
+
 # What shader_runner cannot express: one line on stderr, exit 2, no file.
 set +e
 err=$("$glrefcheck" export "$source/cases/depth_range_partial.json" --format shader_test \

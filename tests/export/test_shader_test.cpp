@@ -164,6 +164,10 @@ TEST(ShaderTest, RefusesWhatShaderRunnerCannotExpressInOneLine) {
             "glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) cannot be expressed in a shader_test: "
             "shader_runner has no glClipControl command");
   c = face_on;
+  c.front_face = FrontFace::cw;
+  c.varyings.push_back(builtin_varying(Builtin::front_facing));
+  EXPECT_EQ(refusal(c).rfind("gl_FrontFacing under glFrontFace(GL_CW) cannot be expressed", 0), 0u);
+  c = face_on;
   c.clip_origin = ClipOrigin::upper_left;
   EXPECT_EQ(refusal(c).rfind("glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE)", 0), 0u);
   c = face_on;
