@@ -163,6 +163,10 @@ void Loader::load_varyings(const CaseJson& list, Case& c) const {
         r_.fail(path_key(path, "builtin"), "a built-in not listed before", Reader::describe(*b));
       continue;
     }
+    for (const char* layout : {"origin_upper_left", "pixel_center_integer"})
+      if (const CaseJson* q = Reader::find(v, layout))
+        r_.fail(path_key(path, layout), "a \"builtin\" beside it (gl_FragCoord's layout qualifier)",
+                Reader::describe(*q));
     r_.check_keys(v, path, {"name", "size", "interpolation"});
     Varying var;
     const CaseJson& name = r_.required(v, path, "name", "a GLSL identifier");

@@ -172,6 +172,28 @@ TEST_F(CaseFileTest, Varyings) {
                          kTri),
                     "varyings");
   EXPECT_CASE_ERROR(with(R"("varyings": {"name": "a"}, )" + kTri), "varyings");
+  // Built-ins: known names, once each, their own keys only; no "gl_" varying in their place.
+  EXPECT_CASE_ERROR(one(R"({"builtin": "gl_PointCoord"})"), "varyings[0].builtin");
+  EXPECT_CASE_ERROR(one(R"({"builtin": "gl_FragCoord", "size": 4})"), "varyings[0].size");
+  EXPECT_CASE_ERROR(one(R"({"builtin": "gl_FrontFacing", "origin_upper_left": true})"),
+                    "varyings[0].origin_upper_left");
+  EXPECT_CASE_ERROR(one(R"({"builtin": "gl_FragCoord", "origin_upper_left": "yes"})"),
+                    "varyings[0].origin_upper_left");
+  EXPECT_CASE_ERROR(one(R"({"name": "gl_FragCoord", "size": 4})"), "varyings[0].name");
+  EXPECT_NE(error_of(one(R"({"origin_upper_left": true})"))
+                .find("varyings[0].origin_upper_left: expected a \"builtin\" beside it"),
+            std::string::npos);
+  EXPECT_CASE_ERROR(with(R"("varyings": [{"builtin": "gl_FrontFacing"},
+    {"builtin": "gl_FrontFacing"}], )" +
+                         kTri),
+                    "varyings[1].builtin");
+  const Case c = load_text(one(R"({"builtin": "gl_FragCoord", "pixel_center_integer": true})"));
+  ASSERT_EQ(c.varyings.size(), 1u);
+  EXPECT_EQ(c.varyings[0].name, "gl_FragCoord");
+  EXPECT_EQ(c.varyings[0].size, 4);
+  EXPECT_TRUE(c.varyings[0].layout.pixel_center_integer);
+  EXPECT_FALSE(c.varyings[0].layout.origin_upper_left);
+  EXPECT_EQ(c.vertices[0].values, std::vector<float>(4, 0.0f));
 }
 
 TEST_F(CaseFileTest, VertexValues) {
