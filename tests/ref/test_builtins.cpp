@@ -34,24 +34,32 @@ Case perspective(const FragCoordLayout& layout = {}) {
   return c;
 }
 
+// f(px, py, i) at every pixel e's frame covers (i its index); how many there are.
+template <class F>
+size_t for_each_covered(const Case& c, const Expectation& e, F f) {
+  size_t covered = 0;
+  for (int py = 0; py < c.fb_height; ++py)
+    for (int px = 0; px < c.fb_width; ++px)
+      if (const size_t i = e.frame.index(px, py); e.frame.primitive[i] >= 0) {
+        ++covered;
+        f(px, py, i);
+      }
+  return covered;
+}
+
 TEST(Builtins, FragCoordXYAreThePixelCentresUnderEachLayout) {
   for (bool upper : {false, true})
     for (bool integer : {false, true}) {
       const Case c = perspective({upper, integer});
       const Expectation e = render(c, Model{}, 8);
       const double half = integer ? 0 : 0.5;
-      size_t covered = 0;
-      for (int py = 0; py < c.fb_height; ++py)
-        for (int px = 0; px < c.fb_width; ++px) {
-          const size_t i = e.frame.index(px, py);
-          if (e.frame.primitive[i] < 0) continue;
-          ++covered;
-          const double y = upper ? c.fb_height - py - (1 - half) : py + half;
-          ASSERT_EQ(e.frame.components[1][i], float(px + half));
-          ASSERT_EQ(e.frame.components[2][i], float(y));
-          ASSERT_EQ(e.allowed.components[1][i], 0.0f);
-          ASSERT_EQ(e.allowed.components[2][i], 0.0f);
-        }
+      const size_t covered = for_each_covered(c, e, [&](int px, int py, size_t i) {
+        const double y = upper ? c.fb_height - py - (1 - half) : py + half;
+        ASSERT_EQ(e.frame.components[1][i], float(px + half));
+        ASSERT_EQ(e.frame.components[2][i], float(y));
+        ASSERT_EQ(e.allowed.components[1][i], 0.0f);
+        ASSERT_EQ(e.allowed.components[2][i], 0.0f);
+      });
       EXPECT_GT(covered, 200u);
     }
 }
@@ -68,26 +76,21 @@ TEST(Builtins, FragCoordZIsTheDepthAndWOneOverW) {
     inverse[i] = 1 / double(p[3]);
   }
   const double area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-  size_t covered = 0;
-  for (int py = 0; py < c.fb_height; ++py)
-    for (int px = 0; px < c.fb_width; ++px) {
-      const size_t i = e.frame.index(px, py);
-      if (e.frame.primitive[i] < 0) continue;
-      ++covered;
-      ASSERT_EQ(e.frame.components[3][i], e.frame.depth[i]);
-      ASSERT_EQ(e.allowed.components[3][i], e.allowed.depth[i]);
-      const double qx = px + 0.5, qy = py + 0.5;
-      double w = 0;
-      for (int k = 0; k < 3; ++k) {
-        const int a = (k + 1) % 3, b = (k + 2) % 3;
-        w += ((x[a] - qx) * (y[b] - qy) - (x[b] - qx) * (y[a] - qy)) / area * inverse[k];
-      }
-      ASSERT_NEAR(e.frame.components[4][i], w, 1e-6 * w);
-      ASSERT_GT(e.allowed.components[4][i], 0.0f);
-      ASSERT_LT(e.allowed.components[4][i], 1e-3 * w);
-      ASSERT_EQ(e.frame.components[5][i], 1.0f);  // counter-clockwise, GL_CCW
-      ASSERT_EQ(e.allowed.components[5][i], 0.0f);
+  const size_t covered = for_each_covered(c, e, [&](int px, int py, size_t i) {
+    ASSERT_EQ(e.frame.components[3][i], e.frame.depth[i]);
+    ASSERT_EQ(e.allowed.components[3][i], e.allowed.depth[i]);
+    const double qx = px + 0.5, qy = py + 0.5;
+    double w = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int a = (k + 1) % 3, b = (k + 2) % 3;
+      w += ((x[a] - qx) * (y[b] - qy) - (x[b] - qx) * (y[a] - qy)) / area * inverse[k];
     }
+    ASSERT_NEAR(e.frame.components[4][i], w, 1e-6 * w);
+    ASSERT_GT(e.allowed.components[4][i], 0.0f);
+    ASSERT_LT(e.allowed.components[4][i], 1e-3 * w);
+    ASSERT_EQ(e.frame.components[5][i], 1.0f);  // counter-clockwise, GL_CCW
+    ASSERT_EQ(e.allowed.components[5][i], 0.0f);
+  });
   EXPECT_GT(covered, 200u);
   Case cw = c;
   cw.front_face = FrontFace::cw;
