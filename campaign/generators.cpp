@@ -692,6 +692,13 @@ Draw random_draw(Random& r, uint32_t base, uint32_t n) {
 // vertices beyond the x, y, near and far planes; flat varyings always (the provoking vertex),
 // smooth ones, and noperspective where nothing is clipped (clipped noperspective varyings hit a
 // known clipper bug, cases/known-failures.txt, which the clip generator already reaches).
+// A built-in appended to c's varyings, its components 0 in every vertex (core/case.hpp).
+void add_builtin(Case& c, const Varying& v) {
+  c.varyings.push_back(v);
+  for (Vertex& vertex : c.vertices)
+    vertex.values.insert(vertex.values.end(), size_t(v.size), 0.0f);
+}
+
 Case assembly(Random& r) {
   Case c;
   set_framebuffer_drawn(c, r, 16, 128, 16, 128);
@@ -723,6 +730,11 @@ Case assembly(Random& r) {
   add_varying(c, r.between(1, 3),
               clipped || r.chance(0.5) ? Interpolation::smooth : Interpolation::noperspective);
   fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  // The facing, drawn last: glFrontFace, culling now and then, and gl_FrontFacing half of the
+  // time (a strip's odd triangles reversed, a fan's hub reset after a restart, both decide it).
+  c.front_face = FrontFace(r.below(2));
+  if (r.chance(0.25)) c.cull = r.chance(0.5) ? CullFace::back : CullFace::front;
+  if (r.chance(0.5)) add_builtin(c, builtin_varying(Builtin::front_facing));
   return c;
 }
 
@@ -778,15 +790,10 @@ Case window(Random& r) {
   c.cull = CullFace(r.below(3));  // none, front or back
   c.front_face = FrontFace(r.below(2));
   // The built-ins, drawn after everything else: gl_FragCoord under a random layout and
-  // gl_FrontFacing, each half of the time, their components 0 in every vertex (core/case.hpp).
-  auto add_builtin = [&c](const Varying& v) {
-    c.varyings.push_back(v);
-    for (Vertex& vertex : c.vertices)
-      vertex.values.insert(vertex.values.end(), size_t(v.size), 0.0f);
-  };
+  // gl_FrontFacing, each half of the time.
   if (r.chance(0.5))
-    add_builtin(builtin_varying(Builtin::frag_coord, {r.chance(0.5), r.chance(0.5)}));
-  if (r.chance(0.5)) add_builtin(builtin_varying(Builtin::front_facing));
+    add_builtin(c, builtin_varying(Builtin::frag_coord, {r.chance(0.5), r.chance(0.5)}));
+  if (r.chance(0.5)) add_builtin(c, builtin_varying(Builtin::front_facing));
   return c;
 }
 
@@ -897,7 +904,7 @@ const std::vector<Generator>& generators() {
        dense},
       {"assembly",
        "strips, fans and lists in several draws: 8-, 16- and 32-bit indices, primitive restart, "
-       "both provoking vertices, clipped primitives",
+       "both provoking vertices, clipped primitives, both front faces with gl_FrontFacing",
        assembly},
       {"window",
        "viewports beyond the framebuffer (negative origins, up to 16384 wide), scissor boxes "
