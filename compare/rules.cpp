@@ -6,10 +6,8 @@ namespace glrc::compare {
 
 double attribute_scale(const Case& c, int primitive, Channel ch) {
   if (ch.is_depth()) return 1.0;
-  const std::vector<int> owner = component_varying(c);
-  const size_t k = size_t(ch.component());
-  if (const Varying& v = c.varyings.at(size_t(owner.at(k))); v.is_builtin()) {
-    const int i = component_within_varying(c, int(k));
+  const auto [varying, i] = varying_component(c, ch.component());
+  if (const Varying& v = c.varyings.at(varying); v.is_builtin()) {
     if (v.builtin == Builtin::front_facing || i == 2) return 1.0;
     if (i < 2) return i == 0 ? c.fb_width : c.fb_height;
     double scale = 0;

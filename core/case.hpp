@@ -377,8 +377,13 @@ std::vector<std::string> component_names(const Case& c);
 std::string channel_name(const Case& c, Channel ch);
 // The varying each component belongs to.
 std::vector<int> component_varying(const Case& c);
-// Which of its varying's components component k is (0 for x .. 3 for w).
-int component_within_varying(const Case& c, int k);
+// The varying component k belongs to, and which of its components it is (0 for x .. 3 for w);
+// without a vector (component_varying's) made per call.
+struct VaryingComponent {
+  size_t varying = 0;
+  int component = 0;
+};
+VaryingComponent varying_component(const Case& c, int k);
 
 // GL guarantees its floating-point arithmetic for magnitudes up to 2^32 only (OpenGL 4.6
 // section 2.3.4.1, "Floating-Point Computation"): a case with a clip coordinate or a clip or

@@ -25,12 +25,11 @@ std::vector<int> component_varying(const Case& c) {
   return owner;
 }
 
-int component_within_varying(const Case& c, int k) {
-  for (const Varying& v : c.varyings) {
-    if (k < v.size) return k;
-    k -= v.size;
-  }
-  return k;
+VaryingComponent varying_component(const Case& c, int k) {
+  size_t v = 0;
+  while (v + 1 < c.varyings.size() && k >= c.varyings[v].size)
+    k -= c.varyings[v++].size;
+  return {v, k};
 }
 
 // The tables' names are string literals, so their data() ends in a NUL.

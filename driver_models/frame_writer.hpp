@@ -18,6 +18,12 @@ namespace glrc::driver_models {
 // `w`); gl_FrontFacing the driver's facing of the triangle it set up.
 void write_builtins(const Case& c, int px, int py, float z, float w, bool front_facing,
                     float* values);
+// Whether c writes a built-in: whether its fragments need write_builtins.
+inline bool writes_builtins(const Case& c) {
+  for (const Varying& v : c.varyings)
+    if (v.is_builtin()) return true;
+  return false;
+}
 
 class FrameWriter {
  public:

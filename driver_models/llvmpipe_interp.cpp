@@ -42,14 +42,14 @@ float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpo
         break;
     }
   }
+  // The fragment shader's position input, where asked: the z and 1/w planes themselves
+  // (gl_FragCoord's z is not clamped; its w is the plane of 1/w_c, not its reciprocal).
+  const float z_plane = evaluate(k.z, x, y, fma);
+  if (position) position[0] = z_plane, position[1] = evaluate(k.w, x, y, fma);
   // z + polygon offset (0 here), then lp_build_clamp(z, 0, 1) (gallivm/lp_bld_arit.c): min
   // with 1 first, then max with 0. minps/maxps return the second operand for NaN, so a NaN
   // depth (a triangle set up from a NaN window position) becomes 1.
-  // The fragment shader's position input: the z and 1/w planes themselves (gl_FragCoord's z
-  // is not clamped; its w is the plane of 1/w_c, not its reciprocal).
-  position[0] = evaluate(k.z, x, y, fma);
-  position[1] = evaluate(k.w, x, y, fma);
-  float z = ftz(evaluate(k.z, x, y, fma) + 0.0f);
+  float z = ftz(z_plane + 0.0f);
   z = z < 1.0f ? z : 1.0f;
   z = z > 0.0f ? z : 0.0f;
   return z;

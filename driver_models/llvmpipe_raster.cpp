@@ -316,8 +316,7 @@ LlvmpipeRasterizer::LlvmpipeRasterizer(const Case& c, bool fma, FrameWriter& wri
       writer_(writer),
       interpolation_(component_interpolation(c)),
       values_(interpolation_.size()),
-      builtins_(std::any_of(c.varyings.begin(), c.varyings.end(),
-                            [](const Varying& v) { return v.is_builtin(); })) {}
+      builtins_(writes_builtins(c)) {}
 
 void LlvmpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, const DrawVertex& v2,
                                   int32_t primitive) {
@@ -327,8 +326,8 @@ void LlvmpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, co
       llvmpipe_coefficients(t, interpolation_, case_.provoking == ProvokingVertex::first);
   llvmpipe_coverage(t, case_.fb_width, case_.fb_height, scissor_region(case_), [&](int px, int py) {
     float position[2];
-    const float depth =
-        llvmpipe_fragment(k, interpolation_, px, py, fma_, values_.data(), position);
+    const float depth = llvmpipe_fragment(k, interpolation_, px, py, fma_, values_.data(),
+                                          builtins_ ? position : nullptr);
     if (builtins_)
       write_builtins(case_, px, py, position[0], position[1], t.front_facing, values_.data());
     writer_.fragment(px, py, primitive, depth, values_.data());

@@ -46,8 +46,8 @@ void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
 
 // The fragment shader's inputs and depth at pixel (px, py) (lp_bld_interp.c,
 // attribs_update_simple; lp_state_fs.c, lp_build_depth_clamp): `values` gets one float per
-// component; `position` the position input's z and w (gl_FragCoord.zw: the planes of window z
-// and 1/w_c, as evaluated); returns the depth as tested and written.
+// component; `position`, where not null, the position input's z and w (gl_FragCoord.zw: the
+// planes of window z and 1/w_c, as evaluated); returns the depth as tested and written.
 float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpolation>& interp,
                         int px, int py, bool fma, float* values, float* position);
 

@@ -40,7 +40,7 @@ float softpipe_fragment(const SoftpipeTriangle& t, const std::vector<Interpolati
     }
   }
   const float z = quad_value(t.z, qx, qy, right, top);
-  position[0] = z, position[1] = w;  // setup_fragcoord_coeff: posCoef's z and w
+  if (position) position[0] = z, position[1] = w;  // setup_fragcoord_coeff: posCoef's z and w
   return z;
 }
 
@@ -49,8 +49,7 @@ SoftpipeRasterizer::SoftpipeRasterizer(const Case& c, FrameWriter& writer)
       writer_(writer),
       interpolation_(component_interpolation(c)),
       values_(interpolation_.size()),
-      builtins_(std::any_of(c.varyings.begin(), c.varyings.end(),
-                            [](const Varying& v) { return v.is_builtin(); })) {}
+      builtins_(writes_builtins(c)) {}
 
 void SoftpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, const DrawVertex& v2,
                                   int32_t primitive) {
@@ -59,7 +58,8 @@ void SoftpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, co
   for (const Span& s : t.spans)
     for (int x = s.left; x < s.right; ++x) {
       float position[2];
-      const float depth = softpipe_fragment(t, interpolation_, x, s.y, values_.data(), position);
+      const float depth = softpipe_fragment(t, interpolation_, x, s.y, values_.data(),
+                                            builtins_ ? position : nullptr);
       if (builtins_)
         write_builtins(case_, x, s.y, position[0], position[1], t.front_facing, values_.data());
       writer_.fragment(x, s.y, primitive, depth, values_.data());

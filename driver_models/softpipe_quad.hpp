@@ -13,8 +13,8 @@ namespace glrc::driver_models {
 
 // Values of pixel (px, py): evaluated at its 2x2 quad's top-left (even) pixel as
 // a0 + dadx * x + dady * y, then dadx and dady added for the other three pixels; perspective
-// inputs divided by the W plane evaluated the same way; `position` gets the z and W planes'
-// values (gl_FragCoord.zw, setup_fragcoord_coeff). Returns the (unclamped) depth.
+// inputs divided by the W plane evaluated the same way; `position`, where not null, gets the z
+// and W planes' values (gl_FragCoord.zw, setup_fragcoord_coeff). Returns the (unclamped) depth.
 float softpipe_fragment(const SoftpipeTriangle& t, const std::vector<Interpolation>& interp, int px,
                         int py, float* values, float* position);
 

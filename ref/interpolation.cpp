@@ -116,7 +116,7 @@ std::vector<ComponentPlane> component_planes(const Case& c, const TriangleSetup&
   for (size_t k = 0; k < owner.size(); ++k) {
     const Varying& v = c.varyings[size_t(owner[k])];
     if (v.is_builtin()) {
-      planes.push_back(builtin_plane(c, v, component_within_varying(c, int(k)), t, b, depth));
+      planes.push_back(builtin_plane(c, v, varying_component(c, int(k)).component, t, b, depth));
       continue;
     }
     ComponentPlane p;
