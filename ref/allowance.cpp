@@ -44,11 +44,27 @@ double value_freedom(const Case& c, const TriangleSetup& t, double scale, int ge
          kDenormalFlushes * 0x1p-126 * m * w;
 }
 
-FanTriangles::FanTriangles(const WindowPolygon& polygon, double margin) {
+FanTriangles::FanTriangles(const WindowPolygon& polygon, double margin, double rounding) {
   if (!(margin >= 0)) margin = 0;
+  if (!(rounding >= 0)) rounding = 0;
   for (const auto& a : polygon)
     if (!std::isfinite(a[0]) || !std::isfinite(a[1])) return;
   const size_t n = polygon.size();
+  // The polygon's edges (it is convex, its vertices in order), skipping a vertex given twice.
+  double polygon_area2 = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const auto &a = polygon[i], &b = polygon[(i + 1) % n];
+    polygon_area2 += a[0] * b[1] - b[0] * a[1];
+  }
+  const double sense = polygon_area2 > 0 ? 1 : -1;
+  if (n >= 3 && std::fabs(polygon_area2) > 0)
+    for (size_t i = 0; i < n; ++i) {
+      const auto &a = polygon[i], &b = polygon[(i + 1) % n];
+      const double ea = -(b[1] - a[1]) * sense, eb = (b[0] - a[0]) * sense;
+      const double length = std::hypot(ea, eb);
+      if (!(length > 0)) continue;
+      hull_.push_back({ea / length, eb / length, -(ea * a[0] + eb * a[1]) / length});
+    }
   for (size_t i = 0; i < n; ++i)
     for (size_t j = i + 1; j < n; ++j)
       for (size_t k = j + 1; k < n; ++k) {
@@ -78,7 +94,16 @@ FanTriangles::FanTriangles(const WindowPolygon& polygon, double margin) {
           const double kappa = std::fabs(e1x * e2y) + std::fabs(e2x * e1y);
           const double same = 2 * std::max(std::fabs(e1x * e2x), std::fabs(e1y * e2y));
           t.condition = std::max(t.condition, (2 * kappa + same) / std::fabs(area2));
+          t.q[e][0] = p0[0], t.q[e][1] = p0[1];
         }
+        // Each vertex moved by up to ε in x and in y changes 2A by at most ε·Σ_j (|E_j.x| +
+        // |E_j.y|) + 8ε² (E_j the edge opposite vertex j); 2^-40 more for this arithmetic.
+        double edges = 0;
+        for (size_t e = 0; e < 3; ++e)
+          edges += std::fabs(q[(e + 1) % 3][0] - q[e][0]) + std::fabs(q[(e + 1) % 3][1] - q[e][1]);
+        const double change = (rounding * edges + 8 * rounding * rounding) * (1 + 0x1p-40);
+        t.area_below = std::fabs(area2) * (1 - 0x1p-40) - change;
+        t.rounding = rounding;
         triangles_.push_back(t);
       }
 }
@@ -130,6 +155,74 @@ std::array<double, 2> FanTriangles::condition_range(double x0, double x1, double
     if (inside) lo = t.condition;
   }
   return {lo, hi};
+}
+
+// Outside the polygon: the derivation is allowance.hpp's. An implementation whose planes come
+// from its unsnapped vertices f_j (each within ε of the exact q_j) and whose coverage from its
+// snapped ones draws at the centre p its plane's value there: the exact value at
+// q = Σ λ'_j q_j, λ' the barycentrics of p in (f_j), and p = Σ λ'_j f_j, so
+// |q - p| <= Σ |λ'_j|·ε in x and in y. λ'_j = 2A'_j(p)/2A' (2A'_j(p) the doubled area with p
+// in place of f_j): moving the vertices changes Σ_j |2A_j(p)| by at most
+// 2ε·Σ_i |q_i - p|_1 + 6ε² (each vertex is in two of the three, ε·|edge|_1 each, and ε² terms)
+// and |2A| by at most its `change` above, whence the reach below, a bound, not a first order;
+// unbounded where 2A' may be 0.
+double FanTriangles::reach(const Triangle& t, double x, double y) {
+  if (!(t.area_below > 0)) return INFINITY;
+  double areas = 0, distances = 0;
+  for (int j = 0; j < 3; ++j) {
+    const double* a = t.q[(j + 1) % 3];
+    const double* b = t.q[(j + 2) % 3];
+    areas += std::fabs((a[0] - x) * (b[1] - y) - (b[0] - x) * (a[1] - y));
+    distances += std::fabs(t.q[j][0] - x) + std::fabs(t.q[j][1] - y);
+  }
+  const double e = t.rounding;
+  return (1 + 0x1p-40) * e * (areas + 2 * e * distances + 6 * e * e) / t.area_below;
+}
+
+bool FanTriangles::inside(double x, double y) const {
+  // On an edge within the test's rounding (2^-48 of its terms) counts as inside: a centre
+  // exactly on an edge is the polygon's own.
+  for (const auto& e : hull_) {
+    const double s = 0x1p-48 * (std::fabs(e[0] * x) + std::fabs(e[1] * y) + std::fabs(e[2]));
+    if (e[0] * x + e[1] * y + e[2] < -s) return false;
+  }
+  return true;
+}
+
+double FanTriangles::outside_reach(double x, double y) const {
+  if (hull_.empty() || inside(x, y)) return -1;
+  double held = -1, any = 0;
+  for (const Triangle& t : triangles_) {
+    const double r = reach(t, x, y);
+    any = std::max(any, r);
+    if (x < t.box[0] || x > t.box[2] || y < t.box[1] || y > t.box[3]) continue;
+    bool holds = true;
+    for (const auto& e : t.edge)
+      holds = holds && e[0] * x + e[1] * y + e[2] >= 0;
+    if (holds) held = std::max(held, r);
+  }
+  return held >= 0 ? held : any;
+}
+
+void FanTriangles::outside_reach(const double* x, const double* y, double* out) const {
+  // Inside, the common case, in one loop over the lanes; a lane outside one at a time (the
+  // same function: the same bits).
+  for (int j = 0; j < kRowBlock; ++j)
+    out[j] = -1;
+  if (hull_.empty()) return;
+  for (int j = 0; j < kRowBlock; ++j)
+    if (!inside(x[j], y[j])) out[j] = outside_reach(x[j], y[j]);
+}
+
+bool FanTriangles::holds_run(double x0, double x1, double y) const {
+  if (hull_.empty()) return true;
+  for (const auto& e : hull_) {
+    // Inside at both ends by more than inside()'s slack at any point between.
+    const double s = 0x1p-47 * (std::fabs(e[0]) * std::max(std::fabs(x0), std::fabs(x1)) +
+                                std::fabs(e[1] * y) + std::fabs(e[2]));
+    if (e[0] * x0 + e[1] * y + e[2] < s || e[0] * x1 + e[1] * y + e[2] < s) return false;
+  }
+  return true;
 }
 
 Anchors::Anchors(const WindowPolygon& polygon, const WindowPolygon& guard_band) {
@@ -216,12 +309,11 @@ Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator,
 // a choice between the exact bound and infinity in one loop would move the bound's division
 // into a branch, which is not vectorized (it might trap).
 [[gnu::always_inline]] inline Allowance::PositionParts Allowance::position_parts(
-    double px, double py, double v, double d, double delta) const {
+    double px, double py, double v, double d, double delta, double h) const {
   // The value's gradient per pixel: ∇(N/D) = (∇N - v∇D) / D.
   const double a = an_ - v * ad_, b = bn_ - v * bd_;
   const double vx = a / d, vy = b / d;
   const double first = 1.5 * delta * (std::fabs(vx) + std::fabs(vy));
-  const double h = reach_.at(delta);
   const double gd = abs_ad_ + abs_bd_;
   const double numerator =
       h * ((std::fabs(a) + std::fabs(b)) + (0x1p-23 * std::fabs(v) + 0x1p-149) * gd);
@@ -236,19 +328,39 @@ Allowance::Allowance(const LinearForm& numerator, const LinearForm& denominator,
   return spread_ < moved ? spread_ : moved;                // std::min(moved, spread_)
 }
 
-double Allowance::at(int px, int py, float value, double delta, double extra,
-                     double condition) const {
-  Anchors::Distances distances;
-  anchors().distances(px, py, distances);
-  return at(px, py, value, delta, extra, condition, distances);
+double Allowance::outside_position(double px, double py, double v, double d, double delta,
+                                   double outside) const {
+  // A sliver that may turn over: its 1/2A may be infinite, and even a constant plane's gradient
+  // 0·∞.
+  if (!(outside < INFINITY)) return INFINITY;
+  // Equal values at every vertex make a constant plane: any implementation's value is a sum of
+  // them weighted by barycentrics that sum to 1, in or out of its triangle, so still that one.
+  if (spread_ == 0) return 0;
+  // The snapped implementation's (its value that of a point within h of p, as inside, but no
+  // longer within the vertices' spread: p lies beyond them) and the unsnapped one's (the point
+  // within `outside`).
+  const PositionParts snapped = position_parts(px, py, v, d, delta, reach_.at(delta));
+  const PositionParts unsnapped = position_parts(px, py, v, d, outside, outside);
+  double most = 0;
+  for (const PositionParts& p : {snapped, unsnapped})
+    most = std::max({most, p.first, p.defined != 0 ? p.exact : INFINITY});
+  return most;
 }
 
 double Allowance::at(int px, int py, float value, double delta, double extra, double condition,
-                     const Anchors::Distances& distances) const {
+                     double outside) const {
+  Anchors::Distances distances;
+  anchors().distances(px, py, distances);
+  return at(px, py, value, delta, extra, condition, outside, distances);
+}
+
+double Allowance::at(int px, int py, float value, double delta, double extra, double condition,
+                     double outside, const Anchors::Distances& distances) const {
   const double v = double(value);
   const double d = ad_ * px + bd_ * py + cd_;
   if (!(std::fabs(d) > 0) || !std::isfinite(v)) return std::numeric_limits<double>::infinity();
-  const double moved = position(position_parts(px, py, v, d, delta));
+  const double moved = outside >= 0 ? outside_position(px, py, v, d, delta, outside)
+                                    : position(position_parts(px, py, v, d, delta, reach_.at(delta)));
   // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor;
   // and set up from a fan triangle anchored at a polygon vertex.
   const double abs_v = std::fabs(v);
@@ -357,6 +469,7 @@ std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo,
 [[gnu::always_inline]] inline void Allowance::block_at(const double* px, const double* py,
                                                        const float* value, const double* delta,
                                                        const double* extra, const double* condition,
+                                                       const double* outside,
                                                        const Anchors::RowDistances& distances,
                                                        double* result) const {
   // The single pixel's at() above, lane by lane, in its order of operations: each lane's
@@ -415,17 +528,28 @@ std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo,
   store(setup0, setup1, setup);
   double first[n], exact[n], defined[n];
   for (int j = 0; j < n; ++j) {
-    const PositionParts p = position_parts(px[j], py[j], v[j], d[j], delta[j]);
+    const PositionParts p = position_parts(px[j], py[j], v[j], d[j], delta[j], reach_.at(delta[j]));
     first[j] = p.first, exact[j] = p.exact, defined[j] = p.defined;
   }
+  double position[n];
+  int any_outside = 0;
+  for (int j = 0; j < n; ++j) {
+    position[j] = this->position({first[j], exact[j], defined[j]});
+    any_outside |= outside[j] >= 0;
+  }
+  // A pixel outside the polygon (rare: where an implementation covers beyond the exact
+  // edges), one at a time, as at() does.
+  if (any_outside)
+    for (int j = 0; j < n; ++j)
+      if (outside[j] >= 0 && std::fabs(d[j]) > 0 && abs_v[j] <= std::numeric_limits<double>::max())
+        position[j] = outside_position(px[j], py[j], v[j], d[j], delta[j], outside[j]);
   for (int j = 0; j < n; ++j) {
     // The early return, as a selection below (no branch: vectorized).
-    const double position = this->position({first[j], exact[j], defined[j]});
     const double evaluation =
         kEvaluationRoundings * kFloatUnitRoundoff * terms[j] / std::fabs(d[j]);
     const double set_up =
         kSetupRoundings * kFloatUnitRoundoff * condition[j] * setup[j] / std::fabs(d[j]);
-    result[j] = position + evaluation + set_up + values_ + extra[j];
+    result[j] = position[j] + evaluation + set_up + values_ + extra[j];
   }
   // A loop of its own: a selection between the sum and infinity in the loop above would move
   // the sum's divisions into a branch, which is not vectorized (they might trap).
@@ -439,22 +563,24 @@ std::array<double, 2> Allowance::range(int px0, int px1, int py, float value_lo,
 
 GLRC_BLOCK_FORM void Allowance::at(const double* px, const double* py, const float* value,
                                    const double* delta, const double* extra,
-                                   const double* condition, const Anchors::RowDistances& distances,
-                                   double* out) const {
+                                   const double* condition, const double* outside,
+                                   const Anchors::RowDistances& distances, double* out) const {
   double result[kRowBlock];
-  block_at(px, py, value, delta, extra, condition, distances, result);
+  block_at(px, py, value, delta, extra, condition, outside, distances, result);
   std::copy(result, result + kRowBlock, out);
 }
 
 GLRC_BLOCK_FORM void Allowance::at_rounded_up(const double* px, const double* py,
                                               const float* value, const double* delta,
                                               const double* extra, const double* condition,
+                                              const double* outside,
                                               const Anchors::RowDistances& distances,
                                               float* out) const {
   // The bounds go to round_up from registers or this frame, not through the caller's memory.
   double result[kRowBlock];
-  block_at(px, py, value, delta, extra, condition, distances, result);
+  block_at(px, py, value, delta, extra, condition, outside, distances, result);
   round_up(result, out);
 }
 
 }  // namespace glrc::ref
+

@@ -22,12 +22,28 @@
 // The allowance takes the larger of 1.5 times the first order (its bound before the exact one:
 // kept where it is larger, so that no allowance shrinks) and the exact bound, and never more
 // than the spread of the triangle's vertex values, since every legal value is a convex
-// combination of them. In doubles, with the reference's value v rounded to float: |A| + |B|
+// combination of them (inside the polygon; outside it, below). In doubles, with the reference's value v rounded to float: |A| + |B|
 // gets (2^-23·|v| + 2^-149)·(|D_x| + |D_y|) more; D at p, computed from its terms, 2^-50 of their
 // magnitudes less; a denominator below 2^-20·|D| counts as 0; and 2^-30 of the bound more
 // covers the roundings of its own arithmetic (δ and h are bounds with margins of their own,
 // freedom.hpp and PositionReach). Depth adds the z_w freedom of clipped vertices
 // (freedom.hpp).
+//
+// Outside the polygon. Snapping covers centres beyond the exact edges, where the plane is
+// extrapolated and two implementations differ. One whose planes come from the vertices it
+// snaps covers p inside its own triangle: the bound above holds (q is inside the exact one),
+// but v(p) lies beyond the vertices' values, so the spread no longer caps it. One whose planes
+// come from its unsnapped float positions f_j (within ε of q_j: the freedom less the
+// snapping; llvmpipe) draws the value at q = Σ λ'_j q_j with λ' the barycentrics of p in (f_j),
+// which are not all >= 0 there: |q - p| <= ε·Σ|λ'_j|, and Σ|λ'_j| = Σ|2A'_j(p)|/|2A'| is
+// bounded exactly from the exact areas and ε (FanTriangles::outside_reach: the largest over the
+// fan triangles that may hold p), the exact bound above taken with that h and no cap. Where
+// the rounding may make 2A' zero (a sliver it may turn over) the value is not determined: a
+// `sizes` campaign found llvmpipe drawing 10.4 where the exact plane gives -1.1 at a centre
+// beside a sliver 3.5e-5 px high (cases/sliver_extrapolated_outside.json). A constant plane
+// stays constant. Not covered: a centre inside the polygon that a fan triangle not holding it
+// covers (its extrapolation is within the plane-setup term for every triangle that is not a
+// sliver piece the rounding may turn over).
 //
 // Arithmetic. The planes N = Σ λ_i a_i and D = Σ λ_i b_i (a = v/w, b = 1/w for smooth;
 // a = v, b = 1 for noperspective and depth) evaluated in float32 from an anchor point, and the
@@ -138,7 +154,10 @@ class FanTriangles {
   // `polygon`: window positions (PositionFreedom::polygon); `margin`: how far outside a
   // triangle a pixel centre may lie and still be drawn with it (the vertices' largest position
   // freedom, pixels). Three vertices on one line make no triangle.
-  FanTriangles(const WindowPolygon& polygon, double margin);
+  // `rounding`: how far an implementation that builds its planes from unsnapped positions
+  // puts each vertex, in x and in y (the position freedom less the snapping), for
+  // outside_reach.
+  FanTriangles(const WindowPolygon& polygon, double margin, double rounding = 0);
   size_t size() const { return triangles_.size(); }
   // G(p) above: the largest shape factor G of the triangles that hold the window point (x, y)
   // within the margin; 0 when none does.
@@ -150,13 +169,36 @@ class FanTriangles {
   // with the rounding of the edge tests allowed for; and of those whose box meets the segment.
   std::array<double, 2> condition_range(double x0, double x1, double y) const;
 
+  // Outside the polygon (allowance.hpp, "Outside the polygon"): -1 at a window point (x, y)
+  // inside it (or on its edges, within their rounding); elsewhere (>= 0) how far from it, in x
+  // and in y, lies the point whose exact value an implementation with planes from its
+  // unsnapped vertices draws there: the largest reach over the triangles that hold the point
+  // within the margin (over all of them where none does), infinite where one of them may turn
+  // over or vanish within the rounding (no value is determined there). -1 everywhere for a
+  // polygon of zero area.
+  double outside_reach(double x, double y) const;
+  // outside_reach() of kRowBlock points at once, bit for bit.
+  void outside_reach(const double* x, const double* y, double* out) const;
+  // Whether every point (x, y), x in [x0, x1], is inside the polygon as outside_reach() judges
+  // it (its reach -1): both ends inside by more than the tests' rounding (it is convex).
+  bool holds_run(double x0, double x1, double y) const;
+
  private:
   struct Triangle {
     double box[4];      // x0, y0, x1, y1 grown by the margin
     double edge[3][3];  // a·x + b·y + c >= 0 inside: unit normals, c grown by the margin
     double condition;   // G
+    double q[3][2];     // its vertices
+    // |2A| less how far the rounding may change it (negative where it may turn over), and
+    // the reach's constant terms.
+    double area_below, rounding;
   };
+  // One triangle's reach at (x, y) (outside_reach), the point outside the polygon.
+  static double reach(const Triangle& t, double x, double y);
+  bool inside(double x, double y) const;
   std::vector<Triangle> triangles_;
+  // The polygon's edges, a·x + b·y + c >= 0 inside (unit normals); none for zero area.
+  std::vector<std::array<double, 3>> hull_;
 };
 
 // Where the planes of one triangle's channels may be evaluated from: the window origin, the
@@ -240,28 +282,30 @@ class Allowance {
   // At pixel (px, py), whose value is `value`: `delta` is the position freedom there
   // (PositionFreedom::at, pixels), `extra` any further absolute freedom there (depth:
   // PositionFreedom::depth_at), `condition` the setup's G(p) (FanTriangles::condition).
-  double at(int px, int py, float value, double delta, double extra = 0,
-            double condition = 0) const;
+  // `outside` the reach of FanTriangles::outside_reach there (-1: inside the polygon).
+  double at(int px, int py, float value, double delta, double extra = 0, double condition = 0,
+            double outside = -1) const;
   // The same, with the pixel's distances to the anchors computed once for every channel
   // (Anchors::distances of the Anchors this was built with).
   double at(int px, int py, float value, double delta, double extra, double condition,
-            const Anchors::Distances& distances) const;
+            double outside, const Anchors::Distances& distances) const;
   // at() for kRowBlock pixels (px[j], py[j]) at once (integer pixel coordinates as doubles;
   // each array kRowBlock long): out[j] is bit for bit at(px[j], py[j], value[j], delta[j],
-  // extra[j], condition[j], ...) with distances the Anchors::RowDistances of the same pixels.
-  // Every lane is computed; a caller with fewer pixels pads the arrays.
+  // extra[j], condition[j], outside[j], ...) with distances the Anchors::RowDistances of the
+  // same pixels. Every lane is computed; a caller with fewer pixels pads the arrays.
   void at(const double* px, const double* py, const float* value, const double* delta,
-          const double* extra, const double* condition, const Anchors::RowDistances& distances,
-          double* out) const;
+          const double* extra, const double* condition, const double* outside,
+          const Anchors::RowDistances& distances, double* out) const;
   // The block at() above with each lane's bound rounded up to a float (round_up): the
   // allowances a frame stores, bit for bit round_up() of at()'s.
   void at_rounded_up(const double* px, const double* py, const float* value, const double* delta,
-                     const double* extra, const double* condition,
+                     const double* extra, const double* condition, const double* outside,
                      const Anchors::RowDistances& distances, float* out) const;
   // Bounds {lo, hi} of what at_rounded_up() gives at the pixels px0..px1 of row py (px0 <=
   // px1), each pixel's value in [value_lo, value_hi] (finite), delta, extra and condition within
-  // the bounds given ({lo, hi} each) and distances those of Anchors::distances of the run: lo
-  // <= each allowance <= hi. {0, +inf} when the run's D may be 0 (the value undefined there).
+  // the bounds given ({lo, hi} each), every pixel inside the polygon (outside -1:
+  // FanTriangles::holds_run; lo holds outside it too) and distances those of
+  // Anchors::distances of the run: lo <= each allowance <= hi. {0, +inf} when the run's D may be 0 (the value undefined there).
   // The bound is taken operation by operation in at()'s order: every operation but the planes'
   // sums (whose rounding is allowed for) is monotone in its operands; a relative 2^-44 more
   // covers a compiler's other grouping of the sums of positive terms.
@@ -277,13 +321,21 @@ class Allowance {
   // delta: position(position_parts(...)), at()'s and the block at()'s, one body. `defined`:
   // 1 where the exact bound's denominator is above 2^-20·|D| (a double: a lane of the block's
   // loops), else 0 and the bound infinite.
+  // `h`: how far the point whose exact value is drawn may lie (PositionReach for a pixel
+  // inside the polygon).
   struct PositionParts {
     double first, exact, defined;
   };
-  PositionParts position_parts(double px, double py, double v, double d, double delta) const;
+  PositionParts position_parts(double px, double py, double v, double d, double delta,
+                               double h) const;
   double position(const PositionParts& parts) const;
+  // The position term at a pixel outside the polygon whose reach (FanTriangles::outside_reach)
+  // is `outside` >= 0: the larger of the snapped implementation's and the unsnapped one's,
+  // neither capped by the spread.
+  double outside_position(double px, double py, double v, double d, double delta,
+                          double outside) const;
   void block_at(const double* px, const double* py, const float* value, const double* delta,
-                const double* extra, const double* condition,
+                const double* extra, const double* condition, const double* outside,
                 const Anchors::RowDistances& distances, double* result) const;
 
   double an_ = 0, bn_ = 0, cn_ = 0, ad_ = 0, bd_ = 0, cd_ = 0;

@@ -8,14 +8,19 @@
 namespace glrc::ref {
 
 TriangleAllowance::TriangleAllowance(const Case& c, const TriangleSetup& t, int bits)
-    : freedom_(c, t, bits), eye_(freedom_.reaches_eye()), clipped_(freedom_.generations() > 0) {}
+    : freedom_(c, t, bits),
+      eye_(freedom_.reaches_eye()),
+      clipped_(freedom_.generations() > 0),
+      bits_(bits) {}
 
 void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
                             const std::vector<ComponentPlane>& planes, const Plane& depth_forms,
                             const std::vector<bool>& smooth) {
   // The implementation's possible fan triangles, shared by every channel; and where its planes
   // may be anchored.
-  fan_ = FanTriangles(freedom_.polygon(), freedom_.largest());
+  // Its vertices' rounding, for planes from unsnapped positions: the freedom less the snapping.
+  fan_ = FanTriangles(freedom_.polygon(), freedom_.largest(),
+                      freedom_.largest() - std::ldexp(1.0, -bits_));
   anchors_ = Anchors(freedom_.polygon(), freedom_.guard_band_triangle());
   const int generations = freedom_.generations();
   const PositionReach reach = PositionReach::of(freedom_.slope(), freedom_.largest());
@@ -62,6 +67,7 @@ void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bo
   for (int j = 0; j < n; ++j)
     centre_x[j] = b.x[j] + 0.5, centre_y[j] = b.y[j] + 0.5;
   fan_.condition(centre_x, centre_y, b.condition);
+  fan_.outside_reach(centre_x, centre_y, b.outside);
   if (clipped_)
     freedom_.weight_at(b.x, b.y, b.weight);
   else
@@ -72,7 +78,8 @@ void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bo
 
 void TriangleAllowance::depth_at(const Block& b, const float* z, float* out) const {
   if (eye_) return (void)std::fill(out, out + kRowBlock, INFINITY);
-  depth_.at_rounded_up(b.x, b.y, z, b.delta, b.depth_extra, b.condition, b.distances, out);
+  depth_.at_rounded_up(b.x, b.y, z, b.delta, b.depth_extra, b.condition, b.outside, b.distances,
+                       out);
 }
 
 void TriangleAllowance::component_at(const Block& b, size_t k, const float* value,
@@ -91,7 +98,8 @@ void TriangleAllowance::component_at(const Block& b, size_t k, const float* valu
     extra[j] = kind == Kind::inverse_w ? b.weight[j] * std::fabs(double(value[j])) * (1 + 0x1p-20)
                : smooth_[k]            ? b.weight[j] * spread_[k]
                                        : 0.0;
-  components_[k].at_rounded_up(b.x, b.y, value, b.delta, extra, b.condition, b.distances, out);
+  components_[k].at_rounded_up(b.x, b.y, value, b.delta, extra, b.condition, b.outside,
+                               b.distances, out);
 }
 
 std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int px1, int py,
@@ -119,7 +127,9 @@ std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int 
   if (!(delta[0] >= 0) || !(condition[0] >= 0) || !(extra[0] >= 0)) return {0.0, INFINITY};
   Anchors::RunDistances distances;
   anchors_.distances(px0, px1, py, distances);
-  return components_[k].range(px0, px1, py, value_lo, value_hi, delta, extra, condition, distances);
+  return beyond(px0, px1, py,
+                components_[k].range(px0, px1, py, value_lo, value_hi, delta, extra, condition,
+                                     distances));
 }
 
 std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, float z_lo,
@@ -131,7 +141,14 @@ std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, f
   if (!(delta[0] >= 0) || !(condition[0] >= 0) || !(extra[0] >= 0)) return {0.0, INFINITY};
   Anchors::RunDistances distances;
   anchors_.distances(px0, px1, py, distances);
-  return depth_.range(px0, px1, py, z_lo, z_hi, delta, extra, condition, distances);
+  return beyond(px0, px1, py, depth_.range(px0, px1, py, z_lo, z_hi, delta, extra, condition,
+                                           distances));
+}
+
+std::array<double, 2> TriangleAllowance::beyond(int px0, int px1, int py,
+                                                const std::array<double, 2>& range) const {
+  if (fan_.holds_run(px0 + 0.5, px1 + 0.5, py + 0.5)) return range;
+  return {range[0], INFINITY};
 }
 
 namespace {

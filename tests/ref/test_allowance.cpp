@@ -6,8 +6,12 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 
 #include "ref/allowance.hpp"
+#include "ref/deferred.hpp"
+#include "ref/depth.hpp"
+#include "ref/interpolation.hpp"
 #include "ref/mesh.hpp"
 #include "ref/reference.hpp"
 #include "ref/setup.hpp"
@@ -159,18 +163,21 @@ TEST(Allowance, BlocksGiveTheSingularFormsBits) {
   const Anchors anchors(polygon, guard);
   for (double spread : {2.5, double(INFINITY)}) {
     const Allowance a(n, d, spread, 1e-7, anchors);
-    double px[kRowBlock], py[kRowBlock], delta[kRowBlock], extra[kRowBlock], cond[kRowBlock];
+    double px[kRowBlock], py[kRowBlock], delta[kRowBlock], extra[kRowBlock], cond[kRowBlock],
+        outside[kRowBlock];
     float value[kRowBlock];
     for (int j = 0; j < kRowBlock; ++j) {
       px[j] = 3 + 5 * j, py[j] = j % 3 == 0 ? px[j] : 11 - j;  // lanes 0, 3, 6: D = 0
       delta[j] = 0x1p-8 * (1 + j), extra[j] = j * 1e-6, cond[j] = 5 + 3 * j;
       value[j] = float(1.0 / (j + 1) - 0.3);
+      // Lanes 2 and 5 outside the polygon, 5 where no value is determined.
+      outside[j] = j == 2 ? 0.01 : j == 5 ? INFINITY : -1;
     }
     value[1] = NAN, value[4] = INFINITY, value[7] = -1e30f;
     Anchors::RowDistances blocks;
     anchors.distances(px, py, blocks);
     double out[kRowBlock];
-    a.at(px, py, value, delta, extra, cond, blocks, out);
+    a.at(px, py, value, delta, extra, cond, outside, blocks, out);
     for (int j = 0; j < kRowBlock; ++j) {
       Anchors::Distances one;
       anchors.distances(int(px[j]), int(py[j]), one);
@@ -180,18 +187,21 @@ TEST(Allowance, BlocksGiveTheSingularFormsBits) {
         EXPECT_EQ(std::bit_cast<uint64_t>(one.most[i]), std::bit_cast<uint64_t>(blocks.most[i][j]));
       }
       const double single =
-          a.at(int(px[j]), int(py[j]), value[j], delta[j], extra[j], cond[j], one);
+          a.at(int(px[j]), int(py[j]), value[j], delta[j], extra[j], cond[j], outside[j], one);
       EXPECT_EQ(std::bit_cast<uint64_t>(single), std::bit_cast<uint64_t>(out[j])) << "lane " << j;
     }
     // What the frames store: each lane's bound rounded up to a float, bit for bit.
     float stored[kRowBlock];
-    a.at_rounded_up(px, py, value, delta, extra, cond, blocks, stored);
+    a.at_rounded_up(px, py, value, delta, extra, cond, outside, blocks, stored);
     for (int j = 0; j < kRowBlock; ++j)
       EXPECT_EQ(std::bit_cast<uint32_t>(stored[j]), std::bit_cast<uint32_t>(round_up(out[j])))
           << "lane " << j;
     EXPECT_EQ(out[0], INFINITY);  // D = 0
     EXPECT_EQ(out[1], INFINITY);  // NaN
     EXPECT_TRUE(std::isfinite(out[2]));
+    // Outside the polygon: the spread no longer caps it, and the reach counts.
+    EXPECT_GE(out[2], a.at(int(px[2]), int(py[2]), value[2], delta[2], extra[2], cond[2]));
+    EXPECT_EQ(out[5], INFINITY);
   }
   // round_up: bounds that round up, down, exactly, negative, infinite, NaN and beyond float.
   const double bounds[kRowBlock] = {0.1, 1.0, 1e-45, -0.1, INFINITY, NAN, 1e300, 3.4028235e38};
@@ -206,6 +216,151 @@ TEST(Allowance, BlocksGiveTheSingularFormsBits) {
     EXPECT_EQ(std::bit_cast<uint32_t>(round_up(ordinary[j])), std::bit_cast<uint32_t>(block[j]));
     EXPECT_GE(double(block[j]), ordinary[j]);
   }
+}
+
+// The allowance of case c's triangle 0, one noperspective component, at 8 subpixel bits.
+std::unique_ptr<TriangleAllowance> triangle_allowance(const Case& c) {
+  const Model m;
+  const TriangleSetup t = setup_triangle(c, m, 0);
+  auto a = std::make_unique<TriangleAllowance>(c, t, 8);
+  Barycentrics b;
+  barycentrics(t, m, b);
+  const Plane depth = depth_plane(t, b);
+  a->set(c, t, component_planes(c, t, b, depth), depth, {false});
+  return a;
+}
+
+// Outside the triangle (allowance.hpp, "Outside the polygon"): a centre that snapping covers
+// beyond the exact edges of a sliver gets the sliver's plane extrapolated, and an
+// implementation whose planes come from its unsnapped float positions (llvmpipe) moves that
+// value with the positions' rounding. A sliver `apex` px high above a row of centres 0.003 px
+// below its long edge (within 2^-8 snapping), in a viewport `size` wide: every corner of its
+// vertices' float rounding boxes (0.99 of them, and `scale` times them) moves the value at each
+// centre of that row; what the moves give, over the allowance there.
+struct OutsideMoves {
+  size_t centres = 0;
+  size_t beyond_spread = 0;     // within the rounding, the value moved by more than the spread
+  double most_used = 0;         // the largest error / allowance within the rounding
+  size_t beyond_allowance = 0;  // at `scale` times the rounding, moves beyond the allowance
+};
+OutsideMoves outside_moves(int size, double x0, double length, double apex, double scale) {
+  Case c;
+  c.name = "outside";
+  c.fb_width = size, c.fb_height = 64;
+  c.viewport = {0, 0, size, 64};
+  c.varyings = {{"n", 1, Interpolation::noperspective}};
+  const double y0 = 10.503;
+  const std::array<std::array<double, 2>, 3> q = {
+      {{x0, y0}, {x0 + length, y0}, {x0 + length / 2, y0 + apex}}};
+  const float values[3] = {0, 0, 1};
+  for (size_t j = 0; j < 3; ++j)
+    c.vertices.push_back(
+        {{float(q[j][0] * 2 / size - 1), float(q[j][1] / 32 - 1), 0, 1}, {values[j]}});
+  c.triangles = {{0, 1, 2}};
+  // The window positions the float clip coordinates give (powers of two: exactly).
+  std::array<std::array<double, 2>, 3> w{};
+  for (size_t j = 0; j < 3; ++j)
+    w[j] = {(double(c.vertices[j].clip[0]) + 1) * size / 2,
+            (double(c.vertices[j].clip[1]) + 1) * 32};
+  const auto allowance = triangle_allowance(c);
+  const TriangleAllowance& a = *allowance;
+  const double rounding = a.freedom().largest() - 0x1p-8;
+  // The value of the plane through (f_j, values[j]) at (x, y).
+  const auto value_at = [&](const std::array<std::array<double, 2>, 3>& f, double x, double y) {
+    const auto cross = [](const std::array<double, 2>& o, const std::array<double, 2>& u,
+                          const std::array<double, 2>& v) {
+      return (u[0] - o[0]) * (v[1] - o[1]) - (v[0] - o[0]) * (u[1] - o[1]);
+    };
+    const std::array<double, 2> p{x, y};
+    return (cross(f[0], f[1], p) * values[2] + cross(f[2], f[0], p) * values[1] +
+            cross(f[1], f[2], p) * values[0]) /
+           cross(f[0], f[1], f[2]);
+  };
+  OutsideMoves out;
+  for (int px = int(std::ceil(w[0][0])); px + 0.5 < w[1][0]; px += kRowBlock) {
+    double x[kRowBlock], y[kRowBlock];
+    float exact[kRowBlock], allowed[kRowBlock];
+    for (int j = 0; j < kRowBlock; ++j) {
+      x[j] = std::min(px + j, int(w[1][0] - 0.5)), y[j] = 10;
+      exact[j] = float(value_at(w, x[j] + 0.5, 10.5));
+    }
+    TriangleAllowance::Block block;
+    a.prepare(x, y, block);
+    a.component_at(block, 0, exact, allowed);
+    for (int j = 0; j < kRowBlock && px + j + 0.5 < w[1][0]; ++j) {
+      EXPECT_GE(block.outside[j], 0) << "centre " << x[j] << " lies outside the sliver";
+      EXPECT_TRUE(std::isfinite(allowed[j]));
+      ++out.centres;
+      for (double s : {0.99, scale})
+        for (int corner = 0; corner < 64; ++corner) {
+          auto f = w;
+          for (int k = 0; k < 6; ++k)
+            f[size_t(k / 2)][size_t(k % 2)] += ((corner >> k) & 1 ? 1 : -1) * s * rounding;
+          const double error = std::fabs(value_at(f, x[j] + 0.5, 10.5) - double(exact[j]));
+          if (s < 1) {
+            EXPECT_LE(error, double(allowed[j])) << "centre " << x[j] << " corner " << corner;
+            out.most_used = std::max(out.most_used, error / double(allowed[j]));
+            out.beyond_spread += error > 1;
+          } else {
+            out.beyond_allowance += error > double(allowed[j]);
+          }
+        }
+    }
+  }
+  return out;
+}
+
+TEST(Allowance, OutsideASliverTheUnsnappedPlanesExtrapolationIsBoundedBothWays) {
+  // A long sliver near the origin: the rounding moves the value beyond the spread the old
+  // bound capped at (the plane setup's rounding dominates its allowance there).
+  const OutsideMoves near = outside_moves(64, 4.5, 40, 2e-4, 6);
+  EXPECT_EQ(near.centres, 39u);
+  EXPECT_GT(near.beyond_spread, 0u);
+  // A short one far from the origin, where the positions' rounding dominates: the bound is
+  // not loose, and six times the rounding (a driver rounding worse than float32) is beyond it.
+  const OutsideMoves far = outside_moves(4096, 3000.5, 3, 0.012, 6);
+  EXPECT_EQ(far.centres, 2u);
+  EXPECT_GT(far.most_used, 0.25);
+  EXPECT_GT(far.beyond_allowance, 0u);
+}
+
+TEST(Allowance, InsideATriangleNoCentreIsOutside) {
+  Case c;
+  c.name = "inside";
+  c.fb_width = c.fb_height = 64;
+  c.viewport = {0, 0, 64, 64};
+  c.varyings = {{"n", 1, Interpolation::noperspective}};
+  c.vertices = {{{-0.9f, -0.9f, 0, 1}, {0}}, {{0.9f, -0.9f, 0, 1}, {0}}, {{0, 0.9f, 0, 1}, {1}}};
+  c.triangles = {{0, 1, 2}};
+  const auto allowance = triangle_allowance(c);
+  const TriangleAllowance& a = *allowance;
+  double x[kRowBlock], y[kRowBlock];
+  for (int j = 0; j < kRowBlock; ++j)
+    x[j] = 20 + j, y[j] = 20;
+  TriangleAllowance::Block block;
+  a.prepare(x, y, block);
+  for (int j = 0; j < kRowBlock; ++j)
+    EXPECT_EQ(block.outside[j], -1);
+}
+
+// Where the float rounding alone may turn the sliver over (llvmpipe's sliver from a `sizes`
+// campaign, 1.8e-6 px² doubled area at x_w = 1307), its plane's value outside it is not
+// determined; inside the polygon of a triangle that cannot turn, the reach is -1.
+TEST(Allowance, OutsideASliverTheFloatRoundingMayTurnNoValueIsDetermined) {
+  const WindowPolygon sliver = {{1307.49858442, 4.503437875},
+                                {1307.4856184, 4.538928425},
+                                {1307.503908, 4.488723575}};
+  const FanTriangles fan(sliver, 0.0053, 0.0014);
+  EXPECT_EQ(fan.outside_reach(1307.5, 4.5), INFINITY);
+  const FanTriangles still(sliver, 0.0053, 0);  // no rounding: a finite reach of 0
+  EXPECT_EQ(still.outside_reach(1307.5, 4.5), 0.0);
+  const WindowPolygon quad = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  const FanTriangles q(quad, 0.004, 0.001);
+  EXPECT_EQ(q.outside_reach(5, 5), -1);
+  EXPECT_EQ(q.outside_reach(10, 5), -1);  // on an edge
+  EXPECT_GT(q.outside_reach(10.001, 5), 0.001);
+  EXPECT_TRUE(q.holds_run(0.5, 9.5, 5));
+  EXPECT_FALSE(q.holds_run(0.5, 10.5, 5));
 }
 
 TEST(Allowance, GrowsWithDistanceFromTheOrigin) {
