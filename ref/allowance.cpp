@@ -204,14 +204,25 @@ double FanTriangles::outside_reach(double x, double y) const {
   return held >= 0 ? held : any;
 }
 
-void FanTriangles::outside_reach(const double* x, const double* y, double* out) const {
-  // Inside, the common case, in one loop over the lanes; a lane outside one at a time (the
-  // same function: the same bits).
-  for (int j = 0; j < kRowBlock; ++j)
-    out[j] = -1;
-  if (hull_.empty()) return;
-  for (int j = 0; j < kRowBlock; ++j)
-    if (!inside(x[j], y[j])) out[j] = outside_reach(x[j], y[j]);
+GLRC_BLOCK_FORM void FanTriangles::outside_reach(const double* x, const double* y,
+                                                 double* out) const {
+  // inside()'s tests lane by lane, without branches (vectorized): the common case, every lane
+  // inside, ends there; a lane outside is then taken one at a time (the same function, the
+  // same bits).
+  constexpr int n = kRowBlock;
+  int beyond[n] = {};
+  for (const auto& e : hull_)
+    for (int j = 0; j < n; ++j) {
+      const double s =
+          0x1p-48 * (std::fabs(e[0] * x[j]) + std::fabs(e[1] * y[j]) + std::fabs(e[2]));
+      beyond[j] |= e[0] * x[j] + e[1] * y[j] + e[2] < -s;
+    }
+  int any = 0;
+  for (int j = 0; j < n; ++j)
+    out[j] = -1, any |= beyond[j];
+  if (!any) return;
+  for (int j = 0; j < n; ++j)
+    if (beyond[j]) out[j] = outside_reach(x[j], y[j]);
 }
 
 bool FanTriangles::holds_run(double x0, double x1, double y) const {

@@ -361,6 +361,16 @@ TEST(Allowance, OutsideASliverTheFloatRoundingMayTurnNoValueIsDetermined) {
   EXPECT_GT(q.outside_reach(10.001, 5), 0.001);
   EXPECT_TRUE(q.holds_run(0.5, 9.5, 5));
   EXPECT_FALSE(q.holds_run(0.5, 10.5, 5));
+  // The block form gives each lane's bits.
+  double x[kRowBlock], y[kRowBlock], out[kRowBlock];
+  for (int j = 0; j < kRowBlock; ++j)
+    x[j] = 8.5 + 0.75 * j, y[j] = j % 2 ? 5 : -0.25;
+  q.outside_reach(x, y, out);
+  for (int j = 0; j < kRowBlock; ++j)
+    EXPECT_EQ(std::bit_cast<uint64_t>(out[j]), std::bit_cast<uint64_t>(q.outside_reach(x[j], y[j])))
+        << "lane " << j;
+  EXPECT_EQ(out[1], -1);
+  EXPECT_GT(out[0], 0);
 }
 
 TEST(Allowance, GrowsWithDistanceFromTheOrigin) {
