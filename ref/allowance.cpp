@@ -370,8 +370,9 @@ double Allowance::at(int px, int py, float value, double delta, double extra, do
   const double v = double(value);
   const double d = ad_ * px + bd_ * py + cd_;
   if (!(std::fabs(d) > 0) || !std::isfinite(v)) return std::numeric_limits<double>::infinity();
-  const double moved = outside >= 0 ? outside_position(px, py, v, d, delta, outside)
-                                    : position(position_parts(px, py, v, d, delta, reach_.at(delta)));
+  const double moved = outside >= 0
+                           ? outside_position(px, py, v, d, delta, outside)
+                           : position(position_parts(px, py, v, d, delta, reach_.at(delta)));
   // Each plane evaluated in float from an anchor: its terms' magnitudes, at the worst anchor;
   // and set up from a fan triangle anchored at a polygon vertex.
   const double abs_v = std::fabs(v);
@@ -594,4 +595,3 @@ GLRC_BLOCK_FORM void Allowance::at_rounded_up(const double* px, const double* py
 }
 
 }  // namespace glrc::ref
-

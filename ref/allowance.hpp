@@ -22,12 +22,12 @@
 // The allowance takes the larger of 1.5 times the first order (its bound before the exact one:
 // kept where it is larger, so that no allowance shrinks) and the exact bound, and never more
 // than the spread of the triangle's vertex values, since every legal value is a convex
-// combination of them (inside the polygon; outside it, below). In doubles, with the reference's value v rounded to float: |A| + |B|
-// gets (2^-23·|v| + 2^-149)·(|D_x| + |D_y|) more; D at p, computed from its terms, 2^-50 of their
-// magnitudes less; a denominator below 2^-20·|D| counts as 0; and 2^-30 of the bound more
-// covers the roundings of its own arithmetic (δ and h are bounds with margins of their own,
-// freedom.hpp and PositionReach). Depth adds the z_w freedom of clipped vertices
-// (freedom.hpp).
+// combination of them (inside the polygon; outside it, below). In doubles, with the reference's
+// value v rounded to float: |A| + |B| gets (2^-23·|v| + 2^-149)·(|D_x| + |D_y|) more; D at p,
+// computed from its terms, 2^-50 of their magnitudes less; a denominator below 2^-20·|D| counts as
+// 0; and 2^-30 of the bound more covers the roundings of its own arithmetic (δ and h are bounds
+// with margins of their own, freedom.hpp and PositionReach). Depth adds the z_w freedom of clipped
+// vertices (freedom.hpp).
 //
 // Outside the polygon. Snapping covers centres beyond the exact edges, where the plane is
 // extrapolated and two implementations differ. One whose planes come from the vertices it
@@ -305,10 +305,10 @@ class Allowance {
   // px1), each pixel's value in [value_lo, value_hi] (finite), delta, extra and condition within
   // the bounds given ({lo, hi} each), every pixel inside the polygon (outside -1:
   // FanTriangles::holds_run; lo holds outside it too) and distances those of
-  // Anchors::distances of the run: lo <= each allowance <= hi. {0, +inf} when the run's D may be 0 (the value undefined there).
-  // The bound is taken operation by operation in at()'s order: every operation but the planes'
-  // sums (whose rounding is allowed for) is monotone in its operands; a relative 2^-44 more
-  // covers a compiler's other grouping of the sums of positive terms.
+  // Anchors::distances of the run: lo <= each allowance <= hi. {0, +inf} when the run's D may be 0
+  // (the value undefined there). The bound is taken operation by operation in at()'s order: every
+  // operation but the planes' sums (whose rounding is allowed for) is monotone in its operands; a
+  // relative 2^-44 more covers a compiler's other grouping of the sums of positive terms.
   std::array<double, 2> range(int px0, int px1, int py, float value_lo, float value_hi,
                               const std::array<double, 2>& delta,
                               const std::array<double, 2>& extra,

@@ -98,8 +98,8 @@ void TriangleAllowance::component_at(const Block& b, size_t k, const float* valu
     extra[j] = kind == Kind::inverse_w ? b.weight[j] * std::fabs(double(value[j])) * (1 + 0x1p-20)
                : smooth_[k]            ? b.weight[j] * spread_[k]
                                        : 0.0;
-  components_[k].at_rounded_up(b.x, b.y, value, b.delta, extra, b.condition, b.outside,
-                               b.distances, out);
+  components_[k].at_rounded_up(b.x, b.y, value, b.delta, extra, b.condition, b.outside, b.distances,
+                               out);
 }
 
 std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int px1, int py,
@@ -127,9 +127,9 @@ std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int 
   if (!(delta[0] >= 0) || !(condition[0] >= 0) || !(extra[0] >= 0)) return {0.0, INFINITY};
   Anchors::RunDistances distances;
   anchors_.distances(px0, px1, py, distances);
-  return beyond(px0, px1, py,
-                components_[k].range(px0, px1, py, value_lo, value_hi, delta, extra, condition,
-                                     distances));
+  return beyond(
+      px0, px1, py,
+      components_[k].range(px0, px1, py, value_lo, value_hi, delta, extra, condition, distances));
 }
 
 std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, float z_lo,
@@ -141,8 +141,8 @@ std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, f
   if (!(delta[0] >= 0) || !(condition[0] >= 0) || !(extra[0] >= 0)) return {0.0, INFINITY};
   Anchors::RunDistances distances;
   anchors_.distances(px0, px1, py, distances);
-  return beyond(px0, px1, py, depth_.range(px0, px1, py, z_lo, z_hi, delta, extra, condition,
-                                           distances));
+  return beyond(px0, px1, py,
+                depth_.range(px0, px1, py, z_lo, z_hi, delta, extra, condition, distances));
 }
 
 std::array<double, 2> TriangleAllowance::beyond(int px0, int px1, int py,

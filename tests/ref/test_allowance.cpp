@@ -347,9 +347,8 @@ TEST(Allowance, InsideATriangleNoCentreIsOutside) {
 // campaign, 1.8e-6 px² doubled area at x_w = 1307), its plane's value outside it is not
 // determined; inside the polygon of a triangle that cannot turn, the reach is -1.
 TEST(Allowance, OutsideASliverTheFloatRoundingMayTurnNoValueIsDetermined) {
-  const WindowPolygon sliver = {{1307.49858442, 4.503437875},
-                                {1307.4856184, 4.538928425},
-                                {1307.503908, 4.488723575}};
+  const WindowPolygon sliver = {
+      {1307.49858442, 4.503437875}, {1307.4856184, 4.538928425}, {1307.503908, 4.488723575}};
   const FanTriangles fan(sliver, 0.0053, 0.0014);
   EXPECT_EQ(fan.outside_reach(1307.5, 4.5), INFINITY);
   const FanTriangles still(sliver, 0.0053, 0);  // no rounding: a finite reach of 0
