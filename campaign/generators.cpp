@@ -739,9 +739,9 @@ Case assembly(Random& r) {
 }
 
 // The window beyond the framebuffer: viewports with negative origins, larger than the
-// framebuffer (up to 16384, the case format's limit), partly or wholly outside it, and the
-// scissor test with boxes inside, across and beyond the framebuffer (empty ones too); a few
-// triangles anywhere in the viewport and beyond its clip planes.
+// framebuffer (up to 16384, the case format's limit; fractional ones too), partly or wholly
+// outside it, and the scissor test with boxes inside, across and beyond the framebuffer (empty
+// ones too); a few triangles anywhere in the viewport and beyond its clip planes.
 Case window(Random& r) {
   Case c;
   set_framebuffer_drawn(c, r, 1, 96, 1, 96);
@@ -794,6 +794,15 @@ Case window(Random& r) {
   if (r.chance(0.5))
     add_builtin(c, builtin_varying(Builtin::frag_coord, {r.chance(0.5), r.chance(0.5)}));
   if (r.chance(0.5)) add_builtin(c, builtin_varying(Builtin::front_facing));
+  // Fractional viewports (glViewportIndexedf), drawn last too: each bound moved by up to 255/256
+  // of a pixel, on the 1/256 grid (the triangles move with the viewport).
+  if (r.chance(0.3)) {
+    const auto fraction = [&r] { return float(r.between(0, 255)) / 256.0f; };
+    c.viewport.x += fraction(), c.viewport.y += fraction();
+    // Below 16384 (GL_MAX_VIEWPORT_DIMS and the case format's limit).
+    if (c.viewport.width < 16384) c.viewport.width += fraction();
+    if (c.viewport.height < 16384) c.viewport.height += fraction();
+  }
   return c;
 }
 
@@ -907,7 +916,8 @@ const std::vector<Generator>& generators() {
        "both provoking vertices, clipped primitives, both front faces with gl_FrontFacing",
        assembly},
       {"window",
-       "viewports beyond the framebuffer (negative origins, up to 16384 wide), scissor boxes "
+       "viewports beyond the framebuffer (negative origins, up to 16384 wide, fractional "
+       "ones through glViewportIndexedf), scissor boxes "
        "inside, across and beyond it, glClipControl's origins and depth modes with culling, "
        "gl_FragCoord under its layouts and gl_FrontFacing",
        window},

@@ -261,22 +261,32 @@ class Shrinker {
       kept = first_failing(4, [&](size_t i) -> std::optional<Case> {
         Case c = m;
         switch (i) {
-          case 0:  // the viewport at the origin, the framebuffer just holding it: the same
-                   // drawing, moved by whole pixels
-            if (v.x == 0 && v.y == 0 && c.fb_width == v.width && c.fb_height == v.height)
+          case 0: {  // the viewport at the origin, the framebuffer just holding it: the same
+                     // drawing, moved by whole pixels (a fractional origin keeps its fraction)
+            const float x = v.x - std::floor(v.x), y = v.y - std::floor(v.y);
+            const int width = int(std::ceil(x + v.width)), height = int(std::ceil(y + v.height));
+            if (v.x == x && v.y == y && c.fb_width == width && c.fb_height == height)
               return std::nullopt;
-            c.viewport.x = c.viewport.y = 0;
-            c.fb_width = v.width, c.fb_height = v.height;
+            c.viewport.x = x, c.viewport.y = y;
+            c.fb_width = width, c.fb_height = height;
             return c;
+          }
           case 1:  // both halved
           case 2:  // the width halved
           case 3:  // the height halved
             if ((i != 3 && v.width < 2) || (i != 2 && v.height < 2)) return std::nullopt;
-            if (i != 3) c.viewport.x /= 2, c.viewport.width /= 2, c.fb_width = (c.fb_width + 1) / 2;
+            // Whole numbers stay whole (halved toward 0, as integers are); fractions halve.
+            const auto half = [](float f) {
+              return f == std::floor(f) ? std::trunc(f / 2) : f / 2;
+            };
+            if (i != 3)
+              c.viewport.x = half(c.viewport.x), c.viewport.width = half(c.viewport.width),
+              c.fb_width = (c.fb_width + 1) / 2;
             if (i != 2)
-              c.viewport.y /= 2, c.viewport.height /= 2, c.fb_height = (c.fb_height + 1) / 2;
-            c.fb_width = std::max(c.fb_width, c.viewport.x + c.viewport.width);
-            c.fb_height = std::max(c.fb_height, c.viewport.y + c.viewport.height);
+              c.viewport.y = half(c.viewport.y), c.viewport.height = half(c.viewport.height),
+              c.fb_height = (c.fb_height + 1) / 2;
+            c.fb_width = std::max(c.fb_width, int(std::ceil(c.viewport.x + c.viewport.width)));
+            c.fb_height = std::max(c.fb_height, int(std::ceil(c.viewport.y + c.viewport.height)));
             return c;
         }
         return std::nullopt;

@@ -21,24 +21,48 @@ constexpr double kMaxDouble = std::numeric_limits<double>::max();
 
 }  // namespace
 
-// The x, y, width, height of `name` (the viewport or the scissor box): origins within
-// ±kMaxViewport, sizes from min_extent to kMaxViewport.
-Viewport Loader::load_window_rect(const CaseJson& o, const std::string& name,
-                                  int min_extent) const {
+// The x, y, width, height of the scissor box: integers, origins within ±kMaxViewport, sizes
+// from 0 to kMaxViewport.
+Scissor Loader::load_scissor(const CaseJson& o) const {
+  const std::string name = "scissor";
   r_.object(o, name);
   r_.check_keys(o, name, {"x", "y", "width", "height"});
   const std::string origin =
       "an integer in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
-  const std::string extent =
-      "an integer in " + std::to_string(min_extent) + ".." + std::to_string(kMaxViewport);
+  const std::string extent = "an integer in 0.." + std::to_string(kMaxViewport);
   auto field = [&](const char* key, const std::string& what, int lo, int hi) {
     return int_in(r_.required(o, name, key, what), path_key(name, key), lo, hi);
+  };
+  Scissor r;
+  r.x = field("x", origin, -kMaxViewport, kMaxViewport - 1);
+  r.y = field("y", origin, -kMaxViewport, kMaxViewport - 1);
+  r.width = field("width", extent, 0, kMaxViewport);
+  r.height = field("height", extent, 0, kMaxViewport);
+  return r;
+}
+
+// The viewport's x, y, width, height: numbers (or decimal strings), each rounded to float32
+// once as glViewportIndexedf takes them; whole numbers are glViewport's. Origins within
+// ±kMaxViewport, sizes from 1 to kMaxViewport.
+Viewport Loader::load_viewport(const CaseJson& o) const {
+  const std::string name = "viewport";
+  r_.object(o, name);
+  r_.check_keys(o, name, {"x", "y", "width", "height"});
+  const std::string origin =
+      "a number in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
+  const std::string extent = "a number in 1.." + std::to_string(kMaxViewport);
+  auto field = [&](const char* key, const std::string& what, double lo, double hi) {
+    const CaseJson& v = r_.required(o, name, key, what);
+    const std::string path = path_key(name, key);
+    const float f = r_.float32(v, path);
+    if (!(f >= lo && f <= hi)) r_.fail(path, what, Reader::describe(v));
+    return f;
   };
   Viewport r;
   r.x = field("x", origin, -kMaxViewport, kMaxViewport - 1);
   r.y = field("y", origin, -kMaxViewport, kMaxViewport - 1);
-  r.width = field("width", extent, min_extent, kMaxViewport);
-  r.height = field("height", extent, min_extent, kMaxViewport);
+  r.width = field("width", extent, 1, kMaxViewport);
+  r.height = field("height", extent, 1, kMaxViewport);
   return r;
 }
 
@@ -54,7 +78,7 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
                          "framebuffer.height", 1, kMaxSize);
   }
   if (vp) {
-    const Viewport v = load_window_rect(*vp, "viewport", 1);
+    const Viewport v = load_viewport(*vp);
     // With a framebuffer the viewport may reach beyond it (only its pixels are drawn).
     // Without one the framebuffer is the viewport's extent, which must itself be a legal size.
     if (!fb) {
@@ -62,16 +86,15 @@ void Loader::load_geometry(const CaseJson& root, Case& c) const {
         r_.fail("framebuffer",
                 "a framebuffer, as the viewport reaches outside 0..4096 and cannot give its size",
                 "none");
-      c.fb_width = v.x + v.width;
-      c.fb_height = v.y + v.height;
+      c.fb_width = int(std::ceil(v.x + v.width));
+      c.fb_height = int(std::ceil(v.y + v.height));
     }
     c.viewport = v;
   } else {
     c.viewport = Viewport{0, 0, c.fb_width, c.fb_height};
   }
   if (const CaseJson* sc = Reader::find(root, "scissor")) {
-    const Viewport b = load_window_rect(*sc, "scissor", 0);
-    c.scissor = Scissor{b.x, b.y, b.width, b.height};
+    c.scissor = load_scissor(*sc);
   }
 
   if (const CaseJson* dr = Reader::find(root, "depth_range")) {
@@ -319,10 +342,12 @@ std::string expected_number_at(const std::string& path) {
   if (path == "framebuffer.width" || path == "framebuffer.height")
     return "an integer in 1.." + std::to_string(kMaxSize);
   if (path == "viewport.width" || path == "viewport.height")
-    return "an integer in 1.." + std::to_string(kMaxViewport);
+    return "a number in 1.." + std::to_string(kMaxViewport);
+  if (path == "viewport.x" || path == "viewport.y")
+    return "a number in " + std::to_string(-kMaxViewport) + ".." + std::to_string(kMaxViewport - 1);
   if (path == "scissor.width" || path == "scissor.height")
     return "an integer in 0.." + std::to_string(kMaxViewport);
-  if (path == "viewport.x" || path == "viewport.y" || path == "scissor.x" || path == "scissor.y")
+  if (path == "scissor.x" || path == "scissor.y")
     return "an integer in " + std::to_string(-kMaxViewport) + ".." +
            std::to_string(kMaxViewport - 1);
   if (path.rfind("varyings[", 0) == 0 && ends_with(".size")) return "an integer in 1..4";

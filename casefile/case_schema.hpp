@@ -45,7 +45,8 @@ class Loader {
 
   void load_geometry(const CaseJson& root, Case& c) const;
   void load_state(const CaseJson& state, Case& c) const;
-  Viewport load_window_rect(const CaseJson& o, const std::string& name, int min_extent) const;
+  Viewport load_viewport(const CaseJson& o) const;
+  Scissor load_scissor(const CaseJson& o) const;
   void load_varyings(const CaseJson& list, Case& c) const;
   // A varyings entry naming a built-in ({"builtin": "gl_FragCoord", ...}): its Varying.
   Varying load_builtin(const CaseJson& v, const CaseJson& builtin, const std::string& path) const;

@@ -116,8 +116,8 @@ Case from_wire(const json& j) {
     c.fb_width = j.at("framebuffer").at(0).get<int>();
     c.fb_height = j.at("framebuffer").at(1).get<int>();
     const json& vp = j.at("viewport");
-    c.viewport = {vp.at(0).get<int>(), vp.at(1).get<int>(), vp.at(2).get<int>(),
-                  vp.at(3).get<int>()};
+    c.viewport = {vp.at(0).get<float>(), vp.at(1).get<float>(), vp.at(2).get<float>(),
+                  vp.at(3).get<float>()};
     Words depth(j.at("depth_range").get_ref<const std::string&>());
     c.depth_near = depth.real(), c.depth_far = depth.real();
     const json& st = j.at("state");

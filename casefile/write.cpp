@@ -178,8 +178,8 @@ std::string to_case_file(const Case& c) {
   add(out, "  \"description\": ", quoted(c.description), ",\n");
   add(out, "  \"framebuffer\": {\"width\": ", integer(c.fb_width),
       ", \"height\": ", integer(c.fb_height), "},\n");
-  add(out, "  \"viewport\": {\"x\": ", integer(c.viewport.x), ", \"y\": ", integer(c.viewport.y),
-      ", \"width\": ", integer(c.viewport.width), ", \"height\": ", integer(c.viewport.height),
+  add(out, "  \"viewport\": {\"x\": ", number(c.viewport.x), ", \"y\": ", number(c.viewport.y),
+      ", \"width\": ", number(c.viewport.width), ", \"height\": ", number(c.viewport.height),
       "},\n");
   if (c.scissor)
     add(out, "  \"scissor\": {\"x\": ", integer(c.scissor->x), ", \"y\": ", integer(c.scissor->y),

@@ -191,9 +191,24 @@ struct Names<ClipDepth> {
 };
 
 // glViewport(x, y, width, height): x and y may be negative and the rectangle may reach beyond
-// the framebuffer (only the framebuffer's pixels are drawn).
+// the framebuffer (only the framebuffer's pixels are drawn). Window pixels, as the floats GL
+// keeps: whole numbers for glViewport; any float through glViewportIndexedf
+// (GL_ARB_viewport_array, OpenGL 4.6 section 13.6.1), which GL interprets to
+// GL_VIEWPORT_SUBPIXEL_BITS of precision.
 struct Viewport {
-  int x = 0, y = 0, width = 0, height = 0;
+  Viewport() = default;
+  // glViewport's integers, and glViewportIndexedf's floats.
+  Viewport(int x_, int y_, int width_, int height_)
+      : x(float(x_)), y(float(y_)), width(float(width_)), height(float(height_)) {}
+  Viewport(float x_, float y_, float width_, float height_)
+      : x(x_), y(y_), width(width_), height(height_) {}
+  float x = 0, y = 0, width = 0, height = 0;
+  // Whether every bound is a whole number (glViewport can give it).
+  bool integral() const {
+    return x == std::floor(x) && y == std::floor(y) && width == std::floor(width) &&
+           height == std::floor(height);
+  }
+  friend bool operator==(const Viewport&, const Viewport&) = default;
 };
 
 // glScissor(x, y, width, height) with GL_SCISSOR_TEST enabled: only fragments of pixels

@@ -254,9 +254,12 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
   out += "    .name = " + case_name + ",\n";
   out += "    .width = " + std::to_string(c.fb_width) +
          ", .height = " + std::to_string(c.fb_height) + ",\n";
-  out += "    .viewport = {" + std::to_string(c.viewport.x) + ", " + std::to_string(c.viewport.y) +
-         ", " + std::to_string(c.viewport.width) + ", " + std::to_string(c.viewport.height) +
-         "},\n";
+  out += "    .viewport = {" + hex_literal(c.viewport.x) + ", " + hex_literal(c.viewport.y) + ", " +
+         hex_literal(c.viewport.width) + ", " + hex_literal(c.viewport.height) + "}, /* " +
+         comment_text(printable_number(c.viewport.x) + ", " + printable_number(c.viewport.y) +
+                      ", " + printable_number(c.viewport.width) + ", " +
+                      printable_number(c.viewport.height)) +
+         " */\n";
   if (c.scissor)
     out += "    .scissor = {1, " + std::to_string(c.scissor->x) + ", " +
            std::to_string(c.scissor->y) + ", " + std::to_string(c.scissor->width) + ", " +

@@ -401,9 +401,8 @@ std::string draws(const Case& c, const DrawRows& rows) {
   out += "# The case's states (the harness's depth test with GL_ALWAYS is no depth test here).\n";
   out += cat("ssbo 0 ", std::to_string(size_t(c.fb_width) * size_t(c.fb_height) * 8), "\n");
   if (viewport_set(c))
-    out +=
-        cat("viewport indexed 0 ", std::to_string(c.viewport.x), " ", std::to_string(c.viewport.y),
-            " ", std::to_string(c.viewport.width), " ", std::to_string(c.viewport.height), "\n");
+    out += cat("viewport indexed 0 ", decimal(c.viewport.x), " ", decimal(c.viewport.y), " ",
+               decimal(c.viewport.width), " ", decimal(c.viewport.height), "\n");
   if (c.provoking == ProvokingVertex::first) out += "provoking vertex first\n";
   for (int i = 0; i < c.distances.clip; ++i)
     if (c.distances.plane_enabled(i)) out += cat("enable GL_CLIP_PLANE", std::to_string(i), "\n");

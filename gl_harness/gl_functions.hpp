@@ -81,6 +81,8 @@ struct GlFunctions {
   // Beyond 3.3 core, loaded where the context has it (GL 4.5 or GL_ARB_clip_control), else
   // null: glClipControl.
   PFNGLCLIPCONTROLPROC ClipControl = nullptr;
+  // Likewise glViewportIndexedf (GL 4.1 or GL_ARB_viewport_array): a fractional viewport.
+  PFNGLVIEWPORTINDEXEDFPROC ViewportIndexedf = nullptr;
 #define GLRC_GL_FUNCTION_MEMBER(type, name) type name = nullptr;
   GLRC_GL_FUNCTIONS(GLRC_GL_FUNCTION_MEMBER)
 #undef GLRC_GL_FUNCTION_MEMBER

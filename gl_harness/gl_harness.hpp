@@ -61,6 +61,9 @@ struct GlInfo {
   // libEGL_mesa, libEGL_nvidia...): which Mesa ran, whatever GL_VERSION claims.
   std::string library;
   int subpixel_bits = 0;  // GL_SUBPIXEL_BITS as reported
+  // GL_VIEWPORT_SUBPIXEL_BITS as reported (GL 4.1 or GL_ARB_viewport_array: the precision of a
+  // fractional viewport's bounds); -1 where the context has no fractional viewports.
+  int viewport_subpixel_bits = -1;
   // GL_PROVOKING_VERTEX as reported by the fresh context, before anything set it (GL: last).
   ProvokingVertex initial_provoking_vertex = ProvokingVertex::last;
   // A pass-through geometry shader supplies gl_PrimitiveID, because without one this driver

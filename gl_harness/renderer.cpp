@@ -3,6 +3,7 @@
 // its vertex data, the fragment-count pass, the first draw, and create_renderer.
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -45,6 +46,13 @@ GLenum gl_depth_func(DepthFunc f) {
 }
 
 // One line: shader logs and messages go into RenderError::what().
+// A float as its shortest decimal ("10.5", "3"), for messages.
+std::string decimal(float f) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, f);
+  return std::string(buf, r.ptr);
+}
+
 std::string one_line(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ' || s.back() == '\0'))
     s.pop_back();
@@ -118,6 +126,11 @@ class GlRenderer final : public Renderer {
     // GLSL's gl_CullDistance through the extension directive (shaders.cpp): listed by every
     // GL 4.5 implementation, which must support it.
     cull_distance_ = has_extension("GL_ARB_cull_distance");
+    if (major * 10 + minor >= 41 || has_extension("GL_ARB_viewport_array")) {
+      gl_.ViewportIndexedf =
+          reinterpret_cast<PFNGLVIEWPORTINDEXEDFPROC>(context_->proc_address("glViewportIndexedf"));
+      if (gl_.ViewportIndexedf) info_.viewport_subpixel_bits = integer(GL_VIEWPORT_SUBPIXEL_BITS);
+    }
     if (major * 10 + minor >= 45 || has_extension("GL_ARB_clip_control"))
       gl_.ClipControl =
           reinterpret_cast<PFNGLCLIPCONTROLPROC>(context_->proc_address("glClipControl"));
@@ -357,17 +370,25 @@ class GlRenderer final : public Renderer {
         c.fb_height > max_renderbuffer_size_)
       fail("framebuffer " + std::to_string(c.fb_width) + "x" + std::to_string(c.fb_height) +
            " outside 1.." + std::to_string(max_renderbuffer_size_) + " (GL_MAX_RENDERBUFFER_SIZE)");
-    if (c.viewport.width < 0 || c.viewport.height < 0 || c.viewport.width > max_viewport_[0] ||
-        c.viewport.height > max_viewport_[1])
-      fail("viewport " + std::to_string(c.viewport.width) + "x" +
-           std::to_string(c.viewport.height) + " outside GL_MAX_VIEWPORT_DIMS " +
-           std::to_string(max_viewport_[0]) + "x" + std::to_string(max_viewport_[1]));
+    const Viewport& vp = c.viewport;
+    if (!(vp.width >= 0) || !(vp.height >= 0) || vp.width > float(max_viewport_[0]) ||
+        vp.height > float(max_viewport_[1]))
+      fail("viewport " + decimal(vp.width) + "x" + decimal(vp.height) +
+           " outside GL_MAX_VIEWPORT_DIMS " + std::to_string(max_viewport_[0]) + "x" +
+           std::to_string(max_viewport_[1]));
     if (viewport_bounds_[0] < viewport_bounds_[1] &&
-        (c.viewport.x < viewport_bounds_[0] || c.viewport.y < viewport_bounds_[0] ||
-         c.viewport.x > viewport_bounds_[1] || c.viewport.y > viewport_bounds_[1]))
-      fail("viewport origin (" + std::to_string(c.viewport.x) + ", " +
-           std::to_string(c.viewport.y) + ") outside GL_VIEWPORT_BOUNDS_RANGE [" +
-           std::to_string(viewport_bounds_[0]) + ", " + std::to_string(viewport_bounds_[1]) + "]");
+        (vp.x < float(viewport_bounds_[0]) || vp.y < float(viewport_bounds_[0]) ||
+         vp.x > float(viewport_bounds_[1]) || vp.y > float(viewport_bounds_[1])))
+      fail("viewport origin (" + decimal(vp.x) + ", " + decimal(vp.y) +
+           ") outside GL_VIEWPORT_BOUNDS_RANGE [" + std::to_string(viewport_bounds_[0]) + ", " +
+           std::to_string(viewport_bounds_[1]) + "]");
+    if (!vp.integral() && !gl_.ViewportIndexedf)
+      throw FeatureMissing("case '" + c.name + "': a viewport of fractional bounds (" +
+                           decimal(vp.x) + ", " + decimal(vp.y) + ", " + decimal(vp.width) + ", " +
+                           decimal(vp.height) +
+                           ") needs glViewportIndexedf: OpenGL 4.1 or GL_ARB_viewport_array, "
+                           "which " +
+                           info_.renderer + " (" + info_.version + ") does not have");
     if (c.scissor && (c.scissor->width < 0 || c.scissor->height < 0))
       fail("scissor box of negative size");
     if (c.distances.cull > 0 && !cull_distance_)
@@ -510,7 +531,14 @@ class GlRenderer final : public Renderer {
 
   // All state the case controls, set every time: the previous case may have changed it.
   void set_state(const Case& c) {
-    gl_.Viewport(c.viewport.x, c.viewport.y, c.viewport.width, c.viewport.height);
+    // Whole numbers through glViewport, as a GL 3.3 application sets them; fractions through
+    // glViewportIndexedf (validate() refused them where it is missing). Viewport 0 is the one
+    // glViewport sets too.
+    const Viewport& vp = c.viewport;
+    if (vp.integral())
+      gl_.Viewport(GLint(vp.x), GLint(vp.y), GLsizei(vp.width), GLsizei(vp.height));
+    else if (gl_.ViewportIndexedf)
+      gl_.ViewportIndexedf(0, vp.x, vp.y, vp.width, vp.height);
     gl_.DepthRange(double(c.depth_near), double(c.depth_far));  // exact: float ⊂ double
     for (int i = 0; i < kMaxDistances; ++i) {  // GL_CLIP_DISTANCEi as the case enables them
       const GLenum cap = GLenum(GL_CLIP_DISTANCE0 + i);

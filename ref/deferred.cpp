@@ -8,19 +8,15 @@
 namespace glrc::ref {
 
 TriangleAllowance::TriangleAllowance(const Case& c, const TriangleSetup& t, int bits)
-    : freedom_(c, t, bits),
-      eye_(freedom_.reaches_eye()),
-      clipped_(freedom_.generations() > 0),
-      bits_(bits) {}
+    : freedom_(c, t, bits), eye_(freedom_.reaches_eye()), clipped_(freedom_.generations() > 0) {}
 
 void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
                             const std::vector<ComponentPlane>& planes, const Plane& depth_forms,
                             const std::vector<bool>& smooth) {
   // The implementation's possible fan triangles, shared by every channel; and where its planes
   // may be anchored.
-  // Its vertices' rounding, for planes from unsnapped positions: the freedom less the snapping.
-  fan_ = FanTriangles(freedom_.polygon(), freedom_.largest(),
-                      freedom_.largest() - std::ldexp(1.0, -bits_));
+  // Its vertices' rounding, for planes from unsnapped positions.
+  fan_ = FanTriangles(freedom_.polygon(), freedom_.largest(), freedom_.rounding());
   anchors_ = Anchors(freedom_.polygon(), freedom_.guard_band_triangle());
   const int generations = freedom_.generations();
   const PositionReach reach = PositionReach::of(freedom_.slope(), freedom_.largest());

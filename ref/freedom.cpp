@@ -322,7 +322,9 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     out.generation = v.generation;
     const double clip_x = half_w * (v.e[0] + std::fabs(xn) * v.e[3]) / w;
     const double clip_y = half_h * (v.e[1] + std::fabs(yn) * v.e[3]) / w;
-    out.delta = snap_and_round(out.x_w, out.y_w, m, subpixel_bits) + std::max(clip_x, clip_y);
+    out.viewport = viewport_shift(vp, out.x_w, out.y_w);
+    out.delta = snap_and_round(out.x_w, out.y_w, m, subpixel_bits) + std::max(clip_x, clip_y) +
+                out.viewport;
     out.depth = std::fabs(depth_range_scale(c)) * (v.e[2] + std::fabs(zn) * v.e[3]) / w;
     out.weight = v.e[3] / w;
     out.w_c = w;
@@ -347,7 +349,9 @@ std::vector<TurningPiece> turning_pieces(const std::vector<PolygonVertex>& polyg
         for (size_t v = 0; v < 3; ++v) {
           const PolygonVertex& q = polygon[corners[v]];
           piece.p[v] = {q.x_w, q.y_w};
-          rounding[v] = q.delta - snapping;  // the freedom less the snapping it counts
+          // The freedom less the snapping it counts, and the viewport's precision: one
+          // transform for all the vertices, which turns nothing over.
+          rounding[v] = q.delta - snapping - q.viewport;
           piece.delta = std::max(piece.delta, q.delta);
         }
         if (orientation_may_change(piece.p, rounding, subpixel_bits)) out.push_back(piece);
@@ -376,7 +380,8 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     const double centre_distance = std::max(std::fabs(x_w - (vp.x + vp.width / 2.0)),
                                             std::fabs(y_w - (vp.y + vp.height / 2.0)));
     in_guard_band = in_guard_band && centre_distance <= kGuardBandPixels;
-    whole.push_back({x_w, y_w, snap_and_round(x_w, y_w, m, subpixel_bits)});
+    whole.push_back(
+        {x_w, y_w, snap_and_round(x_w, y_w, m, subpixel_bits) + viewport_shift(vp, x_w, y_w)});
   }
   bool any = false;
   std::vector<std::array<double, 3>> z_clip;
@@ -388,6 +393,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     std::vector<std::array<double, 3>> delta, depth, weight, inverse_w;
     for (const PolygonVertex& v : polygon) {
       delta.push_back({v.x_w, v.y_w, v.delta});
+      rounding_ = std::max(rounding_, v.delta - std::ldexp(1.0, -subpixel_bits) - v.viewport);
       depth.push_back({v.x_w, v.y_w, v.depth});
       weight.push_back({v.x_w, v.y_w, v.weight / v.w_c});
       inverse_w.push_back({v.x_w, v.y_w, 1 / v.w_c});
@@ -405,8 +411,11 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   // without clipping it in x and y.
   if (clipped && in_guard_band && whole.size() == 3) {
     delta_[1] = ConcaveEnvelope(whole), any = true;
-    for (const auto& d : whole)
+    for (const auto& d : whole) {
       whole_.push_back({d[0], d[1]});
+      rounding_ = std::max(rounding_,
+                           d[2] - std::ldexp(1.0, -subpixel_bits) - viewport_shift(vp, d[0], d[1]));
+    }
   }
   if (!any) delta_[0] = ConcaveEnvelope({{0, 0, snap_and_round(0, 0, m, subpixel_bits)}});
   // Only a triangle of zero area (no edges) becomes a sliver; the others need no copies.

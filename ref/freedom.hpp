@@ -47,6 +47,7 @@
 #include "core/case.hpp"
 #include "ref/blocks.hpp"
 #include "ref/setup.hpp"
+#include "ref/viewport.hpp"
 
 namespace glrc::ref {
 
@@ -87,6 +88,7 @@ class ConcaveEnvelope {
 struct PolygonVertex {
   double x_w = 0, y_w = 0;  // window position (pixels)
   double delta = 0;         // position freedom, pixels, in x and in y
+  double viewport = 0;      // the part of delta from the viewport's precision (viewport_shift)
   double depth = 0;         // freedom of z_w from clipping arithmetic (z_w units)
   double weight = 0;        // relative freedom of 1/w_c from clipping arithmetic
   double w_c = 1;
@@ -183,6 +185,10 @@ class PositionFreedom {
   int generations() const { return generations_; }
   // The largest δ of any vertex: how far any edge can move.
   double largest() const;
+  // The largest float rounding of any vertex's window position: its δ less the snapping and
+  // the viewport's precision (what an implementation with planes from its unsnapped positions
+  // moves each vertex by on its own).
+  double rounding() const { return rounding_; }
   // The largest slope() of the δ envelopes at() takes the larger of.
   double slope() const { return std::max(delta_[0].slope(), delta_[1].slope()); }
   // What an implementation may rasterize, as window positions: the clipped polygon (the
@@ -226,7 +232,7 @@ class PositionFreedom {
   std::vector<std::array<double, 2>> polygon_, whole_, sliver_sources_;
   std::vector<TurningPiece> turning_pieces_;
   int generations_ = 0;
-  double largest_inverse_w_ = 0;
+  double largest_inverse_w_ = 0, rounding_ = 0;
   bool may_turn_over_ = false, reaches_eye_ = false;
 };
 

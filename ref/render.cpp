@@ -39,6 +39,9 @@ struct Settings {
   int bits;           // subpixel bits of the position freedom (with an allowance)
   double model_step;  // the edge band without an allowance
   PixelBox viewport;  // its rows cut to the ones drawn
+  // viewport_reach, its rows cut likewise: beyond `viewport` only for a fractional viewport,
+  // whose sides an implementation may move by its precision (ref/viewport.hpp).
+  PixelBox reach;
   std::vector<bool> component_smooth;
   int row0 = 0;  // the window row of the frames' row 0
   // With a deferred allowance: the components' allowances are not drawn (only those of the
@@ -81,9 +84,8 @@ struct Prepared {
     const double snapping =
         t.path == CoveragePath::snapped ? std::ldexp(1.0, -(s.m.subpixel_bits + 1)) : 0.0;
     reach_px = std::min(double(margin), std::max(largest, snapping) * 1.5);
-    reach = {std::max(s.viewport.x0, t.box.x0 - margin), std::max(s.viewport.y0, t.box.y0 - margin),
-             std::min(s.viewport.x1, t.box.x1 + margin),
-             std::min(s.viewport.y1, t.box.y1 + margin)};
+    reach = {std::max(s.reach.x0, t.box.x0 - margin), std::max(s.reach.y0, t.box.y0 - margin),
+             std::min(s.reach.x1, t.box.x1 + margin), std::min(s.reach.y1, t.box.y1 + margin)};
     if (!t.drawn || t.box.empty()) return;
     clipped = s.allowance && allowance->clipped();
     // Kept per thread: its nine rationals and dyadic numbers, copied for every triangle, reuse
@@ -117,7 +119,8 @@ struct Prepared {
   int margin = 1;
   double largest = 0;   // the freedom at no pixel is larger (PositionFreedom::largest)
   double reach_px = 1;  // how far from the triangle a pixel may be classified or covered
-  PixelBox reach;       // the pixels it may classify: its box grown by the margin, in the viewport
+  // The pixels it may classify: its box grown by the margin, within the viewport's reach.
+  PixelBox reach;
   RatioEvaluator depth;
   std::vector<ComponentPlane> planes;
   ComponentValues values;  // of `planes`
@@ -217,8 +220,9 @@ class FragmentBlocks {
       const int px = px_[j], py = py_[j];
       const size_t i = f.index(px, py - s.row0);
       role_[j] = Role::none;
-      // The clipped polygon's edges on the x and y planes lie on the viewport's sides, where
-      // no pixel centre is; but they move with its vertices, inwards too.
+      // The clipped polygon's edges on the x and y planes lie on the viewport's sides (where a
+      // whole-number viewport has no pixel centre; a fractional one may); they move with its
+      // vertices, inwards too.
       if (w.clipped && viewport_side_distance(c.viewport, px, py) <= block_.delta[j])
         r.edges[i] |= edge::snapping;
       // Every fragment rasterization produces is counted, whether or not it passes the depth
@@ -478,6 +482,18 @@ GLRC_VECTOR_CLONES void draw_rows(const Settings& s, const Prepared& w, int p, T
   for (const Sliver& piece : w.turning)
     mark_sliver(piece, s.viewport.x0, std::max(tile.y0, s.viewport.y0), s.viewport.x1,
                 std::min(tile.y1, s.viewport.y1), s.row0, f, r.edges);
+  // Beyond a fractional viewport's sides, within how far they may move: the centres the
+  // triangle may reach there (its box grown by its margin) are an implementation's to draw or
+  // not, with this triangle or another.
+  const bool beyond = s.reach.x0 < s.viewport.x0 || s.reach.x1 > s.viewport.x1 ||
+                      s.reach.y0 < s.viewport.y0 || s.reach.y1 > s.viewport.y1;
+  if (beyond && t.drawn && !t.box.empty() && s.edges)
+    for (int py = std::max({tile.y0, s.reach.y0, t.box.y0 - w.margin});
+         py <= std::min({tile.y1, s.reach.y1, t.box.y1 + w.margin}); ++py)
+      for (int px = std::max(s.reach.x0, t.box.x0 - w.margin);
+           px <= std::min(s.reach.x1, t.box.x1 + w.margin); ++px)
+        if (px < s.viewport.x0 || px > s.viewport.x1 || py < s.viewport.y0 || py > s.viewport.y1)
+          r.edges[f.index(px, py - s.row0)] |= edge::unstable;
   // Rows [cy0, cy1]: those of the tile the triangle may cover.
   const bool draws = t.drawn && !t.box.empty();
   const int cy0 = std::max(tile.y0, t.box.y0), cy1 = std::min(tile.y1, t.box.y1);
@@ -670,6 +686,7 @@ Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
              .bits = allowance ? std::max(*request.freedom_bits, 4) : 0,
              .model_step = std::ldexp(1.0, -(m.subpixel_bits > 0 ? m.subpixel_bits : 8)),
              .viewport = viewport_box(c),
+             .reach = viewport_reach(c),
              .component_smooth = {},
              .row0 = y0,
              .deferred = kept.get(),
@@ -678,6 +695,8 @@ Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
   // Only the rows asked for: what a triangle does elsewhere changes nothing in them.
   s.viewport.y0 = std::max(s.viewport.y0, y0);
   s.viewport.y1 = std::min(s.viewport.y1, y0 + row_count - 1);
+  s.reach.y0 = std::max(s.reach.y0, y0);
+  s.reach.y1 = std::min(s.reach.y1, y0 + row_count - 1);
   for (int v : component_varying(c))
     s.component_smooth.push_back(c.varyings[size_t(v)].interpolation == Interpolation::smooth);
   if (allowance && c.depth_func != DepthFunc::always) s.twin = identical_triangles(c);
@@ -688,7 +707,7 @@ Expectation draw(const Case& c, const Model& m, const DrawRequest& request,
   SharedEdges groups = edges ? shared_edge_groups(setups, threads) : SharedEdges(setups.size());
   const std::vector<std::array<bool, 3>> shared = shared_flags(groups);
 
-  const std::vector<Tile> rows = tiles(s.viewport.y0, s.viewport.y1, threads);
+  const std::vector<Tile> rows = tiles(s.reach.y0, s.reach.y1, threads);
   std::vector<CandidateMap> candidates(rows.size());
   // A chunk of triangles prepared at a time: their work held at once, not the whole case's.
   constexpr int kChunk = 512;

@@ -86,11 +86,31 @@ bool culled(const Case& c, bool front_facing) {
 
 PixelBox viewport_box(const Case& c) {
   const PixelRect r = scissor_region(c);
+  const Viewport& vp = c.viewport;
+  // The pixels whose centres px + 1/2 lie in [x, x + width], either side included (a centre on
+  // a side is the clipped polygon's edge's, which the coverage decides); whole numbers: x to
+  // x + width - 1. In doubles: exact for floats within ±2^24.
+  const auto first = [](double lo) { return int(std::ceil(lo - 0.5)); };
+  const auto last = [](double hi) { return int(std::floor(hi - 0.5)); };
   PixelBox b;
-  b.x0 = std::max(c.viewport.x, r.x0);
-  b.y0 = std::max(c.viewport.y, r.y0);
-  b.x1 = std::min(c.viewport.x + c.viewport.width - 1, r.x1);
-  b.y1 = std::min(c.viewport.y + c.viewport.height - 1, r.y1);
+  b.x0 = std::max(first(vp.x), r.x0);
+  b.y0 = std::max(first(vp.y), r.y0);
+  b.x1 = std::min(last(double(vp.x) + vp.width), r.x1);
+  b.y1 = std::min(last(double(vp.y) + vp.height), r.y1);
+  return b;
+}
+
+PixelBox viewport_reach(const Case& c) {
+  const Viewport& vp = c.viewport;
+  const double step = viewport_step(vp);
+  if (step == 0) return viewport_box(c);
+  // A side moves by less than two steps (x + Δx + w + Δw): centres within that of the viewport.
+  const PixelRect r = scissor_region(c);
+  PixelBox b;
+  b.x0 = std::max(int(std::ceil(vp.x - 2 * step - 0.5)), r.x0);
+  b.y0 = std::max(int(std::ceil(vp.y - 2 * step - 0.5)), r.y0);
+  b.x1 = std::min(int(std::floor(double(vp.x) + vp.width + 2 * step - 0.5)), r.x1);
+  b.y1 = std::min(int(std::floor(double(vp.y) + vp.height + 2 * step - 0.5)), r.y1);
   return b;
 }
 

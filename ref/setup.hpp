@@ -124,5 +124,10 @@ std::vector<std::optional<TriangleSetup>> setup_triangles(const Case& c, const M
 // The pixels the case may draw: the viewport within scissor_region (the framebuffer, and the
 // scissor box where the case has one). Empty (x0 > x1 or y0 > y1) when they do not meet.
 PixelBox viewport_box(const Case& c);
+// The pixels an implementation may draw given its precision for the viewport's bounds
+// (viewport_shift, ref/freedom.hpp): viewport_box for a viewport on that precision's grid
+// (glViewport's whole numbers); for another, the viewport grown by the most its sides may move,
+// two steps, within scissor_region.
+PixelBox viewport_reach(const Case& c);
 
 }  // namespace glrc::ref

@@ -49,6 +49,21 @@ bool exact_half_sum(float a, double p, float b, double q, mpq_class& out) {
 
 }  // namespace
 
+double viewport_step(const Viewport& vp) {
+  const auto on_grid = [](float f) {
+    const double s = std::ldexp(double(f), kViewportSubpixelBits);
+    return s == std::floor(s);
+  };
+  if (on_grid(vp.x) && on_grid(vp.y) && on_grid(vp.width) && on_grid(vp.height)) return 0;
+  return std::ldexp(1.0, -kViewportSubpixelBits);
+}
+
+double viewport_shift(const Viewport& vp, double x_w, double y_w) {
+  const double step = viewport_step(vp);
+  if (step == 0) return 0;
+  return step * (1 + std::max(std::fabs(x_w - vp.x) / vp.width, std::fabs(y_w - vp.y) / vp.height));
+}
+
 WindowVertex to_window(const Vertex& v, const Case& c) {
   const Viewport& vp = c.viewport;
   WindowVertex out;
@@ -59,15 +74,19 @@ WindowVertex to_window(const Vertex& v, const Case& c) {
   out.w_c = double(v.clip[3]);
   const mpq_class& w_c = out.w_c;
   // x_h = x_c·(width/2) + w_c·(x + width/2) = (x_c·width + w_c·(2x + width)) / 2; integers
-  // below 2^29 have short significands.
-  if (!exact_half_sum(v.clip[0], double(vp.width), v.clip[3], 2.0 * vp.x + vp.width, out.x_h)) {
+  // below 2^29 have short significands. The viewport's bounds are floats (glViewportIndexedf):
+  // 2x + width is used only where its double is exact.
+  double centre2 = 0;
+  if (!exact_sum(2.0 * vp.x, vp.width, centre2) ||
+      !exact_half_sum(v.clip[0], double(vp.width), v.clip[3], centre2, out.x_h)) {
     const mpq_class x_c(double(v.clip[0]));
     const mpq_class half_w = mpq_class(vp.width) / 2;
     out.x_h = x_c * half_w + w_c * (vp.x + half_w);
   }
   // GL_UPPER_LEFT: y_c negated (window_y_c), exact in float.
   const float y_c_window = float(window_y_c(c, v.clip[1]));
-  if (!exact_half_sum(y_c_window, double(vp.height), v.clip[3], 2.0 * vp.y + vp.height, out.y_h)) {
+  if (!exact_sum(2.0 * vp.y, vp.height, centre2) ||
+      !exact_half_sum(y_c_window, double(vp.height), v.clip[3], centre2, out.y_h)) {
     const mpq_class y_c{double(y_c_window)};
     const mpq_class half_h = mpq_class(vp.height) / 2;
     out.y_h = y_c * half_h + w_c * (vp.y + half_h);

@@ -39,6 +39,24 @@ inline std::array<double, 2> approximate_window(const Case& c, const std::array<
           vp.y + vp.height / 2.0 * (1 + window_y_c(c, clip[1]) / clip[3])};
 }
 
+// GL interprets a viewport's bounds to GL_VIEWPORT_SUBPIXEL_BITS of precision (OpenGL 4.6
+// section 13.6.1: glViewportIndexedf's floats), rounded any way. Taken at GL's least, 0, which
+// is what llvmpipe, softpipe and zink report (Mesa 22.3.6 and 25.0.7): a fractional viewport
+// may be drawn as a whole-pixel one. Not covered: a driver reporting more is held to no more
+// than that.
+inline constexpr int kViewportSubpixelBits = 0;
+
+// How far each bound of the viewport may be from what an implementation takes, pixels (less
+// than that): 0 for a viewport whose bounds lie on the 2^-kViewportSubpixelBits grid
+// (glViewport's whole numbers), else one step of that grid.
+double viewport_step(const Viewport& vp);
+
+// How far the viewport's precision may move the window point (x_w, y_w), pixels in x and in y:
+// each bound by less than a step, x' = x + Δx, w' = w + Δw, so x_w by Δx + Δw·(x_w - x)/w,
+// below step·(1 + |x_w - x|/w) (likewise y; the larger). One transform for every vertex: it
+// moves edges and values, never turns a triangle over.
+double viewport_shift(const Viewport& vp, double x_w, double y_w);
+
 // How far the centre of pixel (px, py) is from the nearest side of the viewport, pixels.
 // Always inlined: once per pixel of a clipped triangle, into FragmentBlocks' AVX2 copy too
 // (GCC does not inline a function of the default target into a target_clones copy unasked).

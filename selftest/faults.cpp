@@ -185,8 +185,9 @@ std::vector<Fault> make_faults() {
                   [](Case& c) {
                     // x_w = (x_c / w_c + 1)·width/2 + x: half a pixel is w_c / width in x_c.
                     for (Vertex& v : c.vertices)
-                      v.clip[0] = float(double(v.clip[0]) +
-                                        double(v.clip[3]) / double(std::max(c.viewport.width, 1)));
+                      v.clip[0] =
+                          float(double(v.clip[0]) +
+                                double(v.clip[3]) / double(std::max(c.viewport.width, 1.0f)));
                   },
                   nullptr});
 

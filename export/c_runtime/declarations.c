@@ -182,6 +182,8 @@ GL_FUNCTIONS(DECLARE_GL_FUNCTION)
 /* GL 4.5 or GL_ARB_clip_control: looked up only for a scene that calls it. */
 typedef void (*pfn_glClipControl)(GLenum origin, GLenum depth);
 static pfn_glClipControl glClipControl;
+typedef void (*pfn_glViewportIndexedf)(GLuint index, GLfloat x, GLfloat y, GLfloat w, GLfloat h);
+static pfn_glViewportIndexedf glViewportIndexedf;
 
 /* ---- EGL and OSMesa: what making a context needs ---- */
 typedef void *EGLDisplay;
@@ -233,7 +235,7 @@ struct draw {
 struct scene {
   const char *name;
   int width, height; /* the framebuffer */
-  int viewport[4];   /* glViewport(x, y, width, height) */
+  float viewport[4]; /* glViewport(x, y, width, height); glViewportIndexedf where fractional */
   int scissor[5];    /* enabled (0 or 1), then glScissor(x, y, width, height) */
   GLenum clip_control[2]; /* glClipControl(origin, depth); {0, 0}: never called */
   double depth_near, depth_far; /* glDepthRange */

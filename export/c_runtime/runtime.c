@@ -326,7 +326,7 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   GLint dims[2] = {0, 0};
   float *rgba = NULL;
   size_t i, offset = 4;
-  int k, j, component = 0, ok = 0, limit;
+  int k, j, component = 0, ok = 0, limit, fractional = 0;
   for (k = 0; k < 100 && glGetError() != GL_NO_ERROR; ++k) {
     /* errors an earlier draw left are not this one's */
   }
@@ -343,9 +343,17 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
               gl_integer(GL_MAX_RENDERBUFFER_SIZE));
     return 0;
   }
-  if (s->viewport[2] > dims[0] || s->viewport[3] > dims[1]) {
-    set_error("viewport %dx%d beyond GL_MAX_VIEWPORT_DIMS %dx%d", s->viewport[2], s->viewport[3],
+  if (s->viewport[2] > (float)dims[0] || s->viewport[3] > (float)dims[1]) {
+    set_error("viewport %gx%g beyond GL_MAX_VIEWPORT_DIMS %dx%d", s->viewport[2], s->viewport[3],
               dims[0], dims[1]);
+    return 0;
+  }
+  for (k = 0; k < 4; ++k)
+    fractional = fractional || s->viewport[k] != (float)(long)s->viewport[k];
+  if (fractional && !glViewportIndexedf &&
+      !(glViewportIndexedf = (pfn_glViewportIndexedf)get_proc_address("glViewportIndexedf"))) {
+    set_error("the GL context has no glViewportIndexedf (GL 4.1 or GL_ARB_viewport_array) for a "
+              "fractional viewport");
     return 0;
   }
   if (s->clip_control[0] && !glClipControl &&
@@ -364,7 +372,11 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
   if (!(framebuffer = make_framebuffer(w, h, n + 1, formats, renderbuffers))) goto done;
 
   /* The state the case controls; nothing else may touch a value on its way to the readback. */
-  glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+  if (fractional)
+    glViewportIndexedf(0, s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+  else
+    glViewport((GLint)s->viewport[0], (GLint)s->viewport[1], (GLsizei)s->viewport[2],
+               (GLsizei)s->viewport[3]);
   glDepthRange(s->depth_near, s->depth_far);
   if (s->clip_control[0]) glClipControl(s->clip_control[0], s->clip_control[1]);
   glEnable(GL_DEPTH_TEST);

@@ -69,7 +69,7 @@ TEST_F(CaseFileTest, HugeNumberInAnIntegerFieldExpectsAnInteger) {
           R"({"description": "d", "viewport": {"x": -1e999, "y": 0, "width": 8, "height": 8}, )" +
           tri + "}"),
       file +
-          ": viewport.x: expected an integer in -16384..16383, got -1e999 (beyond the range of a "
+          ": viewport.x: expected a number in -16384..16383, got -1e999 (beyond the range of a "
           "double)");
   EXPECT_EQ(error_of(R"({"description": "d", )" + tri + R"(, "triangles": [[0, 1e400, 2]]})"),
             file +

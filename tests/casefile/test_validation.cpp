@@ -110,6 +110,27 @@ TEST_F(CaseFileTest, FramebufferAndViewport) {
                                      kTri));
   EXPECT_EQ(beyond.viewport.x, -50);
   EXPECT_EQ(beyond.viewport.width, 480);
+  EXPECT_TRUE(beyond.viewport.integral());
+  // Fractional bounds (glViewportIndexedf), numbers or decimal strings, each a float32.
+  const Case fractional = load_text(with(R"("framebuffer": {"width": 64, "height": 64},
+                            "viewport": {"x": -2.25, "y": "0.1", "width": 40.5, "height": 3}, )" +
+                                         kTri));
+  EXPECT_EQ(fractional.viewport.x, -2.25f);
+  EXPECT_EQ(fractional.viewport.y, 0.1f);
+  EXPECT_EQ(fractional.viewport.width, 40.5f);
+  EXPECT_FALSE(fractional.viewport.integral());
+  // Without a framebuffer, a fractional extent rounds up to whole pixels.
+  const Case sized =
+      load_text(with(R"("viewport": {"x": 1.5, "y": 0, "width": 8.25, "height": 8}, )" + kTri));
+  EXPECT_EQ(sized.fb_width, 10);
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": 0, "y": 0, "width": 0.5, "height": 8}, )" + kTri),
+                    "viewport.width");
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": "nan", "y": 0, "width": 8, "height": 8}, )" + kTri),
+                    "viewport.x");
+  EXPECT_CASE_ERROR(with(R"("viewport": {"x": 0, "y": 0, "width": 8, "height": 8},
+                            "scissor": {"x": 0.5, "y": 0, "width": 8, "height": 8}, )" +
+                         kTri),
+                    "scissor.x");
   // The scissor box: origins as the viewport's, sizes from 0.
   EXPECT_CASE_ERROR(with(R"("scissor": {"x": 0, "y": 0, "width": -1, "height": 8}, )" + kTri),
                     "scissor.width");

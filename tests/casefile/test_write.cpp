@@ -128,7 +128,8 @@ Case hostile_case() {
   c.description = "hostile floats: \"quoted\", back\\slash and unicode \xc3\xbc";
   c.fb_width = 96;
   c.fb_height = 80;
-  c.viewport = {13, 7, 48, 40};
+  // Fractional bounds (glViewportIndexedf), one of them no short decimal.
+  c.viewport = {13.25f, 0.1f, 48.5f, 40.0f};
   c.depth_near = 0x1.fffffep-1f;
   c.depth_far = 0x1p-149f;
   c.cull = CullFace::front_and_back;
