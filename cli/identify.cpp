@@ -148,6 +148,29 @@ void print_depth(const DepthFinding& f) {
              f.total.informative);
 }
 
+void print_viewport(const ViewportFinding& f) {
+  fmt::print(
+      "6. viewport precision: triangles in a viewport of quarter-pixel bounds "
+      "(glViewportIndexedf),\n"
+      "   against the exact rendering of the floats and of the bounds rounded to whole pixels\n");
+  if (!f.available) {
+    fmt::print("   not probed: no glViewportIndexedf (OpenGL 4.1 or GL_ARB_viewport_array)\n\n");
+    return;
+  }
+  const std::vector<int> w{20};
+  print_header("candidate", {"coverage mismatches"}, w);
+  for (const ViewportCandidate& c : f.candidates)
+    print_row(c.name == f.identified, c.name, {std::to_string(c.mismatches)}, w);
+  const bool exact = f.identified == "float";
+  fmt::print(
+      "   identified: {}; GL_VIEWPORT_SUBPIXEL_BITS reports {}{}\n\n",
+      exact ? "the float bounds, exactly" : "bounds rounded to whole pixels (" + f.identified + ")",
+      f.reported,
+      exact && f.reported == 0
+          ? " (it may round to whole pixels; the allowance lets it, ref/viewport.hpp)"
+          : "");
+}
+
 std::unique_ptr<gl::Renderer> open_raw_renderer(const Options& o) {
   gl::Target t;
   t.backend = o.gl.backend;
@@ -193,6 +216,7 @@ int cmd_identify(const Options& o) {
   print_ties(found.ties, found.bits.identified, found.tie_triangles);
   print_provoking(id.provoking);
   print_depth(id.depth);
+  print_viewport(id.viewport);
   fmt::print("{}\n", id.summary());
 
   nlohmann::json j = identification_json(id, info, raw->info().initial_provoking_vertex,

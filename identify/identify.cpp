@@ -80,6 +80,12 @@ Identification identify(gl::Renderer& renderer, gl::Renderer& raw) {
   for (int k = 0; k < 3; ++k)
     depth_cases.push_back(depth_triangles(rnd, k, exact[size_t(k)]));
   id.depth = identify_depth(render_all(raw, std::move(depth_cases)), exact);
+
+  // Drawn last: the earlier probes' random draws stay as they were.
+  const Case viewport_case = viewport_triangles(rnd);
+  if (info.viewport_subpixel_bits >= 0)
+    id.viewport = identify_viewport({viewport_case, render_gl(renderer, viewport_case)},
+                                    id.model.model(), info.viewport_subpixel_bits);
   return id;
 }
 
@@ -148,6 +154,15 @@ nlohmann::json identification_json(const Identification& id, const gl::GlInfo& i
                           {"truncate", c.truncate},
                           {"neither", c.neither}});
   j["depth24"] = {{"identified", depth.identified}, {"probes", depth_rows}};
+  const ViewportFinding& viewport = id.viewport;
+  json viewport_rows = json::array();
+  for (const ViewportCandidate& c : viewport.candidates)
+    viewport_rows.push_back({{"viewport", c.name}, {"coverage_mismatches", c.mismatches}});
+  j["viewport_precision"] = {{"available", viewport.available},
+                             {"reported_subpixel_bits", viewport.reported},
+                             {"identified", viewport.identified},
+                             {"pixels", viewport.pixels},
+                             {"candidates", viewport_rows}};
   j["summary"] = id.summary();
   return j;
 }

@@ -17,6 +17,7 @@
 #include "identify/provoking_vertex.hpp"
 #include "identify/subpixel_bits.hpp"
 #include "identify/tie_rule.hpp"
+#include "identify/viewport_precision.hpp"
 
 namespace glrc::identify {
 
@@ -35,6 +36,7 @@ struct Identification {
   ModelFindings model;
   ProvokingFinding provoking;
   DepthFinding depth;
+  ViewportFinding viewport;
   std::string summary() const;  // "identify: subpixel_bits=8 planes=unsnapped tie=... depth24=..."
 };
 
