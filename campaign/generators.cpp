@@ -891,6 +891,56 @@ void make_loadable(Case& c) {
 
 }  // namespace
 
+// Depth state: GL_DEPTH_CLAMP half the time, with triangles reaching well beyond the near and
+// far planes (z_n within ±3) and behind the eye now and then; polygon offsets (glPolygonOffset
+// and glPolygonOffsetClamp) with factors and units of either sign, from none to ones that push
+// fragments past 0 and 1; depth ranges full, partial and reversed; both glClipControl depth
+// modes; every depth function against a random clear; overlapping triangles; gl_FragCoord now
+// and then.
+Case depth(Random& r) {
+  Case c;
+  set_framebuffer_drawn(c, r, 8, 128, 8, 128);
+  c.depth_clamp = r.chance(0.5);
+  c.clip_depth = ClipDepth(r.below(2));
+  c.depth_func = DepthFunc(r.below(8));
+  c.depth_clear = r.chance(0.5) ? 1.0f : r.chance(0.5) ? 0.0f : float(r.unit());
+  const uint64_t range = r.below(10);
+  if (range >= 4) {
+    c.depth_near = float(r.unit()), c.depth_far = float(r.unit());  // reversed half the time
+  }
+  if (r.chance(0.7)) {
+    PolygonOffset& o = c.polygon_offset.emplace();
+    // Each term: none, moderate, or large enough to move a fragment by a good part of the range.
+    const auto term = [&r](double moderate, double large) {
+      const uint64_t kind = r.below(5);
+      const double sign = r.chance(0.5) ? 1.0 : -1.0;
+      return kind == 0  ? 0.0f
+             : kind < 4 ? float(sign * r.uniform(0, moderate))
+                        : float(sign * r.uniform(moderate, large));
+    };
+    o.factor = term(4, 200);
+    o.units = term(64, 4e5);
+    if (r.chance(0.25)) o.clamp = float((r.chance(0.5) ? 1 : -1) * r.uniform(1e-4, 2e-2));
+  }
+  const bool perspective = r.chance(0.5);
+  const int count = r.between(1, 6);
+  for (int t = 0; t < count; ++t) {
+    std::array<std::array<float, 4>, 3> v;
+    for (auto& p : v) {
+      p = random_clip(c, r, 0.3, c.depth_clamp ? 3.0 : 1.2, perspective);
+      // Behind the eye now and then, where only x and y clip under GL_DEPTH_CLAMP.
+      if (c.depth_clamp && r.chance(0.05))
+        for (float& k : p)
+          k = -k;
+    }
+    add_triangle(c, v);
+  }
+  add_varying(c, 2, Interpolation::smooth);
+  fill_values(c, r, [](Random& rr, int) { return moderate(rr); });
+  if (r.chance(0.25)) add_builtin(c, builtin_varying(Builtin::frag_coord));
+  return c;
+}
+
 const std::vector<Generator>& generators() {
   static const std::vector<Generator> all{
       {"sizes",
@@ -925,6 +975,11 @@ const std::vector<Generator>& generators() {
        "gl_ClipDistance and gl_CullDistance: up to 8 together, planes through the triangles, "
        "cull distances negative at some or all vertices",
        distances},
+      {"depth",
+       "GL_DEPTH_CLAMP with triangles far beyond the near and far planes, polygon offsets "
+       "(glPolygonOffsetClamp too) of either sign up to saturating ones, depth ranges full, "
+       "partial and reversed, both depth modes, every depth function",
+       depth},
   };
   return all;
 }

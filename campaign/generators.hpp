@@ -47,7 +47,10 @@ struct Generator {
 //               vertices beyond the clip planes;
 //   window      viewports with negative origins, larger than the framebuffer (up to 16384),
 //               partly or wholly outside it; scissor boxes inside, across and beyond it, empty
-//               ones too.
+//               ones too;
+//   distances   gl_ClipDistance and gl_CullDistance, up to 8 together;
+//   depth       GL_DEPTH_CLAMP, polygon offsets (and their clamp), depth ranges full, partial
+//               and reversed, both glClipControl depth modes, every depth function.
 // New generators go last, and none is ever removed or reordered: a campaign of every generator
 // makes case I with generator I mod n, so adding one changes which case such a campaign's
 // `--replay S:I` names (a campaign of named generators, and `--generator G --replay S:I`,

@@ -209,7 +209,7 @@ class Shrinker {
     bool progress = false;
     for (bool kept = true; kept && budget_left();) {
       const Case& m = out.minimal;
-      kept = first_failing(8, [&](size_t i) -> std::optional<Case> {
+      kept = first_failing(10, [&](size_t i) -> std::optional<Case> {
         Case c = m;
         const Case defaults;
         switch (i) {
@@ -243,6 +243,15 @@ class Shrinker {
             break;
           case 4:
             c.depth_near = defaults.depth_near, c.depth_far = defaults.depth_far;
+            break;
+          case 8:
+            c.depth_clamp = defaults.depth_clamp;
+            break;
+          case 9:  // the polygon offset's clamp first, then the whole offset
+            if (c.polygon_offset && c.polygon_offset->clamp)
+              c.polygon_offset->clamp.reset();
+            else
+              c.polygon_offset.reset();
             break;
         }
         if (casefile::to_case_file(c) == casefile::to_case_file(m)) return std::nullopt;

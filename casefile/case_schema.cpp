@@ -4,6 +4,7 @@
 // everywhere: a misspelt optional field would otherwise silently take its default.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <set>
@@ -117,7 +118,7 @@ void Loader::load_state(const CaseJson& state, Case& c) const {
   r_.object(state, "state");
   r_.check_keys(state, "state",
                 {"cull", "front_face", "provoking_vertex", "depth_func", "depth_clear",
-                 "clip_origin", "clip_depth"});
+                 "clip_origin", "clip_depth", "depth_clamp"});
   if (const CaseJson* v = Reader::find(state, "cull")) c.cull = r_.name<CullFace>(*v, "state.cull");
   if (const CaseJson* v = Reader::find(state, "front_face"))
     c.front_face = r_.name<FrontFace>(*v, "state.front_face");
@@ -134,6 +135,30 @@ void Loader::load_state(const CaseJson& state, Case& c) const {
     if (!(c.depth_clear >= 0.0f && c.depth_clear <= 1.0f))
       r_.fail("state.depth_clear", "a number in [0, 1]", Reader::describe(*v));
   }
+  if (const CaseJson* v = Reader::find(state, "depth_clamp")) {
+    if (!v->is_boolean())
+      r_.fail("state.depth_clamp", "true or false (GL_DEPTH_CLAMP)", Reader::describe(*v));
+    c.depth_clamp = v->get<bool>();
+  }
+}
+
+PolygonOffset Loader::load_polygon_offset(const CaseJson& o) const {
+  r_.object(o, "polygon_offset");
+  r_.check_keys(o, "polygon_offset", {"factor", "units", "clamp"});
+  PolygonOffset p;
+  // Each a finite float32 (glPolygonOffset's GLfloats; Inf or NaN would make every offset so).
+  auto read = [&](std::string_view key) -> std::optional<float> {
+    const CaseJson* v = Reader::find(o, key);
+    if (!v) return std::nullopt;
+    const std::string path = path_key("polygon_offset", key);
+    const float f = r_.float32(*v, path);
+    if (!std::isfinite(f)) r_.fail(path, "a finite number", Reader::describe(*v));
+    return f;
+  };
+  p.factor = read("factor").value_or(0.0f);
+  p.units = read("units").value_or(0.0f);
+  p.clamp = read("clamp");
+  return p;
 }
 
 namespace {
@@ -290,7 +315,7 @@ Case Loader::load(const CaseJson& root) const {
   r_.check_keys(root, "",
                 {"description", "framebuffer", "viewport", "scissor", "depth_range", "state",
                  "varyings", "enabled_clip_distances", "transform", "vertices", "triangles",
-                 "draws", "tolerance", "work_arounds", "written_by"});
+                 "draws", "tolerance", "work_arounds", "written_by", "polygon_offset"});
   // What wrote the file, with its stamp (cli's fuzz; report/stamp.hpp): for whoever writes it
   // again, nothing the case draws.
   if (const CaseJson* w = Reader::find(root, "written_by"); w && !w->is_string())
@@ -309,6 +334,8 @@ Case Loader::load(const CaseJson& root) const {
 
   load_geometry(root, c);
   if (const CaseJson* s = Reader::find(root, "state")) load_state(*s, c);
+  if (const CaseJson* o = Reader::find(root, "polygon_offset"))
+    c.polygon_offset = load_polygon_offset(*o);
   if (const CaseJson* v = Reader::find(root, "varyings")) load_varyings(*v, c);
   std::optional<Transform> transform;
   if (const CaseJson* t = Reader::find(root, "transform")) transform = load_transform(*t);

@@ -45,6 +45,7 @@ class Loader {
 
   void load_geometry(const CaseJson& root, Case& c) const;
   void load_state(const CaseJson& state, Case& c) const;
+  PolygonOffset load_polygon_offset(const CaseJson& o) const;
   Viewport load_viewport(const CaseJson& o) const;
   Scissor load_scissor(const CaseJson& o) const;
   void load_varyings(const CaseJson& list, Case& c) const;

@@ -104,6 +104,13 @@ json to_wire(const Case& c) {
   }
   if (c.clip_origin != ClipOrigin::lower_left || c.clip_depth != ClipDepth::negative_one_to_one)
     out["clip_control"] = {int(c.clip_origin), int(c.clip_depth)};
+  if (c.depth_clamp) out["depth_clamp"] = true;
+  if (const auto& o = c.polygon_offset) {
+    // Bits, so that every float (a negative zero too) comes back as it went.
+    json offset = {std::bit_cast<uint32_t>(o->factor), std::bit_cast<uint32_t>(o->units)};
+    if (o->clamp) offset.push_back(std::bit_cast<uint32_t>(*o->clamp));
+    out["polygon_offset"] = offset;
+  }
   return out;
 }
 
@@ -174,6 +181,14 @@ Case from_wire(const json& j) {
       if (origin < 0 || origin > 1 || mode < 0 || mode > 1)
         throw std::runtime_error("wire: clip_control out of range");
       c.clip_origin = ClipOrigin(origin), c.clip_depth = ClipDepth(mode);
+    }
+    c.depth_clamp = j.contains("depth_clamp") && j.at("depth_clamp").get<bool>();
+    if (j.contains("polygon_offset")) {
+      const json& o = j.at("polygon_offset");
+      PolygonOffset& p = c.polygon_offset.emplace();
+      p.factor = std::bit_cast<float>(o.at(0).get<uint32_t>());
+      p.units = std::bit_cast<float>(o.at(1).get<uint32_t>());
+      if (o.size() > 2) p.clamp = std::bit_cast<float>(o.at(2).get<uint32_t>());
     }
     if (j.contains("draws")) {
       for (const json& d : j.at("draws")) {

@@ -197,13 +197,17 @@ std::string to_case_file(const Case& c) {
       c.clip_origin != defaults.clip_origin || c.clip_depth != defaults.clip_depth;
   if (c.cull != defaults.cull || c.front_face != defaults.front_face ||
       c.provoking != defaults.provoking || c.depth_func != defaults.depth_func || clear_set ||
-      clip_control_set)
+      clip_control_set || c.depth_clamp)
     add(out, "  \"state\": {\"cull\": ", name(c.cull), ", \"front_face\": ", name(c.front_face),
         ", \"provoking_vertex\": ", name(c.provoking), ", \"depth_func\": ", name(c.depth_func),
         clear_set ? ", \"depth_clear\": " + number(c.depth_clear) : "",
         clip_control_set ? ", \"clip_origin\": " + name(c.clip_origin) +
                                ", \"clip_depth\": " + name(c.clip_depth)
                          : "",
+        c.depth_clamp ? ", \"depth_clamp\": true" : "", "},\n");
+  if (const auto& o = c.polygon_offset)
+    add(out, "  \"polygon_offset\": {\"factor\": ", number(o->factor),
+        ", \"units\": ", number(o->units), o->clamp ? ", \"clamp\": " + number(*o->clamp) : "",
         "},\n");
   if (c.work_arounds != defaults.work_arounds)
     add(out, "  \"work_arounds\": ", c.work_arounds ? "true" : "false", ",\n");

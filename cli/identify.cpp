@@ -171,6 +171,26 @@ void print_viewport(const ViewportFinding& f) {
           : "");
 }
 
+void print_depth_offset(const DepthOffsetFinding& f) {
+  fmt::print(
+      "7. polygon offset: triangles on planes as steep along x as along y, depths in [1/2, 3/4],\n"
+      "   drawn with glPolygonOffset(1, 0) and (0, 65536) into the 32F depth buffer\n");
+  if (!f.available) {
+    fmt::print("   not probed\n\n");
+    return;
+  }
+  fmt::print(
+      "   slope: the offset is {:.6f} x max(|dz/dx|, |dz/dy|) ({}; the length would be 1.414214)\n",
+      f.slope_ratio,
+      f.slope == "max"      ? "the larger slope, equation 14.12"
+      : f.slope == "length" ? "their length, equation 14.11"
+                            : "neither of GL's");
+  fmt::print("   units: the offset is {:.6f} x units·2^(e-23) ({})\n\n", f.units_ratio,
+             f.units == "r"    ? "GL's r"
+             : f.units == "2r" ? "twice GL's r"
+                               : "not GL's r");
+}
+
 std::unique_ptr<gl::Renderer> open_raw_renderer(const Options& o) {
   gl::Target t;
   t.backend = o.gl.backend;
@@ -217,6 +237,7 @@ int cmd_identify(const Options& o) {
   print_provoking(id.provoking);
   print_depth(id.depth);
   print_viewport(id.viewport);
+  print_depth_offset(id.offset);
   fmt::print("{}\n", id.summary());
 
   nlohmann::json j = identification_json(id, info, raw->info().initial_provoking_vertex,

@@ -54,12 +54,13 @@ int cmd_selftest(const Options& options) {
   }
   const int missed = result.missed();
   fmt::print(
-      "\n{}, {} caught, {} missed; without a fault: {} of {} pass, {}, {} ({:.2f} s)\n",
+      "\n{}, {} caught, {} missed; without a fault: {} of {} pass, {}, {}{} ({:.2f} s)\n",
       report::count_text(result.faults.size(), "fault", "faults"),
       int(result.faults.size()) - missed, missed, result.passed_clean,
       report::count_text(cases.size(), "case", "cases"),
       report::count_text(uint64_t(result.expected_failures), "expected failure",
                          "expected failures"),
+      result.skipped ? std::to_string(result.skipped) + " skipped (a feature GL lacks), " : "",
       report::count_text(result.clean_failures.size(), "unexpected failure", "unexpected failures"),
       seconds_since(start));
   return result.ok() ? 0 : 1;

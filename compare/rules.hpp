@@ -33,12 +33,14 @@ double ulp_of_scale(double scale);
 class UlpTable {
  public:
   explicit UlpTable(const Case& c);
+  // No primitive (the clear value, a candidate of the depth test where nothing may be kept):
+  // the depth's too, as nothing there is compared in ULPs.
   double ulp(int primitive, Channel ch) const {  // the depth's: 2^-23
-    return ch.is_depth() ? depth_ulp_ : ulps_[index(primitive, ch)];
+    return ch.is_depth() || primitive < 0 ? depth_ulp_ : ulps_[index(primitive, ch)];
   }
   // 1 / ulp(primitive, ch), exact: every ulp is a power of two.
   double inverse_ulp(int primitive, Channel ch) const {
-    return ch.is_depth() ? depth_inverse_ : inverses_[index(primitive, ch)];
+    return ch.is_depth() || primitive < 0 ? depth_inverse_ : inverses_[index(primitive, ch)];
   }
 
  private:

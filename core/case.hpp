@@ -2,6 +2,7 @@
 // reference and a GL implementation need to draw the same triangles with the same bits.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -211,6 +212,18 @@ struct Viewport {
   friend bool operator==(const Viewport&, const Viewport&) = default;
 };
 
+// glPolygonOffset(factor, units) with GL_POLYGON_OFFSET_FILL enabled (OpenGL 4.6 section
+// 14.6.5): every fragment of a filled polygon has o = m·factor + r·units added to its z_w, m the
+// polygon's largest depth slope and r the depth buffer's minimum resolvable difference
+// (ref/depth_offset.hpp derives both and their freedom). `clamp`, when set, is
+// glPolygonOffsetClamp's (GL 4.6 or GL_ARB_polygon_offset_clamp): o is at most clamp when clamp
+// > 0, at least clamp when clamp < 0; 0 clamps nothing.
+struct PolygonOffset {
+  float factor = 0, units = 0;
+  std::optional<float> clamp;
+  friend bool operator==(const PolygonOffset&, const PolygonOffset&) = default;
+};
+
 // glScissor(x, y, width, height) with GL_SCISSOR_TEST enabled: only fragments of pixels
 // x <= x_w < x + width, y <= y_w < y + height are kept (OpenGL 4.6 section 14.9.2). x and y may
 // be negative, the box may reach beyond the framebuffer, a width or height of 0 keeps nothing.
@@ -280,6 +293,12 @@ struct Case {
   float depth_near = 0.0f, depth_far = 1.0f;  // glDepthRangef; n > f allowed
   ClipOrigin clip_origin = ClipOrigin::lower_left;
   ClipDepth clip_depth = ClipDepth::negative_one_to_one;
+  // GL_DEPTH_CLAMP (OpenGL 4.6 sections 13.7 and 17.3.4): the near and far planes clip nothing,
+  // and the depth test and the depth buffer take z_w clamped to [min(n, f), max(n, f)]
+  // (fragment_depth).
+  bool depth_clamp = false;
+  // glPolygonOffset (GL_POLYGON_OFFSET_FILL enabled) or glPolygonOffsetClamp; none: disabled.
+  std::optional<PolygonOffset> polygon_offset;
 
   CullFace cull = CullFace::none;
   FrontFace front_face = FrontFace::ccw;
@@ -357,9 +376,25 @@ inline double near_distance(const Case& c, double z_c, double w_c) {
 }
 // Whether a clip-space vertex lies inside the view volume (OpenGL 4.6 section 13.7), every
 // plane closed. The user clip distances are not in it (outside_clip_distances).
+// Under GL_DEPTH_CLAMP the near and far planes are not in it.
 inline bool inside_view_volume(const Case& c, const std::array<float, 4>& clip) {
   const double x = clip[0], y = clip[1], z = clip[2], w = clip[3];
-  return w > 0 && std::fabs(x) <= w && std::fabs(y) <= w && near_distance(c, z, w) >= 0 && z <= w;
+  return w > 0 && std::fabs(x) <= w && std::fabs(y) <= w &&
+         (c.depth_clamp || (near_distance(c, z, w) >= 0 && z <= w));
+}
+// The depth a fragment of window depth z_w (its polygon offset added) takes to the depth test
+// and the depth buffer: under GL_DEPTH_CLAMP, clamped to [min(n, f), max(n, f)] (OpenGL 4.6
+// section 17.3.4); with a polygon offset, clamped to [0, 1] after the offset is added (section
+// 14.6.5, for floating-point depth buffers too); otherwise z_w itself, which clipping keeps
+// within the depth range. The bounds are floats, so clamping a float rounding of z_w gives the
+// float rounding of the clamped z_w. NaN stays NaN.
+inline float fragment_depth(const Case& c, float z_w) {
+  if (c.depth_clamp) {
+    const float lo = std::min(c.depth_near, c.depth_far), hi = std::max(c.depth_near, c.depth_far);
+    return z_w < lo ? lo : z_w > hi ? hi : z_w;
+  }
+  if (c.polygon_offset) return z_w < 0.0f ? 0.0f : z_w > 1.0f ? 1.0f : z_w;
+  return z_w;
 }
 // Whether a vertex is outside an enabled user clip plane: a clip distance below 0 (NaN too: no
 // implementation keeps it).

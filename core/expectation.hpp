@@ -35,6 +35,10 @@ inline constexpr uint8_t depth_order = 16;
 
 // A fragment a conforming implementation may keep at a pixel instead of the reference's: its
 // depth is within the depth allowances of the winner's, so the depth test may go either way.
+// A fragment GL may hold at a pixel instead of the reference's, the depth test's order being
+// free there (edge::depth_order). Primitive none is the clear value: where a fragment within its
+// allowance of glClearDepth's value may fail the test against it, or pass, GL may keep nothing
+// (its values 0, its allowances 0) or keep the fragment.
 struct Candidate {
   size_t pixel = 0;
   int32_t primitive = Frame::kNoPrimitive;

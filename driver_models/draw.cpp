@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <deque>
 
+#include "driver_models/draw_offset.hpp"
 #include "driver_models/mesa_clipper.hpp"
 
 namespace glrc::driver_models {
@@ -17,10 +18,10 @@ constexpr size_t kSegmentIndices = 1024;
 constexpr size_t kSplitTriangles = (kSegmentIndices - 1) / 3;
 
 DrawVertex shade_vertex(const Vertex& v, const ViewportXform& vp, const DrawConfig& config,
-                        ClipDepth depth) {
+                        const Case& c) {
   DrawVertex d;
   d.clip = v.clip;  // the vertex (and geometry) shader copies gl_Position unchanged
-  d.clipmask = clip_mask(v.clip, depth);
+  d.clipmask = clip_mask(v.clip, c.clip_depth, !c.depth_clamp);
   d.distances = v.distances;
   // llvmpipe transforms every vertex; the C path only unclipped ones, but a clipped vertex's
   // window position is never read (the clipper replaces it), so computing it does no harm.
@@ -55,7 +56,7 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
   const uint32_t written = c.distances.clip > 0 ? (1u << c.distances.clip) - 1u : 0u;
   const uint32_t ucp = c.distances.enabled & written ? c.distances.enabled & written : written;
   for (const Vertex& v : c.vertices) {
-    vertices.push_back(shade_vertex(v, ctx.viewport, config, c.clip_depth));
+    vertices.push_back(shade_vertex(v, ctx.viewport, config, c));
     // draw_cliptest_tmp.h's (clipdist < 0 || NaN) for each of those planes.
     for (int i = 0; i < c.distances.clip; ++i)
       if ((ucp >> i & 1u) && !(v.distances[size_t(i)] >= 0.0f))
@@ -70,7 +71,8 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
     // Any clipped vertex in the segment sends the whole segment through the pipeline
     // ("clipped" from the vertex shader / post-VS); otherwise it is emitted as is.
     // Cull distances send every triangle through the pipeline: its cull stage does them.
-    bool pipeline = c.distances.cull > 0;
+    // So does the offset stage where the driver uses it (DrawConfig::offset_stage).
+    bool pipeline = c.distances.cull > 0 || (config.offset_stage && c.polygon_offset);
     for (size_t t = first; t < last; ++t)
       for (uint32_t i : c.triangles[t])
         pipeline = pipeline || vertices[i].clipmask != 0;
@@ -98,6 +100,13 @@ void run_draw(const Case& c, const DrawConfig& config, TriangleSink& sink) {
         // The cull stage runs in the pipeline whenever culling is on (validate_pipeline),
         // on top of the driver's own culling.
         if (c.cull != CullFace::none && !cull_stage_passes(c, piece)) continue;
+        if (config.offset_stage && c.polygon_offset) {
+          // After clip and cull, on copies of the piece's vertices (dup_vert).
+          std::array<DrawVertex, 3> offset{*piece[0], *piece[1], *piece[2]};
+          offset_stage(*c.polygon_offset, offset);
+          sink.triangle(offset[0], offset[1], offset[2], primitive);
+          continue;
+        }
         sink.triangle(*piece[0], *piece[1], *piece[2], primitive);
       }
     }

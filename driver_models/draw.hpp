@@ -17,6 +17,9 @@ enum class VertexPath {
 struct DrawConfig {
   VertexPath path = VertexPath::c;
   bool fma = false;  // VertexPath::llvm only
+  // The pipeline's offset stage (draw_pipe_offset.c) applies a polygon offset: softpipe's
+  // (llvmpipe offsets in its own setup and keeps the stage off).
+  bool offset_stage = false;
 };
 
 // Draws every triangle of the case into `sink`, in the order the driver's setup sees them.

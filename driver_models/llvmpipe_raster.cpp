@@ -323,11 +323,14 @@ void LlvmpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, co
   LlvmpipeTriangle t;
   if (!llvmpipe_setup_triangle(case_, v0, v1, v2, t)) return;
   const LlvmpipeCoefficients k =
-      llvmpipe_coefficients(t, interpolation_, case_.provoking == ProvokingVertex::first);
+      llvmpipe_coefficients(t, interpolation_, case_.provoking == ProvokingVertex::first,
+                            case_.polygon_offset ? &*case_.polygon_offset : nullptr);
+  const std::array<float, 2> bounds = llvmpipe_depth_bounds(case_);
   llvmpipe_coverage(t, case_.fb_width, case_.fb_height, scissor_region(case_), [&](int px, int py) {
     float position[2];
-    const float depth = llvmpipe_fragment(k, interpolation_, px, py, fma_, values_.data(),
-                                          builtins_ ? position : nullptr);
+    float depth = llvmpipe_fragment(k, interpolation_, px, py, fma_, values_.data(),
+                                    builtins_ ? position : nullptr);
+    if (case_.depth_clamp) depth = llvmpipe_depth_clamp(depth, bounds);
     if (builtins_)
       write_builtins(case_, px, py, position[0], position[1], t.front_facing, values_.data());
     writer_.fragment(px, py, primitive, depth, values_.data());

@@ -50,6 +50,10 @@ void llvmpipe_coverage(const LlvmpipeTriangle& t, int fb_width, int fb_height,
 // planes of window z and 1/w_c, as evaluated); returns the depth as tested and written.
 float llvmpipe_fragment(const LlvmpipeCoefficients& k, const std::vector<Interpolation>& interp,
                         int px, int py, bool fma, float* values, float* position);
+// GL_DEPTH_CLAMP's bounds {min_depth, max_depth} (lp_setup.c, util_viewport_zmin_zmax) and the
+// clamp lp_build_depth_clamp takes the depth to with them, after llvmpipe_fragment's [0, 1].
+std::array<float, 2> llvmpipe_depth_bounds(const Case& c);
+float llvmpipe_depth_clamp(float z, const std::array<float, 2>& bounds);
 
 class LlvmpipeRasterizer final : public TriangleSink {
  public:

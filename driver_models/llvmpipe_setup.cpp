@@ -3,6 +3,10 @@
 // apply_perspective_corr, emit_constant_coef4).
 #include "driver_models/llvmpipe_setup.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include "driver_models/draw_offset.hpp"
 #include "driver_models/float_ops.hpp"
 
 namespace glrc::driver_models {
@@ -71,7 +75,7 @@ bool llvmpipe_setup_triangle(const Case& c, const DrawVertex& v0, const DrawVert
 
 LlvmpipeCoefficients llvmpipe_coefficients(const LlvmpipeTriangle& t,
                                            const std::vector<Interpolation>& interpolation,
-                                           bool flatshade_first) {
+                                           bool flatshade_first, const PolygonOffset* offset) {
   const auto& p0 = t.v[0]->window;
   const auto& p1 = t.v[1]->window;
   const auto& p2 = t.v[2]->window;
@@ -94,6 +98,20 @@ LlvmpipeCoefficients llvmpipe_coefficients(const LlvmpipeTriangle& t,
   };
 
   LlvmpipeCoefficients out;
+  // The key's pgon_offset_units and scale: a setup without either computes no offset.
+  if (offset && (offset->factor != 0.0f || offset->units != 0.0f)) {
+    const float dz01 = p0[2] - p1[2], dz20 = p2[2] - p0[2];
+    const float res_x = dz20 * dy01 - dy20 * dz01, res_y = dx20 * dz01 - dz20 * dx01;
+    const float dzdx = std::fabs(res_x * ooa), dzdy = std::fabs(res_y * ooa);
+    const float max = dzdx > dzdy || std::isnan(dzdx) || std::isnan(dzdy) ? dzdx : dzdy;
+    const float mult = max * offset->factor;
+    const float bias = float_depth_mrd(p0[2], p1[2], p2[2]) * offset->units;
+    float zoffset = bias + mult;
+    const float clamp = offset->clamp.value_or(0.0f);
+    if (clamp > 0) zoffset = std::min(clamp, zoffset);
+    if (clamp < 0) zoffset = std::max(clamp, zoffset);
+    out.offset = zoffset;
+  }
   out.z = calc_coef4(p0[2], p1[2], p2[2]);
   out.w = calc_coef4(p0[3], p1[3], p2[3]);
   const DrawVertex& provoking = flatshade_first ? *t.v[0] : *t.v[2];

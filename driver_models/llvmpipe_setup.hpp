@@ -34,14 +34,21 @@ struct Plane {
 };
 
 struct LlvmpipeCoefficients {
-  Plane z, w;                 // window z and 1/w_c (slot 0, the position)
+  Plane z, w;        // window z and 1/w_c (slot 0, the position)
+  float offset = 0;  // the polygon offset, kept in the position's a0.x
+
   std::vector<Plane> values;  // per component; flat: a0 only; smooth: planes of v/w
 };
 
 // The JIT setup function (init_args + calc_coef4): planes from the UNSNAPPED float window
-// positions, anchored at vertex 0, plain float ops (no fusing in that JIT code).
+// positions, anchored at vertex 0, plain float ops (no fusing in that JIT code). With a polygon
+// offset (`offset` not null), lp_do_offset_tri's value for a 32F depth buffer: cross(e, f).xy
+// of dxyz01 = v0 − v1 and dxyz20 = v2 − v0 times ooa, the larger magnitude (an unordered
+// compare takes dzdx) times the factor, plus units·2^(exponent of the largest |z| − 23), then
+// glPolygonOffsetClamp's clamp.
 LlvmpipeCoefficients llvmpipe_coefficients(const LlvmpipeTriangle& t,
                                            const std::vector<Interpolation>& interpolation,
-                                           bool flatshade_first);
+                                           bool flatshade_first,
+                                           const PolygonOffset* offset = nullptr);
 
 }  // namespace glrc::driver_models

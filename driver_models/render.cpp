@@ -80,7 +80,7 @@ Frame render(const Case& c, Driver d, const Options& o) {
     const unsigned saved = _mm_getcsr();
     _mm_setcsr(saved | kFlushToZero | kDenormalsAreZero);
     SoftpipeRasterizer raster(c, writer);
-    run_draw(c, DrawConfig{VertexPath::c, false}, raster);
+    run_draw(c, DrawConfig{VertexPath::c, false, true}, raster);
     _mm_setcsr(saved);
     // softpipe's bug with gl_PrimitiveID read in a fragment shader and no geometry shader
     // (piglit's primitive-id-no-gs; 22.3.6 and 25.0.7): the draw writes no fragment. The

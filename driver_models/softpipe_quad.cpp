@@ -4,6 +4,8 @@
 // sp_quad_depth_test.c interpolate_quad_depth (not clamped: depth clip is on).
 #include "driver_models/softpipe_quad.hpp"
 
+#include "driver_models/viewport.hpp"
+
 #include <algorithm>
 
 namespace glrc::driver_models {
@@ -49,7 +51,16 @@ SoftpipeRasterizer::SoftpipeRasterizer(const Case& c, FrameWriter& writer)
       writer_(writer),
       interpolation_(component_interpolation(c)),
       values_(interpolation_.size()),
-      builtins_(writes_builtins(c)) {}
+      builtins_(writes_builtins(c)) {
+  // depth_test_quads_fallback: near_val = translate[2] − scale[2], far_val = near_val +
+  // scale[2]·2.0 (in double, stored to a float), whichever way round; clip_halfz is not
+  // looked at, so under GL_ZERO_TO_ONE the lower bound is 2n − f, not n.
+  const ViewportXform vp = viewport_xform(c);
+  const float near_val = vp.translate[2] - vp.scale[2];
+  const float far_val = float(double(near_val) + double(vp.scale[2]) * 2.0);
+  depth_bounds_ = {near_val < far_val ? near_val : far_val,
+                   near_val < far_val ? far_val : near_val};
+}
 
 void SoftpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, const DrawVertex& v2,
                                   int32_t primitive) {
@@ -58,8 +69,12 @@ void SoftpipeRasterizer::triangle(const DrawVertex& v0, const DrawVertex& v1, co
   for (const Span& s : t.spans)
     for (int x = s.left; x < s.right; ++x) {
       float position[2];
-      const float depth = softpipe_fragment(t, interpolation_, x, s.y, values_.data(),
-                                            builtins_ ? position : nullptr);
+      float depth = softpipe_fragment(t, interpolation_, x, s.y, values_.data(),
+                                      builtins_ ? position : nullptr);
+      // CLAMP(X, MIN, MAX): X > MIN ? (X > MAX ? MAX : X) : MIN (NaN gives the lower bound).
+      if (case_.depth_clamp)
+        depth = depth > depth_bounds_[0] ? (depth > depth_bounds_[1] ? depth_bounds_[1] : depth)
+                                         : depth_bounds_[0];
       if (builtins_)
         write_builtins(case_, x, s.y, position[0], position[1], t.front_facing, values_.data());
       writer_.fragment(x, s.y, primitive, depth, values_.data());

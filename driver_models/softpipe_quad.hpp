@@ -2,6 +2,7 @@
 // sp_quad_depth_test.c) and the TriangleSink that runs setup, spans and quads.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/case.hpp"
@@ -30,6 +31,8 @@ class SoftpipeRasterizer final : public TriangleSink {
   std::vector<Interpolation> interpolation_;
   std::vector<float> values_;
   bool builtins_;  // the case writes a built-in (write_builtins)
+  // GL_DEPTH_CLAMP's {minval, maxval} (sp_quad_depth_test.c).
+  std::array<float, 2> depth_bounds_{};
 };
 
 }  // namespace glrc::driver_models

@@ -43,13 +43,14 @@ std::array<float, 4> window_position_c(const std::array<float, 4>& clip, const V
   return w;
 }
 
-uint32_t clip_mask(const std::array<float, 4>& clip, ClipDepth depth) {
+uint32_t clip_mask(const std::array<float, 4>& clip, ClipDepth depth, bool clip_z) {
   const float x = clip[0], y = clip[1], z = clip[2], w = clip[3];
   uint32_t mask = 0;
   if (!(-x + w >= 0)) mask |= 1u << 0;
   if (!(x + w >= 0)) mask |= 1u << 1;
   if (!(-y + w >= 0)) mask |= 1u << 2;
   if (!(y + w >= 0)) mask |= 1u << 3;
+  if (!clip_z) return mask;
   // clip_halfz (GL_ZERO_TO_ONE): plane 4 is z >= 0.
   if (!((depth == ClipDepth::zero_to_one ? z : z + w) >= 0)) mask |= 1u << 4;
   if (!(-z + w >= 0)) mask |= 1u << 5;

@@ -29,6 +29,9 @@ std::array<float, 4> window_position_c(const std::array<float, 4>& clip, const V
 // -w <= z (0 <= z under GL_ZERO_TO_ONE, clip_halfz), z <= w): bit i set when the vertex is
 // outside plane i. A NaN test counts as outside, as in both the LLVM (unordered compares) and
 // C (!(... >= 0)) versions.
-uint32_t clip_mask(const std::array<float, 4>& clip, ClipDepth depth);
+// Under GL_DEPTH_CLAMP (`clip_z` false: draw_update_clip_flags keys it on the rasterizer's
+// depth_clip_near, which the state tracker clears with GL_DEPTH_CLAMP) neither z plane is tested,
+// and nothing else takes their place: the x and y planes keep w_c >= 0.
+uint32_t clip_mask(const std::array<float, 4>& clip, ClipDepth depth, bool clip_z = true);
 
 }  // namespace glrc::driver_models

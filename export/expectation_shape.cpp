@@ -17,7 +17,9 @@ std::string expectation_shape_error(const Case& c, const Expectation& e, const T
     return "a spec tolerance needs the expectation's allowance at every pixel";
   for (size_t k = 0; k < e.candidates.size(); ++k) {
     const Candidate& o = e.candidates[k];
-    if (o.pixel >= pixels || o.primitive < 0 || size_t(o.primitive) >= c.triangles.size() ||
+    // Primitive none: the clear value, where GL may keep nothing.
+    if (o.pixel >= pixels || o.primitive < Frame::kNoPrimitive ||
+        (o.primitive >= 0 && size_t(o.primitive) >= c.triangles.size()) ||
         o.values.size() != components ||
         (t.mode == ToleranceMode::spec && o.allowed.size() != components) ||
         (k > 0 && e.candidates[k - 1].pixel > o.pixel)) {

@@ -273,6 +273,15 @@ void write_scene(std::string& out, const Case& c, const ReproducerShaders& shade
          ", .depth_far = " + hex_literal(c.depth_far) + ", /* " +
          comment_text(printable_number(c.depth_near) + ", " + printable_number(c.depth_far)) +
          " */\n";
+  out += std::string("    .depth_clamp = ") + (c.depth_clamp ? "1" : "0") + ",\n";
+  if (const std::optional<PolygonOffset>& o = c.polygon_offset) {
+    std::string numbers =
+        "factor " + printable_number(o->factor) + ", units " + printable_number(o->units);
+    if (o->clamp) numbers += ", clamp " + printable_number(*o->clamp);
+    out += "    .polygon_offset = {1, " + hex_literal(o->factor) + ", " + hex_literal(o->units) +
+           ", " + (o->clamp ? "1, " + hex_literal(*o->clamp) : std::string("0, 0")) + "}, /* " +
+           comment_text(numbers) + " */\n";
+  }
   out += std::string("    .cull = ") + gl_cull(c.cull) + ",\n";
   out += std::string("    .front_face = ") + (c.front_face == FrontFace::ccw ? "GL_CCW" : "GL_CW") +
          ",\n";

@@ -100,6 +100,13 @@ std::string notes(const Case& c, const ShaderTestPlan& plan) {
         "discards the fragments of the triangles the case culls, by gl_FrontFacing. That draws "
         "what culling draws, but does not exercise the driver's culling itself.");
   }
+  if (c.depth_clamp) {
+    out += "#\n";
+    out += comment_lines(
+        "GL_DEPTH_CLAMP is enabled (`enable GL_DEPTH_CLAMP`): the near and far planes clip "
+        "nothing, and the depth judged is gl_FragCoord.z clamped to the depth range [0, 1], as "
+        "the depth buffer the harness reads takes it.");
+  }
   if (c.depth_func != DepthFunc::always) {
     out += "#\n";
     out += comment_lines(
@@ -310,7 +317,8 @@ std::string fragment_shader(const Case& c, const ShaderTestPlan& plan) {
                        {{"depth_test", c.depth_func != DepthFunc::always},
                         {"culled", culls != Culled::none},
                         {"free_spans", !plan.free_spans.empty()},
-                        {"checks", !plan.checks.empty()}});
+                        {"checks", !plan.checks.empty()},
+                        {"depth_clamp", c.depth_clamp}});
 }
 
 // The rows of [vertex data] for the case's draws, and the `draw arrays` command of each. A
@@ -404,6 +412,7 @@ std::string draws(const Case& c, const DrawRows& rows) {
     out += cat("viewport indexed 0 ", decimal(c.viewport.x), " ", decimal(c.viewport.y), " ",
                decimal(c.viewport.width), " ", decimal(c.viewport.height), "\n");
   if (c.provoking == ProvokingVertex::first) out += "provoking vertex first\n";
+  if (c.depth_clamp) out += "enable GL_DEPTH_CLAMP\n";
   for (int i = 0; i < c.distances.clip; ++i)
     if (c.distances.plane_enabled(i)) out += cat("enable GL_CLIP_PLANE", std::to_string(i), "\n");
   std::string draw_case;
@@ -469,6 +478,15 @@ std::optional<std::string> shader_test_state_refusal(const Case& c) {
         c.clip_origin == ClipOrigin::upper_left ? "GL_UPPER_LEFT" : "GL_LOWER_LEFT", ", ",
         c.clip_depth == ClipDepth::zero_to_one ? "GL_ZERO_TO_ONE" : "GL_NEGATIVE_ONE_TO_ONE",
         ") cannot be expressed in a shader_test: shader_runner has no glClipControl command");
+  if (const std::optional<PolygonOffset>& o = c.polygon_offset) {
+    std::string why =
+        cat("polygon_offset (factor ", decimal(o->factor), ", units ", decimal(o->units));
+    if (o->clamp) why += cat(", clamp ", decimal(*o->clamp));
+    why += cat(") cannot be expressed in a shader_test: shader_runner has no ",
+               o->clamp ? "glPolygonOffsetClamp" : "glPolygonOffset",
+               " command (and its `enable` takes no GL_POLYGON_OFFSET_FILL)");
+    return why;
+  }
   // A restart that no index meets changes nothing: such a draw is expanded as any other.
   for (size_t d = 0; d < c.draws.size(); ++d)
     if (std::any_of(c.draws[d].indices.begin(), c.draws[d].indices.end(),

@@ -12,8 +12,11 @@
 //     the driver's culling itself), and a case whose states need more is refused
 //     (shader_test_refusal): a depth range other than [0, 1], culling of every triangle (the
 //     shader would use no varying), culling with a depth test (a discard cannot undo the
-//     depth write of the early depth test below), or a depth test against a clear value other
-//     than 0 or 1 (its 24-bit depth buffer holds no other exactly).
+//     depth write of the early depth test below), a depth test against a clear value other
+//     than 0 or 1 (its 24-bit depth buffer holds no other exactly), or a polygon offset (it has
+//     no glPolygonOffset or glPolygonOffsetClamp, and its `enable` takes no
+//     GL_POLYGON_OFFSET_FILL). GL_DEPTH_CLAMP is its `enable GL_DEPTH_CLAMP`; the depth judged is
+//     then gl_FragCoord.z clamped to [0, 1], as the depth buffer the harness reads takes it.
 //   - Its probes compare colours read back with glReadPixels, within a `tolerance`, one pixel
 //     or one rectangle per line; NaN passes them (|NaN - e| > tolerance is false), and the only
 //     way to hand a shader per-pixel data is text: constant arrays in the GLSL, one uniform per

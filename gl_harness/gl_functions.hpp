@@ -75,7 +75,8 @@ class Context;
   X(PFNGLGETFLOATVPROC, GetFloatv)                             \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                         \
   X(PFNGLREADPIXELSPROC, ReadPixels)                           \
-  X(PFNGLGETSTRINGIPROC, GetStringi)
+  X(PFNGLGETSTRINGIPROC, GetStringi)                           \
+  X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)
 
 struct GlFunctions {
   // Beyond 3.3 core, loaded where the context has it (GL 4.5 or GL_ARB_clip_control), else
@@ -83,6 +84,9 @@ struct GlFunctions {
   PFNGLCLIPCONTROLPROC ClipControl = nullptr;
   // Likewise glViewportIndexedf (GL 4.1 or GL_ARB_viewport_array): a fractional viewport.
   PFNGLVIEWPORTINDEXEDFPROC ViewportIndexedf = nullptr;
+  // Likewise glPolygonOffsetClamp (GL 4.6, GL_ARB_polygon_offset_clamp or
+  // GL_EXT_polygon_offset_clamp, whose glPolygonOffsetClampEXT is the same function).
+  PFNGLPOLYGONOFFSETCLAMPPROC PolygonOffsetClamp = nullptr;
 #define GLRC_GL_FUNCTION_MEMBER(type, name) type name = nullptr;
   GLRC_GL_FUNCTIONS(GLRC_GL_FUNCTION_MEMBER)
 #undef GLRC_GL_FUNCTION_MEMBER

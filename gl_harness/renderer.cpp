@@ -131,6 +131,12 @@ class GlRenderer final : public Renderer {
           reinterpret_cast<PFNGLVIEWPORTINDEXEDFPROC>(context_->proc_address("glViewportIndexedf"));
       if (gl_.ViewportIndexedf) info_.viewport_subpixel_bits = integer(GL_VIEWPORT_SUBPIXEL_BITS);
     }
+    if (major * 10 + minor >= 46 || has_extension("GL_ARB_polygon_offset_clamp"))
+      gl_.PolygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPPROC>(
+          context_->proc_address("glPolygonOffsetClamp"));
+    else if (has_extension("GL_EXT_polygon_offset_clamp"))
+      gl_.PolygonOffsetClamp = reinterpret_cast<PFNGLPOLYGONOFFSETCLAMPPROC>(
+          context_->proc_address("glPolygonOffsetClampEXT"));
     if (major * 10 + minor >= 45 || has_extension("GL_ARB_clip_control"))
       gl_.ClipControl =
           reinterpret_cast<PFNGLCLIPCONTROLPROC>(context_->proc_address("glClipControl"));
@@ -405,6 +411,10 @@ class GlRenderer final : public Renderer {
       throw FeatureMissing("case '" + c.name + "': glClipControl needs OpenGL 4.5 or " +
                            "GL_ARB_clip_control, which " + info_.renderer + " (" + info_.version +
                            ") does not have");
+    if (c.polygon_offset && c.polygon_offset->clamp && !gl_.PolygonOffsetClamp)
+      throw FeatureMissing("case '" + c.name + "': glPolygonOffsetClamp needs OpenGL 4.6, " +
+                           "GL_ARB_polygon_offset_clamp or GL_EXT_polygon_offset_clamp, which " +
+                           info_.renderer + " (" + info_.version + ") does not have");
     const size_t components = size_t(c.component_count());
     for (size_t i = 0; i < c.vertices.size(); ++i)
       if (c.vertices[i].values.size() != components)
@@ -566,11 +576,22 @@ class GlRenderer final : public Renderer {
     if (set_provoking_vertex_)
       gl_.ProvokingVertex(c.provoking == ProvokingVertex::last ? GL_LAST_VERTEX_CONVENTION
                                                                : GL_FIRST_VERTEX_CONVENTION);
-    // Nothing may touch the values between the fragment shader and the readback, and the
-    // reference knows no clamping of depth: GL_DEPTH_CLAMP stays off.
+    if (c.depth_clamp)
+      gl_.Enable(GL_DEPTH_CLAMP);
+    else
+      gl_.Disable(GL_DEPTH_CLAMP);
+    if (const auto& o = c.polygon_offset) {
+      gl_.Enable(GL_POLYGON_OFFSET_FILL);
+      if (o->clamp)  // validate() refused the case where glPolygonOffsetClamp is missing
+        gl_.PolygonOffsetClamp(o->factor, o->units, *o->clamp);
+      else
+        gl_.PolygonOffset(o->factor, o->units);
+    } else {
+      gl_.Disable(GL_POLYGON_OFFSET_FILL);
+    }
+    // Nothing may touch the values between the fragment shader and the readback.
     for (GLenum cap : {GL_DITHER, GL_BLEND, GL_MULTISAMPLE, GL_SCISSOR_TEST, GL_STENCIL_TEST,
-                       GL_DEPTH_CLAMP, GL_POLYGON_OFFSET_FILL, GL_SAMPLE_ALPHA_TO_COVERAGE,
-                       GL_RASTERIZER_DISCARD, GL_PRIMITIVE_RESTART})
+                       GL_SAMPLE_ALPHA_TO_COVERAGE, GL_RASTERIZER_DISCARD, GL_PRIMITIVE_RESTART})
       gl_.Disable(cap);
     gl_.ClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
   }

@@ -86,6 +86,8 @@ Identification identify(gl::Renderer& renderer, gl::Renderer& raw) {
   if (info.viewport_subpixel_bits >= 0)
     id.viewport = identify_viewport({viewport_case, render_gl(renderer, viewport_case)},
                                     id.model.model(), info.viewport_subpixel_bits);
+  // On the harness's 32F depth buffer, whose r the offset's units count.
+  id.offset = identify_depth_offset(render_all(renderer, depth_offset_cases(rnd)));
   return id;
 }
 
@@ -163,6 +165,10 @@ nlohmann::json identification_json(const Identification& id, const gl::GlInfo& i
                              {"identified", viewport.identified},
                              {"pixels", viewport.pixels},
                              {"candidates", viewport_rows}};
+  const DepthOffsetFinding& offset = id.offset;
+  j["depth_offset"] = {{"available", offset.available}, {"pixels", offset.pixels},
+                       {"slope", offset.slope},         {"slope_ratio", offset.slope_ratio},
+                       {"units", offset.units},         {"units_ratio", offset.units_ratio}};
   j["summary"] = id.summary();
   return j;
 }

@@ -12,6 +12,7 @@
 
 #include "core/model.hpp"
 #include "gl_harness/gl_harness.hpp"
+#include "identify/depth_offset.hpp"
 #include "identify/depth_rounding.hpp"
 #include "identify/planes.hpp"
 #include "identify/provoking_vertex.hpp"
@@ -37,6 +38,7 @@ struct Identification {
   ProvokingFinding provoking;
   DepthFinding depth;
   ViewportFinding viewport;
+  DepthOffsetFinding offset;
   std::string summary() const;  // "identify: subpixel_bits=8 planes=unsnapped tie=... depth24=..."
 };
 

@@ -35,7 +35,8 @@ ClipPlanes clip_planes(const TriangleSetup& t) {
   mpq_class scratch;
   bool w_made = false;
   LinearForm w;
-  for (size_t p = 0; p < 2 + users; ++p) {
+  // Under GL_DEPTH_CLAMP the near and far planes clip nothing: the user planes only.
+  for (size_t p = t.depth_clamp ? 2 : 0; p < 2 + users; ++p) {
     if (!outside(p, 0) && !outside(p, 1) && !outside(p, 2)) continue;
     // b_i is proportional to E'_i with a positive factor, so the sign of the distance at the
     // pixel is sign(sum E'_i·d_i), d_i vertex i's: exact products, per triangle.

@@ -2,7 +2,8 @@
 // -w_c <= x_c, y_c <= w_c is the viewport rectangle, whose edges never pass through a pixel
 // centre, so it is the pixel range itself. w_c > 0: part of the homogeneous edge test
 // (setup.hpp). What remains is the near and far planes, -w_c <= z_c <= w_c (0 <= z_c under
-// glClipControl's GL_ZERO_TO_ONE, TriangleSetup::clip_depth), and the enabled clip distances
+// glClipControl's GL_ZERO_TO_ONE, TriangleSetup::clip_depth; neither under GL_DEPTH_CLAMP), and
+// the enabled clip distances
 // (OpenGL 4.6 section 13.7): each a quantity linear in clip space, so its zero is a line in
 // window space and its sign at a pixel centre is exact.
 #pragma once

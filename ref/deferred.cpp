@@ -48,10 +48,13 @@ void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
     depth_component_ = depth_component_ || kind == Kind::depth;
   }
   smooth_.assign(smooth.begin(), smooth.end());
+  // The depths' scale: the depth range's, or under GL_DEPTH_CLAMP the vertices' own (z_w is
+  // not bounded by the range there).
   const double n = c.depth_near, f = c.depth_far;
+  const double scale =
+      std::max({std::fabs(n), std::fabs(f), c.depth_clamp ? freedom_.largest_depth() : 0.0});
   depth_ = Allowance(depth_forms.numerator, depth_forms.denominator, INFINITY,
-                     value_freedom(c, t, std::max(std::fabs(n), std::fabs(f)), generations),
-                     anchors_, reach);
+                     value_freedom(c, t, scale, generations), anchors_, reach);
 }
 
 void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bool depth) const {
@@ -68,7 +71,12 @@ void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bo
     freedom_.weight_at(b.x, b.y, b.weight);
   else
     std::fill(std::begin(b.weight), std::end(b.weight), 0.0);
-  if (depth || depth_component_) freedom_.depth_at(b.x, b.y, b.depth_extra);
+  if (depth || depth_component_) {
+    freedom_.depth_at(b.x, b.y, b.depth_extra);
+    if (depth_freedom_ != 0)
+      for (double& e : b.depth_extra)
+        e += depth_freedom_;
+  }
   anchors_.distances(b.x, b.y, b.distances);
 }
 
@@ -133,7 +141,8 @@ std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, f
   if (eye_) return {0.0, INFINITY};
   const auto delta = freedom_.range(px0, px1, py);
   const auto condition = fan_.condition_range(px0 + 0.5, px1 + 0.5, py + 0.5);
-  const auto extra = freedom_.depth_range(px0, px1, py);
+  auto extra = freedom_.depth_range(px0, px1, py);
+  extra[0] += depth_freedom_, extra[1] += depth_freedom_;
   if (!(delta[0] >= 0) || !(condition[0] >= 0) || !(extra[0] >= 0)) return {0.0, INFINITY};
   Anchors::RunDistances distances;
   anchors_.distances(px0, px1, py, distances);

@@ -40,6 +40,10 @@ class TriangleAllowance {
   void set(const Case& c, const TriangleSetup& t, const std::vector<ComponentPlane>& planes,
            const Plane& depth_forms, const std::vector<bool>& smooth);
 
+  // A freedom of z_w the same at every pixel, added to the depth's allowance (and
+  // gl_FragCoord.z's): a polygon offset's (ref/depth_offset.hpp), z_w units.
+  void add_depth_freedom(double extra) { depth_freedom_ += extra; }
+
   // What the channels share at kRowBlock pixels (px[j], py[j]) (integer window coordinates
   // as doubles).
   struct Block {
@@ -65,6 +69,7 @@ class TriangleAllowance {
  private:
   PositionFreedom freedom_;
   bool eye_ = false, clipped_ = false;
+  double depth_freedom_ = 0;  // add_depth_freedom's
   FanTriangles fan_;
   Anchors anchors_;  // the allowances point to it
   std::vector<Allowance> components_;

@@ -2,7 +2,7 @@
 
 namespace glrc::ref {
 
-Plane depth_plane(const TriangleSetup& t, const Barycentrics& b) {
+Plane depth_plane(const TriangleSetup& t, const Barycentrics& b, const mpq_class* offset) {
   // Kept per thread: unsnapped planes' weights are copied into their limbs, where six
   // rationals were made and freed per triangle (snapped planes' z_w is a quotient, swapped in).
   thread_local std::array<mpq_class, 3> alpha, beta;
@@ -15,6 +15,9 @@ Plane depth_plane(const TriangleSetup& t, const Barycentrics& b) {
       beta[i] = t.v[i].w_c;
     }
   }
+  if (offset)
+    for (int i = 0; i < 3; ++i)
+      alpha[i] += *offset * beta[i];
   return plane(b, alpha, beta);
 }
 

@@ -7,6 +7,9 @@
 
 namespace glrc::ref {
 
-Plane depth_plane(const TriangleSetup& t, const Barycentrics& b);
+// The exact plane of z_w over triangle t, with `offset` (a polygon offset o, z_w units; null:
+// none) added to every point of it: z_w + o is the same ratio with o·β_i added to each α_i
+// (Σ λ_i (α_i + o·β_i) / Σ λ_i β_i), so it is evaluated, and rounded, once.
+Plane depth_plane(const TriangleSetup& t, const Barycentrics& b, const mpq_class* offset = nullptr);
 
 }  // namespace glrc::ref

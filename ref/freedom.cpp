@@ -240,6 +240,8 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
   auto distance = [&](const ClipVertex& v, int plane) {
     const double w = v.p[3];
     if (plane >= 6) return v.d[size_t(plane - 6)];
+    // Under GL_DEPTH_CLAMP the near and far planes cut nothing (every vertex is inside).
+    if (plane >= 4 && c.depth_clamp) return 1.0;
     if (plane == 4) return near_distance(c, v.p[2], w);
     const size_t axis = size_t(plane / 2);
     return plane % 2 == 0 ? w + v.p[axis] : w - v.p[axis];
@@ -262,7 +264,7 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
       for (const ClipVertex& v : poly)
         add_z_clip(v, *std::max_element(v.ed.begin(), v.ed.end()));
     }
-    if (plane == 4 && z_clip) {
+    if (plane == 4 && z_clip && !c.depth_clamp) {
       // The polygon the near and far planes cut: each vertex's z_c and w_c carry e_z and e_w,
       // so the sign of w_c ∓ z_c may differ from the exact one within (e_z + e_w)/w_c in z_n
       // (e_z + |z_n|·e_w would be the error of z_n itself; the sign is of the difference).
@@ -326,6 +328,7 @@ std::vector<PolygonVertex> clipped_polygon(const Case& c, const TriangleSetup& t
     out.delta = snap_and_round(out.x_w, out.y_w, m, subpixel_bits) + std::max(clip_x, clip_y) +
                 out.viewport;
     out.depth = std::fabs(depth_range_scale(c)) * (v.e[2] + std::fabs(zn) * v.e[3]) / w;
+    out.z_w = approximate_depth(c, zn);
     out.weight = v.e[3] / w;
     out.w_c = w;
     // Within its rounding of the eye: the w_c an implementation computes may be 0 or negative.
@@ -363,6 +366,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   const Viewport& vp = c.viewport;
   const double m = viewport_magnitude(vp);
   bool clipped = false, in_guard_band = true, depth_clipped = false;
+  double whole_depth = 0;
   std::vector<std::array<double, 3>> whole;
   for (uint32_t index : t.index) {
     const auto& p = c.vertices[index].clip;
@@ -370,8 +374,8 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     // A user clip plane cuts as the near and far planes do (z_clip_at holds both's freedom).
     const bool user_clipped = outside_clip_distances(c, c.vertices[index]);
     clipped = clipped || !inside_view_volume(c, p) || user_clipped;
-    depth_clipped =
-        depth_clipped || !(w > 0) || near_distance(c, p[2], w) < 0 || p[2] > w || user_clipped;
+    depth_clipped = depth_clipped || !(w > 0) ||
+                    (!c.depth_clamp && (near_distance(c, p[2], w) < 0 || p[2] > w)) || user_clipped;
     if (!(w > 0)) {
       in_guard_band = false;
       continue;
@@ -382,13 +386,13 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
     in_guard_band = in_guard_band && centre_distance <= kGuardBandPixels;
     whole.push_back(
         {x_w, y_w, snap_and_round(x_w, y_w, m, subpixel_bits) + viewport_shift(vp, x_w, y_w)});
+    whole_depth = std::max(whole_depth, std::fabs(approximate_depth(c, double(p[2]) / w)));
   }
   bool any = false;
   std::vector<std::array<double, 3>> z_clip;
-  const std::vector<PolygonVertex> poly_vertices =
-      clipped_polygon(c, t, subpixel_bits, &z_clip, &reaches_eye_);
+  vertices_ = clipped_polygon(c, t, subpixel_bits, &z_clip, &reaches_eye_);
   if (!z_clip.empty()) z_clip_ = ConcaveEnvelope(z_clip);
-  if (const std::vector<PolygonVertex>& polygon = poly_vertices; !polygon.empty()) {
+  if (const std::vector<PolygonVertex>& polygon = vertices_; !polygon.empty()) {
     any = true;
     std::vector<std::array<double, 3>> delta, depth, weight, inverse_w;
     for (const PolygonVertex& v : polygon) {
@@ -398,6 +402,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
       weight.push_back({v.x_w, v.y_w, v.weight / v.w_c});
       inverse_w.push_back({v.x_w, v.y_w, 1 / v.w_c});
       largest_inverse_w_ = std::max(largest_inverse_w_, 1 / v.w_c);
+      largest_depth_ = std::max(largest_depth_, std::fabs(v.z_w));
       generations_ = std::max(generations_, v.generation);
     }
     delta_[0] = ConcaveEnvelope(delta);
@@ -411,6 +416,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   // without clipping it in x and y.
   if (clipped && in_guard_band && whole.size() == 3) {
     delta_[1] = ConcaveEnvelope(whole), any = true;
+    largest_depth_ = std::max(largest_depth_, whole_depth);
     for (const auto& d : whole) {
       whole_.push_back({d[0], d[1]});
       rounding_ = std::max(rounding_,
@@ -430,7 +436,7 @@ PositionFreedom::PositionFreedom(const Case& c, const TriangleSetup& t, int subp
   // Orientation: whether some conforming implementation's snapped vertices give a doubled
   // area of the other sign, or 0 (orientation_may_change), for the triangle itself; and the
   // pieces of its clipped polygon that may (turning_pieces).
-  if (generations_ > 0) turning_pieces_ = ref::turning_pieces(poly_vertices, subpixel_bits);
+  if (generations_ > 0) turning_pieces_ = ref::turning_pieces(vertices_, subpixel_bits);
   std::array<std::array<double, 2>, 3> p{};
   std::array<double, 3> rounding{};
   for (size_t j = 0; j < 3; ++j) {

@@ -90,6 +90,7 @@ struct PolygonVertex {
   double delta = 0;         // position freedom, pixels, in x and in y
   double viewport = 0;      // the part of delta from the viewport's precision (viewport_shift)
   double depth = 0;         // freedom of z_w from clipping arithmetic (z_w units)
+  double z_w = 0;           // window depth, unclamped (z_w units)
   double weight = 0;        // relative freedom of 1/w_c from clipping arithmetic
   double w_c = 1;
   int generation = 0;  // clip planes that made it; 0 for a vertex of the case
@@ -196,6 +197,14 @@ class PositionFreedom {
   // itself when a guard-band rasterizer would draw it unclipped (else empty).
   const std::vector<std::array<double, 2>>& polygon() const { return polygon_; }
   const std::vector<std::array<double, 2>>& guard_band_triangle() const { return whole_; }
+  // The clipped polygon's vertices with their freedoms (clipped_polygon; empty when nothing is
+  // left).
+  const std::vector<PolygonVertex>& polygon_vertices() const { return vertices_; }
+  // The largest |z_w| (unclamped) of any vertex an implementation may set up: the clipped
+  // polygon's, and the whole triangle's where a guard-band rasterizer draws it unclipped. The
+  // scale of the float rounding of depth (under GL_DEPTH_CLAMP z_w is not bounded by the depth
+  // range).
+  double largest_depth() const { return largest_depth_; }
   // Whether the triangle's orientation can change (it may turn over, or become degenerate)
   // as some implementation snaps and rounds its vertices (orientation_may_change, from the
   // triangle's own vertices): then the coverage of the pixels it may reach is
@@ -230,6 +239,8 @@ class PositionFreedom {
   std::array<ConcaveEnvelope, 2> delta_;
   ConcaveEnvelope depth_, weight_, inverse_w_, z_clip_;
   std::vector<std::array<double, 2>> polygon_, whole_, sliver_sources_;
+  std::vector<PolygonVertex> vertices_;
+  double largest_depth_ = 0;
   std::vector<TurningPiece> turning_pieces_;
   int generations_ = 0;
   double largest_inverse_w_ = 0, rounding_ = 0;

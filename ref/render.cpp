@@ -18,6 +18,7 @@
 #include "ref/coverage.hpp"
 #include "ref/deferred.hpp"
 #include "ref/depth.hpp"
+#include "ref/depth_offset.hpp"
 #include "ref/freedom.hpp"
 #include "ref/interpolation.hpp"
 #include "ref/mesh.hpp"
@@ -93,11 +94,16 @@ struct Prepared {
     // default; snapped planes make their forms anew).
     thread_local Barycentrics b;
     barycentrics(t, s.m, b);
-    const Plane depth_forms = depth_plane(t, b);
+    const DepthOffset offset = depth_offset(c, t);
+    const Plane depth_forms = depth_plane(t, b, c.polygon_offset ? &offset.value : nullptr);
     depth = depth_forms.evaluator();
     planes = component_planes(c, t, b, depth_forms);
     values = ComponentValues(planes);
-    if (s.allowance) allowance->set(c, t, planes, depth_forms, s.component_smooth);
+    if (s.allowance) {
+      allowance->set(c, t, planes, depth_forms, s.component_smooth);
+      if (c.polygon_offset)
+        allowance->add_depth_freedom(depth_offset_freedom(c, t, freedom(), offset));
+    }
   }
 
   // Only with an allowance.
@@ -144,6 +150,14 @@ void mark_sliver(const Sliver& sliver, int x0, int y0, int x1, int y1, int row0,
     for (int px = first; px <= last; ++px)
       edges[f.index(px, py - row0)] |= edge::unstable;
   }
+}
+
+// A block's window depths as the depth test takes them (fragment_depth: GL_DEPTH_CLAMP's
+// range, or [0, 1] after a polygon offset); nothing to do for most cases.
+inline void clamp_depths(const Case& c, float* z) {
+  if (!c.depth_clamp && !c.polygon_offset) return;
+  for (int j = 0; j < kRowBlock; ++j)
+    z[j] = fragment_depth(c, z[j]);
 }
 
 // kRowBlock floats from `from` to `to` (apart), a block's lanes to a frame: a copy of a size
@@ -208,6 +222,7 @@ class FragmentBlocks {
       x[j] = double(px_[k]), y[j] = double(py_[k]);
     }
     w.depth.at(x, y, z_);
+    clamp_depths(c, z_);
     if (!s.deferred_depth) {
       a.prepare(x, y, block_);
       a.depth_at(block_, z_, z_allowed_);
@@ -231,21 +246,25 @@ class FragmentBlocks {
       ++f.fragments[i];
       const float z = z_[j], z_allowed = z_allowed_[j];
       const bool passes = depth_test(c.depth_func, z, f.depth[i]);
-      if (c.depth_func == DepthFunc::always || f.primitive[i] == Frame::kNoPrimitive) {
-        if (!passes) continue;
+      if (c.depth_func == DepthFunc::always) {
         take(j, i);
         ++needed;
         continue;
       }
       // The fragments GL may hold at the pixel when this one arrives are the reference's
-      // winner and its candidates. Against one of them (depth `other`), this fragment may pass
-      // the test, and may fail it: where their depths are within each other's allowances,
-      // either; else as the exact depths say. Against an earlier copy of its own triangle
-      // (bitwise-identical clip positions, in the same order: Settings::twin) GL's invariance
-      // rules give both the same depth, so the test is decided as for equal depths.
+      // winner and its candidates; at a pixel nothing has been drawn to yet, the clear value
+      // (primitive none, depth glClearDepth's, exact: allowance 0). Against one of them (depth
+      // `other`), this fragment may pass the test, and may fail it: where their depths are
+      // within each other's allowances, either; else as the exact depths say. So a fragment
+      // within its allowance of the clear value (depths clamped to the range's far end, a
+      // triangle on the far plane) may be kept or not. Against an earlier copy of its own
+      // triangle (bitwise-identical clip positions, in the same order: Settings::twin) GL's
+      // invariance rules give both the same depth, so the test is decided as for equal depths.
       const bool equal_passes = depth_test(c.depth_func, z, z);
       auto may = [&](bool pass, int32_t other_primitive, float other, float other_allowed) {
-        if (s.twin[size_t(other_primitive)] == s.twin[size_t(p)]) return pass == equal_passes;
+        if (other_primitive != Frame::kNoPrimitive &&
+            s.twin[size_t(other_primitive)] == s.twin[size_t(p)])
+          return pass == equal_passes;
         if (std::fabs(double(z) - double(other)) <= double(z_allowed) + double(other_allowed))
           return true;
         return depth_test(c.depth_func, z, other) == pass;
@@ -260,7 +279,8 @@ class FragmentBlocks {
         });
       if (!passes) {
         // A candidate itself where it may pass against any fragment GL may hold.
-        bool kept = may(true, f.primitive[i], f.depth[i], r.allowed.depth[i]);
+        bool kept = may(true, f.primitive[i], f.depth[i],
+                        f.primitive[i] == Frame::kNoPrimitive ? 0.0f : r.allowed.depth[i]);
         for (size_t k = 0; !kept && others && k < others->size(); ++k) {
           const Candidate& o = (*others)[k];
           kept = may(true, o.primitive, o.depth, o.allowed_depth);
@@ -272,12 +292,16 @@ class FragmentBlocks {
       }
       // The old winner is a candidate where this one may fail against it: its allowances as
       // they were drawn, or as the deferred allowance of its triangle gives them.
-      if (may(false, f.primitive[i], f.depth[i], r.allowed.depth[i])) {
-        Candidate old{i, f.primitive[i], f.depth[i], r.allowed.depth[i], {}, {}};
+      const bool cleared = f.primitive[i] == Frame::kNoPrimitive;
+      const float held_allowed = cleared ? 0.0f : r.allowed.depth[i];
+      if (may(false, f.primitive[i], f.depth[i], held_allowed)) {
+        // The clear value as a candidate: no primitive, whose values nothing compares.
+        Candidate old{i, f.primitive[i], f.depth[i], held_allowed, {}, {}};
         for (size_t k = 0; k < planes.size(); ++k) {
-          old.values.push_back(f.components[k][i]);
-          old.allowed.push_back(deferred ? s.deferred->at(f, Channel::component(int(k)), i)
-                                         : r.allowed.components[k][i]);
+          old.values.push_back(cleared ? 0.0f : f.components[k][i]);
+          old.allowed.push_back(cleared    ? 0.0f
+                                : deferred ? s.deferred->at(f, Channel::component(int(k)), i)
+                                           : r.allowed.components[k][i]);
         }
         candidates[i].push_back(std::move(old));
       }
@@ -403,6 +427,7 @@ class FrameBlocks {
       x_[j] = double(px_[k]), y_[j] = double(py_[k]);
     }
     w.depth.at(x_, y_, z_);
+    clamp_depths(s_.c, z_);
     int drawn = 0;
     for (int j = 0; j < count; ++j) {
       const size_t i = f.index(px_[j], py_[j] - s_.row0);

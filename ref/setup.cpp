@@ -274,6 +274,7 @@ TriangleSetup setup_triangle(const Case& c, const Model& m, int primitive,
   t.primitive = primitive;
   t.index = c.triangles[size_t(primitive)];
   t.clip_depth = c.clip_depth;
+  t.depth_clamp = c.depth_clamp;
   t.discarded = c.distances.cull > 0 && culled_by_distance(c, t.index);
   std::array<WindowCorners::Pointer, 3> corners;
   for (size_t i = 0; i < 3; ++i) {

@@ -76,7 +76,8 @@ struct TriangleSetup {
   WindowCorners v;
   std::array<uint32_t, 3> index{};                        // into Case::vertices
   ClipDepth clip_depth = ClipDepth::negative_one_to_one;  // the case's: where the near plane is
-  bool drawn = false;                                     // false: zero area, or culled
+  bool depth_clamp = false;  // the case's GL_DEPTH_CLAMP: no near and far planes
+  bool drawn = false;        // false: zero area, or culled
   // Discarded by a cull distance (culled_by_distance): drawn by no implementation, whatever
   // its area or facing.
   bool discarded = false;

@@ -39,6 +39,14 @@ inline std::array<double, 2> approximate_window(const Case& c, const std::array<
           vp.y + vp.height / 2.0 * (1 + window_y_c(c, clip[1]) / clip[3])};
 }
 
+// z_w for a normalized depth z_n = z_c / w_c in double (glDepthRange's mapping, glClipControl's
+// GL_ZERO_TO_ONE included), unclamped: like approximate_window, never a bit of a value.
+inline double approximate_depth(const Case& c, double z_n) {
+  const double n = c.depth_near, f = c.depth_far;
+  return c.clip_depth == ClipDepth::zero_to_one ? n + z_n * (f - n)
+                                                : (n + f) / 2 + z_n * (f - n) / 2;
+}
+
 // GL interprets a viewport's bounds to GL_VIEWPORT_SUBPIXEL_BITS of precision (OpenGL 4.6
 // section 13.6.1: glViewportIndexedf's floats), rounded any way. Taken at GL's least, 0, which
 // is what llvmpipe, softpipe and zink report (Mesa 22.3.6 and 25.0.7): a fractional viewport

@@ -5,7 +5,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <optional>
 #include <utility>
 
 #include "core/primitive_assembly.hpp"
@@ -61,6 +63,53 @@ bool drawn_unclipped(const Case& c, const std::array<uint32_t, 3>& t) {
       return false;
   }
   return true;
+}
+
+// z_w's plane over triangle t in window coordinates, in double, unclamped and without any
+// polygon offset: {∂z_w/∂x_w, ∂z_w/∂y_w, z_w at the window origin}; nullopt unless every w_c > 0
+// and the window area is not 0. Accurate to far below the faults' changes.
+std::optional<std::array<double, 3>> depth_plane_of(const Case& c,
+                                                    const std::array<uint32_t, 3>& t) {
+  std::array<std::array<double, 3>, 3> p{};
+  for (size_t k = 0; k < 3; ++k) {
+    const std::array<float, 4>& clip = c.vertices[t[k]].clip;
+    if (!(clip[3] > 0)) return std::nullopt;
+    const auto xy = window_of(c, clip);
+    const double z_n = double(clip[2]) / clip[3];
+    const double n = c.depth_near, f = c.depth_far;
+    p[k] = {xy[0], xy[1],
+            c.clip_depth == ClipDepth::zero_to_one ? n + z_n * (f - n)
+                                                   : (n + f) / 2 + z_n * (f - n) / 2};
+  }
+  const double dx1 = p[1][0] - p[0][0], dy1 = p[1][1] - p[0][1], dz1 = p[1][2] - p[0][2];
+  const double dx2 = p[2][0] - p[0][0], dy2 = p[2][1] - p[0][1], dz2 = p[2][2] - p[0][2];
+  const double area = dx1 * dy2 - dx2 * dy1;
+  if (area == 0) return std::nullopt;
+  const double gx = (dz1 * dy2 - dz2 * dy1) / area, gy = (dx1 * dz2 - dx2 * dz1) / area;
+  return std::array<double, 3>{gx, gy, p[0][2] - gx * p[0][0] - gy * p[0][1]};
+}
+
+// Each covered pixel's depth replaced by change(plane, x, y, depth) (x, y its centre), for the
+// pixels of triangles depth_plane_of gives a plane; whether any depth changed.
+bool change_depth(
+    const Case& c, Frame& f,
+    const std::function<float(const std::array<double, 3>&, double, double, float)>& change) {
+  std::vector<std::optional<std::array<double, 3>>> planes(c.triangles.size());
+  std::vector<bool> made(c.triangles.size(), false);
+  bool changed = false;
+  for (int y = 0; y < f.height; ++y)
+    for (int x = 0; x < f.width; ++x) {
+      const size_t i = f.index(x, y);
+      const int32_t p = f.primitive[i];
+      if (p < 0 || size_t(p) >= c.triangles.size()) continue;
+      if (!made[size_t(p)])
+        planes[size_t(p)] = depth_plane_of(c, c.triangles[size_t(p)]), made[size_t(p)] = true;
+      if (!planes[size_t(p)]) continue;
+      const float z = change(*planes[size_t(p)], x + 0.5, y + 0.5, f.depth[i]);
+      changed = changed || std::bit_cast<uint32_t>(z) != std::bit_cast<uint32_t>(f.depth[i]);
+      f.depth[i] = z;
+    }
+  return changed;
 }
 
 // The sign of (pixel coordinate + 1/2) - (window coordinate of a vertex with w_c > 0), along one
@@ -389,6 +438,47 @@ std::vector<Fault> make_faults() {
                   "glClipControl's GL_ZERO_TO_ONE ignored: the near plane stays at z_c = -w_c and "
                   "z_w = z_d·(f - n)/2 + (n + f)/2",
                   [](Case& c) { c.clip_depth = ClipDepth::negative_one_to_one; }, nullptr});
+  // The depth clamp and polygon offset faults change the depths GL wrote by what the fault
+  // would make of them, computed in double from the triangle's own plane (depth_plane_of).
+  list.push_back({"depth-clamp-not-applied",
+                  "GL_DEPTH_CLAMP turning near and far clipping off without clamping: the depth "
+                  "buffer gets z_w beyond the depth range",
+                  nullptr, [](const Case& c, const Expectation&, Frame& f) {
+                    if (!c.depth_clamp || c.polygon_offset) return false;
+                    return change_depth(
+                        c, f, [](const std::array<double, 3>& z, double x, double y, float) {
+                          return float(z[2] + z[0] * x + z[1] * y);
+                        });
+                  }});
+  list.push_back({"depth-clamp-to-unit-range",
+                  "GL_DEPTH_CLAMP clamping z_w to [0, 1] instead of [min(n, f), max(n, f)]",
+                  nullptr, [](const Case& c, const Expectation&, Frame& f) {
+                    if (!c.depth_clamp || c.polygon_offset) return false;
+                    return change_depth(
+                        c, f, [](const std::array<double, 3>& z, double x, double y, float) {
+                          return float(std::clamp(z[2] + z[0] * x + z[1] * y, 0.0, 1.0));
+                        });
+                  }});
+  list.push_back({"polygon-offset-units-ignored",
+                  "glPolygonOffset's units ignored: no r·units term",
+                  [](Case& c) {
+                    if (c.polygon_offset) c.polygon_offset->units = 0;
+                  },
+                  nullptr});
+  list.push_back({"polygon-offset-slope-x-only",
+                  "the polygon offset's slope taken as |dz_w/dx_w| alone instead of the larger of "
+                  "|dz_w/dx_w| and |dz_w/dy_w| (or their length)",
+                  nullptr, [](const Case& c, const Expectation&, Frame& f) {
+                    if (!c.polygon_offset || c.polygon_offset->factor == 0 ||
+                        c.polygon_offset->clamp)
+                      return false;
+                    const double factor = c.polygon_offset->factor;
+                    return change_depth(
+                        c, f, [&](const std::array<double, 3>& z, double, double, float depth) {
+                          const double m = std::max(std::fabs(z[0]), std::fabs(z[1]));
+                          return fragment_depth(c, float(depth + factor * (std::fabs(z[0]) - m)));
+                        });
+                  }});
   return list;
 }
 

@@ -31,7 +31,9 @@ struct Fault {
 // by the wrong vertex under the first-vertex convention; a fan's hub kept across a restart
 // (assembly_faults.hpp); the scissor box one pixel wider; upper-left facing not reversed; clip
 // distances' signs flipped; gl_FragCoord.xy half a pixel off; gl_FragCoord.w not inverted;
-// gl_FrontFacing ignoring glFrontFace(GL_CW); GL_ZERO_TO_ONE ignored.
+// gl_FrontFacing ignoring glFrontFace(GL_CW); GL_ZERO_TO_ONE ignored; GL_DEPTH_CLAMP not
+// clamping, or clamping to [0, 1] instead of the depth range; a polygon offset without its
+// units, or with its slope taken along x only.
 const std::vector<Fault>& faults();
 
 // x rounded to the nearest float with `bits` explicit mantissa bits (ties to even).

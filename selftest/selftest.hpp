@@ -28,6 +28,8 @@ struct SelftestResult {
   size_t cases = 0;
   size_t passed_clean = 0;    // cases that pass without a fault: the ones faults are tried on
   int expected_failures = 0;  // clean failures the baseline lists
+  // Cases GL cannot draw for a feature it lacks (gl::FeatureMissing: `run` skips them too).
+  size_t skipped = 0;
   std::vector<CaseResult> clean_failures;  // the others, which make the selftest fail
   std::vector<FaultRow> faults;            // in faults()'s order
   int missed() const;                      // faults no case caught

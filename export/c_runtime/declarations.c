@@ -75,6 +75,7 @@ typedef void (*gl_proc)(void);
 #define GL_VENDOR 0x1F00
 #define GL_RENDERER 0x1F01
 #define GL_VERSION 0x1F02
+#define GL_EXTENSIONS 0x1F03
 #define GL_FUNC_ADD 0x8006
 #define GL_POLYGON_OFFSET_FILL 0x8037
 #define GL_MULTISAMPLE 0x809D
@@ -85,6 +86,7 @@ typedef void (*gl_proc)(void);
 #define GL_R32I 0x8235
 #define GL_MAJOR_VERSION 0x821B
 #define GL_MINOR_VERSION 0x821C
+#define GL_NUM_EXTENSIONS 0x821D
 #define GL_MAX_RENDERBUFFER_SIZE 0x84E8
 #define GL_DEPTH_CLAMP 0x864F
 #define GL_RGBA32F 0x8814
@@ -115,6 +117,7 @@ typedef void (*gl_proc)(void);
 /* X(return type, name without "gl", parameters): every GL function this file calls. */
 #define GL_FUNCTIONS(X)                                                                          \
   X(const GLubyte *, GetString, (GLenum name))                                                   \
+  X(const GLubyte *, GetStringi, (GLenum name, GLuint index))                                    \
   X(void, GetIntegerv, (GLenum name, GLint * data))                                              \
   X(GLenum, GetError, (void))                                                                    \
   X(GLuint, CreateShader, (GLenum type))                                                         \
@@ -149,6 +152,7 @@ typedef void (*gl_proc)(void);
   X(void, Disable, (GLenum cap))                                                                 \
   X(void, DepthFunc, (GLenum func))                                                              \
   X(void, DepthMask, (GLboolean flag))                                                           \
+  X(void, PolygonOffset, (GLfloat factor, GLfloat units))                                        \
   X(void, BlendFunc, (GLenum source, GLenum destination))                                        \
   X(void, BlendEquation, (GLenum mode))                                                          \
   X(void, CullFace, (GLenum mode))                                                               \
@@ -182,6 +186,11 @@ GL_FUNCTIONS(DECLARE_GL_FUNCTION)
 /* GL 4.5 or GL_ARB_clip_control: looked up only for a scene that calls it. */
 typedef void (*pfn_glClipControl)(GLenum origin, GLenum depth);
 static pfn_glClipControl glClipControl;
+/* GL 4.6 or GL_ARB_polygon_offset_clamp (glPolygonOffsetClamp), or GL_EXT_polygon_offset_clamp
+   (glPolygonOffsetClampEXT): looked up only for a scene that calls it, by the version and the
+   extensions (Mesa gives a stub for a name it lacks). */
+typedef void (*pfn_glPolygonOffsetClamp)(GLfloat factor, GLfloat units, GLfloat clamp);
+static pfn_glPolygonOffsetClamp glPolygonOffsetClamp;
 typedef void (*pfn_glViewportIndexedf)(GLuint index, GLfloat x, GLfloat y, GLfloat w, GLfloat h);
 static pfn_glViewportIndexedf glViewportIndexedf;
 
@@ -239,6 +248,13 @@ struct scene {
   int scissor[5];    /* enabled (0 or 1), then glScissor(x, y, width, height) */
   GLenum clip_control[2]; /* glClipControl(origin, depth); {0, 0}: never called */
   double depth_near, depth_far; /* glDepthRange */
+  int depth_clamp;   /* GL_DEPTH_CLAMP enabled (0 or 1) */
+  struct {
+    int enabled;           /* GL_POLYGON_OFFSET_FILL (0 or 1); 0: the rest unused */
+    GLfloat factor, units; /* glPolygonOffset(factor, units)... */
+    int clamped;           /* ...or, where 1, glPolygonOffsetClamp(factor, units, clamp) */
+    GLfloat clamp;
+  } polygon_offset;
   GLenum cull;       /* glCullFace's mode; 0: GL_CULL_FACE disabled */
   GLenum front_face, provoking_vertex, depth_func;
   GLfloat depth_clear; /* glClearDepth */

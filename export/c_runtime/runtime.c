@@ -283,6 +283,18 @@ static GLint gl_integer(GLenum name) {
   return value;
 }
 
+/* Whether the context lists extension `name` (glGetStringi: a core context has no list in one
+   string). */
+static int gl_extension(const char *name) {
+  const GLint count = gl_integer(GL_NUM_EXTENSIONS);
+  GLint k;
+  for (k = 0; k < count; ++k) {
+    const GLubyte *extension = glGetStringi(GL_EXTENSIONS, (GLuint)k);
+    if (extension && !strcmp((const char *)extension, name)) return 1;
+  }
+  return 0;
+}
+
 /* The scene's draws, in order, with `program` in use: each indexed one's indices given to the
    bound element buffer, its primitive restart on around it, and the program's uniform
    primitive_base (where it has one) set to the draw's first triangle. */
@@ -311,9 +323,8 @@ static void draw_all(const struct scene *s, GLuint program) {
 static int draw_scene(const struct scene *s, int geometry_shader, int count_geometry_shader,
                       struct frame *f) {
   static const GLenum caps_off[] = {GL_DITHER, GL_BLEND, GL_MULTISAMPLE, GL_SCISSOR_TEST,
-                                    GL_STENCIL_TEST, GL_DEPTH_CLAMP, GL_POLYGON_OFFSET_FILL,
-                                    GL_SAMPLE_ALPHA_TO_COVERAGE, GL_RASTERIZER_DISCARD,
-                                    GL_PRIMITIVE_RESTART};
+                                    GL_STENCIL_TEST, GL_SAMPLE_ALPHA_TO_COVERAGE,
+                                    GL_RASTERIZER_DISCARD, GL_PRIMITIVE_RESTART};
   static const GLfloat zero[4] = {0, 0, 0, 0};
   static const GLint no_primitive[4] = {-1, 0, 0, 0};
   const int n = s->varying_count, w = s->width, h = s->height;
@@ -361,6 +372,22 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
     set_error("the GL context has no glClipControl (GL 4.5 or GL_ARB_clip_control)");
     return 0;
   }
+  if (s->polygon_offset.clamped && !glPolygonOffsetClamp) {
+    /* The name GL 4.6 or an extension gives, as the harness looks it up: Mesa answers a name it
+       lacks with a stub that fails. */
+    const char *name = NULL;
+    if (gl_integer(GL_MAJOR_VERSION) * 10 + gl_integer(GL_MINOR_VERSION) >= 46 ||
+        gl_extension("GL_ARB_polygon_offset_clamp"))
+      name = "glPolygonOffsetClamp";
+    else if (gl_extension("GL_EXT_polygon_offset_clamp"))
+      name = "glPolygonOffsetClampEXT";
+    if (name) glPolygonOffsetClamp = (pfn_glPolygonOffsetClamp)get_proc_address(name);
+    if (!glPolygonOffsetClamp) {
+      set_error("the GL context has no glPolygonOffsetClamp (GL 4.6, GL_ARB_polygon_offset_clamp "
+                "or GL_EXT_polygon_offset_clamp)");
+      return 0;
+    }
+  }
 
   program = make_program(s->vertex_shader, geometry_shader ? s->geometry_shader : NULL,
                          geometry_shader ? s->fragment_after_geometry : s->fragment_shader);
@@ -396,6 +423,22 @@ static int draw_scene(const struct scene *s, int geometry_shader, int count_geom
       glDisable((GLenum)(GL_CLIP_DISTANCE0 + k));
   }
   glProvokingVertex(s->provoking_vertex);
+  /* Both stay on for the fragment-count pass, as in the harness: under GL_DEPTH_CLAMP the near
+     and far planes clip nothing there either. */
+  if (s->depth_clamp)
+    glEnable(GL_DEPTH_CLAMP);
+  else
+    glDisable(GL_DEPTH_CLAMP);
+  if (s->polygon_offset.enabled) {
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    if (s->polygon_offset.clamped)
+      glPolygonOffsetClamp(s->polygon_offset.factor, s->polygon_offset.units,
+                           s->polygon_offset.clamp);
+    else
+      glPolygonOffset(s->polygon_offset.factor, s->polygon_offset.units);
+  } else {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
   for (k = 0; k < (int)(sizeof caps_off / sizeof caps_off[0]); ++k) glDisable(caps_off[k]);
   glClampColor(GL_CLAMP_READ_COLOR, GL_FALSE);
 

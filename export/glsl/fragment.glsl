@@ -5,7 +5,8 @@
 //@ each pixel's (fragments, kept triangle or -1, verdict, 1) for the probes.
 //@ Flags: depth_test (the case's; the count is then a draw of its own without it), culled (the
 //@ case culls some triangles: discarded here), free_spans (pixels whose kept fragment's values
-//@ are judged only at listed pairs), checks (pairs whose values are checked against ranges).
+//@ are judged only at listed pairs), checks (pairs whose values are checked against ranges),
+//@ depth_clamp (GL_DEPTH_CLAMP: the depth judged is gl_FragCoord.z clamped to [0, 1]).
 #version 330 core
 #extension GL_ARB_shader_storage_buffer_object : require
 //@if depth_test
@@ -56,7 +57,14 @@ void main() {
     colour = vec4(float(fragments[i]), float(int(kept[i] / 4u) - 1), float(kept[i] % 4u), 1.0);
     return;
   }
-  float v[CHANNELS] = float[](gl_FragCoord.z@CHANNEL_VALUES@);
+//@if depth_clamp
+  // GL_DEPTH_CLAMP: the depth buffer, which the harness reads, takes z_w clamped to the depth
+  // range [0, 1]; gl_FragCoord.z need not be. NaN stays NaN.
+  float depth = isnan(gl_FragCoord.z) ? gl_FragCoord.z : clamp(gl_FragCoord.z, 0.0, 1.0);
+//@else
+  float depth = gl_FragCoord.z;
+//@end
+  float v[CHANNELS] = float[](depth@CHANNEL_VALUES@);
 //@if culled
   // cull @CULL@ with front_face @FRONT_FACE@: no fragment of a @CULLED_KIND@ (shader_runner has no glCullFace)
   if (@CULLED_CONDITION@) discard;

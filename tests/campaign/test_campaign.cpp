@@ -60,9 +60,9 @@ TEST(Random, IsSplitMix64) {
 }
 
 TEST(Generators, EveryNameIsFoundAndNothingElse) {
-  EXPECT_EQ(generators().size(), 9u);
+  EXPECT_EQ(generators().size(), 10u);
   for (const char* name : {"sizes", "clip", "mesh", "attributes", "states", "dense", "assembly",
-                           "window", "distances"})
+                           "window", "distances", "depth"})
     EXPECT_NE(find_generator(name), nullptr) << name;
   EXPECT_EQ(find_generator("Clip"), nullptr);
   EXPECT_EQ(find_generator(""), nullptr);

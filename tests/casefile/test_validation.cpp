@@ -170,6 +170,28 @@ TEST_F(CaseFileTest, DepthRangeAndState) {
   EXPECT_CASE_ERROR(with(R"("state": [], )" + kTri), "state");
 }
 
+TEST_F(CaseFileTest, DepthClampAndPolygonOffset) {
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_clamp": 1}, )" + kTri), "state.depth_clamp");
+  EXPECT_CASE_ERROR(with(R"("state": {"depth_clamp": "on"}, )" + kTri), "state.depth_clamp");
+  EXPECT_TRUE(load_text(with(R"("state": {"depth_clamp": true}, )" + kTri)).depth_clamp);
+  EXPECT_FALSE(load_text(with(kTri)).depth_clamp);
+  EXPECT_CASE_ERROR(with(R"("polygon_offset": [1, 2], )" + kTri), "polygon_offset");
+  EXPECT_CASE_ERROR(with(R"("polygon_offset": {"slope": 1}, )" + kTri), "polygon_offset.slope");
+  EXPECT_CASE_ERROR(with(R"("polygon_offset": {"factor": "x"}, )" + kTri), "polygon_offset.factor");
+  EXPECT_CASE_ERROR(with(R"("polygon_offset": {"units": 1e39}, )" + kTri), "polygon_offset.units");
+  EXPECT_CASE_ERROR(with(R"("polygon_offset": {"clamp": "inf"}, )" + kTri), "polygon_offset.clamp");
+  const Case offset =
+      load_text(with(R"("polygon_offset": {"factor": -1.5, "units": "0.1"}, )" + kTri));
+  ASSERT_TRUE(offset.polygon_offset.has_value());
+  EXPECT_EQ(offset.polygon_offset->factor, -1.5f);
+  EXPECT_EQ(offset.polygon_offset->units, 0.1f);  // rounded to float32 once
+  EXPECT_FALSE(offset.polygon_offset->clamp.has_value());
+  const Case clamped = load_text(with(R"("polygon_offset": {"clamp": 0.25}, )" + kTri));
+  EXPECT_EQ(clamped.polygon_offset->factor, 0.0f);
+  EXPECT_EQ(clamped.polygon_offset->clamp, 0.25f);
+  EXPECT_FALSE(load_text(with(kTri)).polygon_offset.has_value());
+}
+
 TEST_F(CaseFileTest, Varyings) {
   auto one = [](const std::string& varying) {
     return with(R"("varyings": [)" + varying + "], " + kTri);

@@ -410,7 +410,7 @@ TEST_F(Fuzz, BadInputIsOneLineAndExit2) {
   const std::pair<std::string, std::string> cases[] = {
       {"fuzz --generator bogus" + out,
        "--generator: expected one of sizes, clip, mesh, attributes, states, dense, assembly, "
-       "window, distances, got "
+       "window, distances, depth, got "
        "\"bogus\""},
       {"fuzz --replay 12" + out, "--replay: expected SEED:INDEX"},
       {"fuzz --replay 1:x" + out, "--replay: expected SEED:INDEX"},

@@ -5,6 +5,7 @@
 // (tests/cli/export_shader_test.sh runs the files with shader_runner).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -357,6 +358,76 @@ TEST(ShaderTest, StatesAsShaderRunnerCommands) {
   EXPECT_EQ(plain.rfind(reproducer::kShaderTestSignature, 0), 0u);
   for (const char* absent : {"viewport indexed", "provoking vertex", "depthbuffer", "discard"})
     EXPECT_EQ(plain.find(absent), std::string::npos) << absent;
+}
+
+// GL_DEPTH_CLAMP is shader_runner's `enable GL_DEPTH_CLAMP` (its enable table has it), before
+// every draw of the case, the count without the depth test too (the near and far planes clip
+// nothing there either); the depth judged is gl_FragCoord.z clamped to [0, 1], as the depth
+// buffer the harness reads takes it (llvmpipe's gl_FragCoord.z is not clamped).
+TEST(ShaderTest, DepthClampIsEnabledAndTheJudgedDepthClamped) {
+  Case c = casefile::load(source("cases/face_on.json"));
+  c.vertices[2].clip[2] = 1.6f;  // beyond the far plane: drawn only under GL_DEPTH_CLAMP
+  c.depth_clamp = true;
+  const std::string clamped = export_case(c).test.text;
+  const std::vector<std::string> test = section(clamped, "test");
+  const auto enable = std::find(test.begin(), test.end(), "enable GL_DEPTH_CLAMP");
+  ASSERT_NE(enable, test.end()) << clamped;
+  const auto first_draw = std::find_if(test.begin(), test.end(), [](const std::string& line) {
+    return line.rfind("draw arrays ", 0) == 0;
+  });
+  EXPECT_LT(enable, first_draw);
+  EXPECT_EQ(std::count(test.begin(), test.end(), "enable GL_DEPTH_CLAMP"), 1);
+  EXPECT_NE(clamped.find("  float depth = isnan(gl_FragCoord.z) ? gl_FragCoord.z : "
+                         "clamp(gl_FragCoord.z, 0.0, 1.0);\n"
+                         "  float v[CHANNELS] = float[](depth, v0.x, v0.y, v0.z, v0.w);\n"),
+            std::string::npos)
+      << clamped;
+  EXPECT_NE(clamped.find("# GL_DEPTH_CLAMP is enabled (`enable GL_DEPTH_CLAMP`)"),
+            std::string::npos);
+
+  // With a depth test: enabled before the count that runs without it.
+  c.depth_func = DepthFunc::less;
+  const std::string less = export_case(c).test.text;
+  const size_t at = less.find("enable GL_DEPTH_CLAMP\n");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_LT(at, less.find("uniform int resolve 2\n"));
+  EXPECT_LT(at, less.find("enable GL_DEPTH_TEST\n"));
+
+  // Without it: neither, and gl_FragCoord.z as it comes.
+  const std::string plain = export_file("cases/face_on.json").test.text;
+  EXPECT_EQ(plain.find("GL_DEPTH_CLAMP"), std::string::npos);
+  EXPECT_NE(plain.find("  float depth = gl_FragCoord.z;\n"), std::string::npos);
+}
+
+// shader_runner has no glPolygonOffset or glPolygonOffsetClamp command, and its `enable` takes
+// no GL_POLYGON_OFFSET_FILL: a polygon offset, even of 0, is refused with one line naming it,
+// before the reference is drawn, and shader_test() throws it.
+TEST(ShaderTest, PolygonOffsetIsRefusedInOneLine) {
+  const Case face_on = casefile::load(source("cases/face_on.json"));
+  Case c = face_on;
+  c.polygon_offset = PolygonOffset{2.0f, 4.0f, std::nullopt};
+  EXPECT_EQ(reproducer::shader_test_state_refusal(c).value_or(""),
+            "polygon_offset (factor 2, units 4) cannot be expressed in a shader_test: "
+            "shader_runner has no glPolygonOffset command (and its `enable` takes no "
+            "GL_POLYGON_OFFSET_FILL)");
+  c.polygon_offset = PolygonOffset{-0.5f, 1.0f, 0.25f};
+  EXPECT_EQ(reproducer::shader_test_state_refusal(c).value_or(""),
+            "polygon_offset (factor -0.5, units 1, clamp 0.25) cannot be expressed in a "
+            "shader_test: shader_runner has no glPolygonOffsetClamp command (and its `enable` "
+            "takes no GL_POLYGON_OFFSET_FILL)");
+  c.polygon_offset = PolygonOffset{};
+  EXPECT_EQ(reproducer::shader_test_state_refusal(c).value_or("").rfind(
+                "polygon_offset (factor 0, units 0) cannot be expressed in a shader_test", 0),
+            0u);
+  const Exported x = export_case(face_on);
+  const auto why = reproducer::shader_test_refusal(c, x.expected, x.tolerance);
+  ASSERT_TRUE(why.has_value());
+  EXPECT_EQ(why->find('\n'), std::string::npos);
+  EXPECT_THROW(reproducer::shader_test(c, x.expected, x.tolerance, {}), std::invalid_argument);
+  // GL_DEPTH_CLAMP alone is no refusal.
+  c = face_on;
+  c.depth_clamp = true;
+  EXPECT_FALSE(reproducer::shader_test_state_refusal(c).has_value());
 }
 
 TEST(ShaderTest, ValueChecksAreBounded) {

@@ -145,11 +145,18 @@ void expect_bit_exact(const Case& c, gl::Renderer& renderer, driver_models::Driv
 TEST_F(DriverModel, EverySuiteCaseIsBitExact) {
   Tally tally;
   int cases = 0;
+  int skipped = 0;
   for (const auto& path : casefile::collect({std::string(GLRC_SOURCE_DIR) + "/cases"})) {
     const Case c = casefile::load(path);
-    expect_bit_exact(c, gl(), driver(), tally);
+    try {
+      expect_bit_exact(c, gl(), driver(), tally);
+    } catch (const gl::FeatureMissing&) {  // softpipe: glPolygonOffsetClamp (run skips it too)
+      ++skipped;
+      continue;
+    }
     ++cases;
   }
+  EXPECT_LE(skipped, 2);
   const uint64_t pixels = tally.pixels, covered = tally.covered, nan = tally.nan;
   std::cout << "[ driver_models ] " << driver_models::to_string(driver()) << ": " << cases
             << " suite cases, " << pixels << " pixels (" << covered << " covered, " << nan

@@ -15,8 +15,8 @@ const Fault& fault(const std::string& name) {
   throw std::runtime_error("no fault " + name);
 }
 
-TEST(Faults, TwentyOneInAFixedOrder) {
-  ASSERT_EQ(faults().size(), 21u);
+TEST(Faults, TwentyFiveInAFixedOrder) {
+  ASSERT_EQ(faults().size(), 25u);
   EXPECT_EQ(faults().front().name, "smooth-as-noperspective");
   EXPECT_EQ(faults()[7].name, "shared-edge-pixel-dropped");
   EXPECT_EQ(faults()[8].name, "shared-horizontal-edge-drawn-twice");
@@ -31,7 +31,11 @@ TEST(Faults, TwentyOneInAFixedOrder) {
   EXPECT_EQ(faults()[17].name, "frag-coord-half-pixel-off");
   EXPECT_EQ(faults()[18].name, "frag-coord-w-not-inverted");
   EXPECT_EQ(faults()[19].name, "front-facing-inverted-under-cw");
-  EXPECT_EQ(faults().back().name, "zero-to-one-ignored");
+  EXPECT_EQ(faults()[20].name, "zero-to-one-ignored");
+  EXPECT_EQ(faults()[21].name, "depth-clamp-not-applied");
+  EXPECT_EQ(faults()[22].name, "depth-clamp-to-unit-range");
+  EXPECT_EQ(faults()[23].name, "polygon-offset-units-ignored");
+  EXPECT_EQ(faults().back().name, "polygon-offset-slope-x-only");
 }
 
 // The built-in faults change only their built-in's components, at covered pixels; the facing

@@ -42,7 +42,8 @@ TEST(SelftestLoop, APerfectImplementationCatchesEveryFaultAndFailsNothingClean) 
              "noperspective_smooth", "fan_subpixel_rim_shared_edge", "depth_contest_hidden",
              "invariance_copy_less", "strip_flat_provoking_first", "fan_restart_index_ushort",
              "scissor_inside", "clip_control_upper_left_cull_back", "clip_control_zero_to_one_near",
-             "clip_distance_one_plane", "frag_coord_lower_left", "front_facing_cw"});
+             "clip_distance_one_plane", "frag_coord_lower_left", "front_facing_cw",
+             "depth_clamp_partial_range", "polygon_offset_slope", "polygon_offset_saturates_far"});
   ReferenceRenderer r;
   size_t steps = 0;
   SelftestProgress progress;
