@@ -14,10 +14,11 @@
 //       |2A'| >= |2A| - e_A, with e_N, e_A the products' worst moves. A piece whose rounding may
 //       take its area to 0 bounds nothing: m is unbounded there.
 //   r   the minimum resolvable difference. This harness's depth buffer is 32F: r = 2^(e − 23),
-//       e the exponent of the largest |z_w| over the primitive (the pieces an implementation
-//       sets up; each z_w within its rounding, so e may be one less or more near a power of
-//       two). Below 2^-100 an implementation may take r as 0 (Mesa's exponent arithmetic
-//       flushes it).
+//       e the exponent of the largest |z_w| over the primitive, which an implementation that
+//       offsets each piece of a clipped polygon takes over the piece: from the least a piece of
+//       any triangulation may have (the three vertices of least |z_w|) to the polygon's
+//       largest, each z_w within its rounding. Below 2^-100 an implementation may take r as 0
+//       (Mesa's exponent arithmetic flushes it).
 //   o   computed in float: each product and the sum within a few ulps, and the sum z_w + o
 //       rounded once more.
 // The reference adds one value of that set, exactly: m the midpoint of (14.12) and (14.11)
