@@ -9,15 +9,23 @@ namespace {
 
 // The channel's kind: "depth" ("depth_offset" in a case with a polygon offset, else
 // "depth_clamp" under GL_DEPTH_CLAMP: drivers go wrong in those apart, and a known bug of one
-// must not hide the others), or the qualifier of the varying it belongs to.
+// must not hide the others; gl_FragCoord.z's too), the qualifier of the varying it belongs to,
+// or "other" for a built-in's other components.
 std::string channel_kind(const Case& c, const std::string& channel) {
-  if (channel == "depth")
-    return c.polygon_offset ? "depth_offset" : c.depth_clamp ? "depth_clamp" : "depth";
+  const std::string depth = c.polygon_offset ? "depth_offset"
+                            : c.depth_clamp  ? "depth_clamp"
+                                             : "depth";
+  // gl_FragCoord.z is the fragment's depth, offset included.
+  if (channel == "depth" || channel == "gl_FragCoord.z") return depth;
   const std::vector<std::string> names = component_names(c);
   const std::vector<int> varying = component_varying(c);
+  // A built-in's ("other"): gl_FragCoord's qualifier is noperspective, and a known bug of
+  // noperspective varyings (the clipper's) must not hide a failure of gl_FragCoord.
   for (size_t k = 0; k < names.size(); ++k)
-    if (names[k] == channel)
-      return std::string(name_of(c.varyings[size_t(varying[k])].interpolation));
+    if (names[k] == channel) {
+      const Varying& v = c.varyings[size_t(varying[k])];
+      return v.is_builtin() ? "other" : std::string(name_of(v.interpolation));
+    }
   return "other";
 }
 

@@ -48,6 +48,7 @@ void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
     depth_component_ = depth_component_ || kind == Kind::depth;
   }
   smooth_.assign(smooth.begin(), smooth.end());
+  offset_ = c.polygon_offset.has_value();
   // The depths' scale: the depth range's, or under GL_DEPTH_CLAMP the vertices' own (z_w is
   // not bounded by the range there).
   const double n = c.depth_near, f = c.depth_far;
@@ -91,7 +92,24 @@ void TriangleAllowance::component_at(const Block& b, size_t k, const float* valu
   const Kind kind = kind_[k];
   if (kind == Kind::fixed) return (void)std::fill(out, out + kRowBlock, fixed_[k]);
   if (eye_) return (void)std::fill(out, out + kRowBlock, INFINITY);
-  if (kind == Kind::depth) return depth_at(b, value, out);
+  if (kind == Kind::depth) {
+    depth_at(b, value, out);
+    // With a polygon offset, GL clamps the fragment's depth to [0, 1] after adding the offset
+    // (OpenGL 4.6 section 14.6.5), and gl_FragCoord.z is "the depth value that would be used
+    // for the fragment's depth" (GLSL 4.60 section 7.1.2): which of the two, before or after
+    // that clamp, is not settled between them (llvmpipe gives it before, softpipe after, both
+    // exactly where z_w + o is within [0, 1]). Beyond [0, 1] either is taken: the distance to it.
+    if (offset_)
+      for (int j = 0; j < kRowBlock; ++j) {
+        const double beyond = std::max({0.0, double(value[j]) - 1.0, -double(value[j])});
+        if (beyond == 0) continue;
+        const double sum = double(out[j]) + beyond * (1 + 0x1p-20);
+        float up = float(sum);
+        if (double(up) < sum) up = std::nextafter(up, INFINITY);  // rounded up, as out[j] is
+        out[j] = up;
+      }
+    return;
+  }
   // A clipped vertex's 1/w_c error re-weights a smooth value (freedom.hpp). Of 1/w_c itself,
   // noperspective Σ λ_j/w_j, the errors ρ_j/w_j of the clip-made vertices move it by
   // Σ λ_j ρ_j/w_j, which weight_at bounds as a share of 1/w_c (its envelope over the
@@ -111,7 +129,12 @@ std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int 
   const Kind kind = kind_[k];
   if (kind == Kind::fixed) return {fixed_[k], fixed_[k]};
   if (eye_) return {0.0, INFINITY};
-  if (kind == Kind::depth) return depth_range(px0, px1, py, value_lo, value_hi);
+  if (kind == Kind::depth) {
+    auto range = depth_range(px0, px1, py, value_lo, value_hi);
+    if (offset_)  // component_at's distance beyond [0, 1], at most at the run's extremes
+      range[1] += std::max({0.0, double(value_hi) - 1.0, -double(value_lo)}) * (1 + 0x1p-20);
+    return range;
+  }
   const auto delta = freedom_.range(px0, px1, py);
   const auto condition = fan_.condition_range(px0 + 0.5, px1 + 0.5, py + 0.5);
   std::array<double, 2> extra{0.0, 0.0};

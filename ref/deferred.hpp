@@ -84,6 +84,9 @@ class TriangleAllowance {
   std::vector<Kind> kind_;
   std::vector<float> fixed_;
   bool depth_component_ = false;  // some component is Kind::depth: prepare() needs depth_extra
+  // A polygon offset: gl_FragCoord.z (Kind::depth) may be z_w + o before the clamp to [0, 1]
+  // that the depth takes, or after (frag_coord_beyond).
+  bool offset_ = false;
   // A run's allowance range as Allowance::range gives it for pixels inside the polygon; its hi
   // unbounded where a pixel of the run may lie outside it (FanTriangles::outside_reach).
   std::array<double, 2> beyond(int px0, int px1, int py, const std::array<double, 2>& range) const;

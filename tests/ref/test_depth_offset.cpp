@@ -130,5 +130,31 @@ TEST(DepthOffset, TheReferencesOffsetIsExactAndClamped) {
   EXPECT_EQ(depth_offset(o.c, t).value, 0);
 }
 
+// gl_FragCoord.z under a polygon offset may be z_w + o before or after the clamp to [0, 1]: its
+// allowance reaches the clamped value where z_w + o leaves [0, 1], and only there.
+TEST(DepthOffset, FragCoordZMayBeClampedOnlyBeyondTheUnitRange) {
+  OffsetCase o = offset_case(0.0f, 8e6f);  // o = 8e6·2^-24 = 0.477: z_w + o passes 1 at the top
+  o.c.varyings = {builtin_varying(Builtin::frag_coord)};
+  for (Vertex& v : o.c.vertices)
+    v.values.assign(4, 0.0f);
+  const Expectation r = render(o.c, Model{}, 8);
+  size_t beyond = 0, inside = 0;
+  for (size_t i = 0; i < r.frame.pixel_count(); ++i) {
+    if (r.frame.primitive[i] < 0) continue;
+    const double z = r.frame.components[2][i], allowed = r.allowed.components[2][i];
+    EXPECT_LE(r.frame.depth[i], 1.0f);  // the depth itself is clamped
+    if (z > 1) {
+      ++beyond;
+      EXPECT_GE(allowed, z - 1) << i;                  // the clamped value passes
+      EXPECT_LT(allowed, 1.01 * (z - 1) + 1e-4) << i;  // not much more
+    } else {
+      ++inside;
+      EXPECT_LT(allowed, 1e-4) << i;  // no excuse inside [0, 1]
+    }
+  }
+  EXPECT_GT(beyond, 10u);
+  EXPECT_GT(inside, 10u);
+}
+
 }  // namespace
 }  // namespace glrc::ref
