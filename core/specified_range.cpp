@@ -60,6 +60,15 @@ std::optional<std::string> outside_specified_range(const Case& c) {
       }
     }
   }
+  // The polygon offset's parameters are computed on as the positions are (m·factor overflows).
+  if (const auto& o = c.polygon_offset) {
+    if (!(std::fabs(o->factor) <= kSpecifiedMagnitude))
+      return beyond("polygon_offset.factor", o->factor);
+    if (!(std::fabs(o->units) <= kSpecifiedMagnitude))
+      return beyond("polygon_offset.units", o->units);
+    if (o->clamp && !(std::fabs(*o->clamp) <= kSpecifiedMagnitude))
+      return beyond("polygon_offset.clamp", *o->clamp);
+  }
   return std::nullopt;
 }
 

@@ -49,6 +49,16 @@ void TriangleAllowance::set(const Case& c, const TriangleSetup& t,
   }
   smooth_.assign(smooth.begin(), smooth.end());
   offset_ = c.polygon_offset.has_value();
+  clamped_ = c.depth_clamp || offset_;
+  clamp_ = c.depth_clamp ? std::array<double, 2>{std::min(c.depth_near, c.depth_far),
+                                                 std::max(c.depth_near, c.depth_far)}
+                         : std::array<double, 2>{0.0, 1.0};
+  // The depth range's bounds come through float arithmetic (a few ulps); [0, 1]'s are exact.
+  clamp_margin_ =
+      c.depth_clamp ? 0x1p-22 * std::max(std::fabs(clamp_[0]), std::fabs(clamp_[1])) : 0.0;
+  plane_ = {depth_forms.numerator.a.get_d(),   depth_forms.numerator.b.get_d(),
+            depth_forms.numerator.c.get_d(),   depth_forms.denominator.a.get_d(),
+            depth_forms.denominator.b.get_d(), depth_forms.denominator.c.get_d()};
   // The depths' scale: the depth range's, or under GL_DEPTH_CLAMP the vertices' own (z_w is
   // not bounded by the range there).
   const double n = c.depth_near, f = c.depth_far;
@@ -81,10 +91,46 @@ void TriangleAllowance::prepare(const double* px, const double* py, Block& b, bo
   anchors_.distances(b.x, b.y, b.distances);
 }
 
-void TriangleAllowance::depth_at(const Block& b, const float* z, float* out) const {
+void TriangleAllowance::depth_unclamped_at(const Block& b, const float* z, float* out) const {
   if (eye_) return (void)std::fill(out, out + kRowBlock, INFINITY);
   depth_.at_rounded_up(b.x, b.y, z, b.delta, b.depth_extra, b.condition, b.outside, b.distances,
                        out);
+}
+
+void TriangleAllowance::depth_at(const Block& b, const float* z, float* out) const {
+  if (!clamped_) return depth_unclamped_at(b, z, out);
+  // The depths z are clamped; an implementation's unclamped z_w within the allowance a of the
+  // exact v is clamped too, so it lies in [clamp(v - a), clamp(v + a)]: beyond the range's ends
+  // every implementation gives the end itself (an offset pushing a whole triangle past 1, or
+  // depths clamped far beyond the range), where the unclamped allowance would excuse anything.
+  // v in double, from the plane's forms: the margin below covers its rounding.
+  double v[kRowBlock];
+  float unclamped[kRowBlock], a[kRowBlock];
+  for (int j = 0; j < kRowBlock; ++j) {
+    const double num = plane_[0] * b.x[j] + plane_[1] * b.y[j] + plane_[2];
+    const double den = plane_[3] * b.x[j] + plane_[4] * b.y[j] + plane_[5];
+    v[j] = num / den;
+    unclamped[j] = float(v[j]);
+  }
+  depth_unclamped_at(b, unclamped, a);
+  // The bounds an implementation clamps to are its own arithmetic's (llvmpipe's and
+  // softpipe's translate ∓ scale, in float: 0.19999999 for a range's 0.2): each within
+  // clamp_margin_ of the exact one.
+  const double e = clamp_margin_;
+  for (int j = 0; j < kRowBlock; ++j) {
+    if (!std::isfinite(v[j]) || std::isnan(a[j])) {
+      out[j] = a[j];
+      continue;
+    }
+    const double zj = z[j];
+    const double lo = std::clamp(v[j] - double(a[j]), clamp_[0] - e, clamp_[1] - e);
+    const double hi = std::clamp(v[j] + double(a[j]), clamp_[0] + e, clamp_[1] + e);
+    const double allowed =
+        std::max(zj - lo, hi - zj) + 0x1p-40 * (std::fabs(v[j]) + 1) + 0x1p-24 * std::fabs(zj);
+    float up = float(std::min(allowed, double(a[j])));
+    if (double(up) < std::min(allowed, double(a[j]))) up = std::nextafter(up, INFINITY);
+    out[j] = up;
+  }
 }
 
 void TriangleAllowance::component_at(const Block& b, size_t k, const float* value,
@@ -93,7 +139,7 @@ void TriangleAllowance::component_at(const Block& b, size_t k, const float* valu
   if (kind == Kind::fixed) return (void)std::fill(out, out + kRowBlock, fixed_[k]);
   if (eye_) return (void)std::fill(out, out + kRowBlock, INFINITY);
   if (kind == Kind::depth) {
-    depth_at(b, value, out);
+    depth_unclamped_at(b, value, out);
     // With a polygon offset, GL clamps the fragment's depth to [0, 1] after adding the offset
     // (OpenGL 4.6 section 14.6.5), and gl_FragCoord.z is "the depth value that would be used
     // for the fragment's depth" (GLSL 4.60 section 7.1.2): which of the two, before or after
@@ -130,7 +176,7 @@ std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int 
   if (kind == Kind::fixed) return {fixed_[k], fixed_[k]};
   if (eye_) return {0.0, INFINITY};
   if (kind == Kind::depth) {
-    auto range = depth_range(px0, px1, py, value_lo, value_hi);
+    auto range = depth_unclamped_range(px0, px1, py, value_lo, value_hi);
     if (offset_)  // component_at's distance beyond [0, 1], at most at the run's extremes
       range[1] += std::max({0.0, double(value_hi) - 1.0, -double(value_lo)}) * (1 + 0x1p-20);
     return range;
@@ -161,6 +207,14 @@ std::array<double, 2> TriangleAllowance::component_range(size_t k, int px0, int 
 
 std::array<double, 2> TriangleAllowance::depth_range(int px0, int px1, int py, float z_lo,
                                                      float z_hi) const {
+  auto range = depth_unclamped_range(px0, px1, py, z_lo, z_hi);
+  // Clamped (depth_at): no more than the unclamped allowance, and as little as 0.
+  if (clamped_) range[0] = 0;
+  return range;
+}
+
+std::array<double, 2> TriangleAllowance::depth_unclamped_range(int px0, int px1, int py, float z_lo,
+                                                               float z_hi) const {
   if (eye_) return {0.0, INFINITY};
   const auto delta = freedom_.range(px0, px1, py);
   const auto condition = fan_.condition_range(px0 + 0.5, px1 + 0.5, py + 0.5);

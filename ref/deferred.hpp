@@ -87,6 +87,16 @@ class TriangleAllowance {
   // A polygon offset: gl_FragCoord.z (Kind::depth) may be z_w + o before the clamp to [0, 1]
   // that the depth takes, or after (frag_coord_beyond).
   bool offset_ = false;
+  // The depth is clamped (fragment_depth: GL_DEPTH_CLAMP's range, or [0, 1] after a polygon
+  // offset) to clamp_: its allowance is that of the unclamped z_w (evaluated from plane_, the
+  // depth plane's forms in double) taken through the same clamp.
+  bool clamped_ = false;
+  std::array<double, 2> clamp_{};
+  double clamp_margin_ = 0;        // how far an implementation's bounds may be from clamp_
+  std::array<double, 6> plane_{};  // numerator a, b, c; denominator a, b, c
+  void depth_unclamped_at(const Block& b, const float* z, float* out) const;
+  std::array<double, 2> depth_unclamped_range(int px0, int px1, int py, float z_lo,
+                                              float z_hi) const;
   // A run's allowance range as Allowance::range gives it for pixels inside the polygon; its hi
   // unbounded where a pixel of the run may lie outside it (FanTriangles::outside_reach).
   std::array<double, 2> beyond(int px0, int px1, int py, const std::array<double, 2>& range) const;
