@@ -119,9 +119,8 @@ DepthOffset depth_offset(const Case& c, const TriangleSetup& t) {
   return out;
 }
 
-double depth_offset_freedom(const Case& c, const TriangleSetup& t, const PositionFreedom& freedom,
+double depth_offset_freedom(const Case& c, const PositionFreedom& freedom,
                             const DepthOffset& reference) {
-  (void)t;
   if (!c.polygon_offset) return 0.0;
   const PolygonOffset& po = *c.polygon_offset;
   const std::vector<PolygonVertex>& poly = freedom.polygon_vertices();

@@ -47,10 +47,10 @@ struct DepthOffset {
 DepthOffset depth_offset(const Case& c, const TriangleSetup& t);
 
 // How far the offset of a conforming implementation may be from `reference` (z_w units): the
-// freedom of m and r above over the pieces of t's clipped polygon (`freedom`'s vertices), and
-// the float rounding of o and of z_w + o; infinite where m is unbounded and factor is not 0. 0
-// without a polygon offset.
-double depth_offset_freedom(const Case& c, const TriangleSetup& t, const PositionFreedom& freedom,
+// freedom of m and r above over the pieces of the triangle's clipped polygon (`freedom`'s
+// vertices), and the float rounding of o and of z_w + o; infinite where m is unbounded and factor
+// is not 0. 0 without a polygon offset.
+double depth_offset_freedom(const Case& c, const PositionFreedom& freedom,
                             const DepthOffset& reference);
 
 // The interval of |∂z/∂x| and |∂z/∂y| (in that order, each {lo, hi}) over every triangle whose

@@ -102,7 +102,7 @@ struct Prepared {
     if (s.allowance) {
       allowance->set(c, t, planes, depth_forms, s.component_smooth);
       if (c.polygon_offset)
-        allowance->add_depth_freedom(depth_offset_freedom(c, t, freedom(), offset));
+        allowance->add_depth_freedom(depth_offset_freedom(c, freedom(), offset));
     }
   }
 

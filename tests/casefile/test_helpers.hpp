@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "casefile/casefile.hpp"
 #include "tests/support/temp_dir_test.hpp"
@@ -44,6 +46,14 @@ class CaseFileTest : public glrc::test::TempDirTest {
 
 inline uint32_t bits(float f) {
   return std::bit_cast<uint32_t>(f);
+}
+
+// A case's polygon offset as bits: none, or {factor, units[, clamp]}, every float exactly.
+inline std::vector<uint32_t> offset_bits(const std::optional<PolygonOffset>& o) {
+  if (!o) return {};
+  std::vector<uint32_t> out{bits(o->factor), bits(o->units)};
+  if (o->clamp) out.push_back(bits(*o->clamp));
+  return out;
 }
 
 // Every validation message: one line, "<file>: <field path>: expected ..., got ...".

@@ -29,18 +29,7 @@ void expect_same(const Case& a, const Case& b) {
   EXPECT_EQ(a.clip_origin, b.clip_origin);
   EXPECT_EQ(a.clip_depth, b.clip_depth);
   EXPECT_EQ(a.depth_clamp, b.depth_clamp);
-  ASSERT_EQ(a.polygon_offset.has_value(), b.polygon_offset.has_value());
-  if (a.polygon_offset) {
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.polygon_offset->factor),
-              std::bit_cast<uint32_t>(b.polygon_offset->factor));
-    EXPECT_EQ(std::bit_cast<uint32_t>(a.polygon_offset->units),
-              std::bit_cast<uint32_t>(b.polygon_offset->units));
-    ASSERT_EQ(a.polygon_offset->clamp.has_value(), b.polygon_offset->clamp.has_value());
-    if (a.polygon_offset->clamp) {
-      EXPECT_EQ(std::bit_cast<uint32_t>(*a.polygon_offset->clamp),
-                std::bit_cast<uint32_t>(*b.polygon_offset->clamp));
-    }
-  }
+  EXPECT_EQ(offset_bits(a.polygon_offset), offset_bits(b.polygon_offset));
   EXPECT_EQ(a.provoking, b.provoking);
   EXPECT_EQ(a.depth_func, b.depth_func);
   EXPECT_EQ(bits(a.depth_clear), bits(b.depth_clear));

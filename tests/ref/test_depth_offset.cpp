@@ -99,7 +99,7 @@ TEST(DepthOffset, EitherSlopeOfGLPassesAndDriversFaultsDoNot) {
     const TriangleSetup t = setup_triangle(o.c, Model{}, 0);
     const PositionFreedom freedom(o.c, t, bits);
     const DepthOffset reference = depth_offset(o.c, t);
-    const double allowed = depth_offset_freedom(o.c, t, freedom, reference);
+    const double allowed = depth_offset_freedom(o.c, freedom, reference);
     ASSERT_TRUE(std::isfinite(allowed));
     const auto g = slopes(o.window, o.z);
     const double gx = std::fabs(g[0]), gy = std::fabs(g[1]);
